@@ -1,0 +1,72 @@
+#pragma once
+// Orthorhombic simulation box [lo, hi) per axis. Periodic axes wrap; a non-periodic axis is
+// bounded by walls at lo and hi (x in invasim: the left wall lo.x moves under the barostat).
+// `version` changes whenever a periodic length changes, so neighbour lists know to rebuild.
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include "core/vec3.hpp"
+
+namespace invasim {
+
+class Box {
+ public:
+  Box() = default;
+  // Box from corners; throws InputError if any length is not positive.
+  Box(const Vec3& lo, const Vec3& hi, std::array<bool, 3> periodic);
+
+  const Vec3& lo() const { return lo_; }
+  const Vec3& hi() const { return hi_; }
+  Vec3 lengths() const { return hi_ - lo_; }
+  double length(int axis) const { return hi_[axis] - lo_[axis]; }
+  bool periodic(int axis) const { return periodic_[axis]; }
+  const std::array<bool, 3>& periodic() const { return periodic_; }
+  double volume() const { return lengths().prod(); }
+  // Area of a wall normal to x (the barostat's piston area).
+  double wall_area() const { return length(1) * length(2); }
+  std::uint64_t version() const { return version_; }
+
+  // Minimum-image separation along periodic axes (valid for any |d|).
+  Vec3 minimum_image(Vec3 d) const {
+    for (int a = 0; a < 3; ++a)
+      if (periodic_[a]) {
+        const double len = hi_[a] - lo_[a];
+        d[a] -= len * std::round(d[a] / len);
+      }
+    return d;
+  }
+  // Wraps r into the primary cell on periodic axes and counts the crossings in image.
+  void wrap(Vec3& r, Vec3i& image) const {
+    for (int a = 0; a < 3; ++a)
+      if (periodic_[a]) {
+        const double len = hi_[a] - lo_[a];
+        if (r[a] >= hi_[a] || r[a] < lo_[a]) {
+          const double shift = std::floor((r[a] - lo_[a]) / len);
+          r[a] -= shift * len;
+          image[a] += static_cast<int>(shift);
+          if (r[a] >= hi_[a]) r[a] = lo_[a];  // guards round-off at the upper edge
+        }
+      }
+  }
+  // Position with the periodic images undone.
+  Vec3 unwrap(const Vec3& r, const Vec3i& image) const {
+    Vec3 u = r;
+    for (int a = 0; a < 3; ++a)
+      if (periodic_[a]) u[a] += image[a] * (hi_[a] - lo_[a]);
+    return u;
+  }
+
+  // Moves the wall bound of a non-periodic axis (barostat, compression); no version change.
+  void set_wall(int axis, bool upper, double value);
+  // Replaces both corners (compression, rescaling); bumps the version.
+  void set_bounds(const Vec3& lo, const Vec3& hi);
+
+ private:
+  Vec3 lo_ = Vec3::Zero();
+  Vec3 hi_ = Vec3::Ones();
+  std::array<bool, 3> periodic_{false, true, true};
+  std::uint64_t version_ = 0;
+};
+
+}  // namespace invasim

@@ -1,0 +1,44 @@
+#pragma once
+// Error types. InputError: the user asked for something invalid (bad parameter, malformed
+// mesh, site outside the walls); the message names the offending key or value.
+// SimulationError: a running simulation became invalid (NaN, escaped site).
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace invasim {
+
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class SimulationError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Builds a message from streamable parts: fail_input("dt = ", dt, " must be > 0").
+template <typename... Parts>
+[[noreturn]] void fail_input(const Parts&... parts) {
+  std::ostringstream out;
+  (out << ... << parts);
+  throw InputError(out.str());
+}
+
+template <typename... Parts>
+[[noreturn]] void fail_simulation(const Parts&... parts) {
+  std::ostringstream out;
+  (out << ... << parts);
+  throw SimulationError(out.str());
+}
+
+// Checks a scalar parameter and names it in the error.
+inline void require_positive(const char* name, double value) {
+  if (!(value > 0.0)) fail_input(name, " = ", value, " must be > 0");
+}
+inline void require_non_negative(const char* name, double value) {
+  if (!(value >= 0.0)) fail_input(name, " = ", value, " must be >= 0");
+}
+
+}  // namespace invasim

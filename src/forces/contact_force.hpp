@@ -1,0 +1,47 @@
+#pragma once
+// Linear-spring contacts between all sites (MODEL.md, "Pair forces"):
+//   vertex-vertex of different adipocytes and vertex-cancer: F = (eps/s)(1 - r/s) for r <= s;
+//   cancer-cancer: the same repulsion plus cohesion, attractive from s to r_b = (1+beta)s and
+//   falling linearly to zero at r_a = (1+alpha)s.
+// s is the mean of the two diameters. One pass over one neighbour list serves all kinds.
+#include "forces/force.hpp"
+#include "neighbor/verlet_list.hpp"
+
+namespace invasim {
+
+struct ContactParams {
+  double eps_cc = 1.0;  // cancer-cancer contact energy
+  double eps_cv = 1.0;  // cancer-vertex
+  double eps_vv = 1.0;  // vertex-vertex (different adipocytes)
+  double alpha = 0.2;   // cohesion range: r_a = (1 + alpha) s
+  double beta = 0.0;    // cohesion depth: r_b = (1 + beta) s; 0 = purely repulsive
+  double skin = 0.3;    // neighbour-list skin
+  // Throws InputError naming the bad value.
+  void validate() const;
+};
+
+// Pair force magnitude along r_hat (positive = repulsive) and pair energy, for separation r,
+// contact distance s, energy eps and cohesion (alpha, beta). Exposed for tests.
+struct PairEval {
+  double force;
+  double energy;
+};
+PairEval linear_spring(double r, double s, double eps);
+PairEval cohesive_spring(double r, double s, double eps, double alpha, double beta);
+
+class ContactForce : public Force {
+ public:
+  explicit ContactForce(const ContactParams& params);
+  std::string name() const override { return "contact"; }
+  ForceResult add_forces(System& sys, const ForceFlags& flags) override;
+  const ContactParams& params() const { return params_; }
+  VerletList& neighbor_list() { return list_; }
+
+ private:
+  ContactParams params_;
+  VerletList list_;
+  std::vector<double> site_energy_;
+  std::vector<Vec3> site_virial_;
+};
+
+}  // namespace invasim

@@ -1,0 +1,41 @@
+#pragma once
+// ECM tethers (MODEL.md, "ECM tethers"): linear springs between adipocyte centres of mass,
+// U = K/2 (R_ij - l_ij0)^2 (sigma = 1), minimum image in y and z. The force on a centre is
+// shared equally by the body's vertices.
+#include "forces/force.hpp"
+
+namespace invasim {
+
+struct Tether {
+  int a, b;          // body indices
+  double rest_length;  // l_ij0
+};
+
+class TetherForce : public Force {
+ public:
+  explicit TetherForce(double stiffness);
+  std::string name() const override { return "tether"; }
+  ForceResult add_forces(System& sys, const ForceFlags& flags) override;
+
+  double stiffness() const { return stiffness_; }
+  void set_stiffness(double k);
+  const std::vector<Tether>& tethers() const { return tethers_; }
+  // Adds one tether; rest length must be >= 0, bodies distinct and valid.
+  void add(const System& sys, int a, int b, double rest_length);
+  // Tethers every pair of bodies whose centres are closer than a cutoff d_c chosen so that
+  // the mean number of tethers per body is `mean_degree` (the M = mean_degree N_a / 2
+  // shortest pairs; d_c is midway between the M-th and (M+1)-th distances); rest lengths are
+  // the current separations. Returns d_c.
+  double connect_by_mean_degree(const System& sys, double mean_degree);
+  // Heterogeneity lambda: tethers whose midpoint lies in the lower half of the box in z get
+  // l0 = (1 - lambda) R, the others (1 + lambda) R, with R the current separation.
+  void apply_heterogeneity(const System& sys, double lambda);
+  // Current centre of each body (unwrapped vertex centroid).
+  static std::vector<Vec3> body_centres(const System& sys);
+
+ private:
+  double stiffness_;
+  std::vector<Tether> tethers_;
+};
+
+}  // namespace invasim

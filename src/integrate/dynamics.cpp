@@ -1,0 +1,188 @@
+#include "integrate/dynamics.hpp"
+
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "core/rng.hpp"
+
+namespace invasim {
+
+void MethodParams::validate() const {
+  require_non_negative("gamma", gamma);
+  require_non_negative("kT", kT);
+  require_non_negative("f0", f0);
+  if (!(tau_p >= 0.0)) fail_input("tau_p = ", tau_p, " must be >= 0 (0: uncorrelated, inf: frozen)");
+}
+
+Method::Method(std::vector<int> group, const MethodParams& params)
+    : group_(std::move(group)), params_(params) {
+  params_.validate();
+}
+
+std::shared_ptr<Method> Method::damped(std::vector<int> group, double gamma) {
+  MethodParams p;
+  p.gamma = gamma;
+  return std::make_shared<Method>(std::move(group), p);
+}
+
+std::shared_ptr<Method> Method::langevin(std::vector<int> group, double gamma, double kT) {
+  MethodParams p;
+  p.gamma = gamma;
+  p.kT = kT;
+  return std::make_shared<Method>(std::move(group), p);
+}
+
+std::shared_ptr<Method> Method::active(std::vector<int> group, double gamma, double f0,
+                                       double tau_p, double kT) {
+  MethodParams p;
+  p.gamma = gamma;
+  p.f0 = f0;
+  p.tau_p = tau_p;
+  p.kT = kT;
+  return std::make_shared<Method>(std::move(group), p);
+}
+
+namespace {
+Vec3 uniform_on_sphere(double u0, double u1) {
+  const double z = 2.0 * u0 - 1.0, rho = std::sqrt(std::max(0.0, 1.0 - z * z));
+  const double phi = 2.0 * M_PI * u1;
+  return {rho * std::cos(phi), rho * std::sin(phi), z};
+}
+}  // namespace
+
+Vec3 rotate_orientation(const Vec3& n, double dt, double tau_p, const std::array<double, 4>& u) {
+  if (tau_p == 0.0) return uniform_on_sphere(u[0], u[1]);
+  if (std::isinf(tau_p)) return n;
+  const double theta =
+      std::sqrt(2.0 * dt / tau_p) * std::sqrt(-2.0 * std::log(u[0])) * std::cos(2.0 * M_PI * u[1]);
+  // Orthonormal frame perpendicular to n, built from the axis n is least aligned with.
+  int a = 0;
+  if (std::abs(n[1]) < std::abs(n[a])) a = 1;
+  if (std::abs(n[2]) < std::abs(n[a])) a = 2;
+  const Vec3 e1 = n.cross(Vec3::Unit(a)).normalized();
+  const Vec3 e2 = n.cross(e1);
+  const double psi = 2.0 * M_PI * u[2];
+  const Vec3 w = std::cos(psi) * e1 + std::sin(psi) * e2;
+  return (std::cos(theta) * n + std::sin(theta) * w).normalized();
+}
+
+void Method::randomize_orientations(System& sys, std::uint64_t stream_step) const {
+  auto& s = sys.sites();
+  for (int i : group_) {
+    const auto u = RandomKey(sys.seed(), stream_step, std::uint32_t(i), RngStream::kOrientation,
+                             1)
+                       .uniform4();
+    s.orient[i] = uniform_on_sphere(u[0], u[1]);
+  }
+}
+
+void Method::drift(System& sys, double dt) const {
+  Sites& s = sys.sites();
+  const Box& box = sys.box();
+  const int n = int(group_.size());
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < n; ++k) {
+    const int i = group_[k];
+    s.vel[i] += 0.5 * dt / s.mass[i] * s.force[i];
+    s.pos[i] += dt * s.vel[i];
+    box.wrap(s.pos[i], s.image[i]);
+  }
+}
+
+void Method::add_drive(System& sys, double dt) const {
+  Sites& s = sys.sites();
+  const MethodParams& p = params_;
+  const double noise = p.kT > 0.0 ? std::sqrt(2.0 * p.gamma * p.kT / dt) : 0.0;
+  const std::uint64_t seed = sys.seed(), step = sys.step;
+  const int n = int(group_.size());
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < n; ++k) {
+    const int i = group_[k];
+    Vec3 f = -p.gamma * s.vel[i];
+    if (noise > 0.0)
+      f += noise * RandomKey(seed, step, std::uint32_t(i), RngStream::kThermal).normal3();
+    if (p.f0 > 0.0) f += p.f0 * s.orient[i];
+    s.force[i] += f;
+  }
+}
+
+void Method::kick(System& sys, double dt) const {
+  Sites& s = sys.sites();
+  const MethodParams& p = params_;
+  if (p.f0 > 0.0) {
+    const std::uint64_t seed = sys.seed(), step = sys.step;
+    const int n = int(group_.size());
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < n; ++k) {
+      const int i = group_[k];
+      const auto u = RandomKey(seed, step, std::uint32_t(i), RngStream::kOrientation).uniform4();
+      s.orient[i] = rotate_orientation(s.orient[i], dt, p.tau_p, u);
+    }
+  }
+  add_drive(sys, dt);
+  const int n = int(group_.size());
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < n; ++k) {
+    const int i = group_[k];
+    s.vel[i] += 0.5 * dt / s.mass[i] * s.force[i];
+  }
+}
+
+void PressureWall::validate() const {
+  require_non_negative("pressure", pressure);
+  require_positive("wall mass", mass);
+  require_non_negative("wall gamma", gamma);
+  if (!walls) fail_input("pressure wall: no wall force to couple to");
+}
+
+Dynamics::Dynamics(double dt) : dt_(dt) { require_positive("dt", dt); }
+
+void Dynamics::set_dt(double dt) {
+  require_positive("dt", dt);
+  dt_ = dt;
+  prepared_ = false;
+}
+
+void Dynamics::update_wall_force(System& sys) {
+  if (!wall_) return;
+  wall_->force = wall_->walls->left_wall_force() + wall_->pressure * sys.box().wall_area() -
+                 wall_->gamma * wall_->velocity;
+}
+
+void Dynamics::prepare(System& sys, ForceField& ff) {
+  std::vector<char> owner(sys.n_sites(), 0);
+  for (const auto& m : methods_)
+    for (int i : m->group()) {
+      if (i < 0 || std::size_t(i) >= sys.n_sites())
+        fail_input("integrator: site ", i, " of a group is outside [0, ", sys.n_sites(), ")");
+      if (owner[i]++) fail_input("integrator: site ", i, " belongs to two integration methods");
+    }
+  if (wall_) wall_->validate();
+  ff.compute(sys);
+  for (const auto& m : methods_) m->add_drive(sys, dt_);
+  update_wall_force(sys);
+  prepared_ = true;
+}
+
+void Dynamics::step(System& sys, ForceField& ff) {
+  if (!prepared_) prepare(sys, ff);
+  for (const auto& m : methods_) m->drift(sys, dt_);
+  if (wall_) {
+    wall_->velocity += 0.5 * dt_ / wall_->mass * wall_->force;
+    sys.box().set_wall(0, false, sys.box().lo()[0] + dt_ * wall_->velocity);
+  }
+  ff.compute(sys);
+  ++sys.step;
+  sys.time += dt_;
+  for (const auto& m : methods_) m->kick(sys, dt_);
+  if (wall_) {
+    update_wall_force(sys);
+    wall_->velocity += 0.5 * dt_ / wall_->mass * wall_->force;
+  }
+}
+
+void Dynamics::run(System& sys, ForceField& ff, std::uint64_t n_steps) {
+  for (std::uint64_t k = 0; k < n_steps; ++k) step(sys, ff);
+}
+
+}  // namespace invasim

@@ -1,0 +1,94 @@
+#pragma once
+// Time stepping (MODEL.md, "Equations of motion"): the paper's modified velocity Verlet, in
+// which damping -gamma v and the random / active drive enter with the half-step velocity:
+//   v_h = v + dt/2 F/m;  x += v_h dt;  F = F_cons(x) - gamma v_h + F_drive;  v = v_h + dt/2 F/m.
+// A Dynamics owns one time step dt and a list of methods, each moving one group of sites:
+// Damped (adipocyte vertices), Langevin (passive cells, FDT noise) or Active (self-propulsion
+// f0 n with exact rotational diffusion, optional thermal noise). An optional PressureWall
+// moves the left wall under a target pressure. Sites in no method do not move.
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include "forces/force.hpp"
+#include "forces/wall_force.hpp"
+
+namespace invasim {
+
+struct MethodParams {
+  double gamma = 0.2;   // damping coefficient (force = -gamma v)
+  double kT = 0.0;      // thermal noise temperature (0: none)
+  double f0 = 0.0;      // self-propulsion force (0: passive)
+  double tau_p = std::numeric_limits<double>::infinity();  // persistence time (0: white)
+  void validate() const;
+};
+
+// One group of sites and how it moves.
+class Method {
+ public:
+  Method(std::vector<int> group, const MethodParams& params);
+  static std::shared_ptr<Method> damped(std::vector<int> group, double gamma);
+  static std::shared_ptr<Method> langevin(std::vector<int> group, double gamma, double kT);
+  static std::shared_ptr<Method> active(std::vector<int> group, double gamma, double f0,
+                                        double tau_p, double kT = 0.0);
+
+  const std::vector<int>& group() const { return group_; }
+  const MethodParams& params() const { return params_; }
+  MethodParams& params() { return params_; }
+  // Gives every site of the group a random orientation (for active methods).
+  void randomize_orientations(System& sys, std::uint64_t stream_step = 0) const;
+
+  // v_h = v + dt/2 F/m; x += v_h dt (positions wrapped).
+  void drift(System& sys, double dt) const;
+  // Orientation update and drive at step `step`; then v = v_h + dt/2 F/m.
+  void kick(System& sys, double dt) const;
+  // Adds -gamma v + drive to the site forces (used to start a run from the current v).
+  void add_drive(System& sys, double dt) const;
+
+ private:
+  std::vector<int> group_;
+  MethodParams params_;
+};
+
+// Rotates unit vector n about a uniformly random axis perpendicular to it by a Gaussian
+// angle of variance 2 dt / tau_p, so E[n'.n] = exp(-dt/tau_p) for any dt (u: 4 uniforms).
+Vec3 rotate_orientation(const Vec3& n, double dt, double tau_p, const std::array<double, 4>& u);
+
+// The left wall as a massive piston: M x'' = F_sites_on_wall + P A - gamma_w x'.
+struct PressureWall {
+  double pressure = 0.0;
+  double mass = 1.0;
+  double gamma = 0.2;
+  double velocity = 0.0;
+  double force = 0.0;  // total force on the wall at the last step
+  std::shared_ptr<WallForce> walls;
+  void validate() const;
+};
+
+class Dynamics {
+ public:
+  explicit Dynamics(double dt);
+  double dt() const { return dt_; }
+  void set_dt(double dt);
+  void add(std::shared_ptr<Method> method) { methods_.push_back(std::move(method)); }
+  const std::vector<std::shared_ptr<Method>>& methods() const { return methods_; }
+  void set_pressure_wall(std::shared_ptr<PressureWall> wall) { wall_ = std::move(wall); }
+  std::shared_ptr<PressureWall> pressure_wall() const { return wall_; }
+
+  // Evaluates forces and drive at the current state so that stepping can start; step() and
+  // run() call it once when forces are stale (after construction or a state change).
+  void prepare(System& sys, ForceField& ff);
+  void invalidate() { prepared_ = false; }
+  // One time step.
+  void step(System& sys, ForceField& ff);
+  void run(System& sys, ForceField& ff, std::uint64_t n_steps);
+
+ private:
+  void update_wall_force(System& sys);
+  double dt_;
+  std::vector<std::shared_ptr<Method>> methods_;
+  std::shared_ptr<PressureWall> wall_;
+  bool prepared_ = false;
+};
+
+}  // namespace invasim

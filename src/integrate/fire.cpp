@@ -1,0 +1,122 @@
+#include "integrate/fire.hpp"
+
+#include <cmath>
+
+#include "core/deterministic_sum.hpp"
+#include "core/errors.hpp"
+
+namespace invasim {
+
+void FireParams::validate() const {
+  require_positive("ftol", ftol);
+  require_positive("dt", dt);
+  require_positive("dt_max", dt_max);
+  require_positive("dt_min", dt_min);
+  if (!(alpha0 > 0 && alpha0 < 1)) fail_input("alpha0 = ", alpha0, " must be in (0, 1)");
+  if (!(f_alpha > 0 && f_alpha <= 1)) fail_input("f_alpha = ", f_alpha, " must be in (0, 1]");
+  if (!(f_inc >= 1)) fail_input("f_inc = ", f_inc, " must be >= 1");
+  if (!(f_dec > 0 && f_dec < 1)) fail_input("f_dec = ", f_dec, " must be in (0, 1)");
+}
+
+Fire::Fire(const FireParams& params) : params_(params) { params_.validate(); }
+
+namespace {
+struct Sums {
+  double power = 0, v2 = 0, f2 = 0, fmax2 = 0;
+  Sums& operator+=(const Sums& o) {
+    power += o.power;
+    v2 += o.v2;
+    f2 += o.f2;
+    fmax2 = std::max(fmax2, o.fmax2);
+    return *this;
+  }
+};
+}  // namespace
+
+FireResult Fire::minimize(System& sys, ForceField& ff, PressureWall* wall) const {
+  const FireParams& p = params_;
+  Sites& s = sys.sites();
+  const std::size_t n = s.size();
+  if (wall) wall->validate();
+  double wall_v = 0.0;
+  auto wall_force = [&]() {
+    return wall->walls->left_wall_force() + wall->pressure * sys.box().wall_area();
+  };
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) s.vel[i].setZero();
+  double dt = p.dt, alpha = p.alpha0;
+  int n_positive = 0;
+  FireResult result;
+  ff.compute(sys);
+  for (result.steps = 0;; ++result.steps) {
+    Sums sum = deterministic_sum(n, Sums{}, [&](std::size_t i) {
+      return Sums{s.force[i].dot(s.vel[i]), s.vel[i].squaredNorm(), s.force[i].squaredNorm(),
+                  s.force[i].squaredNorm()};
+    });
+    double fw = 0.0;
+    if (wall) {
+      fw = wall_force();
+      sum.power += fw * wall_v;
+      sum.v2 += wall_v * wall_v;
+      sum.f2 += fw * fw;
+    }
+    result.max_force = std::sqrt(sum.fmax2);
+    const bool wall_ok = !wall || std::abs(fw) / sys.box().wall_area() < p.ftol;
+    if ((result.max_force < p.ftol && wall_ok) || result.steps >= p.max_steps) {
+      result.converged = result.max_force < p.ftol && wall_ok;
+      break;
+    }
+    if (!std::isfinite(sum.f2)) fail_simulation("FIRE: a force became non-finite at step ", result.steps);
+    if (sum.power > 0.0) {
+      if (++n_positive > p.n_delay) {
+        dt = std::min(dt * p.f_inc, p.dt_max);
+        alpha *= p.f_alpha;
+      }
+    } else {
+      n_positive = 0;
+      dt = std::max(dt * p.f_dec, p.dt_min);
+      alpha = p.alpha0;
+      // Step back half a step and stop (FIRE 2.0).
+#pragma omp parallel for schedule(static)
+      for (std::size_t i = 0; i < n; ++i) {
+        s.pos[i] -= 0.5 * dt * s.vel[i];
+        s.vel[i].setZero();
+        sys.box().wrap(s.pos[i], s.image[i]);
+      }
+      if (wall) {
+        sys.box().set_wall(0, false, sys.box().lo()[0] - 0.5 * dt * wall_v);
+        wall_v = 0.0;
+      }
+      sum.v2 = 0.0;
+    }
+    // Semi-implicit Euler with FIRE velocity mixing, using |v| and |F| after the kick.
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) s.vel[i] += dt / s.mass[i] * s.force[i];
+    if (wall) wall_v += dt / wall->mass * fw;
+    Sums mixed = deterministic_sum(n, Sums{}, [&](std::size_t i) {
+      return Sums{0.0, s.vel[i].squaredNorm(), s.force[i].squaredNorm(), 0.0};
+    });
+    if (wall) {
+      mixed.v2 += wall_v * wall_v;
+      mixed.f2 += fw * fw;
+    }
+    const double ratio = mixed.f2 > 0.0 ? std::sqrt(mixed.v2 / mixed.f2) : 0.0;
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      s.vel[i] = (1.0 - alpha) * s.vel[i] + alpha * ratio * s.force[i];
+      s.pos[i] += dt * s.vel[i];
+      sys.box().wrap(s.pos[i], s.image[i]);
+    }
+    if (wall) {
+      wall_v = (1.0 - alpha) * wall_v + alpha * ratio * fw;
+      sys.box().set_wall(0, false, sys.box().lo()[0] + dt * wall_v);
+    }
+    ff.compute(sys);
+  }
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) s.vel[i].setZero();
+  result.energy = ff.energy(sys);
+  return result;
+}
+
+}  // namespace invasim

@@ -1,0 +1,42 @@
+#pragma once
+// Immutable connectivity of a closed, outward-oriented triangle mesh, shared by every
+// adipocyte that uses it (Mirheo-style: topology apart from positions). Construction
+// validates it: indices in range, every edge in exactly two faces with opposite
+// orientations, every vertex used, genus 0. A malformed mesh throws InputError.
+#include <array>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "core/vec3.hpp"
+
+namespace invasim {
+
+class MeshTopology {
+ public:
+  using Face = std::array<int, 3>;
+  MeshTopology(int n_vertices, std::vector<Face> faces);
+
+  int n_vertices() const { return n_vertices_; }
+  int n_faces() const { return int(faces_.size()); }
+  int n_edges() const { return int(edges_.size()); }
+  const std::vector<Face>& faces() const { return faces_; }
+  const std::vector<std::pair<int, int>>& edges() const { return edges_; }
+
+ private:
+  int n_vertices_;
+  std::vector<Face> faces_;
+  std::vector<std::pair<int, int>> edges_;  // (a < b), each once
+};
+
+// A mesh shape: its topology and vertex positions on the unit sphere (or any reference shape).
+struct MeshShape {
+  std::shared_ptr<const MeshTopology> topology;
+  std::vector<Vec3> vertices;
+};
+
+// Icosahedron with each edge split `subdivisions` times by midpoints projected onto the unit
+// sphere. subdivisions = 1 gives the adipocyte mesh: 42 vertices, 80 faces, 120 edges.
+MeshShape icosphere(int subdivisions);
+
+}  // namespace invasim

@@ -1,0 +1,147 @@
+#include "state/system.hpp"
+
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "mesh/geometry.hpp"
+
+namespace invasim {
+
+System::System(const Box& box, std::uint64_t seed) : box_(box), seed_(seed) {}
+
+int System::push_site(const Vec3& r, double diameter, double mass, int body, SiteKind kind,
+                      const Vec3& orientation) {
+  const std::size_t id = sites_.size();
+  if (!(diameter > 0.0) || !std::isfinite(diameter))
+    fail_input("site ", id, ": diameter = ", diameter, " must be finite and > 0");
+  if (!(mass > 0.0) || !std::isfinite(mass))
+    fail_input("site ", id, ": mass = ", mass, " must be finite and > 0");
+  if (!r.allFinite()) fail_input("site ", id, ": position is not finite");
+  for (int a = 0; a < 3; ++a)
+    if (!box_.periodic(a) && (r[a] < box_.lo()[a] || r[a] > box_.hi()[a]))
+      fail_input("site ", id, ": ", "xyz"[a], " = ", r[a], " is outside the walls [",
+                 box_.lo()[a], ", ", box_.hi()[a], "]");
+  Vec3 wrapped = r;
+  Vec3i image = Vec3i::Zero();
+  box_.wrap(wrapped, image);
+  const double n = orientation.norm();
+  sites_.pos.push_back(wrapped);
+  sites_.image.push_back(image);
+  sites_.vel.push_back(Vec3::Zero());
+  sites_.force.push_back(Vec3::Zero());
+  sites_.orient.push_back(n > 0 ? Vec3(orientation / n) : Vec3::Zero());
+  sites_.diameter.push_back(diameter);
+  sites_.mass.push_back(mass);
+  sites_.body.push_back(body);
+  sites_.kind.push_back(kind);
+  return int(id);
+}
+
+int System::add_sphere(const Vec3& r, double diameter, double mass, const Vec3& orientation) {
+  return push_site(r, diameter, mass, -1, SiteKind::kCancer, orientation);
+}
+
+int System::add_mesh(std::shared_ptr<const MeshTopology> topology,
+                     const std::vector<Vec3>& vertices, double vertex_diameter,
+                     std::vector<double> ref_area, double ref_volume, double mass) {
+  if (!topology) fail_input("add_mesh: no mesh topology given");
+  const int body = int(bodies_.size());
+  if (int(vertices.size()) != topology->n_vertices())
+    fail_input("adipocyte ", body, ": ", vertices.size(), " vertex positions for a mesh of ",
+               topology->n_vertices(), " vertices");
+  if (int(ref_area.size()) != topology->n_faces())
+    fail_input("adipocyte ", body, ": ", ref_area.size(), " reference areas for ",
+               topology->n_faces(), " faces");
+  for (std::size_t k = 0; k < ref_area.size(); ++k)
+    if (!(ref_area[k] > 0.0))
+      fail_input("adipocyte ", body, ": reference area of face ", k, " = ", ref_area[k],
+                 " must be > 0");
+  if (!(ref_volume > 0.0))
+    fail_input("adipocyte ", body, ": reference volume = ", ref_volume, " must be > 0");
+  const double volume = mesh_volume(*topology, vertices.data());
+  if (!(volume > 0.0))
+    fail_input("adipocyte ", body, ": mesh volume = ", volume,
+               " is not positive; faces must be oriented outward");
+  // Validate every vertex before adding any, so a failure leaves the system unchanged.
+  for (std::size_t v = 0; v < vertices.size(); ++v)
+    for (int a = 0; a < 3; ++a)
+      if (!box_.periodic(a) && (vertices[v][a] < box_.lo()[a] || vertices[v][a] > box_.hi()[a]))
+        fail_input("adipocyte ", body, ": vertex ", v, " has ", "xyz"[a], " = ", vertices[v][a],
+                   " outside the walls [", box_.lo()[a], ", ", box_.hi()[a], "]");
+  if (!(vertex_diameter > 0.0))
+    fail_input("adipocyte ", body, ": vertex diameter = ", vertex_diameter, " must be > 0");
+  MeshBody mb{topology, int(sites_.size()), std::move(ref_area), ref_volume};
+  for (const Vec3& x : vertices) push_site(x, vertex_diameter, mass, body, SiteKind::kVertex, {});
+  bodies_.push_back(std::move(mb));
+  return body;
+}
+
+int System::add_mesh_scaled(const MeshShape& shape, const Vec3& center, double radius,
+                            double vertex_diameter, double shape_param, double mass) {
+  require_positive("radius", radius);
+  if (!(shape_param >= 1.0))
+    fail_input("shape_param = ", shape_param, " must be >= 1 (1 is a sphere)");
+  std::vector<Vec3> x;
+  for (const Vec3& v : shape.vertices) x.push_back(center + radius * v);
+  const MeshTopology& topo = *shape.topology;
+  const double volume = mesh_volume(topo, x.data());
+  std::vector<double> area(topo.n_faces());
+  double total = 0.0;
+  for (int k = 0; k < topo.n_faces(); ++k) total += area[k] = face_area(topo, x.data(), k);
+  // (c S)^(3/2) = A0 6 sqrt(pi) V  =>  c = (A0 6 sqrt(pi) V)^(2/3) / S.
+  const double c = std::pow(shape_param * 6.0 * std::sqrt(M_PI) * volume, 2.0 / 3.0) / total;
+  for (double& a : area) a *= c;
+  return add_mesh(shape.topology, x, vertex_diameter, std::move(area), volume, mass);
+}
+
+void System::body_vertices(int b, Vec3* out) const {
+  const MeshBody& body = bodies_[b];
+  for (int v = 0; v < body.n_vertices(); ++v) out[v] = unwrapped(body.first_site + v);
+}
+
+void System::wrap_all() {
+  for (std::size_t i = 0; i < sites_.size(); ++i) box_.wrap(sites_.pos[i], sites_.image[i]);
+}
+
+std::vector<int> System::sites_of_kind(SiteKind kind) const {
+  std::vector<int> out;
+  for (std::size_t i = 0; i < sites_.size(); ++i)
+    if (sites_.kind[i] == kind) out.push_back(int(i));
+  return out;
+}
+
+void System::scale(const Vec3& s, bool rigid_bodies) {
+  const Vec3 lo = box_.lo();
+  auto map = [&](const Vec3& r) -> Vec3 { return lo + s.cwiseProduct(r - lo); };
+  // Work on unwrapped positions so bodies that straddle a periodic edge stay whole.
+  std::vector<Vec3> u(sites_.size());
+  for (std::size_t i = 0; i < sites_.size(); ++i) u[i] = unwrapped(i);
+  for (std::size_t i = 0; i < sites_.size(); ++i)
+    if (sites_.body[i] < 0 || !rigid_bodies) u[i] = map(u[i]);
+  if (rigid_bodies)
+    for (const MeshBody& b : bodies_) {
+      const Vec3 c = vertex_centroid(b.n_vertices(), &u[b.first_site]);
+      const Vec3 shift = map(c) - c;
+      for (int v = 0; v < b.n_vertices(); ++v) u[b.first_site + v] += shift;
+    }
+  box_.set_bounds(lo, map(box_.hi()));
+  for (std::size_t i = 0; i < sites_.size(); ++i) {
+    sites_.pos[i] = u[i];
+    sites_.image[i] = Vec3i::Zero();
+    box_.wrap(sites_.pos[i], sites_.image[i]);
+  }
+}
+
+void System::validate() const {
+  for (std::size_t i = 0; i < sites_.size(); ++i) {
+    if (!sites_.pos[i].allFinite() || !sites_.vel[i].allFinite())
+      fail_simulation("site ", i, ": position or velocity is not finite");
+    for (int a = 0; a < 3; ++a)
+      if (!box_.periodic(a) && (sites_.pos[i][a] < box_.lo()[a] - sites_.diameter[i] ||
+                                sites_.pos[i][a] > box_.hi()[a] + sites_.diameter[i]))
+        fail_simulation("site ", i, " escaped through the wall: ", "xyz"[a], " = ",
+                        sites_.pos[i][a], ", walls at [", box_.lo()[a], ", ", box_.hi()[a], "]");
+  }
+}
+
+}  // namespace invasim

@@ -1,0 +1,92 @@
+#pragma once
+// The simulated state: box, point sites and deformable bodies. Cancer cells and adipocyte
+// vertices are all "sites" in one structure-of-arrays store so a single neighbour list serves
+// every contact; an adipocyte is a contiguous block of sites plus its reference geometry.
+// Positions are kept wrapped on periodic axes, with image counters to unwrap them.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/box.hpp"
+#include "mesh/topology.hpp"
+
+namespace invasim {
+
+enum class SiteKind : std::uint8_t { kCancer = 0, kVertex = 1 };
+
+// Structure-of-arrays store of all point sites.
+struct Sites {
+  std::vector<Vec3> pos, vel, force, orient;
+  std::vector<Vec3i> image;
+  std::vector<double> diameter, mass;
+  std::vector<int> body;  // adipocyte index, -1 for a cancer cell
+  std::vector<SiteKind> kind;
+  std::size_t size() const { return pos.size(); }
+};
+
+// One adipocyte: its block of sites and the reference state of its shape energy.
+struct MeshBody {
+  std::shared_ptr<const MeshTopology> topology;
+  int first_site = 0;
+  std::vector<double> ref_area;  // a_k0, one per face
+  double ref_volume = 0.0;       // v_0
+  int n_vertices() const { return topology->n_vertices(); }
+};
+
+class System {
+ public:
+  System(const Box& box, std::uint64_t seed);
+
+  Box& box() { return box_; }
+  const Box& box() const { return box_; }
+  Sites& sites() { return sites_; }
+  const Sites& sites() const { return sites_; }
+  std::size_t n_sites() const { return sites_.size(); }
+  const std::vector<MeshBody>& bodies() const { return bodies_; }
+  std::vector<MeshBody>& bodies() { return bodies_; }
+  std::uint64_t seed() const { return seed_; }
+  std::uint64_t step = 0;  // completed time steps
+  double time = 0.0;       // simulated time
+
+  // Adds a cancer cell (or any free sphere); returns its site index. Diameter and mass must
+  // be > 0, and the position inside the walls. orientation (if non-zero) is normalised.
+  int add_sphere(const Vec3& r, double diameter, double mass = 1.0,
+                 const Vec3& orientation = Vec3::Zero());
+  // Adds a deformable body with the given vertex positions (unwrapped, any location) and
+  // reference state; returns the body index. Every vertex must be inside the walls.
+  int add_mesh(std::shared_ptr<const MeshTopology> topology, const std::vector<Vec3>& vertices,
+               double vertex_diameter, std::vector<double> ref_area, double ref_volume,
+               double mass = 1.0);
+  // Adds `shape` scaled by `radius` at `center`, with reference areas scaled by one common
+  // factor so that the reference shape parameter is `shape_param` (the MODEL.md decision)
+  // and reference volume the initial one.
+  int add_mesh_scaled(const MeshShape& shape, const Vec3& center, double radius,
+                      double vertex_diameter, double shape_param, double mass = 1.0);
+
+  // Unwrapped position of site i.
+  Vec3 unwrapped(std::size_t i) const { return box_.unwrap(sites_.pos[i], sites_.image[i]); }
+  // Unwrapped vertex positions of body b, written to out (size n_vertices).
+  void body_vertices(int b, Vec3* out) const;
+  // Wraps every site into the box on periodic axes.
+  void wrap_all();
+  // Indices of all sites of a kind (e.g. the cancer-cell group).
+  std::vector<int> sites_of_kind(SiteKind kind) const;
+
+  // Scales the box about its lower corner by factors s (per axis) and moves every cancer
+  // cell and every body's centroid affinely; bodies move rigidly (shape kept) when
+  // rigid_bodies, else every vertex scales too. Velocities are left unchanged.
+  void scale(const Vec3& s, bool rigid_bodies);
+
+  // Throws InputError naming the first site outside the walls or with invalid data.
+  void validate() const;
+
+ private:
+  int push_site(const Vec3& r, double diameter, double mass, int body, SiteKind kind,
+                const Vec3& orientation);
+  Box box_;
+  Sites sites_;
+  std::vector<MeshBody> bodies_;
+  std::uint64_t seed_;
+};
+
+}  // namespace invasim
