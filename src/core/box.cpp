@@ -8,8 +8,8 @@ namespace {
 void check_corners(const Vec3& lo, const Vec3& hi) {
   for (int a = 0; a < 3; ++a)
     if (!(hi[a] > lo[a]) || !std::isfinite(lo[a]) || !std::isfinite(hi[a]))
-      fail_input("box: length along axis ", "xyz"[a], " is ", hi[a] - lo[a],
-                 " (lo = ", lo[a], ", hi = ", hi[a], "); it must be finite and > 0");
+      fail_input("box: length along axis ", "xyz"[a], " is ", hi[a] - lo[a], " (lo = ", lo[a],
+                 ", hi = ", hi[a], "); it must be finite and > 0");
 }
 }  // namespace
 

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "core/vec3.hpp"
 
@@ -67,6 +68,27 @@ class Box {
   Vec3 hi_ = Vec3::Ones();
   std::array<bool, 3> periodic_{false, true, true};
   std::uint64_t version_ = 0;
+};
+
+// Branch-based minimum image for separations of two wrapped positions (|d| < L on periodic
+// axes): cheaper than a rounding division in the pair loops.
+class MinimumImage {
+ public:
+  explicit MinimumImage(const Box& box) {
+    for (int a = 0; a < 3; ++a) {
+      len_[a] = box.periodic(a) ? box.length(a) : 0.0;
+      half_[a] = box.periodic(a) ? 0.5 * box.length(a) : std::numeric_limits<double>::infinity();
+    }
+  }
+  double axis(int a, double d) const {
+    return d > half_[a] ? d - len_[a] : (d < -half_[a] ? d + len_[a] : d);
+  }
+  double x(double d) const { return axis(0, d); }
+  double y(double d) const { return axis(1, d); }
+  double z(double d) const { return axis(2, d); }
+
+ private:
+  double len_[3], half_[3];
 };
 
 }  // namespace invasim

@@ -10,7 +10,6 @@
 
 namespace invasim {
 
-
 // One Philox4x32-10 block: 4 counter words, 2 key words -> 4 random words.
 inline std::array<std::uint32_t, 4> philox4x32_10(std::array<std::uint32_t, 4> ctr,
                                                   std::array<std::uint32_t, 2> key) {

@@ -49,59 +49,63 @@ ForceResult ContactForce::add_forces(System& sys, const ForceFlags& flags) {
   Sites& s = sys.sites();
   const std::size_t n = s.size();
   const Box& box = sys.box();
-  const Vec3 len = box.lengths(), half = 0.5 * len;
-  const bool py = box.periodic(1), pz = box.periodic(2), px = box.periodic(0);
+  const MinimumImage image(box);
   const double eps[2][2] = {{params_.eps_cc, params_.eps_cv}, {params_.eps_cv, params_.eps_vv}};
   const double alpha = params_.alpha, beta = params_.beta;
   const bool cohesive = beta > 0.0;
   const bool want_e = flags.energy, want_v = flags.virial;
   if (want_e) site_energy_.assign(n, 0.0);
   if (want_v) site_virial_.assign(n, Vec3::Zero());
+  const Vec3* pos = s.pos.data();
+  const double* diam = s.diameter.data();
+  const SiteKind* kind = s.kind.data();
 
 #pragma omp parallel for schedule(dynamic, 128)
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec3 ri = s.pos[i];
-    const double di = s.diameter[i];
-    const int ki = int(s.kind[i]);
+    const double xi = pos[i][0], yi = pos[i][1], zi = pos[i][2];
+    const double di = diam[i];
+    const int ki = int(kind[i]);
     const int* nb = list_.neighbors(i);
     const int m = list_.count(i);
-    Vec3 fi = Vec3::Zero(), wi = Vec3::Zero();
-    double ei = 0.0;
+    double fx = 0.0, fy = 0.0, fz = 0.0, ei = 0.0;
+    Vec3 wi = Vec3::Zero();
     for (int k = 0; k < m; ++k) {
       const int j = nb[k];
-      Vec3 d = ri - s.pos[j];
-      if (px) d[0] -= len[0] * std::round(d[0] / len[0]);
-      if (py) d[1] += d[1] > half[1] ? -len[1] : (d[1] < -half[1] ? len[1] : 0.0);
-      if (pz) d[2] += d[2] > half[2] ? -len[2] : (d[2] < -half[2] ? len[2] : 0.0);
-      const double r2 = d.squaredNorm();
-      const int kj = int(s.kind[j]);
-      const double sig = 0.5 * (di + s.diameter[j]);
-      const bool cc = ki == 0 && kj == 0 && cohesive;
+      const double dx = image.x(xi - pos[j][0]), dy = image.y(yi - pos[j][1]),
+                   dz = image.z(zi - pos[j][2]);
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      const double sig = 0.5 * (di + diam[j]);
+      const int kj = int(kind[j]);
+      const bool cc = cohesive && (ki | kj) == 0;
       const double rc = cc ? (1.0 + alpha) * sig : sig;
       if (r2 >= rc * rc) continue;
       const double r = std::sqrt(r2);
       const PairEval pe =
           cc ? cohesive_spring(r, sig, eps[0][0], alpha, beta) : linear_spring(r, sig, eps[ki][kj]);
-      Vec3 dir;
+      double ux, uy, uz;
       if (r > 1e-12 * sig) {
-        dir = d / r;
+        const double inv = 1.0 / r;
+        ux = dx * inv, uy = dy * inv, uz = dz * inv;
       } else {
         // Coincident sites: a fixed direction, opposite for the two partners.
-        dir = Vec3(int(i) < j ? 1.0 : -1.0, 0.0, 0.0);
+        ux = int(i) < j ? 1.0 : -1.0, uy = 0.0, uz = 0.0;
       }
-      const Vec3 f = pe.force * dir;
-      fi += f;
+      fx += pe.force * ux;
+      fy += pe.force * uy;
+      fz += pe.force * uz;
       if (want_e) ei += 0.5 * pe.energy;
-      if (want_v) wi += 0.5 * d.cwiseProduct(f);
+      if (want_v) wi += 0.5 * pe.force * Vec3(dx * ux, dy * uy, dz * uz);
     }
-    s.force[i] += fi;
+    s.force[i] += Vec3(fx, fy, fz);
     if (want_e) site_energy_[i] = ei;
     if (want_v) site_virial_[i] = wi;
   }
   ForceResult out;
-  if (want_e) out.energy = deterministic_sum(n, 0.0, [&](std::size_t i) { return site_energy_[i]; });
+  if (want_e)
+    out.energy = deterministic_sum(n, 0.0, [&](std::size_t i) { return site_energy_[i]; });
   if (want_v)
-    out.virial = deterministic_sum(n, Vec3(Vec3::Zero()), [&](std::size_t i) { return site_virial_[i]; });
+    out.virial =
+        deterministic_sum(n, Vec3(Vec3::Zero()), [&](std::size_t i) { return site_virial_[i]; });
   return out;
 }
 

@@ -64,9 +64,11 @@ ForceResult ShapeForce::add_forces(System& sys, const ForceFlags& flags) {
     }
   }
   ForceResult out;
-  if (flags.energy) out.energy = deterministic_sum(nb, 0.0, [&](std::size_t b) { return per_body_[b].energy; });
+  if (flags.energy)
+    out.energy = deterministic_sum(nb, 0.0, [&](std::size_t b) { return per_body_[b].energy; });
   if (flags.virial)
-    out.virial = deterministic_sum(nb, Vec3(Vec3::Zero()), [&](std::size_t b) { return per_body_[b].virial; });
+    out.virial = deterministic_sum(nb, Vec3(Vec3::Zero()),
+                                   [&](std::size_t b) { return per_body_[b].virial; });
   return out;
 }
 

@@ -47,7 +47,8 @@ double TetherForce::connect_by_mean_degree(const System& sys, double mean_degree
   };
   std::vector<Pair> pairs;
   for (int a = 0; a < nb; ++a)
-    for (int b = a + 1; b < nb; ++b) pairs.push_back({sys.box().minimum_image(c[a] - c[b]).norm(), a, b});
+    for (int b = a + 1; b < nb; ++b)
+      pairs.push_back({sys.box().minimum_image(c[a] - c[b]).norm(), a, b});
   std::sort(pairs.begin(), pairs.end(), [](const Pair& p, const Pair& q) {
     return p.r < q.r || (p.r == q.r && (p.a < q.a || (p.a == q.a && p.b < q.b)));
   });

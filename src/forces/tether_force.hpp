@@ -7,7 +7,7 @@
 namespace invasim {
 
 struct Tether {
-  int a, b;          // body indices
+  int a, b;            // body indices
   double rest_length;  // l_ij0
 };
 

@@ -10,7 +10,8 @@ WallForce::WallForce(double eps, bool left, bool right) : eps_(eps), left_(left)
 }
 
 ForceResult WallForce::add_forces(System& sys, const ForceFlags& flags) {
-  if (sys.box().periodic(0)) fail_input("walls: the box is periodic in x; walls need a walled x axis");
+  if (sys.box().periodic(0))
+    fail_input("walls: the box is periodic in x; walls need a walled x axis");
   Sites& s = sys.sites();
   const std::size_t n = s.size();
   const double xl = sys.box().lo()[0], xr = sys.box().hi()[0];
@@ -37,7 +38,8 @@ ForceResult WallForce::add_forces(System& sys, const ForceFlags& flags) {
     }
     per_site_[i] = p;
   }
-  const PerSite total = deterministic_sum(n, PerSite{}, [&](std::size_t i) { return per_site_[i]; });
+  const PerSite total =
+      deterministic_sum(n, PerSite{}, [&](std::size_t i) { return per_site_[i]; });
   left_force_ = total.left;
   right_force_ = total.right;
   ForceResult out;

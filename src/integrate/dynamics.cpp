@@ -11,7 +11,8 @@ void MethodParams::validate() const {
   require_non_negative("gamma", gamma);
   require_non_negative("kT", kT);
   require_non_negative("f0", f0);
-  if (!(tau_p >= 0.0)) fail_input("tau_p = ", tau_p, " must be >= 0 (0: uncorrelated, inf: frozen)");
+  if (!(tau_p >= 0.0))
+    fail_input("tau_p = ", tau_p, " must be >= 0 (0: uncorrelated, inf: frozen)");
 }
 
 Method::Method(std::vector<int> group, const MethodParams& params)
@@ -69,9 +70,8 @@ Vec3 rotate_orientation(const Vec3& n, double dt, double tau_p, const std::array
 void Method::randomize_orientations(System& sys, std::uint64_t stream_step) const {
   auto& s = sys.sites();
   for (int i : group_) {
-    const auto u = RandomKey(sys.seed(), stream_step, std::uint32_t(i), RngStream::kOrientation,
-                             1)
-                       .uniform4();
+    const auto u =
+        RandomKey(sys.seed(), stream_step, std::uint32_t(i), RngStream::kOrientation, 1).uniform4();
     s.orient[i] = uniform_on_sphere(u[0], u[1]);
   }
 }
@@ -135,7 +135,9 @@ void PressureWall::validate() const {
   if (!walls) fail_input("pressure wall: no wall force to couple to");
 }
 
-Dynamics::Dynamics(double dt) : dt_(dt) { require_positive("dt", dt); }
+Dynamics::Dynamics(double dt) : dt_(dt) {
+  require_positive("dt", dt);
+}
 
 void Dynamics::set_dt(double dt) {
   require_positive("dt", dt);

@@ -16,9 +16,9 @@
 namespace invasim {
 
 struct MethodParams {
-  double gamma = 0.2;   // damping coefficient (force = -gamma v)
-  double kT = 0.0;      // thermal noise temperature (0: none)
-  double f0 = 0.0;      // self-propulsion force (0: passive)
+  double gamma = 0.2;                                      // damping coefficient (force = -gamma v)
+  double kT = 0.0;                                         // thermal noise temperature (0: none)
+  double f0 = 0.0;                                         // self-propulsion force (0: passive)
   double tau_p = std::numeric_limits<double>::infinity();  // persistence time (0: white)
   void validate() const;
 };

@@ -1,5 +1,6 @@
 #include "mesh/geometry.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace invasim {
@@ -72,6 +73,11 @@ double union_volume(const MeshTopology& topo, const Vec3* x, double vertex_diame
   lo.array() -= r;
   hi.array() += r;
   const Vec3i cells = ((hi - lo) / h).array().ceil().cast<int>();
+  // Points beyond the farthest vertex from the centroid are outside the mesh (no winding
+  // number needed there).
+  const Vec3 centre = vertex_centroid(n, x);
+  double reach2 = 0.0;
+  for (int i = 0; i < n; ++i) reach2 = std::max(reach2, (x[i] - centre).squaredNorm());
   long inside = 0;
 #pragma omp parallel for reduction(+ : inside) schedule(static)
   for (int ix = 0; ix < cells[0]; ++ix)
@@ -80,7 +86,7 @@ double union_volume(const MeshTopology& topo, const Vec3* x, double vertex_diame
         const Vec3 p = lo + h * Vec3(ix + 0.5, iy + 0.5, iz + 0.5);
         bool in = false;
         for (int v = 0; v < n && !in; ++v) in = (p - x[v]).squaredNorm() <= r2;
-        if (!in) in = winding_number(topo, x, p) > 0.5;
+        if (!in && (p - centre).squaredNorm() <= reach2) in = winding_number(topo, x, p) > 0.5;
         inside += in;
       }
   return double(inside) * h * h * h;

@@ -21,11 +21,15 @@ bool VerletList::needs_rebuild(const System& sys) const {
     return true;
   const double limit2 = 0.25 * skin_ * skin_;
   const auto& pos = sys.sites().pos;
-  const Box& box = sys.box();
+  const MinimumImage image(sys.box());
   int moved = 0;
 #pragma omp parallel for reduction(| : moved) schedule(static)
-  for (std::size_t i = 0; i < pos.size(); ++i)
-    moved |= box.minimum_image(pos[i] - pos_at_build_[i]).squaredNorm() > limit2;
+  for (std::size_t i = 0; i < pos.size(); ++i) {
+    const double dx = image.x(pos[i][0] - pos_at_build_[i][0]),
+                 dy = image.y(pos[i][1] - pos_at_build_[i][1]),
+                 dz = image.z(pos[i][2] - pos_at_build_[i][2]);
+    moved |= dx * dx + dy * dy + dz * dz > limit2;
+  }
   return moved != 0;
 }
 
@@ -80,8 +84,8 @@ void VerletList::build(const System& sys) {
   }
 
   counts_.assign(n, 0);
-  const Vec3 lengths = box.lengths();
   const std::array<bool, 3> per = box.periodic();
+  const MinimumImage image(box);
   bool overflow = true;
   while (overflow) {
     overflow = false;
@@ -127,11 +131,10 @@ void VerletList::build(const System& sys) {
         for (int p = cell_start_[cells[k]]; p < cell_start_[cells[k] + 1]; ++p) {
           const int j = cell_sites_[p];
           if (j == int(i) || (bi >= 0 && s.body[j] == bi)) continue;
-          Vec3 d = ri - s.pos[j];
-          for (int a = 0; a < 3; ++a)
-            if (per[a]) d[a] -= lengths[a] * std::round(d[a] / lengths[a]);
+          const double dx = image.x(ri[0] - s.pos[j][0]), dy = image.y(ri[1] - s.pos[j][1]),
+                       dz = image.z(ri[2] - s.pos[j][2]);
           const double rc = rule_.of(ki, s.kind[j], di, s.diameter[j]) + skin_;
-          if (d.squaredNorm() < rc * rc) {
+          if (dx * dx + dy * dy + dz * dz < rc * rc) {
             if (m < int(stride_)) out[m] = j;
             ++m;
           }

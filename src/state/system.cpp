@@ -19,8 +19,8 @@ int System::push_site(const Vec3& r, double diameter, double mass, int body, Sit
   if (!r.allFinite()) fail_input("site ", id, ": position is not finite");
   for (int a = 0; a < 3; ++a)
     if (!box_.periodic(a) && (r[a] < box_.lo()[a] || r[a] > box_.hi()[a]))
-      fail_input("site ", id, ": ", "xyz"[a], " = ", r[a], " is outside the walls [",
-                 box_.lo()[a], ", ", box_.hi()[a], "]");
+      fail_input("site ", id, ": ", "xyz"[a], " = ", r[a], " is outside the walls [", box_.lo()[a],
+                 ", ", box_.hi()[a], "]");
   Vec3 wrapped = r;
   Vec3i image = Vec3i::Zero();
   box_.wrap(wrapped, image);

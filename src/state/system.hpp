@@ -30,6 +30,9 @@ struct MeshBody {
   int first_site = 0;
   std::vector<double> ref_area;  // a_k0, one per face
   double ref_volume = 0.0;       // v_0
+  // Volume of the union of the mesh and its vertex spheres (the paper's V_i), used for
+  // packing fractions; set when the body is created (0 if unknown).
+  double outer_volume = 0.0;
   int n_vertices() const { return topology->n_vertices(); }
 };
 

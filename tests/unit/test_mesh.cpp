@@ -52,10 +52,13 @@ TEST_CASE("icosphere(1) volume and area equal the sum over its exact faces") {
   CHECK(v > 0.85 * 4.0 / 3.0 * M_PI);
 }
 
-TEST_CASE("shape parameter of the icosphere is 1.0240583...; invariant under translation and scale") {
+TEST_CASE(
+    "shape parameter of the icosphere is 1.0240583...; invariant under translation and scale") {
   const MeshShape s = icosphere(1);
   std::vector<Vec3> x = s.vertices;
-  auto A = [&]() { return shape_parameter(mesh_area(*s.topology, x.data()), mesh_volume(*s.topology, x.data())); };
+  auto A = [&]() {
+    return shape_parameter(mesh_area(*s.topology, x.data()), mesh_volume(*s.topology, x.data()));
+  };
   CHECK(A() == Approx(1.0240583207).epsilon(1e-9));
   for (Vec3& v : x) v = 3.7 * v + Vec3(100.0, -50.0, 7.0);
   CHECK(A() == Approx(1.0240583207).epsilon(1e-9));
@@ -65,8 +68,18 @@ TEST_CASE("volume and area of a cube mesh and of a stretched icosphere") {
   std::vector<Vec3> x = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
                          {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
   for (Vec3& v : x) v *= 2.0;
-  MeshTopology cube(8, {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
-                        {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}});
+  MeshTopology cube(8, {{0, 2, 1},
+                        {0, 3, 2},
+                        {4, 5, 6},
+                        {4, 6, 7},
+                        {0, 1, 5},
+                        {0, 5, 4},
+                        {1, 2, 6},
+                        {1, 6, 5},
+                        {2, 3, 7},
+                        {2, 7, 6},
+                        {3, 0, 4},
+                        {3, 4, 7}});
   CHECK(mesh_volume(cube, x.data()) == Approx(8.0).epsilon(1e-14));
   CHECK(mesh_area(cube, x.data()) == Approx(24.0).epsilon(1e-14));
   // An affine stretch multiplies the volume by the determinant.

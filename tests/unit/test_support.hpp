@@ -99,8 +99,9 @@ inline System slab_system(int nx, int n_yz, int n_cells, double spacing, double 
   for (int gx = 0; gx < nx; ++gx)
     for (int gy = 0; gy < n_yz; ++gy)
       for (int gz = 0; gz < n_yz; ++gz)
-        sys.add_mesh_scaled(shape, Vec3(Lc + spacing * (gx + 0.5), spacing * (gy + 0.5), spacing * (gz + 0.5)),
-                            2.0, 2.0, 1.1);
+        sys.add_mesh_scaled(
+            shape, Vec3(Lc + spacing * (gx + 0.5), spacing * (gy + 0.5), spacing * (gz + 0.5)), 2.0,
+            2.0, 1.1);
   sys.wrap_all();
   return sys;
 }

@@ -1,0 +1,34 @@
+#pragma once
+// The command line of the `invasim` executable:
+//   invasim run PROTOCOL.lua [--set key=value ...] [--out DIR] [--threads N] [--seed S]
+//   invasim params PROTOCOL.lua [--set key=value ...] [--seed S]
+//   invasim --help | --version
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "lua/context.hpp"
+
+namespace invasim::app {
+
+// A malformed command line (exit code 2, with a pointer to --help).
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct Command {
+  enum class Kind { kRun, kParams, kHelp, kVersion };
+  Kind kind = Kind::kHelp;
+  lua::RunOptions options;     // script path, --set, --seed, --out
+  std::optional<int> threads;  // --threads N
+  bool traceback = false;      // --traceback: print the Lua stack on errors
+};
+
+// Parses argv (without argv[0]); throws UsageError. --out defaults to out/<protocol stem>.
+Command parse_command_line(const std::vector<std::string>& args);
+
+std::string help_text();
+
+}  // namespace invasim::app

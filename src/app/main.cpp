@@ -1,0 +1,89 @@
+// invasim: the command-line driver. Parses the command line, runs (or lists the parameters
+// of) a Lua protocol, and turns every error into one line on stderr and a nonzero exit code.
+#include <omp.h>
+#include <lua.hpp>
+
+#include <exception>
+#include <iostream>
+
+#include "app/cli.hpp"
+#include "core/errors.hpp"
+#include "invasim_version.hpp"
+#include "lua/lua_state.hpp"
+
+namespace {
+
+using invasim::app::Command;
+
+std::string version_text() {
+  std::string text = std::string("invasim ") + invasim::kInvasimVersion;
+  if (*invasim::kInvasimGitRevision)
+    text += std::string(" (git ") + invasim::kInvasimGitRevision + ")";
+  return text + "\n" LUA_RELEASE "\n";
+}
+
+// After a complete run: --set/--seed given to a protocol that never declared parameters.
+void check_overrides_used(const Command& command, const invasim::lua::ScriptContext& context) {
+  const auto& options = command.options;
+  if (context.params || (options.overrides.empty() && !options.seed)) return;
+  invasim::fail_input(options.script_path, " never called invasim.params{...}, so ",
+                      options.seed ? "--seed" : "--set " + options.overrides[0].key + "=...",
+                      " cannot apply");
+}
+
+int list_params(const Command& command) {
+  invasim::lua::LuaState state(command.options);
+  state.run_file(command.options.script_path);
+  const auto& context = state.context();
+  if (!context.params) {
+    std::cout << command.options.script_path
+              << " declares no parameters (it never calls invasim.params{...})\n";
+    return 0;
+  }
+  std::cout << "Parameters of " << command.options.script_path
+            << " (change with --set name=value):\n"
+            << invasim::lua::format_param_table(*context.params);
+  return 0;
+}
+
+int run(const Command& command) {
+  if (command.threads) omp_set_num_threads(*command.threads);
+  invasim::lua::LuaState state(command.options);
+  state.run_file(command.options.script_path);
+  check_overrides_used(command, state.context());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool traceback = false;
+  try {
+    const Command command =
+        invasim::app::parse_command_line(std::vector<std::string>(argv + 1, argv + argc));
+    traceback = command.traceback;
+    switch (command.kind) {
+      case Command::Kind::kHelp:
+        std::cout << invasim::app::help_text();
+        return 0;
+      case Command::Kind::kVersion:
+        std::cout << version_text();
+        return 0;
+      case Command::Kind::kParams:
+        return list_params(command);
+      case Command::Kind::kRun:
+        return run(command);
+    }
+  } catch (const invasim::app::UsageError& e) {
+    std::cerr << "invasim: " << e.what() << " (see invasim --help)\n";
+    return 2;
+  } catch (const invasim::lua::ScriptError& e) {
+    std::cerr << "invasim: error: " << e.what() << '\n';
+    if (traceback && !e.traceback().empty()) std::cerr << e.traceback() << '\n';
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "invasim: error: " << e.what() << '\n';
+    return 1;
+  }
+  return 1;
+}

@@ -1,0 +1,235 @@
+// invasim.params{...}: the protocol's parameter declaration (see docs/lua.md).
+//
+//   local p = iv.params{
+//     N_c  = {1500, unit = "cells", help = "number of cancer cells"},
+//     phi  = {0.72, help = "packing fraction"},
+//     seed = 1,                                  -- bare default: no unit, no help
+//   }
+//
+// The type comes from the default (integer, number, boolean, string) unless `type = ...` says
+// otherwise; --set/--seed overrides are applied here, and the result is a read-only table.
+#include <lua.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "lua/binding.hpp"
+#include "lua/context.hpp"
+#include "lua/kwargs.hpp"
+#include "lua/module.hpp"
+#include "lua/names.hpp"
+#include "lua/params.hpp"
+
+namespace invasim::lua {
+
+namespace {
+
+constexpr const char* kForm = "write name = default or name = {default, unit = ..., help = ...}";
+
+// The value at `index` as a default of the given (or inferred, when type is empty) type.
+Param read_default(lua_State* L, int index, const std::string& name, const std::string& type) {
+  Param p;
+  p.name = name;
+  const int lua_type_id = lua_type(L, index);
+  if (lua_type_id == LUA_TNUMBER) {
+    p.type = lua_isinteger(L, index) ? ParamType::kInteger : ParamType::kNumber;
+  } else if (lua_type_id == LUA_TBOOLEAN) {
+    p.type = ParamType::kBoolean;
+  } else if (lua_type_id == LUA_TSTRING) {
+    p.type = ParamType::kString;
+  } else if (lua_type_id == LUA_TNIL) {
+    fail_input("params: parameter '", name, "' has no default; ", kForm);
+  } else {
+    fail_input("params: parameter '", name, "' has a ", luaL_typename(L, index),
+               " default; defaults are numbers, integers, booleans or strings");
+  }
+  if (!type.empty()) {
+    const bool number = lua_type_id == LUA_TNUMBER;
+    if (type == "number" && number) {
+      p.type = ParamType::kNumber;
+    } else if (type == "integer" && number) {
+      int exact = 0;
+      lua_tointegerx(L, index, &exact);
+      if (!exact)
+        fail_input("params: parameter '", name, "' is declared an integer but its default ",
+                   lua_tonumber(L, index), " is not");
+      p.type = ParamType::kInteger;
+    } else if (type != type_name(p.type)) {
+      fail_input("params: parameter '", name, "' is declared type = '", type,
+                 "' but its default is a ", type_name(p.type));
+    }
+  }
+  switch (p.type) {
+    case ParamType::kNumber:
+      p.default_value = double(lua_tonumber(L, index));
+      break;
+    case ParamType::kInteger:
+      p.default_value = static_cast<long long>(lua_tointeger(L, index));
+      break;
+    case ParamType::kBoolean:
+      p.default_value = bool(lua_toboolean(L, index));
+      break;
+    case ParamType::kString: {
+      std::size_t size = 0;
+      const char* data = lua_tolstring(L, index, &size);
+      p.default_value = std::string(data, size);
+      break;
+    }
+  }
+  if (p.type == ParamType::kNumber && !std::isfinite(std::get<double>(p.default_value)))
+    fail_input("params: parameter '", name, "' has a non-finite default");
+  p.value = p.default_value;
+  return p;
+}
+
+// One entry `name = value` of the declaration table (key at -2, value at -1).
+Param read_param(lua_State* L, const std::string& name) {
+  if (lua_type(L, -1) != LUA_TTABLE) return read_default(L, -1, name, "");
+  Kwargs kw(L, -1, "params: parameter '" + name + "'");
+  const std::string unit = kw.string("unit", "");
+  const std::string help = kw.string("help", "");
+  const std::string type =
+      kw.choice("type", {"number", "integer", "boolean", "string"}, std::string());
+  kw.push_index(1);
+  Param p = read_default(L, -1, name, type);
+  lua_pop(L, 1);
+  kw.finish();
+  p.unit = unit;
+  p.help = help;
+  return p;
+}
+
+void push_value(lua_State* L, const ParamValue& value) {
+  if (const auto* d = std::get_if<double>(&value))
+    lua_pushnumber(L, *d);
+  else if (const auto* i = std::get_if<long long>(&value))
+    lua_pushinteger(L, *i);
+  else if (const auto* b = std::get_if<bool>(&value))
+    lua_pushboolean(L, *b);
+  else {
+    const auto& s = std::get<std::string>(value);
+    lua_pushlstring(L, s.data(), s.size());
+  }
+}
+
+// Names of the declared parameters (keys of the values table at `index`).
+std::vector<std::string> declared_names(lua_State* L, int index) {
+  std::vector<std::string> names;
+  lua_pushnil(L);
+  while (lua_next(L, index) != 0) {
+    lua_pop(L, 1);
+    if (lua_type(L, -1) == LUA_TSTRING) names.emplace_back(lua_tostring(L, -1));
+  }
+  return names;
+}
+
+std::string key_text(lua_State* L, int index) {
+  return lua_type(L, index) == LUA_TSTRING ? cat("'", lua_tostring(L, index), "'")
+                                           : std::string("a ") + luaL_typename(L, index) + " key";
+}
+
+// __index of the parameter table: only declared names may be read.
+int l_param_index(lua_State* L) {
+  lua_pushvalue(L, 2);
+  if (lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
+  const auto names = declared_names(L, lua_upvalueindex(1));
+  const std::string key = key_text(L, 2);
+  fail_input("params: no parameter ", key,
+             lua_type(L, 2) == LUA_TSTRING ? did_you_mean(lua_tostring(L, 2), names) : "",
+             "; declared: ", names.empty() ? "(none)" : join_names(names));
+}
+
+// __newindex: parameters are read-only; they change only from the command line.
+int l_param_newindex(lua_State* L) {
+  const std::string key = key_text(L, 2);
+  lua_pushvalue(L, 2);
+  if (lua_rawget(L, lua_upvalueindex(1)) == LUA_TNIL)
+    fail_input("params: cannot add ", key, ": the parameter table is read-only");
+  fail_input("params: cannot assign ", key, ": parameters are read-only; change them with --set ",
+             lua_tostring(L, 2), "=VALUE");
+}
+
+// Iterator of __pairs over the values table. Plain C-style code (lua_next may raise).
+int l_param_next(lua_State* L) {
+  lua_settop(L, 2);
+  if (lua_next(L, 1) != 0) return 2;
+  lua_pushnil(L);
+  return 1;
+}
+
+// __pairs: for name, value in pairs(p) iterates the declared parameters.
+int l_param_pairs(lua_State* L) {
+  lua_pushcfunction(L, &l_param_next);
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_pushnil(L);
+  return 3;
+}
+
+// Pushes the read-only proxy of the values table on top of the stack (replacing it).
+void push_proxy(lua_State* L) {
+  const int values = lua_gettop(L);
+  lua_newtable(L);  // proxy
+  lua_newtable(L);  // metatable
+  lua_pushvalue(L, values);
+  lua_pushcclosure(L, &lua_wrap<&l_param_index>, 1);
+  lua_setfield(L, -2, "__index");
+  lua_pushvalue(L, values);
+  lua_pushcclosure(L, &lua_wrap<&l_param_newindex>, 1);
+  lua_setfield(L, -2, "__newindex");
+  lua_pushvalue(L, values);
+  lua_pushcclosure(L, &l_param_pairs, 1);
+  lua_setfield(L, -2, "__pairs");
+  lua_pushboolean(L, false);
+  lua_setfield(L, -2, "__metatable");
+  lua_setmetatable(L, -2);
+  lua_replace(L, values);
+}
+
+// invasim.params{...}
+int l_params(lua_State* L) {
+  ScriptContext& context = script_context(L);
+  if (context.params)
+    fail_input(
+        "params: invasim.params{...} was already called; declare every parameter in one "
+        "call");
+  if (lua_type(L, 1) != LUA_TTABLE)
+    fail_input("params: expected a table of parameters, as in invasim.params{phi = 0.72}; got ",
+               luaL_typename(L, 1));
+  lua_settop(L, 1);
+  std::vector<Param> params;
+  lua_pushnil(L);
+  while (lua_next(L, 1) != 0) {
+    if (lua_type(L, -2) != LUA_TSTRING) {
+      const std::string key = lua_isinteger(L, -2) ? cat("[", lua_tointeger(L, -2), "]")
+                                                   : std::string("of type ") + luaL_typename(L, -2);
+      fail_input("params: unexpected entry ", key, "; ", kForm);
+    }
+    params.push_back(read_param(L, lua_tostring(L, -2)));
+    lua_settop(L, 2);  // keep the key for lua_next
+  }
+  std::sort(params.begin(), params.end(),
+            [](const Param& a, const Param& b) { return a.name < b.name; });
+
+  std::vector<Override> overrides = context.options.overrides;
+  if (context.options.seed) overrides.push_back({"seed", *context.options.seed, true});
+  apply_overrides(params, overrides);
+  context.params = params;
+  if (context.options.list_params) throw StopScript();
+
+  lua_createtable(L, 0, static_cast<int>(params.size()));
+  for (const auto& p : params) {
+    push_value(L, p.value);
+    lua_setfield(L, -2, p.name.c_str());
+  }
+  push_proxy(L);
+  return 1;
+}
+
+}  // namespace
+
+void open_params(lua_State* L) {
+  lua_pushcfunction(L, &lua_wrap<&l_params>);
+  lua_setfield(L, -2, "params");
+}
+
+}  // namespace invasim::lua

@@ -1,0 +1,147 @@
+#include "lua/binding.hpp"
+
+#include <vector>
+
+#include "lua/names.hpp"
+
+namespace invasim::lua {
+
+void push_where(lua_State* L) {
+  lua_Debug ar;
+  for (int level = 1; lua_getstack(L, level, &ar); ++level) {
+    lua_getinfo(L, "Sl", &ar);
+    if (ar.currentline > 0) {
+      lua_pushfstring(L, "%s:%d: ", ar.short_src, ar.currentline);
+      return;
+    }
+  }
+  lua_pushliteral(L, "");
+}
+
+namespace {
+
+// Type name of a value, using the __name of bound userdata ("invasim.Progress" -> "Progress").
+std::string value_type_name(lua_State* L, int index) {
+  if (lua_type(L, index) == LUA_TNONE) return "no value";
+  const int field = luaL_getmetafield(L, index, "__name");  // pushes nothing if absent
+  if (field == LUA_TSTRING) {
+    std::string name = lua_tostring(L, -1);
+    lua_pop(L, 1);
+    if (name.rfind("invasim.", 0) == 0) name.erase(0, 8);
+    return name;
+  }
+  if (field != LUA_TNIL) lua_pop(L, 1);
+  return luaL_typename(L, index);
+}
+
+}  // namespace
+
+std::string bad_argument(lua_State* L, int arg, const std::string& expected) {
+  const std::string got = value_type_name(L, arg);
+  std::string function = "?";
+  bool method = false;
+  lua_Debug ar;
+  if (lua_getstack(L, 0, &ar)) {
+    lua_getinfo(L, "n", &ar);
+    if (ar.name) function = ar.name;
+    method = ar.namewhat && std::strcmp(ar.namewhat, "method") == 0;
+  }
+  if (method && --arg == 0)
+    return "bad self for '" + function + "' (" + expected + " expected, got " + got +
+           "; call methods with ':', as in obj:" + function + "(...))";
+  return "bad argument #" + std::to_string(arg) + " to '" + function + "' (" + expected +
+         " expected, got " + got + ")";
+}
+
+namespace {
+char stop_token;  // its address identifies the stop sentinel
+}  // namespace
+
+void push_stop_sentinel(lua_State* L) {
+  lua_pushlightuserdata(L, &stop_token);
+}
+
+bool is_stop_sentinel(lua_State* L, int index) {
+  return lua_type(L, index) == LUA_TLIGHTUSERDATA && lua_touserdata(L, index) == &stop_token;
+}
+
+double arg_number(lua_State* L, int index) {
+  if (lua_type(L, index) != LUA_TNUMBER) throw InputError(bad_argument(L, index, "number"));
+  return lua_tonumber(L, index);
+}
+
+long long arg_integer(lua_State* L, int index) {
+  int exact = 0;
+  const lua_Integer value =
+      lua_type(L, index) == LUA_TNUMBER ? lua_tointegerx(L, index, &exact) : 0;
+  if (!exact) throw InputError(bad_argument(L, index, "integer"));
+  return value;
+}
+
+std::string arg_string(lua_State* L, int index) {
+  if (lua_type(L, index) != LUA_TSTRING) throw InputError(bad_argument(L, index, "string"));
+  std::size_t size = 0;
+  const char* data = lua_tolstring(L, index, &size);
+  return std::string(data, size);
+}
+
+std::optional<double> opt_number(lua_State* L, int index) {
+  if (lua_isnoneornil(L, index)) return std::nullopt;
+  return arg_number(L, index);
+}
+
+void call_lua(lua_State* L, int nargs, int nresults) {
+  if (lua_pcall(L, nargs, nresults, 0) == LUA_OK) return;
+  std::string message = lua_type(L, -1) == LUA_TSTRING
+                            ? lua_tostring(L, -1)
+                            : std::string("(error object is a ") + luaL_typename(L, -1) + " value)";
+  lua_pop(L, 1);
+  throw LuaRaised(message);
+}
+
+namespace {
+
+// __index of bound types: the method, or an error naming the valid methods.
+int l_index(lua_State* L) {
+  lua_pushvalue(L, 2);
+  if (lua_rawget(L, lua_upvalueindex(1)) != LUA_TNIL) return 1;
+  lua_pop(L, 1);
+  const std::string type = lua_tostring(L, lua_upvalueindex(2));
+  std::vector<std::string> methods;
+  lua_pushnil(L);
+  while (lua_next(L, lua_upvalueindex(1)) != 0) {
+    lua_pop(L, 1);
+    if (lua_type(L, -1) == LUA_TSTRING) methods.emplace_back(lua_tostring(L, -1));
+  }
+  if (lua_type(L, 2) != LUA_TSTRING)
+    throw InputError(type + " has no field of type " + luaL_typename(L, 2) +
+                     "; methods: " + join_names(methods));
+  const std::string key = lua_tostring(L, 2);
+  throw InputError(type + " has no method or field '" + key + "'" + did_you_mean(key, methods) +
+                   "; methods: " + join_names(methods));
+}
+
+}  // namespace
+
+namespace detail {
+
+void define_metatable(lua_State* L, const char* name, const char* type_name,
+                      const luaL_Reg* methods, lua_CFunction gc, lua_CFunction tostring) {
+  luaL_newmetatable(L, name);  // also sets __name
+  lua_pushcfunction(L, gc);
+  lua_setfield(L, -2, "__gc");
+  lua_pushcfunction(L, tostring);
+  lua_setfield(L, -2, "__tostring");
+  lua_newtable(L);
+  luaL_setfuncs(L, methods, 0);
+  lua_pushstring(L, type_name);
+  lua_pushcclosure(L, &lua_wrap<&l_index>, 2);
+  lua_setfield(L, -2, "__index");
+  lua_pushboolean(L, false);  // getmetatable(obj) returns false: scripts cannot alter it
+  lua_setfield(L, -2, "__metatable");
+  lua_pop(L, 1);
+}
+
+}  // namespace detail
+
+}  // namespace invasim::lua

@@ -1,0 +1,176 @@
+#pragma once
+// The shape every Lua binding shares (one bind_<type>.cpp per exposed C++ type):
+//
+//   template <> struct LuaType<Progress> {               // names and __tostring
+//     static constexpr const char* name = "Progress";
+//     static constexpr const char* metatable = "invasim.Progress";
+//     static std::string describe(const Progress& p);
+//   };
+//   int l_update(lua_State* L) { check<Progress>(L, 1).update(...); return 0; }  // may throw
+//   const luaL_Reg methods[] = {{"update", lua_wrap<l_update>}, {nullptr, nullptr}};
+//   define_type<Progress>(L, methods);                    // once, when the module opens
+//   push(L, std::make_shared<Progress>(...));             // from a constructor
+//
+// Error discipline. Debian's Lua is built as C, so lua_error/luaL_error longjmp: a Lua error
+// raised while a C++ object with a destructor is alive in the frames it unwinds skips that
+// destructor. Hence: code inside an l_ function never calls luaL_check*, luaL_error or
+// lua_error; it throws C++ exceptions (InputError), and lua_wrap turns them into a Lua error
+// "file:line: message" after every C++ object is gone. Lua callbacks from C++ go through
+// call_lua(), which uses lua_pcall and rethrows as a C++ exception.
+#include <lua.hpp>
+
+#include <cstring>
+#include <memory>
+#include <new>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include "core/errors.hpp"
+
+namespace invasim::lua {
+
+// Per-type names and description; specialised next to each binding.
+template <typename T>
+struct LuaType;
+
+// A C++ exception that already carries a complete Lua error message (with its location),
+// e.g. from a failed Lua callback: lua_wrap re-raises it as is.
+class LuaRaised : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Thrown by a binding to stop the script quietly (`invasim params` stops at invasim.params):
+// lua_wrap raises the stop sentinel instead of an error message, and LuaState::run_file
+// reports Outcome::kStopped.
+class StopScript {};
+
+// The stop sentinel (a light userdata) and its test.
+void push_stop_sentinel(lua_State* L);
+bool is_stop_sentinel(lua_State* L, int index);
+
+// Pushes "file:line: " of the innermost Lua function on the call stack (skipping C functions
+// such as pcall), or "" when there is none. Never raises.
+void push_where(lua_State* L);
+
+// "bad argument #2 to 'update' (number expected, got string)"-style text for argument `arg`
+// of the running C function; `expected` names the wanted type.
+std::string bad_argument(lua_State* L, int arg, const std::string& expected);
+
+// Calls the function below `nargs` arguments on the stack with lua_pcall; a Lua error comes
+// back as LuaRaised (message kept as is), so it unwinds C++ frames cleanly.
+void call_lua(lua_State* L, int nargs, int nresults);
+
+// Positional arguments of methods, checked without luaL_check* (which would longjmp): they
+// throw InputError("bad argument #2 to 'update' (number expected, got string)").
+double arg_number(lua_State* L, int index);
+long long arg_integer(lua_State* L, int index);
+std::string arg_string(lua_State* L, int index);
+std::optional<double> opt_number(lua_State* L, int index);  // nil or absent -> nullopt
+
+// Wraps an l_ function: C++ exceptions become Lua errors with the caller's file:line. The
+// message is copied into a fixed buffer inside the catch block (no allocation that could
+// longjmp there), and lua_error is raised only after the catch block has ended.
+template <int (*F)(lua_State*)>
+int lua_wrap(lua_State* L) {
+  constexpr std::size_t kMax = 4096;
+  char message[kMax];
+  bool has_location = false;
+  bool stop = false;
+  try {
+    return F(L);
+  } catch (const StopScript&) {
+    stop = true;
+  } catch (const LuaRaised& e) {
+    std::strncpy(message, e.what(), kMax - 1);
+    has_location = true;
+  } catch (const std::exception& e) {
+    std::strncpy(message, e.what(), kMax - 1);
+  } catch (...) {
+    std::strncpy(message, "unknown C++ exception", kMax - 1);
+  }
+  if (stop) {
+    push_stop_sentinel(L);
+    return lua_error(L);
+  }
+  message[kMax - 1] = '\0';
+  if (has_location)
+    lua_pushstring(L, message);
+  else {
+    push_where(L);
+    lua_pushstring(L, message);
+    lua_concat(L, 2);
+  }
+  return lua_error(L);
+}
+
+// The shared_ptr held by the userdata at `index`; throws InputError if the value is not a T
+// or the object was already collected.
+template <typename T>
+std::shared_ptr<T>& check_shared(lua_State* L, int index) {
+  auto* slot = static_cast<std::shared_ptr<T>*>(luaL_testudata(L, index, LuaType<T>::metatable));
+  if (slot == nullptr) {
+    std::string message = bad_argument(L, index, LuaType<T>::name);
+    if (index == 1 && message.back() == ')')  // most likely obj.method(...) for obj:method(...)
+      message.insert(message.size() - 1, "; for a method call write obj:method(...)");
+    throw InputError(message);
+  }
+  if (!*slot) throw InputError(std::string(LuaType<T>::name) + " object is no longer valid");
+  return *slot;
+}
+
+// The T held by the userdata at `index` (see check_shared).
+template <typename T>
+T& check(lua_State* L, int index) {
+  return *check_shared<T>(L, index);
+}
+
+// Pushes a new userdata holding `object` (placement new of the shared_ptr) with T's metatable.
+template <typename T>
+void push(lua_State* L, std::shared_ptr<T> object) {
+  if (!object) throw std::logic_error(std::string("push of a null ") + LuaType<T>::name);
+  void* memory = lua_newuserdatauv(L, sizeof(std::shared_ptr<T>), 0);
+  new (memory) std::shared_ptr<T>(std::move(object));
+  luaL_setmetatable(L, LuaType<T>::metatable);
+}
+
+namespace detail {
+
+// __gc: destroys the shared_ptr and leaves an empty one in its place, so that a userdata seen
+// again (resurrected by another finaliser) reads as "no longer valid" instead of dangling.
+template <typename T>
+int gc(lua_State* L) {
+  auto* slot = static_cast<std::shared_ptr<T>*>(luaL_testudata(L, 1, LuaType<T>::metatable));
+  if (slot != nullptr) {
+    slot->~shared_ptr();
+    new (slot) std::shared_ptr<T>();
+  }
+  return 0;
+}
+
+template <typename T>
+int tostring(lua_State* L) {
+  auto* slot = static_cast<std::shared_ptr<T>*>(luaL_testudata(L, 1, LuaType<T>::metatable));
+  const std::string text = slot && *slot ? LuaType<T>::describe(**slot)
+                                         : std::string(LuaType<T>::name) + " (no longer valid)";
+  lua_pushlstring(L, text.data(), text.size());
+  return 1;
+}
+
+// Builds the metatable `name` with the methods table (upvalue of __index); `type_name` is used
+// in the "has no method" error. Defined in binding.cpp.
+void define_metatable(lua_State* L, const char* name, const char* type_name,
+                      const luaL_Reg* methods, lua_CFunction gc, lua_CFunction tostring);
+
+}  // namespace detail
+
+// Registers T's metatable: methods (already wrapped with lua_wrap), __gc, __tostring, an
+// __index that names the valid methods on a typo, and a locked __metatable.
+template <typename T>
+void define_type(lua_State* L, const luaL_Reg* methods) {
+  detail::define_metatable(L, LuaType<T>::metatable, LuaType<T>::name, methods, &detail::gc<T>,
+                           &lua_wrap<&detail::tostring<T>>);
+}
+
+}  // namespace invasim::lua

@@ -1,0 +1,314 @@
+#include "lua/kwargs.hpp"
+
+#include <lua.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "lua/names.hpp"
+#include "lua/params.hpp"
+
+namespace invasim::lua {
+
+namespace {
+
+std::string format_number(double x) {
+  return format_value(ParamValue(x));
+}
+
+// "string", "number", "Progress" (bound userdata by their __name), or "no value".
+std::string type_of(lua_State* L, int index) {
+  if (lua_type(L, index) == LUA_TNONE) return "no value";
+  const int field = luaL_getmetafield(L, index, "__name");
+  if (field == LUA_TSTRING) {
+    std::string name = lua_tostring(L, -1);
+    lua_pop(L, 1);
+    if (name.rfind("invasim.", 0) == 0) name.erase(0, 8);
+    return name;
+  }
+  if (field != LUA_TNIL) lua_pop(L, 1);
+  return luaL_typename(L, index);
+}
+
+// Shown after "got": the value for numbers (1.5), the type name otherwise.
+std::string got(lua_State* L, int index) {
+  if (lua_type(L, index) == LUA_TNUMBER) {
+    if (lua_isinteger(L, index)) return std::to_string(lua_tointeger(L, index));
+    return format_number(lua_tonumber(L, index));
+  }
+  return type_of(L, index);
+}
+
+}  // namespace
+
+bool Range::contains(double x) const {
+  const bool above = lo_open ? x > lo : x >= lo;
+  const bool below = hi_open ? x < hi : x <= hi;
+  return above && below;
+}
+
+std::string Range::describe() const {
+  const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
+  if (has_lo && has_hi)
+    return std::string("in ") + (lo_open ? "(" : "[") + format_number(lo) + ", " +
+           format_number(hi) + (hi_open ? ")" : "]");
+  if (has_lo) return (lo_open ? "> " : ">= ") + format_number(lo);
+  if (has_hi) return (hi_open ? "< " : "<= ") + format_number(hi);
+  return "finite";
+}
+
+Kwargs::Kwargs(lua_State* L, int index, std::string owner)
+    : L_(L), index_(lua_absindex(L, index)), owner_(std::move(owner)) {
+  if (lua_type(L, index_) != LUA_TTABLE)
+    fail_input(owner_, ": expected a keyword table, as in ", owner_, "{key = value, ...}; got ",
+               type_of(L, index_));
+}
+
+int Kwargs::fetch(std::string_view key) {
+  if (std::find(known_.begin(), known_.end(), key) == known_.end()) known_.emplace_back(key);
+  lua_checkstack(L_, 2);
+  lua_pushlstring(L_, key.data(), key.size());
+  return lua_rawget(L_, index_);
+}
+
+void Kwargs::type_error(std::string_view key, const char* expected) const {
+  fail_input(owner_, ": key '", key, "' must be ", expected, ", got ", got(L_, -1));
+}
+
+void Kwargs::check_range(std::string_view key, double value, const Range& range) const {
+  if (!range.contains(value))
+    fail_input(owner_, ": key '", key, "' = ", format_number(value), " is out of range (must be ",
+               range.describe(), ")");
+}
+
+// Value on top of the stack -> finite number in range; pops it.
+double Kwargs::to_number(std::string_view key, Range range) {
+  if (lua_type(L_, -1) != LUA_TNUMBER) type_error(key, "a number");
+  const double value = lua_tonumber(L_, -1);
+  if (!std::isfinite(value)) type_error(key, "a finite number");
+  check_range(key, value, range);
+  lua_pop(L_, 1);
+  return value;
+}
+
+// Value on top of the stack -> integer (integral floats such as 2e5 accepted); pops it.
+long long Kwargs::to_integer(std::string_view key, Range range) {
+  if (lua_type(L_, -1) != LUA_TNUMBER) type_error(key, "an integer");
+  int exact = 0;
+  const lua_Integer value = lua_tointegerx(L_, -1, &exact);
+  if (!exact) type_error(key, "an integer");
+  check_range(key, static_cast<double>(value), range);
+  lua_pop(L_, 1);
+  return value;
+}
+
+double Kwargs::number(std::string_view key, Range range) {
+  if (fetch(key) == LUA_TNIL) fail_input(owner_, ": missing required key '", key, "' (a number)");
+  return to_number(key, range);
+}
+
+long long Kwargs::integer(std::string_view key, Range range) {
+  if (fetch(key) == LUA_TNIL) fail_input(owner_, ": missing required key '", key, "' (an integer)");
+  return to_integer(key, range);
+}
+
+bool Kwargs::boolean(std::string_view key) {
+  const auto value = maybe_boolean(key);
+  if (!value) fail_input(owner_, ": missing required key '", key, "' (true or false)");
+  return *value;
+}
+
+std::string Kwargs::string(std::string_view key) {
+  auto value = maybe_string(key);
+  if (!value) fail_input(owner_, ": missing required key '", key, "' (a string)");
+  return std::move(*value);
+}
+
+double Kwargs::number(std::string_view key, double fallback, Range range) {
+  return maybe_number(key, range).value_or(fallback);
+}
+
+long long Kwargs::integer(std::string_view key, long long fallback, Range range) {
+  return maybe_integer(key, range).value_or(fallback);
+}
+
+bool Kwargs::boolean(std::string_view key, bool fallback) {
+  return maybe_boolean(key).value_or(fallback);
+}
+
+std::string Kwargs::string(std::string_view key, const std::string& fallback) {
+  return maybe_string(key).value_or(fallback);
+}
+
+std::optional<double> Kwargs::maybe_number(std::string_view key, Range range) {
+  if (fetch(key) == LUA_TNIL) {
+    lua_pop(L_, 1);
+    return std::nullopt;
+  }
+  return to_number(key, range);
+}
+
+std::optional<long long> Kwargs::maybe_integer(std::string_view key, Range range) {
+  if (fetch(key) == LUA_TNIL) {
+    lua_pop(L_, 1);
+    return std::nullopt;
+  }
+  return to_integer(key, range);
+}
+
+std::optional<bool> Kwargs::maybe_boolean(std::string_view key) {
+  const int type = fetch(key);
+  if (type == LUA_TNIL) {
+    lua_pop(L_, 1);
+    return std::nullopt;
+  }
+  if (type != LUA_TBOOLEAN) type_error(key, "a boolean (true or false)");
+  const bool value = lua_toboolean(L_, -1);
+  lua_pop(L_, 1);
+  return value;
+}
+
+std::optional<std::string> Kwargs::maybe_string(std::string_view key) {
+  const int type = fetch(key);
+  if (type == LUA_TNIL) {
+    lua_pop(L_, 1);
+    return std::nullopt;
+  }
+  if (type != LUA_TSTRING) type_error(key, "a string");
+  std::size_t size = 0;
+  const char* data = lua_tolstring(L_, -1, &size);
+  std::string value(data, size);
+  lua_pop(L_, 1);
+  return value;
+}
+
+std::string Kwargs::choice(std::string_view key, const std::vector<std::string>& choices,
+                           std::optional<std::string> fallback) {
+  auto value = maybe_string(key);
+  if (!value) {
+    if (!fallback)
+      fail_input(owner_, ": missing required key '", key, "' (one of: ", join_names(choices), ")");
+    return *fallback;
+  }
+  if (std::find(choices.begin(), choices.end(), *value) == choices.end())
+    fail_input(owner_, ": key '", key, "' must be one of: ", join_names(choices), "; got '", *value,
+               "'", did_you_mean(*value, choices));
+  return std::move(*value);
+}
+
+std::optional<std::vector<double>> Kwargs::maybe_number_list(std::string_view key, std::size_t size,
+                                                             Range range) {
+  const int type = fetch(key);
+  if (type == LUA_TNIL) {
+    lua_pop(L_, 1);
+    return std::nullopt;
+  }
+  const std::string expected = "a list of " + std::to_string(size) + " numbers";
+  if (type != LUA_TTABLE) type_error(key, expected.c_str());
+  const std::size_t length = lua_rawlen(L_, -1);
+  if (length != size)
+    fail_input(owner_, ": key '", key, "' must be ", expected, ", got a table of length ", length);
+  std::vector<double> values(size);
+  for (std::size_t i = 0; i < size; ++i) {
+    lua_rawgeti(L_, -1, static_cast<lua_Integer>(i + 1));
+    const std::string element = std::string(key) + "[" + std::to_string(i + 1) + "]";
+    values[i] = to_number(element, range);
+  }
+  lua_pop(L_, 1);
+  return values;
+}
+
+std::vector<double> Kwargs::number_list(std::string_view key, std::size_t size, Range range) {
+  auto values = maybe_number_list(key, size, range);
+  if (!values)
+    fail_input(owner_, ": missing required key '", key, "' (a list of ", size, " numbers)");
+  return std::move(*values);
+}
+
+std::optional<std::vector<bool>> Kwargs::maybe_boolean_list(std::string_view key,
+                                                            std::size_t size) {
+  const int type = fetch(key);
+  if (type == LUA_TNIL) {
+    lua_pop(L_, 1);
+    return std::nullopt;
+  }
+  const std::string expected = "a list of " + std::to_string(size) + " booleans";
+  if (type != LUA_TTABLE || lua_rawlen(L_, -1) != size) type_error(key, expected.c_str());
+  std::vector<bool> values(size);
+  for (std::size_t i = 0; i < size; ++i) {
+    if (lua_rawgeti(L_, -1, static_cast<lua_Integer>(i + 1)) != LUA_TBOOLEAN) {
+      const std::string element = std::string(key) + "[" + std::to_string(i + 1) + "]";
+      type_error(element, "a boolean (true or false)");
+    }
+    values[i] = lua_toboolean(L_, -1);
+    lua_pop(L_, 1);
+  }
+  lua_pop(L_, 1);
+  return values;
+}
+
+std::optional<Kwargs> Kwargs::maybe_table(std::string_view key) {
+  const int type = fetch(key);
+  if (type == LUA_TNIL) {
+    lua_pop(L_, 1);
+    return std::nullopt;
+  }
+  if (type != LUA_TTABLE) type_error(key, "a keyword table");
+  return Kwargs(L_, -1, owner_ + "." + std::string(key));
+}
+
+int Kwargs::push(std::string_view key) {
+  return fetch(key);
+}
+
+int Kwargs::push_index(int i) {
+  positional_allowed_ = std::max(positional_allowed_, i);
+  lua_checkstack(L_, 1);
+  return lua_rawgeti(L_, index_, i);
+}
+
+bool Kwargs::has(std::string_view key) {
+  const bool present = fetch(key) != LUA_TNIL;
+  lua_pop(L_, 1);
+  return present;
+}
+
+void Kwargs::finish() const {
+  std::vector<std::string> unknown, positional;
+  lua_checkstack(L_, 3);
+  lua_pushnil(L_);
+  while (lua_next(L_, index_) != 0) {
+    lua_pop(L_, 1);  // the value; the key stays for lua_next
+    if (lua_type(L_, -1) == LUA_TSTRING) {
+      std::size_t size = 0;
+      const char* data = lua_tolstring(L_, -1, &size);
+      std::string key(data, size);
+      if (std::find(known_.begin(), known_.end(), key) == known_.end()) unknown.push_back(key);
+    } else if (lua_isinteger(L_, -1)) {
+      const lua_Integer i = lua_tointeger(L_, -1);
+      if (i >= 1 && i <= positional_allowed_) continue;
+      positional.push_back(cat("[", i, "]"));
+    } else {
+      positional.push_back("a " + std::string(luaL_typename(L_, -1)) + " key");
+    }
+  }
+  const std::string valid =
+      known_.empty() ? "it takes no keys" : "valid keys: " + join_names(known_);
+  if (!unknown.empty()) {
+    std::sort(unknown.begin(), unknown.end());
+    if (unknown.size() == 1)
+      fail_input(owner_, ": unknown key '", unknown[0], "'", did_you_mean(unknown[0], known_), "; ",
+                 valid);
+    std::string list;
+    for (const auto& key : unknown) list += (list.empty() ? "'" : ", '") + key + "'";
+    fail_input(owner_, ": unknown keys ", list, "; ", valid);
+  }
+  if (!positional.empty()) {
+    std::sort(positional.begin(), positional.end());
+    fail_input(owner_, ": unexpected positional value ", positional[0], "; write key = value (",
+               valid, ")");
+  }
+}
+
+}  // namespace invasim::lua

@@ -1,0 +1,125 @@
+#include "lua/lua_state.hpp"
+
+#include <lua.hpp>
+
+#include <filesystem>
+#include <new>
+
+#include "core/errors.hpp"
+#include "lua/binding.hpp"
+#include "lua/module.hpp"
+
+namespace invasim::lua {
+
+namespace {
+
+constexpr const char* kContextKey = "invasim.context";
+
+// Message handler of every script run: leaves the stop sentinel alone, otherwise returns
+// {message, traceback}. Plain C-style code: nothing here owns a C++ object.
+int message_handler(lua_State* L) {
+  if (is_stop_sentinel(L, 1)) return 1;
+  const char* message = nullptr;
+  if (lua_type(L, 1) == LUA_TSTRING || lua_type(L, 1) == LUA_TNUMBER)
+    message = lua_tostring(L, 1);
+  else if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING)
+    message = lua_tostring(L, -1);
+  else
+    message = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
+  lua_createtable(L, 2, 0);
+  lua_pushstring(L, message);
+  lua_rawseti(L, -2, 1);
+  luaL_traceback(L, L, nullptr, 1);
+  lua_rawseti(L, -2, 2);
+  return 1;
+}
+
+}  // namespace
+
+ScriptContext& script_context(lua_State* L) {
+  lua_getfield(L, LUA_REGISTRYINDEX, kContextKey);
+  auto* context = static_cast<ScriptContext*>(lua_touserdata(L, -1));
+  lua_pop(L, 1);
+  if (context == nullptr) throw std::logic_error("Lua state has no invasim context");
+  return *context;
+}
+
+LuaState::LuaState(RunOptions options)
+    : context_(std::make_unique<ScriptContext>(ScriptContext{std::move(options), {}})) {
+  L_ = luaL_newstate();
+  if (L_ == nullptr) throw std::bad_alloc();
+  luaL_openlibs(L_);
+  lua_pushlightuserdata(L_, context_.get());
+  lua_setfield(L_, LUA_REGISTRYINDEX, kContextKey);
+  luaL_getsubtable(L_, LUA_REGISTRYINDEX, LUA_PRELOAD_TABLE);
+  lua_pushcfunction(L_, &lua_wrap<&open_invasim>);
+  lua_setfield(L_, -2, "invasim");
+  lua_pop(L_, 1);
+}
+
+LuaState::~LuaState() {
+  if (L_ != nullptr) lua_close(L_);
+}
+
+LuaState::Outcome LuaState::call_loaded(int load_status) {
+  if (load_status != LUA_OK) {  // syntax error: "file:line: ... near ..."
+    std::string message = lua_tostring(L_, -1) ? lua_tostring(L_, -1) : "cannot load script";
+    lua_settop(L_, 0);
+    throw ScriptError(message, "");
+  }
+  lua_pushcfunction(L_, &message_handler);
+  lua_insert(L_, -2);
+  const int handler = lua_gettop(L_) - 1;
+  const int status = lua_pcall(L_, 0, 0, handler);
+  if (status == LUA_OK) {
+    lua_settop(L_, 0);
+    return Outcome::kCompleted;
+  }
+  if (is_stop_sentinel(L_, -1)) {
+    lua_settop(L_, 0);
+    return Outcome::kStopped;
+  }
+  std::string message = "error in the Lua error handler", traceback;
+  if (lua_type(L_, -1) == LUA_TTABLE) {
+    lua_rawgeti(L_, -1, 1);
+    lua_rawgeti(L_, -2, 2);
+    if (lua_isstring(L_, -2)) message = lua_tostring(L_, -2);
+    if (lua_isstring(L_, -1)) traceback = lua_tostring(L_, -1);
+  } else if (lua_isstring(L_, -1)) {
+    message = lua_tostring(L_, -1);  // e.g. out of memory before the handler ran
+  }
+  lua_settop(L_, 0);
+  throw ScriptError(message, traceback);
+}
+
+LuaState::Outcome LuaState::run_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (!fs::exists(path, error)) fail_input("cannot open protocol file '", path, "': no such file");
+  if (fs::is_directory(path, error))
+    fail_input("cannot open protocol file '", path, "': it is a directory");
+  // Let the script require modules next to it: <dir>/?.lua and <dir>/?/init.lua first.
+  const std::string parent = fs::path(path).parent_path().string();
+  const std::string dir = parent.empty() ? std::string(".") : parent;
+  const std::string prepend =
+      "local dir = ...; package.path = dir .. '/?.lua;' .. dir .. '/?/init.lua;' .. package.path";
+  if (luaL_loadstring(L_, prepend.c_str()) != LUA_OK) throw std::logic_error("package.path");
+  lua_pushstring(L_, dir.c_str());
+  if (lua_pcall(L_, 1, 0, 0) != LUA_OK) {
+    lua_settop(L_, 0);
+    throw std::runtime_error("cannot set package.path");
+  }
+  const int status = luaL_loadfile(L_, path.c_str());
+  if (status == LUA_ERRFILE) {
+    const std::string message = lua_tostring(L_, -1);
+    lua_settop(L_, 0);
+    fail_input(message);
+  }
+  return call_loaded(status);
+}
+
+LuaState::Outcome LuaState::run_string(const std::string& code, const std::string& chunkname) {
+  return call_loaded(luaL_loadbuffer(L_, code.data(), code.size(), chunkname.c_str()));
+}
+
+}  // namespace invasim::lua

@@ -1,0 +1,27 @@
+#pragma once
+// Helpers for error messages that list valid names: "valid keys: a, b, c" and a
+// "did you mean 'box'?" hint for near misses.
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace invasim::lua {
+
+// Concatenates streamable parts: cat("[", 3, "]") -> "[3]". (Also sidesteps GCC 12's false
+// -Wrestrict warning on `"literal" + std::string&&`.)
+template <typename... Parts>
+std::string cat(const Parts&... parts) {
+  std::ostringstream out;
+  (out << ... << parts);
+  return out.str();
+}
+
+// Sorted, de-duplicated, comma-separated: {"seed", "box"} -> "box, seed".
+std::string join_names(std::vector<std::string> names);
+
+// " (did you mean 'box'?)" when one candidate is within a small edit distance of `name`,
+// else "".
+std::string did_you_mean(std::string_view name, const std::vector<std::string>& candidates);
+
+}  // namespace invasim::lua

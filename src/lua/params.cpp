@@ -1,0 +1,193 @@
+#include "lua/params.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "lua/names.hpp"
+
+namespace invasim::lua {
+
+const char* type_name(ParamType type) {
+  switch (type) {
+    case ParamType::kNumber:
+      return "number";
+    case ParamType::kInteger:
+      return "integer";
+    case ParamType::kBoolean:
+      return "boolean";
+    case ParamType::kString:
+      return "string";
+  }
+  return "?";
+}
+
+std::string format_value(const ParamValue& value) {
+  if (const auto* d = std::get_if<double>(&value)) {
+    char buffer[64];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, *d);  // shortest round trip
+    return std::string(buffer, result.ptr);
+  }
+  if (const auto* i = std::get_if<long long>(&value)) return std::to_string(*i);
+  if (const auto* b = std::get_if<bool>(&value)) return *b ? "true" : "false";
+  return std::get<std::string>(value);
+}
+
+namespace {
+
+std::string trim(const std::string& text) {
+  const auto first = text.find_first_not_of(" \t");
+  if (first == std::string::npos) return "";
+  const auto last = text.find_last_not_of(" \t");
+  return text.substr(first, last - first + 1);
+}
+
+// Whole-string double parse (accepts a leading '+'); nullopt if anything is left over.
+std::optional<double> parse_double(const std::string& text) {
+  const char* begin = text.data();
+  const char* end = begin + text.size();
+  if (begin != end && *begin == '+') ++begin;
+  double value = 0.0;
+  const auto result = std::from_chars(begin, end, value);
+  if (result.ec != std::errc() || result.ptr != end || begin == end) return std::nullopt;
+  return value;
+}
+
+std::optional<long long> parse_integer(const std::string& text) {
+  const char* begin = text.data();
+  const char* end = begin + text.size();
+  if (begin != end && *begin == '+') ++begin;
+  long long value = 0;
+  const auto result = std::from_chars(begin, end, value);
+  if (result.ec == std::errc() && result.ptr == end && begin != end) return value;
+  // Integral floats such as "2e5" are integers too (as in Lua's math.tointeger).
+  const auto d = parse_double(text);
+  if (d && std::isfinite(*d) && std::floor(*d) == *d && std::fabs(*d) < 9.2e18)
+    return static_cast<long long>(*d);
+  return std::nullopt;
+}
+
+std::optional<bool> parse_boolean(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (text == "true" || text == "yes" || text == "on" || text == "1") return true;
+  if (text == "false" || text == "no" || text == "off" || text == "0") return false;
+  return std::nullopt;
+}
+
+}  // namespace
+
+ParamValue parse_value(ParamType type, const std::string& key, const std::string& raw) {
+  const std::string text = trim(raw);
+  const auto fail = [&](const char* expected) -> ParamValue {
+    fail_input("parameter '", key, "' is ", expected, "; cannot parse '", raw, "'");
+  };
+  switch (type) {
+    case ParamType::kNumber: {
+      const auto d = parse_double(text);
+      if (!d || !std::isfinite(*d)) return fail("a number");
+      return *d;
+    }
+    case ParamType::kInteger: {
+      const auto i = parse_integer(text);
+      if (!i) return fail("an integer");
+      return *i;
+    }
+    case ParamType::kBoolean: {
+      const auto b = parse_boolean(text);
+      if (!b) return fail("a boolean (true/false, yes/no, on/off, 1/0)");
+      return *b;
+    }
+    case ParamType::kString:
+      return raw;
+  }
+  return raw;
+}
+
+Override parse_override(const std::string& argument) {
+  const auto eq = argument.find('=');
+  if (eq == std::string::npos) fail_input("--set expects key=value, got '", argument, "'");
+  const std::string key = trim(argument.substr(0, eq));
+  if (key.empty()) fail_input("--set expects key=value, got '", argument, "' (no key)");
+  return Override{key, argument.substr(eq + 1), false};
+}
+
+namespace {
+
+std::string describe(const Override& o) {
+  return o.from_seed_flag ? "--seed " + o.text : "--set " + o.key + "=" + o.text;
+}
+
+}  // namespace
+
+void apply_overrides(std::vector<Param>& params, const std::vector<Override>& overrides) {
+  std::vector<std::string> declared;
+  for (const auto& p : params) declared.push_back(p.name);
+  std::map<std::string, const Override*> seen;
+  for (const auto& o : overrides) {
+    auto it =
+        std::find_if(params.begin(), params.end(), [&](const Param& p) { return p.name == o.key; });
+    if (it == params.end()) {
+      const std::string listing = declared.empty() ? "the protocol declares no parameters"
+                                                   : "declared parameters: " + join_names(declared);
+      if (o.from_seed_flag)
+        fail_input("--seed: the protocol declares no parameter 'seed'; ", listing);
+      fail_input(describe(o), ": '", o.key, "' is not a parameter of this protocol",
+                 did_you_mean(o.key, declared), "; ", listing);
+    }
+    if (const auto [previous, inserted] = seen.emplace(o.key, &o); !inserted)
+      fail_input("parameter '", o.key, "' is set twice on the command line (",
+                 describe(*previous->second), " and ", describe(o), ")");
+    try {
+      it->value = parse_value(it->type, it->name, o.text);
+    } catch (const InputError& e) {
+      const bool integral_default = it->type == ParamType::kInteger && parse_double(o.text);
+      fail_input(describe(o), ": ", e.what(),
+                 integral_default ? cat(" (to accept fractions, write its default with a decimal "
+                                        "point in the protocol: ",
+                                        format_value(it->default_value), ".0)")
+                                  : "");
+    }
+    it->overridden = true;
+  }
+}
+
+std::string format_param_table(const std::vector<Param>& params) {
+  if (params.empty()) return "  (no parameters)\n";
+  const bool any_overridden =
+      std::any_of(params.begin(), params.end(), [](const Param& p) { return p.overridden; });
+  const auto shown = [](const Param& p, const ParamValue& v) {
+    return p.type == ParamType::kString ? cat('"', format_value(v), '"') : format_value(v);
+  };
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> header = {"name", "type", "default"};
+  if (any_overridden) header.push_back("value");
+  header.insert(header.end(), {"unit", "meaning"});
+  rows.push_back(header);
+  for (const auto& p : params) {
+    std::vector<std::string> row = {p.name, type_name(p.type), shown(p, p.default_value)};
+    if (any_overridden) row.push_back(p.overridden ? shown(p, p.value) : "");
+    row.insert(row.end(), {p.unit.empty() ? "-" : p.unit, p.help});
+    rows.push_back(row);
+  }
+  std::vector<std::size_t> width(header.size(), 0);
+  for (const auto& row : rows)
+    for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
+  std::ostringstream out;
+  for (const auto& row : rows) {
+    std::string line = " ";
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      line += " " + row[c];
+      if (c + 1 < row.size()) line += std::string(width[c] - row[c].size() + 1, ' ');
+    }
+    line.erase(line.find_last_not_of(' ') + 1);
+    out << line << '\n';
+  }
+  return out.str();
+}
+
+}  // namespace invasim::lua

@@ -1,0 +1,53 @@
+#include "setup/compression.hpp"
+
+#include <cmath>
+
+#include "core/errors.hpp"
+
+namespace invasim {
+
+void CompressionParams::validate() const {
+  if (!(target_phi > 0.0 && target_phi < 1.0))
+    fail_input("compress: target phi = ", target_phi, " must be in (0, 1)");
+  if (!(step > 0.0 && step < 1.0)) fail_input("compress: step = ", step, " must be in (0, 1)");
+  fire.validate();
+}
+
+CompressionReport compress_to_phi(System& sys, ForceField& ff, const CompressionParams& params,
+                                  const CompressionCallback& on_step) {
+  params.validate();
+  const Fire fire(params.fire);
+  CompressionReport report;
+  double phi = packing_fractions(sys).total;
+  if (phi > params.target_phi)
+    fail_input("compress: the packing fraction is already ", phi, ", above the target ",
+               params.target_phi, "; use rescale to expand");
+  while (phi < params.target_phi * (1.0 - 1e-12)) {
+    if (report.steps >= params.max_steps)
+      fail_simulation("compress: target phi = ", params.target_phi, " not reached after ",
+                      report.steps, " steps (phi = ", phi, ")");
+    const double next = std::min(phi * (1.0 + params.step), params.target_phi);
+    sys.scale(Vec3::Constant(std::cbrt(phi / next)), true);
+    const FireResult r = fire.minimize(sys, ff);
+    ++report.steps;
+    report.fire_steps += r.steps;
+    report.converged = report.converged && r.converged;
+    report.max_force = r.max_force;
+    phi = packing_fractions(sys).total;
+    report.phi = phi;
+    report.box_lengths = sys.box().lengths();
+    if (on_step) on_step(report);
+  }
+  report.phi = phi;
+  report.box_lengths = sys.box().lengths();
+  return report;
+}
+
+FireResult rescale_to_phi_a(System& sys, ForceField& ff, double phi_a, const FireParams& fire) {
+  if (!(phi_a > 0.0 && phi_a < 1.0)) fail_input("rescale: phi_a = ", phi_a, " must be in (0, 1)");
+  const double now = packing_fractions(sys).adipocyte;
+  sys.scale(Vec3::Constant(std::cbrt(now / phi_a)), true);
+  return Fire(fire).minimize(sys, ff);
+}
+
+}  // namespace invasim

@@ -1,0 +1,42 @@
+#pragma once
+// Athermal isotropic compression (MODEL.md, protocol step 2): scale the box and the body
+// centres so that phi grows by a fixed fraction per step (adipocytes move rigidly), then
+// minimise with FIRE; repeat until the total packing fraction reaches the target. The last
+// step lands exactly on the target. Also the affine rescale to an adipocyte packing fraction
+// (protocol step 6).
+#include <functional>
+
+#include "integrate/fire.hpp"
+#include "measure/packing.hpp"
+
+namespace invasim {
+
+struct CompressionParams {
+  double target_phi = 0.72;
+  double step = 0.03;  // Delta phi / phi per compression step
+  FireParams fire;     // minimiser after each step
+  std::size_t max_steps = 100000;
+  void validate() const;
+};
+
+struct CompressionReport {
+  std::size_t steps = 0;         // compression steps taken
+  std::uint64_t fire_steps = 0;  // total FIRE iterations
+  bool converged = true;         // every minimisation reached its tolerance
+  double phi = 0.0;              // final total packing fraction
+  Vec3 box_lengths = Vec3::Zero();
+  double max_force = 0.0;  // after the last minimisation
+};
+
+// Called after each compression step with the report so far (progress display).
+using CompressionCallback = std::function<void(const CompressionReport&)>;
+
+CompressionReport compress_to_phi(System& sys, ForceField& ff, const CompressionParams& params,
+                                  const CompressionCallback& on_step = {});
+
+// Affine rescale of the box, the cancer cells and the adipocyte centres (adipocytes move
+// rigidly, keeping their shape and V_i) so that the adipocyte
+// packing fraction becomes phi_a, then FIRE. Returns the minimiser result.
+FireResult rescale_to_phi_a(System& sys, ForceField& ff, double phi_a, const FireParams& fire);
+
+}  // namespace invasim

@@ -1,0 +1,129 @@
+#include "setup/placement.hpp"
+
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "core/rng.hpp"
+#include "mesh/geometry.hpp"
+
+namespace invasim {
+
+namespace {
+
+struct Ball {
+  Vec3 centre;
+  double radius;
+};
+
+// Brute-force overlap test against every ball placed so far (minimum image).
+bool overlaps(const Box& box, const std::vector<Ball>& balls, const Ball& b) {
+  for (const Ball& o : balls) {
+    const double reach = o.radius + b.radius;
+    if (box.minimum_image(o.centre - b.centre).squaredNorm() < reach * reach) return true;
+  }
+  return false;
+}
+
+void check_range(const Box& box, const Range& x, double radius, const char* what) {
+  if (!(x.hi >= x.lo)) fail_input(what, ": x range [", x.lo, ", ", x.hi, "] is empty");
+  if (x.lo - radius < box.lo()[0] || x.hi + radius > box.hi()[0])
+    fail_input(what, ": x range [", x.lo, ", ", x.hi, "] with body radius ", radius,
+               " does not fit between the walls [", box.lo()[0], ", ", box.hi()[0], "]");
+}
+
+// A random point with x in the range and y, z anywhere in the box.
+Vec3 random_point(const System& sys, const Range& x, std::uint64_t attempt, std::uint32_t id,
+                  std::uint32_t sub) {
+  const auto u = RandomKey(sys.seed(), attempt, id, RngStream::kPlacement, sub).uniform4();
+  const Box& box = sys.box();
+  return {x.lo + u[0] * (x.hi - x.lo), box.lo()[1] + u[1] * box.length(1),
+          box.lo()[2] + u[2] * box.length(2)};
+}
+
+// A uniformly random rotation (unit quaternion from four normals).
+Eigen::Matrix3d random_rotation(const System& sys, std::uint32_t id) {
+  const auto g = RandomKey(sys.seed(), 0, id, RngStream::kPlacement, 7).normal4();
+  Eigen::Quaterniond q(g[0], g[1], g[2], g[3]);
+  q.normalize();
+  return q.toRotationMatrix();
+}
+
+}  // namespace
+
+PlacementResult place_random(System& sys, const MeshPlacement& meshes,
+                             const SpherePlacement& spheres) {
+  if (meshes.n < 0 || spheres.n < 0) fail_input("placement: negative number of bodies");
+  if (spheres.n > 0 && spheres.diameters.empty())
+    fail_input("placement: no cancer-cell diameters given");
+  for (double d : spheres.diameters) require_positive("cancer-cell diameter", d);
+  PlacementResult out;
+  std::vector<Ball> balls;
+  for (std::size_t i = 0; i < sys.n_sites(); ++i)
+    balls.push_back({sys.sites().pos[i], 0.5 * sys.sites().diameter[i]});
+
+  if (meshes.n > 0) {
+    require_positive("adipocyte diameter", meshes.diameter);
+    require_positive("vertex diameter", meshes.vertex_diameter);
+    const double radius = 0.5 * (meshes.diameter - meshes.vertex_diameter);
+    if (!(radius > 0.0))
+      fail_input("adipocyte diameter = ", meshes.diameter,
+                 " must exceed the vertex diameter = ", meshes.vertex_diameter);
+    const double outer = 0.5 * meshes.diameter;
+    check_range(sys.box(), meshes.x, outer, "adipocyte placement");
+    const MeshShape shape = icosphere(meshes.subdivisions);
+    std::vector<Vec3> scaled;
+    for (const Vec3& v : shape.vertices) scaled.push_back(radius * v);
+    const double v_outer =
+        union_volume(*shape.topology, scaled.data(), meshes.vertex_diameter, meshes.volume_grid);
+    for (int k = 0; k < meshes.n; ++k) {
+      const std::uint32_t id = std::uint32_t(sys.bodies().size());
+      bool placed = false;
+      for (std::uint64_t attempt = 0; attempt < meshes.max_attempts_per_body && !placed;
+           ++attempt) {
+        const Ball b{random_point(sys, meshes.x, attempt, id, 1), outer};
+        if (overlaps(sys.box(), balls, b)) continue;
+        MeshShape rotated = shape;
+        if (meshes.random_rotation) {
+          const Eigen::Matrix3d rot = random_rotation(sys, id);
+          for (Vec3& v : rotated.vertices) v = rot * v;
+        }
+        const int body = sys.add_mesh_scaled(rotated, b.centre, radius, meshes.vertex_diameter,
+                                             meshes.shape_param);
+        sys.bodies()[body].outer_volume = v_outer;
+        balls.push_back(b);
+        out.bodies.push_back(body);
+        placed = true;
+      }
+      if (!placed)
+        fail_input("adipocyte placement: only ", k, " of ", meshes.n,
+                   " adipocytes fit in x range [", meshes.x.lo, ", ", meshes.x.hi,
+                   "] without overlaps; widen the range or enlarge the box");
+    }
+  }
+
+  if (spheres.n > 0) {
+    double d_max = 0.0;
+    for (double d : spheres.diameters) d_max = std::max(d_max, d);
+    check_range(sys.box(), spheres.x, 0.5 * d_max, "cancer-cell placement");
+    for (int k = 0; k < spheres.n; ++k) {
+      const double d = spheres.diameters[k % spheres.diameters.size()];
+      const std::uint32_t id = std::uint32_t(k);
+      bool placed = false;
+      for (std::uint64_t attempt = 0; attempt < spheres.max_attempts_per_cell && !placed;
+           ++attempt) {
+        const Ball b{random_point(sys, spheres.x, attempt, id, 2), 0.5 * d};
+        if (overlaps(sys.box(), balls, b)) continue;
+        out.cells.push_back(sys.add_sphere(b.centre, d));
+        balls.push_back(b);
+        placed = true;
+      }
+      if (!placed)
+        fail_input("cancer-cell placement: only ", k, " of ", spheres.n, " cells fit in x range [",
+                   spheres.x.lo, ", ", spheres.x.hi,
+                   "] without overlaps; widen the range or enlarge the box");
+    }
+  }
+  return out;
+}
+
+}  // namespace invasim

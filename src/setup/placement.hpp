@@ -1,0 +1,46 @@
+#pragma once
+// Dilute random placement without overlaps (MODEL.md, protocol step 1): cancer cells and
+// adipocytes at random positions inside given x ranges (all of y and z), each body treated
+// as a ball (a cell: its diameter; an adipocyte: mesh radius + vertex radius) that must not
+// overlap any ball already placed. Random numbers come from the system seed (stream
+// kPlacement), so a placement is reproducible.
+#include <vector>
+
+#include "state/system.hpp"
+
+namespace invasim {
+
+struct Range {
+  double lo, hi;
+};
+
+struct SpherePlacement {
+  int n = 0;
+  std::vector<double> diameters{0.9, 1.1};  // assigned in turn: i-th cell gets d[i % size]
+  Range x{0.0, 0.0};                        // range of the centres' x
+  double max_attempts_per_cell = 10000;
+};
+
+struct MeshPlacement {
+  int n = 0;
+  double diameter = 6.0;         // outer diameter, vertex radii included
+  double vertex_diameter = 2.0;  // contact diameter of each vertex
+  double shape_param = 1.1;      // reference shape parameter A_0
+  int subdivisions = 1;          // icosphere(1): 42 vertices
+  bool random_rotation = true;
+  Range x{0.0, 0.0};          // range of the centres' x
+  double volume_grid = 0.05;  // grid spacing for the union volume V_i
+  double max_attempts_per_body = 10000;
+};
+
+// Places meshes first, then spheres, avoiding every existing site. Returns the new site
+// indices of the spheres (the cancer-cell group). Throws InputError when a region cannot
+// hold the requested bodies (names the region and how many were placed).
+struct PlacementResult {
+  std::vector<int> cells;
+  std::vector<int> bodies;
+};
+PlacementResult place_random(System& sys, const MeshPlacement& meshes,
+                             const SpherePlacement& spheres);
+
+}  // namespace invasim

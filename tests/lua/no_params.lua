@@ -1,0 +1,2 @@
+-- Never declares parameters: any --set must be rejected.
+local x = 1 + 1

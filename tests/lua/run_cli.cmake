@@ -1,0 +1,20 @@
+# Runs ${INVASIM} ${ARGS} and checks: exit status zero (FAIL=0) or nonzero (FAIL=1); the
+# combined stdout+stderr matches EXPECT and does not match REJECT (regexes, may be empty).
+execute_process(COMMAND ${INVASIM} ${ARGS} RESULT_VARIABLE rc OUTPUT_VARIABLE out
+                ERROR_VARIABLE err)
+set(all "${out}${err}")
+message("exit status ${rc}; output:\n${all}")
+if(rc MATCHES "[A-Za-z]")  # e.g. "Segmentation fault": a crash is never an acceptable failure
+  message(FATAL_ERROR "invasim crashed: ${rc}")
+endif()
+if(FAIL AND rc EQUAL 0)
+  message(FATAL_ERROR "expected a nonzero exit status")
+elseif(NOT FAIL AND NOT rc EQUAL 0)
+  message(FATAL_ERROR "expected exit status 0")
+endif()
+if(NOT EXPECT STREQUAL "" AND NOT all MATCHES "${EXPECT}")
+  message(FATAL_ERROR "output does not match: ${EXPECT}")
+endif()
+if(NOT REJECT STREQUAL "" AND all MATCHES "${REJECT}")
+  message(FATAL_ERROR "output matches what it must not: ${REJECT}")
+endif()

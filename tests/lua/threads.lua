@@ -1,0 +1,2 @@
+-- --threads N reaches OpenMP.
+print("threads=" .. require("invasim").threads())

@@ -1,0 +1,467 @@
+// Tests of the Lua layer foundation: keyword tables, parameters and overrides, the progress
+// reporter, and the binding pattern (lua_wrap, check<T>, __gc).
+#include <lua.hpp>
+
+#include <catch2/catch.hpp>
+#include <memory>
+#include <regex>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "lua/binding.hpp"
+#include "lua/kwargs.hpp"
+#include "lua/lua_state.hpp"
+#include "lua/params.hpp"
+#include "lua/progress.hpp"
+
+using namespace invasim;
+using namespace invasim::lua;
+
+namespace {
+
+// Evaluates `return <expression>` and leaves the value on top of the stack.
+void eval(lua_State* L, const std::string& expression) {
+  const std::string code = "return " + expression;
+  REQUIRE(luaL_dostring(L, code.c_str()) == LUA_OK);
+}
+
+// A small bound type for the binding tests.
+struct Widget {
+  static inline int alive = 0;
+  int size;
+  explicit Widget(int s) : size(s) { ++alive; }
+  ~Widget() { --alive; }
+};
+
+// Counts destructions of objects alive in a throwing binding function.
+struct Guard {
+  static inline int destroyed = 0;
+  ~Guard() { ++destroyed; }
+};
+
+}  // namespace
+
+namespace invasim::lua {
+template <>
+struct LuaType<Widget> {
+  static constexpr const char* name = "Widget";
+  static constexpr const char* metatable = "invasim.test.Widget";
+  static std::string describe(const Widget& w) { return "Widget(" + std::to_string(w.size) + ")"; }
+};
+}  // namespace invasim::lua
+
+namespace {
+
+int l_widget(lua_State* L) {
+  Kwargs kw(L, 1, "Widget");
+  const long long size = kw.integer("size", Range::positive());
+  kw.finish();
+  push(L, std::make_shared<Widget>(static_cast<int>(size)));
+  return 1;
+}
+
+int l_widget_size(lua_State* L) {
+  lua_pushinteger(L, check<Widget>(L, 1).size);
+  return 1;
+}
+
+int l_throw_input(lua_State*) {
+  Guard guard;
+  std::string alive = "a C++ object with a destructor";
+  throw InputError("boom");
+}
+
+int l_throw_other(lua_State*) {
+  throw 42;
+}
+
+int l_throw_raised(lua_State*) {
+  throw LuaRaised("elsewhere.lua:7: callback failed");
+}
+
+// A state with the test functions as globals.
+void install_test_functions(lua_State* L) {
+  const luaL_Reg methods[] = {{"size", &lua_wrap<&l_widget_size>}, {nullptr, nullptr}};
+  define_type<Widget>(L, methods);
+  lua_register(L, "Widget", &lua_wrap<&l_widget>);
+  lua_register(L, "throw_input", &lua_wrap<&l_throw_input>);
+  lua_register(L, "throw_other", &lua_wrap<&l_throw_other>);
+  lua_register(L, "throw_raised", &lua_wrap<&l_throw_raised>);
+}
+
+std::string script_error(LuaState& state, const std::string& code) {
+  try {
+    state.run_string(code, "@test.lua");
+  } catch (const ScriptError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+}  // namespace
+
+TEST_CASE("Kwargs reads typed keys with defaults", "[lua][kwargs]") {
+  LuaState state;
+  lua_State* L = state.get();
+  eval(L,
+       "{box = {70, 60, 50}, periodic = {false, true, true}, seed = 2e5, dt = 0.5, "
+       "name = 'x', on = true, mode = 'fast'}");
+  Kwargs kw(L, -1, "System");
+  CHECK(kw.number_list("box", 3) == std::vector<double>{70, 60, 50});
+  CHECK(*kw.maybe_boolean_list("periodic", 3) == std::vector<bool>{false, true, true});
+  CHECK(kw.integer("seed") == 200000);  // integral floats are integers
+  CHECK(kw.number("dt", Range::positive()) == 0.5);
+  CHECK(kw.string("name") == "x");
+  CHECK(kw.boolean("on"));
+  CHECK(kw.choice("mode", {"fast", "slow"}) == "fast");
+  CHECK(kw.number("absent", 3.0) == 3.0);
+  CHECK(kw.integer("absent_int", 4) == 4);
+  CHECK_FALSE(kw.maybe_string("nothing"));
+  CHECK_NOTHROW(kw.finish());
+  CHECK(lua_gettop(L) == 1);  // getters leave the stack as they found it
+}
+
+TEST_CASE("Kwargs errors name the owner, the key and the valid keys", "[lua][kwargs]") {
+  LuaState state;
+  lua_State* L = state.get();
+
+  SECTION("unknown key") {
+    eval(L, "{bxo = {1, 2, 3}, seed = 1}");
+    Kwargs kw(L, -1, "System");
+    kw.maybe_number_list("box", 3);
+    kw.maybe_boolean_list("periodic", 3);
+    kw.integer("seed");
+    CHECK_THROWS_WITH(kw.finish(),
+                      "System: unknown key 'bxo' (did you mean 'box'?); valid "
+                      "keys: box, periodic, seed");
+  }
+  SECTION("several unknown keys") {
+    eval(L, "{zz = 1, aa = 2}");
+    Kwargs kw(L, -1, "System");
+    kw.maybe_integer("seed");
+    CHECK_THROWS_WITH(kw.finish(), "System: unknown keys 'aa', 'zz'; valid keys: seed");
+  }
+  SECTION("wrong type") {
+    eval(L, "{seed = 'x'}");
+    Kwargs kw(L, -1, "System");
+    CHECK_THROWS_WITH(kw.integer("seed"), "System: key 'seed' must be an integer, got string");
+  }
+  SECTION("fractional integer") {
+    eval(L, "{n = 1.5}");
+    Kwargs kw(L, -1, "Spheres");
+    CHECK_THROWS_WITH(kw.integer("n"), "Spheres: key 'n' must be an integer, got 1.5");
+  }
+  SECTION("out of range") {
+    eval(L, "{dt = -1, phi = 2}");
+    Kwargs kw(L, -1, "Langevin");
+    CHECK_THROWS_WITH(kw.number("dt", Range::positive()),
+                      "Langevin: key 'dt' = -1 is out of range (must be > 0)");
+    CHECK_THROWS_WITH(kw.number("phi", Range::between(0, 1)),
+                      "Langevin: key 'phi' = 2 is out of range (must be in [0, 1])");
+  }
+  SECTION("missing required key") {
+    eval(L, "{}");
+    Kwargs kw(L, -1, "Langevin");
+    CHECK_THROWS_WITH(kw.number("T"), "Langevin: missing required key 'T' (a number)");
+  }
+  SECTION("not a table") {
+    eval(L, "5");
+    CHECK_THROWS_WITH(Kwargs(L, -1, "System"),
+                      "System: expected a keyword table, as in "
+                      "System{key = value, ...}; got number");
+  }
+  SECTION("positional value") {
+    eval(L, "{3, seed = 1}");
+    Kwargs kw(L, -1, "System");
+    kw.integer("seed");
+    CHECK_THROWS_WITH(kw.finish(),
+                      "System: unexpected positional value [1]; write key = value "
+                      "(valid keys: seed)");
+  }
+  SECTION("list of the wrong length or element type") {
+    eval(L, "{box = {1, 2}, box2 = {1, 'a', 3}}");
+    Kwargs kw(L, -1, "System");
+    CHECK_THROWS_WITH(kw.number_list("box", 3),
+                      "System: key 'box' must be a list of 3 numbers, got a table of length 2");
+    CHECK_THROWS_WITH(kw.number_list("box2", 3),
+                      "System: key 'box2[2]' must be a number, got "
+                      "string");
+  }
+  SECTION("choice") {
+    eval(L, "{mode = 'fsat'}");
+    Kwargs kw(L, -1, "Dynamics");
+    CHECK_THROWS_WITH(kw.choice("mode", {"fast", "slow"}),
+                      "Dynamics: key 'mode' must be one of: fast, slow; got 'fsat' (did you "
+                      "mean 'fast'?)");
+  }
+  SECTION("nested table") {
+    eval(L, "{cohesion = {beta = 0.1, alfa = 0.2}}");
+    Kwargs kw(L, -1, "contacts");
+    auto sub = kw.maybe_table("cohesion");
+    REQUIRE(sub);
+    CHECK(sub->number("beta") == 0.1);
+    sub->maybe_number("alpha");
+    CHECK_THROWS_WITH(sub->finish(),
+                      "contacts.cohesion: unknown key 'alfa' (did you mean "
+                      "'alpha'?); valid keys: alpha, beta");
+  }
+  SECTION("non-finite numbers") {
+    eval(L, "{x = math.huge}");
+    Kwargs kw(L, -1, "System");
+    CHECK_THROWS_WITH(kw.number("x"), "System: key 'x' must be a finite number, got inf");
+  }
+}
+
+TEST_CASE("parse_value converts override text to the declared type", "[lua][params]") {
+  CHECK(std::get<double>(parse_value(ParamType::kNumber, "x", "2.5")) == 2.5);
+  CHECK(std::get<double>(parse_value(ParamType::kNumber, "x", "1e-3")) == 1e-3);
+  CHECK(std::get<long long>(parse_value(ParamType::kInteger, "n", "42")) == 42);
+  CHECK(std::get<long long>(parse_value(ParamType::kInteger, "n", "2e5")) == 200000);
+  CHECK(std::get<long long>(parse_value(ParamType::kInteger, "n", "-3")) == -3);
+  CHECK(std::get<bool>(parse_value(ParamType::kBoolean, "b", "yes")));
+  CHECK_FALSE(std::get<bool>(parse_value(ParamType::kBoolean, "b", "False")));
+  CHECK(std::get<std::string>(parse_value(ParamType::kString, "s", "a b")) == "a b");
+  CHECK_THROWS_WITH(parse_value(ParamType::kNumber, "phi", "abc"),
+                    "parameter 'phi' is a number; cannot parse 'abc'");
+  CHECK_THROWS_WITH(parse_value(ParamType::kNumber, "phi", "nan"),
+                    "parameter 'phi' is a number; cannot parse 'nan'");
+  CHECK_THROWS_AS(parse_value(ParamType::kInteger, "n", "1.5"), InputError);
+  CHECK_THROWS_AS(parse_value(ParamType::kBoolean, "b", "maybe"), InputError);
+  CHECK_THROWS_AS(parse_value(ParamType::kNumber, "x", ""), InputError);
+}
+
+TEST_CASE("apply_overrides: undeclared keys, duplicates and --seed", "[lua][params]") {
+  std::vector<Param> params = {
+      {"n", ParamType::kInteger, 5LL, 5LL, "cells", "number", false},
+      {"phi", ParamType::kNumber, 0.5, 0.5, "", "fraction", false},
+  };
+  SECTION("applied") {
+    apply_overrides(params, {parse_override("phi=0.75"), parse_override("n=8")});
+    CHECK(std::get<double>(params[1].value) == 0.75);
+    CHECK(std::get<long long>(params[0].value) == 8);
+    CHECK(params[0].overridden);
+  }
+  SECTION("undeclared") {
+    CHECK_THROWS_WITH(apply_overrides(params, {parse_override("ph=1")}),
+                      "--set ph=1: 'ph' is not a parameter of this protocol (did you mean "
+                      "'phi'?); declared parameters: n, phi");
+  }
+  SECTION("unparsable") {
+    CHECK_THROWS_WITH(apply_overrides(params, {parse_override("phi=x")}),
+                      "--set phi=x: parameter 'phi' is a number; cannot parse 'x'");
+  }
+  SECTION("twice") {
+    CHECK_THROWS_WITH(apply_overrides(params, {parse_override("n=1"), parse_override("n=2")}),
+                      "parameter 'n' is set twice on the command line (--set n=1 and --set n=2)");
+  }
+  SECTION("--seed without a seed parameter") {
+    CHECK_THROWS_WITH(apply_overrides(params, {Override{"seed", "3", true}}),
+                      "--seed: the protocol declares no parameter 'seed'; declared parameters: "
+                      "n, phi");
+  }
+  SECTION("malformed --set") {
+    CHECK_THROWS_WITH(parse_override("phi"), "--set expects key=value, got 'phi'");
+  }
+}
+
+TEST_CASE("invasim.params declares, overrides and protects parameters", "[lua][params]") {
+  RunOptions options;
+  options.overrides = {parse_override("n=7"), parse_override("x=0.25"), parse_override("flag=true"),
+                       parse_override("name=hello")};
+  options.seed = "11";
+  LuaState state(options);
+  state.run_string(R"lua(
+    local iv = require("invasim")
+    local p = iv.params{ n = {5, unit = "cells", help = "count"}, x = 0.5, flag = false,
+                         name = "abc", seed = 1, steps = {2e5, type = "integer"} }
+    assert(p.n == 7 and math.type(p.n) == "integer")
+    assert(p.x == 0.25 and math.type(p.x) == "float")
+    assert(p.flag == true and p.name == "hello" and p.seed == 11)
+    assert(p.steps == 200000 and math.type(p.steps) == "integer")
+    local ok, err = pcall(function() return p.nn end)
+    assert(not ok and err:find("no parameter 'nn'", 1, true), err)
+    ok, err = pcall(function() p.n = 1 end)
+    assert(not ok and err:find("read-only", 1, true), err)
+    local count = 0
+    for k, v in pairs(p) do count = count + 1 end
+    assert(count == 6)
+  )lua");
+  const auto& params = *state.context().params;
+  REQUIRE(params.size() == 6);
+  CHECK(params[1].name == "n");
+  CHECK(params[1].unit == "cells");
+  CHECK(params[1].help == "count");
+  const std::string table = format_param_table(params);
+  CHECK(std::regex_search(table, std::regex("\n  n +integer +5 +7 +cells +count\n")));
+}
+
+TEST_CASE("invasim.params errors", "[lua][params]") {
+  LuaState state;
+  CHECK(script_error(state, "local iv = require('invasim')\niv.params{x = {unit = 'm'}}") ==
+        "test.lua:2: params: parameter 'x' has no default; write name = default or name = "
+        "{default, unit = ..., help = ...}");
+  CHECK(script_error(state, "require('invasim').params{x = {1, unti = 'm'}}") ==
+        "test.lua:1: params: parameter 'x': unknown key 'unti' (did you mean 'unit'?); valid "
+        "keys: help, type, unit");
+  CHECK(script_error(state, "require('invasim').params{x = {1.5, type = 'integer'}}") ==
+        "test.lua:1: params: parameter 'x' is declared an integer but its default 1.5 is not");
+}
+
+TEST_CASE("invasim.params in list mode stops the script after recording", "[lua][params]") {
+  RunOptions options;
+  options.list_params = true;
+  LuaState state(options);
+  const auto outcome = state.run_string(R"lua(
+    ran_before = true
+    require("invasim").params{ a = 1 }
+    ran_after = true
+  )lua");
+  CHECK(outcome == LuaState::Outcome::kStopped);
+  REQUIRE(state.context().params);
+  CHECK(state.context().params->size() == 1);
+  lua_getglobal(state.get(), "ran_before");
+  lua_getglobal(state.get(), "ran_after");
+  CHECK(lua_toboolean(state.get(), -2));
+  CHECK_FALSE(lua_toboolean(state.get(), -1));
+}
+
+TEST_CASE("Progress formats the line", "[lua][progress]") {
+  double now = 0.0;
+  std::ostringstream out;
+  ProgressOptions options;
+  options.total = 10000;
+  Progress progress(options, out, false, [&] { return now; });
+  CHECK(progress.line(1200, 60.0, 0.8, false) ==
+        "step 1200/10000 (12.0%)  t = 60  1500 steps/s  ETA 0:06");
+  CHECK(progress.line(0, std::nullopt, 0.0, false) == "step 0/10000 (0.0%)");
+  CHECK(progress.line(10000, 500.0, 4.0, true) ==
+        "step 10000/10000 (100.0%)  t = 500  2500 steps/s  done in 0:04");
+  CHECK(Progress::format_duration(5) == "0:05");
+  CHECK(Progress::format_duration(754) == "12:34");
+  CHECK(Progress::format_duration(3723) == "1:02:03");
+
+  ProgressOptions unknown_total;
+  unknown_total.label = "quench";
+  Progress open_ended(unknown_total, out, false, [&] { return now; });
+  CHECK(open_ended.line(30, std::nullopt, 2.0, false) == "quench: step 30  15 steps/s");
+}
+
+TEST_CASE("Progress prints plain lines every N seconds plus first and last", "[lua][progress]") {
+  double now = 0.0;
+  std::ostringstream out;
+  ProgressOptions options;
+  options.total = 100;
+  options.every_seconds = 10.0;
+  {
+    Progress progress(options, out, false, [&] { return now; });
+    now = 1.0;
+    progress.update(10, 1.0);  // first: printed
+    now = 5.0;
+    progress.update(20, 2.0);  // 4 s later: skipped
+    now = 11.5;
+    progress.update(50, 5.0);  // 10.5 s after the first: printed
+    now = 12.0;
+    progress.update(60, 6.0);  // skipped
+    now = 20.0;
+    progress.finish();    // last: printed
+    progress.update(70);  // after finish: ignored
+  }
+  CHECK(out.str() ==
+        "step 10/100 (10.0%)  t = 1  10 steps/s  ETA 0:09\n"
+        "step 50/100 (50.0%)  t = 5  4.35 steps/s  ETA 0:12\n"
+        "step 60/100 (60.0%)  t = 6  3 steps/s  done in 0:20\n");
+}
+
+TEST_CASE("Progress live line rewrites itself with carriage returns", "[lua][progress]") {
+  double now = 0.0;
+  std::ostringstream out;
+  ProgressOptions options;
+  options.total = 1000;
+  {
+    Progress progress(options, out, true, [&] { return now; });
+    now = 1.0;
+    progress.update(100);
+    now = 1.1;
+    progress.update(110);  // within live_interval: skipped
+    now = 2.0;
+    progress.update(1000);
+    progress.finish();
+  }
+  CHECK(out.str() ==
+        "\rstep 100/1000 (10.0%)  100 steps/s  ETA 0:09"
+        "\rstep 1000/1000 (100.0%)  500 steps/s  ETA 0:00"
+        "\rstep 1000/1000 (100.0%)  500 steps/s  done in 0:02\n");
+}
+
+TEST_CASE("Progress live line pads over a longer previous line", "[lua][progress]") {
+  double now = 1.0;
+  std::ostringstream out;
+  ProgressOptions options;
+  options.live_interval = 0.0;
+  Progress progress(options, out, true, [&] { return now; });
+  progress.update(1000000, 123456.0);
+  progress.update(5);
+  const std::string text = out.str();
+  const auto second = text.rfind('\r');
+  CHECK(text.substr(0, second).size() == text.substr(second).size());
+}
+
+TEST_CASE("lua_wrap turns C++ exceptions into Lua errors with file:line", "[lua][binding]") {
+  LuaState state;
+  install_test_functions(state.get());
+  Guard::destroyed = 0;
+  CHECK(script_error(state, "local x = 1\n\nthrow_input()") == "test.lua:3: boom");
+  CHECK(Guard::destroyed == 1);  // the throwing frame was unwound by C++, not skipped
+  CHECK(script_error(state, "throw_other()") == "test.lua:1: unknown C++ exception");
+  CHECK(script_error(state, "throw_raised()") == "elsewhere.lua:7: callback failed");
+  // Through pcall (a C function) the location is still the script line.
+  CHECK_NOTHROW(state.run_string(R"lua(
+    local ok, err = pcall(throw_input)
+    assert(not ok and err == "t.lua:2: boom", err)
+  )lua",
+                                 "@t.lua"));
+}
+
+TEST_CASE("Bound types: constructor, methods, type errors and __gc", "[lua][binding]") {
+  LuaState state;
+  install_test_functions(state.get());
+  Widget::alive = 0;
+  state.run_string(R"lua(
+    local w = Widget{size = 3}
+    assert(w:size() == 3)
+    assert(tostring(w) == "Widget(3)")
+    assert(getmetatable(w) == false)
+    local ok, err = pcall(function() return w.size(5) end)
+    assert(err == "t.lua:6: bad argument #1 to 'size' (Widget expected, got number; for a method call write obj:method(...))", err)
+    ok, err = pcall(function() return w:sise() end)
+    assert(err == "t.lua:8: Widget has no method or field 'sise' (did you mean 'size'?); methods: size", err)
+    ok, err = pcall(function() return Widget{size = 0} end)
+    assert(err == "t.lua:10: Widget: key 'size' = 0 is out of range (must be > 0)", err)
+    kept = Widget{size = 4}
+  )lua",
+                   "@t.lua");
+  lua_gc(state.get(), LUA_GCCOLLECT);
+  CHECK(Widget::alive == 1);  // only the global `kept`
+  state.run_string("kept = nil");
+  lua_gc(state.get(), LUA_GCCOLLECT);
+  CHECK(Widget::alive == 0);
+}
+
+TEST_CASE("LuaState reports missing files, syntax errors and odd error values", "[lua][state]") {
+  LuaState state;
+  CHECK_THROWS_WITH(state.run_file("/nonexistent/protocol.lua"),
+                    "cannot open protocol file '/nonexistent/protocol.lua': no such file");
+  CHECK(script_error(state, "x = = 1") == "test.lua:1: unexpected symbol near '='");
+  CHECK(script_error(state, "error({})") == "(error object is a table value)");
+  CHECK(script_error(state, "error(setmetatable({}, {__tostring = function() return 'T' end}))") ==
+        "T");
+  CHECK(script_error(state, "local function f() return f() + 1 end f()").find("stack overflow") !=
+        std::string::npos);
+  try {
+    state.run_string("local function g() error('deep') end\ng()", "@tb.lua");
+    FAIL("no error");
+  } catch (const ScriptError& e) {
+    CHECK(std::string(e.what()) == "tb.lua:1: deep");
+    CHECK(e.traceback().find("tb.lua:2") != std::string::npos);
+  }
+}

@@ -1,0 +1,143 @@
+// Dilute random placement, packing fractions, compression to a target phi and rescaling.
+#include <catch2/catch.hpp>
+
+#include "core/errors.hpp"
+#include "mesh/geometry.hpp"
+#include "setup/compression.hpp"
+#include "setup/placement.hpp"
+#include "test_support.hpp"
+
+using namespace invasim;
+using Catch::Matchers::Contains;
+
+namespace {
+
+// The paper's de-mixed start scaled to n_a adipocytes and n_c cells at phi0 = 0.01: x ranges
+// (2, 12) for cells and (16, 68) for adipocyte centres in a box of L0 = 70, scaled with L0.
+System dilute_start(int n_a, int n_c, std::uint64_t seed, PlacementResult* placed = nullptr) {
+  const double v_cells = n_c * M_PI / 6.0 * 0.5 * (0.9 * 0.9 * 0.9 + 1.1 * 1.1 * 1.1);
+  const MeshShape shape = icosphere(1);
+  std::vector<Vec3> x;
+  for (const Vec3& v : shape.vertices) x.push_back(2.0 * v);
+  const double v_body = union_volume(*shape.topology, x.data(), 2.0, 0.05);
+  const double L0 = std::cbrt((v_cells + n_a * v_body) / 0.01);
+  System sys(Box(Vec3::Zero(), Vec3::Constant(L0), {false, true, true}), seed);
+  MeshPlacement mp;
+  mp.n = n_a;
+  mp.x = {16.0 / 70.0 * L0, 68.0 / 70.0 * L0 - 3.0};
+  SpherePlacement sp;
+  sp.n = n_c;
+  sp.x = {2.0 / 70.0 * L0, 12.0 / 70.0 * L0};
+  const PlacementResult r = place_random(sys, mp, sp);
+  if (placed) *placed = r;
+  return sys;
+}
+
+double min_pair_gap(const System& sys) {
+  // Smallest surface gap between any two sites of different bodies (brute force).
+  const Sites& s = sys.sites();
+  double gap = 1e300;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    for (std::size_t j = i + 1; j < s.size(); ++j) {
+      if (s.body[i] >= 0 && s.body[i] == s.body[j]) continue;
+      const double r = sys.box().minimum_image(s.pos[i] - s.pos[j]).norm();
+      gap = std::min(gap, r - 0.5 * (s.diameter[i] + s.diameter[j]));
+    }
+  return gap;
+}
+
+}  // namespace
+
+TEST_CASE("random placement is de-mixed, overlap-free, reproducible and sets V_i") {
+  PlacementResult placed;
+  const System sys = dilute_start(6, 300, 3, &placed);
+  CHECK(placed.cells.size() == 300);
+  CHECK(placed.bodies.size() == 6);
+  CHECK(min_pair_gap(sys) >= 0.0);
+  const double L0 = sys.box().length(0);
+  for (int i : placed.cells) {
+    CHECK(sys.sites().pos[i][0] >= 2.0 / 70.0 * L0);
+    CHECK(sys.sites().pos[i][0] <= 12.0 / 70.0 * L0);
+  }
+  std::vector<Vec3> x(42);
+  for (int b : placed.bodies) {
+    sys.body_vertices(b, x.data());
+    CHECK(vertex_centroid(42, x.data())[0] >= 16.0 / 70.0 * L0 - 1e-9);
+    // V_i of a radius-2 icosphere with vertex diameter 2 lies between the mesh volume + the
+    // outside caps and the ball of radius 3.
+    CHECK(sys.bodies()[b].outer_volume > 80.0);
+    CHECK(sys.bodies()[b].outer_volume < 4.0 / 3.0 * M_PI * 27.0);
+  }
+  CHECK(packing_fractions(sys).total == Approx(0.01).epsilon(1e-12));
+  const System again = dilute_start(6, 300, 3);
+  CHECK(again.sites().pos == sys.sites().pos);
+  const System other = dilute_start(6, 300, 4);
+  CHECK(other.sites().pos != sys.sites().pos);
+}
+
+TEST_CASE("placement refuses regions that cannot hold the bodies, naming the region") {
+  System sys(Box(Vec3::Zero(), Vec3::Constant(10.0), {false, true, true}), 1);
+  SpherePlacement sp;
+  sp.n = 5000;
+  sp.x = {1.0, 2.0};
+  sp.max_attempts_per_cell = 200;
+  CHECK_THROWS_WITH(place_random(sys, MeshPlacement{}, sp),
+                    Contains("cells fit in x range [1, 2]"));
+  sp.x = {-5.0, 2.0};
+  CHECK_THROWS_WITH(place_random(sys, MeshPlacement{}, sp),
+                    Contains("does not fit between the walls"));
+}
+
+namespace {
+
+// Compresses to phi = 0.72 in 3 % steps with FIRE to ftol after each; checks the target, the
+// residual force, the adipocyte volumes and that the interface stays planar.
+void check_compression(int n_a, int n_c, double ftol) {
+  System sys = dilute_start(n_a, n_c, 5);
+  const double phi0 = packing_fractions(sys).total;
+  ForceField ff = test::standard_forces(0.0, 1e3, 1.0);
+  CompressionParams cp;
+  cp.target_phi = 0.72;
+  cp.fire.ftol = ftol;
+  cp.fire.max_steps = 200000;
+  const CompressionReport r = compress_to_phi(sys, ff, cp);
+  INFO("steps " << r.steps << ", FIRE steps " << r.fire_steps
+                << ", L = " << r.box_lengths.transpose());
+  CHECK(r.converged);
+  CHECK(std::abs(r.phi - 0.72) < 1e-3);
+  CHECK(r.max_force < ftol);
+  CHECK(r.steps == std::size_t(std::ceil(std::log(0.72 / phi0) / std::log(1.03))));
+  std::vector<Vec3> x(42);
+  double min_body_x = 1e300;
+  for (std::size_t b = 0; b < sys.bodies().size(); ++b) {
+    sys.body_vertices(int(b), x.data());
+    const double v = mesh_volume(*sys.bodies()[b].topology, x.data());
+    CHECK(std::abs(v / sys.bodies()[b].ref_volume - 1.0) < 0.01);
+    min_body_x = std::min(min_body_x, vertex_centroid(42, x.data())[0]);
+  }
+  // De-mixed: every cancer cell lies left of every adipocyte centroid (planar interface).
+  for (int i : sys.sites_of_kind(SiteKind::kCancer)) CHECK(sys.sites().pos[i][0] < min_body_x);
+}
+
+}  // namespace
+
+TEST_CASE("compression of cancer cells alone reaches phi = 0.72 in 3 % steps") {
+  check_compression(0, 300, 1e-6);
+}
+
+TEST_CASE("compression of cells and adipocytes reaches phi = 0.72, volumes kept, de-mixed",
+          "[long]") {
+  check_compression(2, 100, 1e-5);
+}
+
+TEST_CASE("rescale reaches the requested adipocyte packing fraction, bodies rigid") {
+  System sys = dilute_start(3, 50, 9);
+  ForceField ff = test::standard_forces(0.0, 1e3, 1.0);
+  std::vector<Vec3> before(42), after(42);
+  sys.body_vertices(0, before.data());
+  FireParams fp;
+  fp.ftol = 1e-6;
+  rescale_to_phi_a(sys, ff, 0.05, fp);
+  CHECK(packing_fractions(sys).adipocyte == Approx(0.05).epsilon(1e-12));
+  CHECK_THROWS_WITH(rescale_to_phi_a(sys, ff, 1.5, fp), Contains("phi_a = 1.5 must be in (0, 1)"));
+}
