@@ -21,8 +21,9 @@ void ContactParams::validate() const {
 
 PairEval linear_spring(double r, double s, double eps) {
   if (r >= s) return {0.0, 0.0};
-  const double x = 1.0 - r / s;
-  return {eps / s * x, 0.5 * eps * x * x};
+  const double inv_s = 1.0 / s;
+  const double x = 1.0 - r * inv_s;
+  return {eps * inv_s * x, 0.5 * eps * x * x};
 }
 
 PairEval cohesive_spring(double r, double s, double eps, double alpha, double beta) {

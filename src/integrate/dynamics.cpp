@@ -89,41 +89,48 @@ void Method::drift(System& sys, double dt) const {
   }
 }
 
+namespace {
+// Damping, thermal noise and self-propulsion on site i at the system's current step.
+inline Vec3 drive_force(const MethodParams& p, double noise, const Sites& s, int i,
+                        std::uint64_t seed, std::uint64_t step) {
+  Vec3 f = -p.gamma * s.vel[i];
+  if (noise > 0.0)
+    f += noise * RandomKey(seed, step, std::uint32_t(i), RngStream::kThermal).normal3();
+  if (p.f0 > 0.0) f += p.f0 * s.orient[i];
+  return f;
+}
+// Standard deviation of the per-component random force (fluctuation-dissipation).
+inline double noise_amplitude(const MethodParams& p, double dt) {
+  return p.kT > 0.0 ? std::sqrt(2.0 * p.gamma * p.kT / dt) : 0.0;
+}
+}  // namespace
+
 void Method::add_drive(System& sys, double dt) const {
   Sites& s = sys.sites();
-  const MethodParams& p = params_;
-  const double noise = p.kT > 0.0 ? std::sqrt(2.0 * p.gamma * p.kT / dt) : 0.0;
+  const double noise = noise_amplitude(params_, dt);
   const std::uint64_t seed = sys.seed(), step = sys.step;
   const int n = int(group_.size());
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < n; ++k) {
     const int i = group_[k];
-    Vec3 f = -p.gamma * s.vel[i];
-    if (noise > 0.0)
-      f += noise * RandomKey(seed, step, std::uint32_t(i), RngStream::kThermal).normal3();
-    if (p.f0 > 0.0) f += p.f0 * s.orient[i];
-    s.force[i] += f;
+    s.force[i] += drive_force(params_, noise, s, i, seed, step);
   }
 }
 
 void Method::kick(System& sys, double dt) const {
   Sites& s = sys.sites();
   const MethodParams& p = params_;
-  if (p.f0 > 0.0) {
-    const std::uint64_t seed = sys.seed(), step = sys.step;
-    const int n = int(group_.size());
-#pragma omp parallel for schedule(static)
-    for (int k = 0; k < n; ++k) {
-      const int i = group_[k];
-      const auto u = RandomKey(seed, step, std::uint32_t(i), RngStream::kOrientation).uniform4();
-      s.orient[i] = rotate_orientation(s.orient[i], dt, p.tau_p, u);
-    }
-  }
-  add_drive(sys, dt);
+  const double noise = noise_amplitude(p, dt);
+  const std::uint64_t seed = sys.seed(), step = sys.step;
   const int n = int(group_.size());
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < n; ++k) {
     const int i = group_[k];
+    if (p.f0 > 0.0) {
+      const auto u = RandomKey(seed, step, std::uint32_t(i), RngStream::kOrientation).uniform4();
+      s.orient[i] = rotate_orientation(s.orient[i], dt, p.tau_p, u);
+    }
+    s.force[i] += drive_force(p, noise, s, i, seed, step);
     s.vel[i] += 0.5 * dt / s.mass[i] * s.force[i];
   }
 }

@@ -31,6 +31,16 @@ int open_invasim(lua_State* L) {
   lua_setfield(L, -2, "threads");
   open_params(L);
   open_progress(L);
+  open_system(L);
+  open_group(L);
+  open_contacts(L);
+  open_walls(L);
+  open_shape(L);
+  open_tethers(L);
+  open_method(L);
+  open_dynamics(L);
+  open_fire(L);
+  open_compression(L);
   return 1;
 }
 

@@ -11,5 +11,16 @@ int open_invasim(lua_State* L);
 
 void open_params(lua_State* L);    // invasim.params{...}        (bind_params.cpp)
 void open_progress(lua_State* L);  // invasim.Progress{...}      (bind_progress.cpp)
+// The engine (types in engine_types.hpp).
+void open_system(lua_State* L);       // invasim.System{...}        (bind_system.cpp)
+void open_group(lua_State* L);        // Group objects              (bind_group.cpp)
+void open_contacts(lua_State* L);     // invasim.Contacts{...}      (bind_contacts.cpp)
+void open_walls(lua_State* L);        // invasim.Walls{...}         (bind_walls.cpp)
+void open_shape(lua_State* L);        // invasim.Shape{...}         (bind_shape.cpp)
+void open_tethers(lua_State* L);      // invasim.Tethers{...}       (bind_tethers.cpp)
+void open_method(lua_State* L);       // invasim.Damped/Langevin/Active{...} (bind_method.cpp)
+void open_dynamics(lua_State* L);     // invasim.Dynamics{...}      (bind_dynamics.cpp)
+void open_fire(lua_State* L);         // invasim.Fire{...}          (bind_fire.cpp)
+void open_compression(lua_State* L);  // invasim.compress, rescale  (bind_compression.cpp)
 
 }  // namespace invasim::lua

@@ -1,0 +1,209 @@
+// invasim.Dynamics{dt = 0.05}: time stepping of a System by a list of methods (Damped,
+// Langevin, Active), with an optional pressure-controlled left wall:
+//   dyn:add(method); dyn:pressure_wall{P =, mass = 1, gamma = 0.2, walls = w}
+//   dyn:run(sys, nsteps [, {every = N, callback = function(step, time) end, progress = p}])
+// run steps the engine in C++ chunks and returns to Lua only between chunks.
+#include <lua.hpp>
+
+#include <algorithm>
+
+#include "lua/engine_types.hpp"
+#include "lua/module.hpp"
+#include "lua/names.hpp"
+#include "lua/progress.hpp"
+
+namespace invasim::lua {
+
+std::string LuaType<DynamicsHandle>::describe(const DynamicsHandle& d) {
+  std::string text = cat("Dynamics(dt=", d.dynamics.dt(), ", methods:");
+  for (const auto& m : d.methods) text += " " + m->kind;
+  if (d.methods.empty()) text += " none";
+  if (auto w = d.dynamics.pressure_wall()) text += cat(", pressure wall P=", w->pressure);
+  return text + ")";
+}
+
+PressureWall* prepare_dynamics(DynamicsHandle& d, const std::shared_ptr<Simulation>& sim,
+                               const std::string& what) {
+  for (const auto& m : d.methods) require_same_system(*m->group, *sim, what + ": " + m->kind);
+  PressureWall* wall = d.dynamics.pressure_wall().get();
+  if (wall) {
+    std::shared_ptr<Walls> walls = d.walls;
+    if (walls) {
+      if (walls->owner.lock() != sim)
+        fail_input(what,
+                   ": the pressure wall's Walls are not a force of this System; add them "
+                   "with sys:add(walls)");
+    } else {
+      for (const auto& h : sim->handles)
+        if (auto* w = std::get_if<std::shared_ptr<Walls>>(&h)) {
+          if (walls)
+            fail_input(what,
+                       ": the System has several Walls; name the pressure wall's with "
+                       "dyn:pressure_wall{walls = w, ...}");
+          walls = *w;
+        }
+      if (!walls)
+        fail_input(what,
+                   ": the pressure wall needs a Walls force in the System (sys:add(iv.Walls{}))");
+    }
+    if (!walls->left)
+      fail_input(what, ": the pressure wall moves the left wall, but its Walls have left = false");
+    wall->walls = walls->force;
+  }
+  if (d.last.lock() != sim || d.last_revision != sim->revision) d.dynamics.invalidate();
+  return wall;
+}
+
+namespace {
+
+int l_new(lua_State* L) {
+  Kwargs kw(L, 1, "Dynamics");
+  const double dt = kw.number("dt", 0.05, Range::positive());
+  kw.finish();
+  push(L, engine_call("Dynamics", [&] { return std::make_shared<DynamicsHandle>(dt); }));
+  return 1;
+}
+
+// dyn:add(method): a Damped, Langevin or Active method; returns it.
+int l_add(lua_State* L) {
+  DynamicsHandle& d = check<DynamicsHandle>(L, 1);
+  const auto& method = check_shared<MethodHandle>(L, 2);
+  for (const auto& m : d.methods)
+    if (m == method) fail_input("add: this ", method->kind, " method is already in the Dynamics");
+  d.methods.push_back(method);
+  d.dynamics.add(method->method);
+  d.dynamics.invalidate();
+  lua_settop(L, 2);
+  return 1;
+}
+
+// dyn:pressure_wall{P =, mass = 1, gamma = 0.2, walls = w}: the left wall becomes a piston
+// under pressure P. walls defaults to the System's only Walls force (found at run time).
+int l_pressure_wall(lua_State* L) {
+  DynamicsHandle& d = check<DynamicsHandle>(L, 1);
+  Kwargs kw(L, 2, "pressure_wall");
+  auto wall = std::make_shared<PressureWall>();
+  wall->pressure = kw.number("P", Range::non_negative());
+  wall->mass = kw.number("mass", wall->mass, Range::positive());
+  wall->gamma = kw.number("gamma", wall->gamma, Range::non_negative());
+  std::shared_ptr<Walls> walls;
+  if (kw.push("walls") != LUA_TNIL) {
+    if (!luaL_testudata(L, -1, LuaType<Walls>::metatable))
+      fail_input("pressure_wall: key 'walls' must be a Walls force, got ", type_name_at(L, -1));
+    walls = check_shared<Walls>(L, lua_gettop(L));
+  }
+  lua_pop(L, 1);
+  kw.finish();
+  d.walls = walls;
+  d.dynamics.set_pressure_wall(std::move(wall));
+  d.dynamics.invalidate();
+  return 0;
+}
+
+// dyn:wall_state() -> {P =, velocity =, force =} or nil without a pressure wall.
+int l_wall_state(lua_State* L) {
+  const auto wall = check<DynamicsHandle>(L, 1).dynamics.pressure_wall();
+  if (!wall) {
+    lua_pushnil(L);
+    return 1;
+  }
+  lua_createtable(L, 0, 3);
+  set_number(L, "P", wall->pressure);
+  set_number(L, "velocity", wall->velocity);
+  set_number(L, "force", wall->force);
+  return 1;
+}
+
+int l_dt(lua_State* L) {
+  lua_pushnumber(L, check<DynamicsHandle>(L, 1).dynamics.dt());
+  return 1;
+}
+
+int l_methods(lua_State* L) {
+  const DynamicsHandle& d = check<DynamicsHandle>(L, 1);
+  lua_createtable(L, static_cast<int>(d.methods.size()), 0);
+  for (std::size_t k = 0; k < d.methods.size(); ++k) {
+    push(L, d.methods[k]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+  }
+  return 1;
+}
+
+// Steps without a callback between progress updates.
+constexpr long long kProgressChunk = 100;
+
+// dyn:run(sys, nsteps [, {every = N, callback = f, progress = p}]) -> steps done.
+// callback(step, time) runs after each step of the System that is a multiple of `every`
+// (required with a callback); returning false stops the run there. progress:update is called
+// after each chunk (every `every` steps, else every 100).
+int l_run(lua_State* L) {
+  DynamicsHandle& d = check<DynamicsHandle>(L, 1);
+  const std::shared_ptr<Simulation> sim = check_shared<Simulation>(L, 2);
+  const long long n = arg_integer(L, 3);
+  if (n < 0) fail_input("run: the number of steps must be >= 0, got ", n);
+  std::optional<long long> every;
+  int callback = 0;
+  Progress* progress = nullptr;
+  if (!lua_isnoneornil(L, 4)) {
+    Kwargs kw(L, 4, "run");
+    every = kw.maybe_integer("every", Range::at_least(1));
+    const int type = kw.push("callback");
+    if (type == LUA_TFUNCTION)
+      callback = lua_gettop(L);
+    else if (type != LUA_TNIL)
+      fail_input("run: key 'callback' must be a function, got ", type_name_at(L, -1));
+    if (kw.push("progress") != LUA_TNIL) {
+      progress = test_progress(L, -1);
+      if (!progress)
+        fail_input("run: key 'progress' must be a Progress, got ", type_name_at(L, -1));
+    }
+    kw.finish();
+    if (callback && !every) fail_input("run: a callback needs key 'every' (call it every N steps)");
+  }
+  Simulation& s = *sim;
+  const long long chunk = every ? *every : (progress ? kProgressChunk : std::max(n, 1LL));
+  long long done = 0;
+  while (done < n) {
+    prepare_dynamics(d, sim, "run");
+    // With `every`: run up to the next multiple of it in the System's step count.
+    const long long step = static_cast<long long>(s.system.step);
+    const long long k = std::min(n - done, every ? *every - step % *every : chunk);
+    engine_call("run", [&] { d.dynamics.run(s.system, s.forces, static_cast<std::uint64_t>(k)); });
+    done += k;
+    s.changed();
+    d.last = sim;
+    d.last_revision = s.revision;
+    if (progress) progress->update(done, s.system.time);
+    if (callback && s.system.step % static_cast<std::uint64_t>(*every) == 0) {
+      lua_pushvalue(L, callback);
+      lua_pushinteger(L, static_cast<lua_Integer>(s.system.step));
+      lua_pushnumber(L, s.system.time);
+      call_lua(L, 2, 1);
+      const bool stop = lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1);
+      lua_pop(L, 1);
+      if (stop) break;
+    }
+  }
+  lua_pushinteger(L, done);
+  return 1;
+}
+
+const luaL_Reg kMethods[] = {
+    {"add", &lua_wrap<&l_add>},
+    {"pressure_wall", &lua_wrap<&l_pressure_wall>},
+    {"wall_state", &lua_wrap<&l_wall_state>},
+    {"dt", &lua_wrap<&l_dt>},
+    {"methods", &lua_wrap<&l_methods>},
+    {"run", &lua_wrap<&l_run>},
+    {nullptr, nullptr},
+};
+
+}  // namespace
+
+void open_dynamics(lua_State* L) {
+  define_type<DynamicsHandle>(L, kMethods);
+  lua_pushcfunction(L, &lua_wrap<&l_new>);
+  lua_setfield(L, -2, "Dynamics");
+}
+
+}  // namespace invasim::lua

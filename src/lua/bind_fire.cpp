@@ -1,0 +1,60 @@
+// invasim.Fire{ftol = 1e-8, dt = 0.05, dt_max = 0.5, max_steps = 1e6}: the FIRE minimiser.
+// fire:minimize(sys [, dyn]) -> {converged, steps, max_force, energy}; with a Dynamics that
+// has a pressure wall, the left wall is minimised too (mechanical equilibrium at its P).
+#include <lua.hpp>
+
+#include "lua/engine_types.hpp"
+#include "lua/module.hpp"
+#include "lua/names.hpp"
+
+namespace invasim::lua {
+
+std::string LuaType<Fire>::describe(const Fire& f) {
+  const FireParams& p = f.params();
+  return cat("Fire(ftol=", p.ftol, ", dt=", p.dt, ", dt_max=", p.dt_max,
+             ", max_steps=", p.max_steps, ")");
+}
+
+namespace {
+
+int l_new(lua_State* L) {
+  Kwargs kw(L, 1, "Fire");
+  const FireParams p = kw_fire(kw);
+  kw.finish();
+  push(L, engine_call("Fire", [&] { return std::make_shared<Fire>(p); }));
+  return 1;
+}
+
+int l_minimize(lua_State* L) {
+  const Fire& fire = check<Fire>(L, 1);
+  const std::shared_ptr<Simulation> sim = check_shared<Simulation>(L, 2);
+  PressureWall* wall = nullptr;
+  if (!lua_isnoneornil(L, 3)) {
+    DynamicsHandle& d = check<DynamicsHandle>(L, 3);
+    if (!d.dynamics.pressure_wall())
+      fail_input(
+          "minimize: the Dynamics has no pressure wall (set one with "
+          "dyn:pressure_wall{P = ...})");
+    wall = prepare_dynamics(d, sim, "minimize");
+  }
+  sim->changed();
+  const FireResult r =
+      engine_call("minimize", [&] { return fire.minimize(sim->system, sim->forces, wall); });
+  push_fire_result(L, r);
+  return 1;
+}
+
+const luaL_Reg kMethods[] = {
+    {"minimize", &lua_wrap<&l_minimize>},
+    {nullptr, nullptr},
+};
+
+}  // namespace
+
+void open_fire(lua_State* L) {
+  define_type<Fire>(L, kMethods);
+  lua_pushcfunction(L, &lua_wrap<&l_new>);
+  lua_setfield(L, -2, "Fire");
+}
+
+}  // namespace invasim::lua

@@ -1,0 +1,52 @@
+// Groups of sites, made by sys:group(name) and sys:place{...}: g:size(), g:name(), g:sites().
+#include <lua.hpp>
+
+#include "lua/engine_types.hpp"
+#include "lua/module.hpp"
+#include "lua/names.hpp"
+
+namespace invasim::lua {
+
+std::string LuaType<Group>::describe(const Group& g) {
+  return cat("Group('", g.name, "', ", g.sites.size(), " sites",
+             g.owner.expired() ? ", no System" : "", ")");
+}
+
+namespace {
+
+int l_size(lua_State* L) {
+  lua_pushinteger(L, static_cast<lua_Integer>(check<Group>(L, 1).sites.size()));
+  return 1;
+}
+
+int l_name(lua_State* L) {
+  const std::string& name = check<Group>(L, 1).name;
+  lua_pushlstring(L, name.data(), name.size());
+  return 1;
+}
+
+// g:sites() -> {i, ...}: the engine's site indices, which start at 0.
+int l_sites(lua_State* L) {
+  const Group& g = check<Group>(L, 1);
+  lua_createtable(L, static_cast<int>(g.sites.size()), 0);
+  for (std::size_t k = 0; k < g.sites.size(); ++k) {
+    lua_pushinteger(L, g.sites[k]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+  }
+  return 1;
+}
+
+const luaL_Reg kMethods[] = {
+    {"size", &lua_wrap<&l_size>},
+    {"name", &lua_wrap<&l_name>},
+    {"sites", &lua_wrap<&l_sites>},
+    {nullptr, nullptr},
+};
+
+}  // namespace
+
+void open_group(lua_State* L) {
+  define_type<Group>(L, kMethods);
+}
+
+}  // namespace invasim::lua

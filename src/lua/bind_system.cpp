@@ -1,0 +1,342 @@
+// invasim.System{box = {Lx, Ly, Lz}, periodic = {false, true, true}, seed = 1}: the state, its
+// forces and the queries on it (docs/lua.md, "System").
+#include <lua.hpp>
+
+#include <cmath>
+
+#include "core/rng.hpp"
+#include "lua/engine_types.hpp"
+#include "lua/module.hpp"
+#include "lua/names.hpp"
+#include "measure/packing.hpp"
+#include "setup/placement.hpp"
+
+namespace invasim::lua {
+
+std::string LuaType<Simulation>::describe(const Simulation& sim) {
+  const Vec3 L = sim.system.box().lengths();
+  return cat("System(", sim.system.n_sites(), " sites, ", sim.system.bodies().size(),
+             " adipocytes, box ", L[0], " x ", L[1], " x ", L[2], ", step ", sim.system.step, ")");
+}
+
+namespace {
+
+int l_new(lua_State* L) {
+  Kwargs kw(L, 1, "System");
+  const auto lengths = kw.number_list("box", 3, Range::positive());
+  const auto periodic =
+      kw.maybe_boolean_list("periodic", 3).value_or(std::vector<bool>{false, true, true});
+  const auto seed = kw.integer("seed", 1, Range::non_negative());
+  kw.finish();
+  auto sim = engine_call("System", [&] {
+    const Box box(Vec3::Zero(), Vec3(lengths[0], lengths[1], lengths[2]),
+                  {periodic[0], periodic[1], periodic[2]});
+    return std::make_shared<Simulation>(box, static_cast<std::uint64_t>(seed));
+  });
+  push(L, std::move(sim));
+  return 1;
+}
+
+// The x range {lo, hi} of a placement table.
+invasim::Range read_x(Kwargs& kw) {
+  const auto x = kw.number_list("x", 2);
+  return {x[0], x[1]};
+}
+
+// Cancer-cell diameters: a non-empty list of positive numbers, any length.
+std::vector<double> read_diameters(Kwargs& kw, std::vector<double> fallback) {
+  lua_State* L = kw.state();
+  const int type = kw.push("diameters");
+  if (type == LUA_TNIL) {
+    lua_pop(L, 1);
+    return fallback;
+  }
+  const std::size_t n = type == LUA_TTABLE ? lua_rawlen(L, -1) : 0;
+  if (n == 0)
+    fail_input(kw.owner(), ": key 'diameters' must be a non-empty list of numbers, got ",
+               type == LUA_TTABLE ? "an empty table" : type_name_at(L, -1));
+  std::vector<double> d(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    lua_rawgeti(L, -1, static_cast<lua_Integer>(i + 1));
+    if (lua_type(L, -1) != LUA_TNUMBER || !(lua_tonumber(L, -1) > 0) ||
+        !std::isfinite(lua_tonumber(L, -1)))
+      fail_input(kw.owner(), ": key 'diameters[", i + 1, "]' must be a number > 0, got ",
+                 lua_type(L, -1) == LUA_TNUMBER ? cat(lua_tonumber(L, -1)) : type_name_at(L, -1));
+    d[i] = lua_tonumber(L, -1);
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  return d;
+}
+
+void push_group(lua_State* L, const std::shared_ptr<Simulation>& sim, std::string name,
+                std::vector<int> sites) {
+  push(L, std::make_shared<Group>(Group{std::move(name), std::move(sites), sim}));
+}
+
+// sys:place{cells = {n =, diameters =, x = {lo, hi}}, adipocytes = {n =, diameter =,
+// vertex_diameter =, shape_param =, subdivisions =, random_rotation =, x = {lo, hi}}}
+int l_place(lua_State* L) {
+  auto& sim = check_shared<Simulation>(L, 1);
+  Kwargs kw(L, 2, "place");
+  SpherePlacement cells;
+  MeshPlacement meshes;
+  if (auto c = kw.maybe_table("cells")) {
+    cells.n = static_cast<int>(c->integer("n", Range::non_negative()));
+    cells.diameters = read_diameters(*c, cells.diameters);
+    cells.x = read_x(*c);
+    cells.max_attempts_per_cell =
+        c->number("max_attempts", cells.max_attempts_per_cell, Range::at_least(1));
+    c->finish();
+  }
+  if (auto a = kw.maybe_table("adipocytes")) {
+    meshes.n = static_cast<int>(a->integer("n", Range::non_negative()));
+    meshes.diameter = a->number("diameter", meshes.diameter, Range::positive());
+    meshes.vertex_diameter =
+        a->number("vertex_diameter", meshes.vertex_diameter, Range::positive());
+    meshes.shape_param = a->number("shape_param", meshes.shape_param, Range::at_least(1));
+    meshes.subdivisions =
+        static_cast<int>(a->integer("subdivisions", meshes.subdivisions, Range::between(0, 4)));
+    meshes.random_rotation = a->boolean("random_rotation", meshes.random_rotation);
+    meshes.volume_grid = a->number("volume_grid", meshes.volume_grid, Range::positive());
+    meshes.x = read_x(*a);
+    meshes.max_attempts_per_body =
+        a->number("max_attempts", meshes.max_attempts_per_body, Range::at_least(1));
+    a->finish();
+  }
+  kw.finish();
+  const std::size_t first_body = sim->system.bodies().size();
+  sim->changed();
+  const PlacementResult placed =
+      engine_call("place", [&] { return place_random(sim->system, meshes, cells); });
+  std::vector<int> vertices;
+  for (std::size_t b = first_body; b < sim->system.bodies().size(); ++b) {
+    const MeshBody& body = sim->system.bodies()[b];
+    for (int v = 0; v < body.n_vertices(); ++v) vertices.push_back(body.first_site + v);
+  }
+  lua_createtable(L, 0, 3);
+  push_group(L, sim, "placed cells", placed.cells);
+  lua_setfield(L, -2, "cells");
+  push_group(L, sim, "placed vertices", std::move(vertices));
+  lua_setfield(L, -2, "vertices");
+  set_integer(L, "adipocytes", static_cast<long long>(placed.bodies.size()));
+  return 1;
+}
+
+// sys:group(name): "cancer", "vertices" or "all", as of now.
+int l_group(lua_State* L) {
+  auto& sim = check_shared<Simulation>(L, 1);
+  const std::string name = arg_string(L, 2);
+  const std::vector<std::string> names{"all", "cancer", "vertices"};
+  std::vector<int> sites;
+  if (name == "cancer")
+    sites = sim->system.sites_of_kind(SiteKind::kCancer);
+  else if (name == "vertices")
+    sites = sim->system.sites_of_kind(SiteKind::kVertex);
+  else if (name == "all")
+    for (std::size_t i = 0; i < sim->system.n_sites(); ++i) sites.push_back(int(i));
+  else
+    fail_input("group: unknown group '", name, "'", did_you_mean(name, names),
+               "; groups: ", join_names(names));
+  push_group(L, sim, name, std::move(sites));
+  return 1;
+}
+
+int l_n_sites(lua_State* L) {
+  lua_pushinteger(L, static_cast<lua_Integer>(check<Simulation>(L, 1).system.n_sites()));
+  return 1;
+}
+
+int l_n_adipocytes(lua_State* L) {
+  lua_pushinteger(L, static_cast<lua_Integer>(check<Simulation>(L, 1).system.bodies().size()));
+  return 1;
+}
+
+int l_step(lua_State* L) {
+  lua_pushinteger(L, static_cast<lua_Integer>(check<Simulation>(L, 1).system.step));
+  return 1;
+}
+
+int l_time(lua_State* L) {
+  lua_pushnumber(L, check<Simulation>(L, 1).system.time);
+  return 1;
+}
+
+// sys:box() -> {lengths = {..}, lo = {..}, hi = {..}, periodic = {..}, volume = V}
+int l_box(lua_State* L) {
+  const Box& box = check<Simulation>(L, 1).system.box();
+  lua_createtable(L, 0, 5);
+  push_vec3(L, box.lengths());
+  lua_setfield(L, -2, "lengths");
+  push_vec3(L, box.lo());
+  lua_setfield(L, -2, "lo");
+  push_vec3(L, box.hi());
+  lua_setfield(L, -2, "hi");
+  lua_createtable(L, 3, 0);
+  for (int a = 0; a < 3; ++a) {
+    lua_pushboolean(L, box.periodic(a));
+    lua_rawseti(L, -2, a + 1);
+  }
+  lua_setfield(L, -2, "periodic");
+  set_number(L, "volume", box.volume());
+  return 1;
+}
+
+int l_packing(lua_State* L) {
+  const PackingFractions phi = packing_fractions(check<Simulation>(L, 1).system);
+  lua_createtable(L, 0, 3);
+  set_number(L, "total", phi.total);
+  set_number(L, "cancer", phi.cancer);
+  set_number(L, "adipocyte", phi.adipocyte);
+  return 1;
+}
+
+// The sites of the optional Group argument at `index` (all sites when absent).
+std::vector<int> group_arg(lua_State* L, int index, const Simulation& sim, const char* what) {
+  if (lua_isnoneornil(L, index)) {
+    std::vector<int> all(sim.system.n_sites());
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = int(i);
+    return all;
+  }
+  const Group& group = check<Group>(L, index);
+  require_same_system(group, sim, what);
+  return group.sites;
+}
+
+// sys:temperature([group]): kT = 1/(3N) sum m v^2 over the group (all sites by default).
+int l_temperature(lua_State* L) {
+  const Simulation& sim = check<Simulation>(L, 1);
+  const std::vector<int> sites = group_arg(L, 2, sim, "temperature");
+  const Sites& s = sim.system.sites();
+  double sum = 0.0;
+  for (int i : sites) sum += s.mass[i] * s.vel[i].squaredNorm();
+  lua_pushnumber(L, sites.empty() ? 0.0 : sum / (3.0 * double(sites.size())));
+  return 1;
+}
+
+// sys:set_velocities{group = g, kT = x}: Maxwell-Boltzmann velocities (stream kVelocity,
+// keyed by the current step), so that <m v^2> = 3 kT.
+int l_set_velocities(lua_State* L) {
+  Simulation& sim = check<Simulation>(L, 1);
+  Kwargs kw(L, 2, "set_velocities");
+  const auto group = kw_group(kw, "group", false);
+  const double kT = kw.number("kT", Range::non_negative());
+  kw.finish();
+  std::vector<int> sites;
+  if (group) {
+    require_same_system(*group, sim, "set_velocities");
+    sites = group->sites;
+  } else {
+    for (std::size_t i = 0; i < sim.system.n_sites(); ++i) sites.push_back(int(i));
+  }
+  Sites& s = sim.system.sites();
+  for (int i : sites) {
+    if (i < 0 || std::size_t(i) >= s.size())
+      fail_input("set_velocities: site ", i, " is outside [0, ", s.size(), ")");
+    const Vec3 g =
+        RandomKey(sim.system.seed(), sim.system.step, std::uint32_t(i), RngStream::kVelocity)
+            .normal3();
+    s.vel[i] = std::sqrt(kT / s.mass[i]) * g;
+  }
+  sim.changed();
+  return 0;
+}
+
+// sys:add(force): appends a force term (Contacts, Walls, Shape, Tethers); returns it.
+int l_add(lua_State* L) {
+  auto& sim = check_shared<Simulation>(L, 1);
+  auto attach = [&](auto& handle, const char* name) {
+    if (auto other = handle->owner.lock()) {
+      if (other == sim) fail_input("add: this ", name, " is already in the System");
+      fail_input("add: this ", name, " is already in another System");
+    }
+    handle->owner = sim;
+    sim->forces.add(handle->force);
+    sim->handles.emplace_back(handle);
+    sim->changed();
+  };
+  if (luaL_testudata(L, 2, LuaType<Contacts>::metatable))
+    attach(check_shared<Contacts>(L, 2), "Contacts");
+  else if (luaL_testudata(L, 2, LuaType<Walls>::metatable))
+    attach(check_shared<Walls>(L, 2), "Walls");
+  else if (luaL_testudata(L, 2, LuaType<Shape>::metatable))
+    attach(check_shared<Shape>(L, 2), "Shape");
+  else if (luaL_testudata(L, 2, LuaType<Tethers>::metatable))
+    attach(check_shared<Tethers>(L, 2), "Tethers");
+  else
+    throw InputError(bad_argument(L, 2, "force (Contacts, Walls, Shape or Tethers)"));
+  lua_settop(L, 2);
+  return 1;
+}
+
+// sys:forces() -> {force, ...} in the order added.
+int l_forces(lua_State* L) {
+  const Simulation& sim = check<Simulation>(L, 1);
+  lua_createtable(L, static_cast<int>(sim.handles.size()), 0);
+  for (std::size_t k = 0; k < sim.handles.size(); ++k) {
+    push_force(L, sim.handles[k]);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+  }
+  return 1;
+}
+
+// sys:compute() -> {total = U, contact = .., wall = .., shape = .., tether = .., virial = {..}}
+// (a second term of the same kind is named contact2, ...). An observation: the site forces
+// (which a Dynamics keeps between steps) are restored afterwards, so a callback may call it
+// without disturbing the run.
+int l_compute(lua_State* L) {
+  Simulation& sim = check<Simulation>(L, 1);
+  std::vector<ForceResult> per_term;
+  std::vector<Vec3> saved = sim.system.sites().force;
+  ForceResult total;
+  try {
+    total = engine_call("compute", [&] {
+      return sim.forces.compute(sim.system, {true, true}, &per_term);
+    });
+  } catch (...) {
+    sim.changed();  // site forces left as they are: a Dynamics re-prepares
+    throw;
+  }
+  sim.system.sites().force.swap(saved);
+  lua_createtable(L, 0, static_cast<int>(per_term.size()) + 2);
+  set_number(L, "total", total.energy);
+  push_vec3(L, total.virial);
+  lua_setfield(L, -2, "virial");
+  const auto& terms = sim.forces.terms();
+  std::vector<std::string> used;
+  for (std::size_t k = 0; k < terms.size(); ++k) {
+    std::string key = terms[k]->name();
+    for (int n = 2; std::find(used.begin(), used.end(), key) != used.end(); ++n)
+      key = terms[k]->name() + std::to_string(n);
+    used.push_back(key);
+    set_number(L, key.c_str(), per_term[k].energy);
+  }
+  return 1;
+}
+
+const luaL_Reg kMethods[] = {
+    {"place", &lua_wrap<&l_place>},
+    {"group", &lua_wrap<&l_group>},
+    {"n_sites", &lua_wrap<&l_n_sites>},
+    {"n_adipocytes", &lua_wrap<&l_n_adipocytes>},
+    {"step", &lua_wrap<&l_step>},
+    {"time", &lua_wrap<&l_time>},
+    {"box", &lua_wrap<&l_box>},
+    {"packing", &lua_wrap<&l_packing>},
+    {"temperature", &lua_wrap<&l_temperature>},
+    {"set_velocities", &lua_wrap<&l_set_velocities>},
+    {"add", &lua_wrap<&l_add>},
+    {"forces", &lua_wrap<&l_forces>},
+    {"compute", &lua_wrap<&l_compute>},
+    {nullptr, nullptr},
+};
+
+}  // namespace
+
+void open_system(lua_State* L) {
+  define_type<Simulation>(L, kMethods);
+  lua_pushcfunction(L, &lua_wrap<&l_new>);
+  lua_setfield(L, -2, "System");
+}
+
+}  // namespace invasim::lua

@@ -1,0 +1,91 @@
+// invasim.Tethers{K =}: ECM springs between adipocyte centres (TetherForce), with
+// :connect{mean_degree = 6} and :heterogeneity{lambda =} acting on the System the tethers were
+// added to (sys:add(tethers) first).
+#include <lua.hpp>
+
+#include "lua/engine_types.hpp"
+#include "lua/module.hpp"
+#include "lua/names.hpp"
+
+namespace invasim::lua {
+
+std::string LuaType<Tethers>::describe(const Tethers& t) {
+  return cat("Tethers(K=", t.force->stiffness(), ", ", t.force->tethers().size(), " tethers)");
+}
+
+namespace {
+
+int l_new(lua_State* L) {
+  Kwargs kw(L, 1, "Tethers");
+  const double K = kw.number("K", Range::non_negative());
+  kw.finish();
+  auto force = engine_call("Tethers", [&] { return std::make_shared<TetherForce>(K); });
+  push(L, std::make_shared<Tethers>(std::move(force)));
+  return 1;
+}
+
+Simulation& system_of(const Tethers& t, const char* method) {
+  return owner_of(t.owner, method, "add the tethers to a System first with sys:add(tethers)");
+}
+
+// t:connect{mean_degree = 6} -> d_c: tethers the closest pairs of adipocytes (rest lengths =
+// current separations) so that each has mean_degree tethers on average.
+int l_connect(lua_State* L) {
+  Tethers& t = check<Tethers>(L, 1);
+  Kwargs kw(L, 2, "connect");
+  const double degree = kw.number("mean_degree", 6.0, Range::positive());
+  kw.finish();
+  Simulation& sim = system_of(t, "connect");
+  const double d_c =
+      engine_call("connect", [&] { return t.force->connect_by_mean_degree(sim.system, degree); });
+  sim.changed();
+  lua_pushnumber(L, d_c);
+  return 1;
+}
+
+// t:heterogeneity{lambda =}: rest lengths (1 -+ lambda) R below / above the box's mid z.
+int l_heterogeneity(lua_State* L) {
+  Tethers& t = check<Tethers>(L, 1);
+  Kwargs kw(L, 2, "heterogeneity");
+  const double lambda = kw.number("lambda", Range::between(0, 1));
+  kw.finish();
+  Simulation& sim = system_of(t, "heterogeneity");
+  engine_call("heterogeneity", [&] { t.force->apply_heterogeneity(sim.system, lambda); });
+  sim.changed();
+  return 0;
+}
+
+int l_count(lua_State* L) {
+  lua_pushinteger(L, static_cast<lua_Integer>(check<Tethers>(L, 1).force->tethers().size()));
+  return 1;
+}
+
+// t:K() -> stiffness; t:set_K(k)
+int l_K(lua_State* L) {
+  lua_pushnumber(L, check<Tethers>(L, 1).force->stiffness());
+  return 1;
+}
+
+int l_set_K(lua_State* L) {
+  Tethers& t = check<Tethers>(L, 1);
+  const double k = arg_number(L, 2);
+  engine_call("set_K", [&] { t.force->set_stiffness(k); });
+  if (auto sim = t.owner.lock()) sim->changed();
+  return 0;
+}
+
+const luaL_Reg kMethods[] = {
+    {"connect", &lua_wrap<&l_connect>}, {"heterogeneity", &lua_wrap<&l_heterogeneity>},
+    {"count", &lua_wrap<&l_count>},     {"K", &lua_wrap<&l_K>},
+    {"set_K", &lua_wrap<&l_set_K>},     {nullptr, nullptr},
+};
+
+}  // namespace
+
+void open_tethers(lua_State* L) {
+  define_type<Tethers>(L, kMethods);
+  lua_pushcfunction(L, &lua_wrap<&l_new>);
+  lua_setfield(L, -2, "Tethers");
+}
+
+}  // namespace invasim::lua

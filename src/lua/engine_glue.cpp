@@ -1,0 +1,113 @@
+// Helpers shared by the engine bindings (engine_types.hpp).
+#include <lua.hpp>
+
+#include "lua/engine_types.hpp"
+#include "lua/names.hpp"
+#include "lua/progress.hpp"
+
+namespace invasim::lua {
+
+std::string type_name_at(lua_State* L, int index) {
+  if (lua_type(L, index) == LUA_TNONE) return "no value";
+  const int field = luaL_getmetafield(L, index, "__name");
+  if (field == LUA_TSTRING) {
+    std::string name = lua_tostring(L, -1);
+    lua_pop(L, 1);
+    if (name.rfind("invasim.", 0) == 0) name.erase(0, 8);
+    return name;
+  }
+  if (field != LUA_TNIL) lua_pop(L, 1);
+  return luaL_typename(L, index);
+}
+
+std::shared_ptr<Group> kw_group(Kwargs& kw, std::string_view key, bool required) {
+  lua_State* L = kw.state();
+  const int type = kw.push(key);
+  if (type == LUA_TNIL) {
+    lua_pop(L, 1);
+    if (required)
+      fail_input(kw.owner(), ": missing required key '", key,
+                 "' (a Group, from sys:group(name) or sys:place{...})");
+    return nullptr;
+  }
+  auto* slot =
+      static_cast<std::shared_ptr<Group>*>(luaL_testudata(L, -1, LuaType<Group>::metatable));
+  if (slot == nullptr)
+    fail_input(kw.owner(), ": key '", key,
+               "' must be a Group (from sys:group(name) or sys:place{...}), got ",
+               type_name_at(L, -1));
+  if (!*slot) fail_input(kw.owner(), ": key '", key, "': Group object is no longer valid");
+  std::shared_ptr<Group> group = *slot;
+  lua_pop(L, 1);
+  return group;
+}
+
+FireParams kw_fire(Kwargs& kw) {
+  FireParams p;
+  p.ftol = kw.number("ftol", p.ftol, Range::positive());
+  p.dt = kw.number("dt", p.dt, Range::positive());
+  p.dt_max = kw.number("dt_max", p.dt_max, Range::positive());
+  p.max_steps = static_cast<std::uint64_t>(
+      kw.integer("max_steps", static_cast<long long>(p.max_steps), Range::non_negative()));
+  return p;
+}
+
+Simulation& owner_of(const std::weak_ptr<Simulation>& owner, const std::string& what,
+                     const std::string& hint) {
+  if (auto sim = owner.lock()) return *sim;
+  if (!owner.owner_before(std::weak_ptr<Simulation>{}) &&
+      !std::weak_ptr<Simulation>{}.owner_before(owner))
+    fail_input(what, ": not in a System; ", hint);
+  fail_input(what, ": its System no longer exists");
+}
+
+void require_same_system(const Group& group, const Simulation& sim, const std::string& what) {
+  if (group.owner.lock().get() != &sim)
+    fail_input(what, ": group '", group.name, "' belongs to another System");
+}
+
+void push_vec3(lua_State* L, const Vec3& v) {
+  lua_createtable(L, 3, 0);
+  for (int a = 0; a < 3; ++a) {
+    lua_pushnumber(L, v[a]);
+    lua_rawseti(L, -2, a + 1);
+  }
+}
+
+void set_number(lua_State* L, const char* key, double value) {
+  lua_pushnumber(L, value);
+  lua_setfield(L, -2, key);
+}
+
+void set_integer(lua_State* L, const char* key, long long value) {
+  lua_pushinteger(L, value);
+  lua_setfield(L, -2, key);
+}
+
+void set_boolean(lua_State* L, const char* key, bool value) {
+  lua_pushboolean(L, value);
+  lua_setfield(L, -2, key);
+}
+
+void push_force(lua_State* L, const ForceHandle& handle) {
+  std::visit([L](const auto& h) { push(L, h); }, handle);
+}
+
+Progress* test_progress(lua_State* L, int index) {
+  // The metatable name of bind_progress.cpp's LuaType<Progress>.
+  auto* slot =
+      static_cast<std::shared_ptr<Progress>*>(luaL_testudata(L, index, "invasim.Progress"));
+  if (slot == nullptr) return nullptr;
+  if (!*slot) throw InputError("Progress object is no longer valid");
+  return slot->get();
+}
+
+void push_fire_result(lua_State* L, const FireResult& r) {
+  lua_createtable(L, 0, 4);
+  set_boolean(L, "converged", r.converged);
+  set_integer(L, "steps", static_cast<long long>(r.steps));
+  set_number(L, "max_force", r.max_force);
+  set_number(L, "energy", r.energy);
+}
+
+}  // namespace invasim::lua

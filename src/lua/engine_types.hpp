@@ -1,0 +1,163 @@
+#pragma once
+// The engine objects as Lua sees them, shared by the bind_<type>.cpp files that expose the
+// engine (System, Group, Contacts, Walls, Shape, Tethers, Method, Dynamics, Fire). Each
+// LuaType specialisation lives here because several bindings check each other's types
+// (dyn:run(sys, ...) checks a System); its describe() is defined in the type's binding file.
+//
+// Ownership: a System userdata holds a Simulation (the engine System plus its ForceField and
+// the Lua handles of the forces added to it). Forces, groups and methods remember the
+// Simulation they belong to through a weak_ptr, so a force cannot be added to two systems and
+// a method cannot move a group of another system; nothing holds a Simulation strongly except
+// the System userdata, so Lua's collection order never matters.
+#include <lua.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <variant>
+#include <vector>
+
+#include "forces/contact_force.hpp"
+#include "forces/shape_force.hpp"
+#include "forces/tether_force.hpp"
+#include "forces/wall_force.hpp"
+#include "integrate/dynamics.hpp"
+#include "integrate/fire.hpp"
+#include "lua/binding.hpp"
+#include "lua/kwargs.hpp"
+
+namespace invasim::lua {
+
+struct Simulation;
+
+// A force term as a Lua object: the engine term and the System it was added to (if any).
+template <typename F>
+struct BoundForce {
+  explicit BoundForce(std::shared_ptr<F> f) : force(std::move(f)) {}
+  std::shared_ptr<F> force;
+  std::weak_ptr<Simulation> owner;
+};
+using Contacts = BoundForce<ContactForce>;
+using Shape = BoundForce<ShapeForce>;
+using Tethers = BoundForce<TetherForce>;
+struct Walls : BoundForce<WallForce> {
+  Walls(std::shared_ptr<WallForce> f, bool l, bool r)
+      : BoundForce(std::move(f)), left(l), right(r) {}
+  bool left, right;
+};
+using ForceHandle = std::variant<std::shared_ptr<Contacts>, std::shared_ptr<Walls>,
+                                 std::shared_ptr<Shape>, std::shared_ptr<Tethers>>;
+
+// The System userdata: engine state, its force field, and the Lua handles of its forces.
+struct Simulation {
+  Simulation(const Box& box, std::uint64_t seed) : system(box, seed) {}
+  System system;
+  ForceField forces;
+  std::vector<ForceHandle> handles;  // in the order added (same as forces.terms())
+  // Bumped by every binding call that changes the state, the forces or the site forces
+  // outside a Dynamics run, and after each run: a Dynamics re-prepares (re-evaluates forces
+  // and drive) when the revision it last left differs.
+  std::uint64_t revision = 0;
+  void changed() { ++revision; }
+};
+
+// A set of sites of one System (a snapshot of indices, taken when the group is made).
+struct Group {
+  std::string name;
+  std::vector<int> sites;  // engine site indices (0-based)
+  std::weak_ptr<Simulation> owner;
+};
+
+// An integration method (Damped, Langevin, Active) and the group it moves.
+struct MethodHandle {
+  std::string kind;  // "Damped", "Langevin", "Active"
+  std::shared_ptr<Method> method;
+  std::shared_ptr<Group> group;
+};
+
+// A Dynamics with its methods' handles and the Walls of its pressure wall.
+struct DynamicsHandle {
+  explicit DynamicsHandle(double dt) : dynamics(dt) {}
+  Dynamics dynamics;
+  std::vector<std::shared_ptr<MethodHandle>> methods;
+  std::shared_ptr<Walls> walls;    // walls = given to pressure_wall{}, else resolved at run
+  std::weak_ptr<Simulation> last;  // system of the last run and its revision after it
+  std::uint64_t last_revision = 0;
+};
+
+#define INVASIM_LUA_TYPE(T, NAME)                             \
+  template <>                                                 \
+  struct LuaType<T> {                                         \
+    static constexpr const char* name = NAME;                 \
+    static constexpr const char* metatable = "invasim." NAME; \
+    static std::string describe(const T& object);             \
+  }
+INVASIM_LUA_TYPE(Simulation, "System");
+INVASIM_LUA_TYPE(Group, "Group");
+INVASIM_LUA_TYPE(Contacts, "Contacts");
+INVASIM_LUA_TYPE(Walls, "Walls");
+INVASIM_LUA_TYPE(Shape, "Shape");
+INVASIM_LUA_TYPE(Tethers, "Tethers");
+INVASIM_LUA_TYPE(MethodHandle, "Method");
+INVASIM_LUA_TYPE(DynamicsHandle, "Dynamics");
+INVASIM_LUA_TYPE(Fire, "Fire");
+#undef INVASIM_LUA_TYPE
+
+// --- helpers shared by the engine bindings (engine_glue.cpp) ---
+
+// Runs fn(); an InputError from the engine is rethrown with "owner: " in front (unless the
+// message already starts with it), so messages name the Lua call they came from.
+template <typename Fn>
+decltype(auto) engine_call(std::string_view owner, Fn&& fn) {
+  try {
+    return fn();
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    const std::string prefix = std::string(owner) + ": ";
+    if (what.rfind(prefix, 0) == 0) throw;
+    throw InputError(prefix + what);
+  }
+}
+
+// "number", "table", "System" (bound userdata by their __name), "no value".
+std::string type_name_at(lua_State* L, int index);
+
+// The Group of key `key` (required unless `required` is false: nullptr when absent).
+std::shared_ptr<Group> kw_group(Kwargs& kw, std::string_view key, bool required = true);
+
+// FIRE settings from keys ftol, dt, dt_max, max_steps (defaults of FireParams).
+FireParams kw_fire(Kwargs& kw);
+
+// The Simulation a weak owner points to; throws "<what>: its System no longer exists" when it
+// expired, or "<what>: not in a System; <hint>" when it was never set.
+Simulation& owner_of(const std::weak_ptr<Simulation>& owner, const std::string& what,
+                     const std::string& hint);
+
+// Throws unless `group` belongs to `sim`: "<what>: group 'cancer' belongs to another System".
+void require_same_system(const Group& group, const Simulation& sim, const std::string& what);
+
+// Lua table helpers (the table is on top of the stack).
+void push_vec3(lua_State* L, const Vec3& v);  // pushes {x, y, z}
+void set_number(lua_State* L, const char* key, double value);
+void set_integer(lua_State* L, const char* key, long long value);
+void set_boolean(lua_State* L, const char* key, bool value);
+
+// Pushes the Lua object of a force handle (a new userdata sharing the handle).
+void push_force(lua_State* L, const ForceHandle& handle);
+
+// A Progress userdata at `index` (nullptr if the value is not one).
+class Progress;
+Progress* test_progress(lua_State* L, int index);
+
+// Before stepping or minimising `sim` with `d` (bind_dynamics.cpp): checks that every method's
+// group belongs to sim, connects the pressure wall to its Walls (the given ones, else the
+// System's only Walls), and invalidates the Dynamics when the System changed since its last
+// run. Returns the pressure wall or nullptr. Errors start with `what`.
+PressureWall* prepare_dynamics(DynamicsHandle& d, const std::shared_ptr<Simulation>& sim,
+                               const std::string& what);
+
+// Pushes a FIRE result table {converged, steps, max_force, energy}.
+void push_fire_result(lua_State* L, const FireResult& r);
+
+}  // namespace invasim::lua

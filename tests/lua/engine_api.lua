@@ -1,0 +1,156 @@
+-- Every engine type can be built from Lua, and every kind of bad argument (unknown key,
+-- wrong type, out of range, missing key, engine validation, wrong object) raises a Lua error
+-- naming the key, with this file's line in front. Nothing here runs a simulation.
+local iv = require("invasim")
+local checks = 0
+
+local function expect_error(pattern, f, ...)
+  local ok, err = pcall(f, ...)
+  assert(not ok, "expected an error matching " .. pattern)
+  assert(type(err) == "string" and err:find(pattern), "wrong message: " .. tostring(err))
+  assert(err:find("^engine_api%.lua:%d+: "), "no location: " .. err)
+  checks = checks + 1
+end
+local function check(condition, message)
+  assert(condition, message)
+  checks = checks + 1
+end
+
+-- System
+local sys = iv.System{ box = {20, 14, 14}, periodic = {false, true, true}, seed = 5 }
+check(tostring(sys):find("^System%(0 sites"), tostring(sys))
+check(sys:n_sites() == 0 and sys:n_adipocytes() == 0 and sys:step() == 0 and sys:time() == 0)
+local box = sys:box()
+check(box.lengths[1] == 20 and box.lo[2] == 0 and box.hi[3] == 14 and box.periodic[1] == false)
+expect_error("System: missing required key 'box' %(a list of 3 numbers%)", iv.System, {})
+expect_error("System: unknown key 'sed' %(did you mean 'seed'%?%); valid keys: box, periodic, seed",
+             iv.System, { box = {1, 1, 1}, sed = 1 })
+expect_error("System: key 'box' must be a list of 3 numbers, got a table of length 2",
+             iv.System, { box = {1, 1} })
+expect_error("System: key 'box%[2%]' = 0 is out of range %(must be > 0%)", iv.System, { box = {1, 0, 1} })
+expect_error("System: key 'seed' must be an integer, got string", iv.System, { box = {1, 1, 1}, seed = "1" })
+expect_error("System: key 'periodic' must be a list of 3 booleans", iv.System,
+             { box = {1, 1, 1}, periodic = {true} })
+-- The reported line is the line of the call.
+local ok, err = pcall(iv.System, { box = 3 }); local line = debug.getinfo(1, "l").currentline
+check(not ok and err:find("^engine_api%.lua:" .. line .. ": System: key 'box' must be a list of 3 numbers, got 3"), err)
+
+-- Placement
+local placed = sys:place{ cells = { n = 20, diameters = {0.9, 1.1}, x = {1, 4} },
+                          adipocytes = { n = 2, diameter = 6, vertex_diameter = 2, shape_param = 1.1, x = {7, 17} } }
+check(placed.cells:size() == 20 and placed.vertices:size() == 84 and placed.adipocytes == 2)
+check(sys:n_sites() == 104 and sys:n_adipocytes() == 2)
+check(placed.cells:sites()[1] == 84 and placed.vertices:sites()[1] == 0, "site indices are 0-based")
+expect_error("place.cells: unknown key 'diamters' %(did you mean 'diameters'%?%)", sys.place, sys,
+             { cells = { n = 1, x = {1, 2}, diamters = {1} } })
+expect_error("place.cells: missing required key 'x'", sys.place, sys, { cells = { n = 1 } })
+expect_error("place.cells: key 'n' = %-1 is out of range %(must be >= 0%)", sys.place, sys,
+             { cells = { n = -1, x = {1, 2} } })
+expect_error("place.cells: key 'diameters%[2%]' must be a number > 0, got %-1", sys.place, sys,
+             { cells = { n = 1, x = {1, 2}, diameters = {1, -1} } })
+expect_error("place.adipocytes: key 'shape_param' = 0.5 is out of range %(must be >= 1%)", sys.place, sys,
+             { adipocytes = { n = 1, x = {7, 17}, shape_param = 0.5 } })
+expect_error("place: unknown key 'cell' %(did you mean 'cells'%?%)", sys.place, sys, { cell = {} })
+expect_error("place: cancer%-cell placement: only", sys.place, sys,
+             { cells = { n = 5000, x = {1, 2}, max_attempts = 10 } })
+
+-- Groups
+local cancer, vertices = sys:group("cancer"), sys:group("vertices")
+check(sys:group("all"):size() == sys:n_sites() and cancer:name() == "cancer")
+check(cancer:size() >= 20 and vertices:size() == 84)
+expect_error("group: unknown group 'cancr' %(did you mean 'cancer'%?%); groups: all, cancer, vertices",
+             sys.group, sys, "cancr")
+expect_error("bad argument #1 to 'group' %(string expected, got number%)", function() return sys:group(1) end)
+expect_error("for a method call write obj:method", function() return sys.n_sites() end)
+expect_error("System has no method or field 'nsites' %(did you mean 'n_sites'%?%)", function() return sys:nsites() end)
+
+-- Forces
+local contacts = iv.Contacts{ alpha = 0.2, beta = 1e-2, eps_cc = 1, eps_cv = 1, eps_vv = 1, skin = 0.3 }
+local walls = iv.Walls{ eps = 1, left = true, right = true }
+local shape = iv.Shape{ eps_v = 1e3, eps_a = 1 }
+local tethers = iv.Tethers{ K = 1e-2 }
+check(contacts:params().beta == 1e-2 and shape:params().eps_v == 1e3 and tethers:K() == 1e-2)
+check(iv.Contacts{}:params().beta == 0, "Contacts default: purely repulsive")
+expect_error("Contacts: key 'alpha' must be a number, got string", iv.Contacts, { alpha = "x" })
+expect_error("Contacts: key 'eps_cc' = 0 is out of range %(must be > 0%)", iv.Contacts, { eps_cc = 0 })
+expect_error("Contacts: cohesion: beta = 0.3 must be smaller than alpha = 0.2", iv.Contacts, { beta = 0.3 })
+expect_error("Walls: key 'left' must be a boolean", iv.Walls, { left = 1 })
+expect_error("Walls: unknown key 'eps_w' %(did you mean 'eps'%?%)", iv.Walls, { eps_w = 1 })
+expect_error("Shape: missing required key 'eps_a' %(a number%)", iv.Shape, { eps_v = 1 })
+expect_error("Tethers: key 'K' = %-1 is out of range %(must be >= 0%)", iv.Tethers, { K = -1 })
+expect_error("connect: not in a System; add the tethers to a System first", tethers.connect, tethers, {})
+for _, f in ipairs{ walls, contacts, shape, tethers } do check(sys:add(f) == f) end
+check(#sys:forces() == 4 and tostring(sys:forces()[2]):find("^Contacts") ~= nil, "forces list")
+expect_error("add: this Walls is already in the System", sys.add, sys, walls)
+expect_error("add: this Contacts is already in another System", iv.System{ box = {5, 5, 5} }.add,
+             iv.System{ box = {5, 5, 5} }, contacts)
+expect_error("bad argument #1 to 'add' %(force %(Contacts, Walls, Shape or Tethers%) expected, got number%)",
+             function() return sys:add(5) end)
+local d_c = tethers:connect{ mean_degree = 1 }
+check(d_c > 0 and tethers:count() == 1, "2 adipocytes, mean degree 1: one tether")
+tethers:heterogeneity{ lambda = 0.3 }
+expect_error("heterogeneity: key 'lambda' = 2 is out of range %(must be in %[0, 1%]%)",
+             tethers.heterogeneity, tethers, { lambda = 2 })
+expect_error("connect: key 'mean_degree' = 0 is out of range", tethers.connect, tethers, { mean_degree = 0 })
+local energy = sys:compute()
+check(energy.total == energy.contact + energy.wall + energy.shape + energy.tether and #energy.virial == 3)
+
+-- Methods and Dynamics
+local damped = iv.Damped{ group = vertices, gamma = 0.2 }
+local langevin = iv.Langevin{ group = cancer, gamma = 0.2, kT = 1e-3 }
+local active = iv.Active{ group = cancer, gamma = 0.2, f0 = 0.05, tau_p = 25, kT = 0 }
+check(damped:kind() == "Damped" and langevin:params().kT == 1e-3 and active:params().tau_p == 25)
+check(active:group():size() == cancer:size())
+expect_error("Langevin: missing required key 'kT' %(a number%)", iv.Langevin, { group = cancer })
+expect_error("Damped: missing required key 'group' %(a Group", iv.Damped, {})
+expect_error("Damped: key 'group' must be a Group %(from sys:group%(name%) or sys:place{...}%), got table",
+             iv.Damped, { group = {1, 2} })
+expect_error("Active: key 'tau_p' = %-1 is out of range %(must be >= 0%)", iv.Active,
+             { group = cancer, f0 = 1, tau_p = -1 })
+expect_error("Active: unknown key 'taup' %(did you mean 'tau_p'%?%)", iv.Active,
+             { group = cancer, f0 = 1, tau_p = 1, taup = 1 })
+local dyn = iv.Dynamics{ dt = 0.05 }
+check(dyn:add(damped) == damped and dyn:add(langevin) == langevin and dyn:dt() == 0.05)
+check(#dyn:methods() == 2 and dyn:wall_state() == nil)
+expect_error("add: this Langevin method is already in the Dynamics", dyn.add, dyn, langevin)
+expect_error("Dynamics: key 'dt' = %-1 is out of range %(must be > 0%)", iv.Dynamics, { dt = -1 })
+expect_error("pressure_wall: missing required key 'P' %(a number%)", dyn.pressure_wall, dyn, {})
+expect_error("pressure_wall: key 'walls' must be a Walls force, got Contacts", dyn.pressure_wall, dyn,
+             { P = 1e-3, walls = contacts })
+expect_error("run: a callback needs key 'every'", dyn.run, dyn, sys, 1, { callback = print })
+expect_error("run: key 'callback' must be a function, got number", dyn.run, dyn, sys, 1,
+             { every = 1, callback = 1 })
+expect_error("run: key 'every' = 0 is out of range %(must be >= 1%)", dyn.run, dyn, sys, 1, { every = 0 })
+expect_error("bad argument #1 to 'run' %(System expected, got nil%)", function() return dyn:run(nil, 1) end)
+local other = iv.System{ box = {10, 10, 10} }
+expect_error("run: Damped: group 'vertices' belongs to another System", dyn.run, dyn, other, 1)
+dyn:pressure_wall{ P = 1e-3, mass = 1, gamma = 0.2, walls = walls }
+check(dyn:wall_state().P == 1e-3)
+local fresh = iv.System{ box = {10, 10, 10} }
+local lonely = iv.Dynamics{}
+lonely:pressure_wall{ P = 1 }
+expect_error("run: the pressure wall needs a Walls force in the System", lonely.run, lonely, fresh, 1)
+check(dyn:run(sys, 0) == 0 and sys:step() == 0)
+
+-- Fire, compress, rescale
+local fire = iv.Fire{ ftol = 1e-8, dt = 0.05, dt_max = 0.5, max_steps = 1e6 }
+check(tostring(fire):find("^Fire%(ftol=1e%-08"), tostring(fire))
+expect_error("Fire: key 'max_steps' must be an integer, got 0.5", iv.Fire, { max_steps = 0.5 })
+expect_error("Fire: unknown key 'ftoll' %(did you mean 'ftol'%?%)", iv.Fire, { ftoll = 1 })
+expect_error("minimize: the Dynamics has no pressure wall", fire.minimize, fire, sys, iv.Dynamics{})
+expect_error("compress: missing required key 'to_phi' %(a number%)", iv.compress, sys, {})
+expect_error("compress: key 'to_phi' = 2 is out of range %(must be in %[0, 1%]%)", iv.compress, sys, { to_phi = 2 })
+expect_error("compress: the packing fraction is already", iv.compress, sys, { to_phi = 0.01 })
+expect_error("compress: key 'progress' must be a Progress, got table", iv.compress, sys, { to_phi = 0.5, progress = {} })
+expect_error("rescale: missing required key 'phi_a'", iv.rescale, sys, {})
+expect_error("set_velocities: missing required key 'kT'", sys.set_velocities, sys, {})
+expect_error("temperature: group 'cancer' belongs to another System", other.temperature, other, cancer)
+
+-- A collected System leaves its objects usable but detached.
+local orphan = iv.System{ box = {10, 10, 10} }
+local orphan_group = orphan:group("all")
+orphan = nil
+collectgarbage(); collectgarbage()
+expect_error("Active: group 'all': its System no longer exists", iv.Active, { group = orphan_group, f0 = 1, tau_p = 1 })
+
+print("engine_api: all " .. checks .. " checks passed")
