@@ -18,10 +18,8 @@ void push_where(lua_State* L) {
   lua_pushliteral(L, "");
 }
 
-namespace {
-
 // Type name of a value, using the __name of bound userdata ("invasim.Progress" -> "Progress").
-std::string value_type_name(lua_State* L, int index) {
+std::string type_name_at(lua_State* L, int index) {
   if (lua_type(L, index) == LUA_TNONE) return "no value";
   const int field = luaL_getmetafield(L, index, "__name");  // pushes nothing if absent
   if (field == LUA_TSTRING) {
@@ -34,10 +32,8 @@ std::string value_type_name(lua_State* L, int index) {
   return luaL_typename(L, index);
 }
 
-}  // namespace
-
 std::string bad_argument(lua_State* L, int arg, const std::string& expected) {
-  const std::string got = value_type_name(L, arg);
+  const std::string got = type_name_at(L, arg);
   std::string function = "?";
   bool method = false;
   lua_Debug ar;

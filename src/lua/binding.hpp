@@ -30,6 +30,10 @@
 
 namespace invasim::lua {
 
+// Type name of the value at index: "number", "string", a bound type's short name
+// ("Progress" for invasim.Progress userdata), or "no value".
+std::string type_name_at(lua_State* L, int index);
+
 // Per-type names and description; specialised next to each binding.
 template <typename T>
 struct LuaType;

@@ -7,19 +7,6 @@
 
 namespace invasim::lua {
 
-std::string type_name_at(lua_State* L, int index) {
-  if (lua_type(L, index) == LUA_TNONE) return "no value";
-  const int field = luaL_getmetafield(L, index, "__name");
-  if (field == LUA_TSTRING) {
-    std::string name = lua_tostring(L, -1);
-    lua_pop(L, 1);
-    if (name.rfind("invasim.", 0) == 0) name.erase(0, 8);
-    return name;
-  }
-  if (field != LUA_TNIL) lua_pop(L, 1);
-  return luaL_typename(L, index);
-}
-
 std::shared_ptr<Group> kw_group(Kwargs& kw, std::string_view key, bool required) {
   lua_State* L = kw.state();
   const int type = kw.push(key);

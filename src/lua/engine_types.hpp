@@ -120,9 +120,6 @@ decltype(auto) engine_call(std::string_view owner, Fn&& fn) {
   }
 }
 
-// "number", "table", "System" (bound userdata by their __name), "no value".
-std::string type_name_at(lua_State* L, int index);
-
 // The Group of key `key` (required unless `required` is false: nullptr when absent).
 std::shared_ptr<Group> kw_group(Kwargs& kw, std::string_view key, bool required = true);
 

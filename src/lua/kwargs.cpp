@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "lua/binding.hpp"
 #include "lua/names.hpp"
 #include "lua/params.hpp"
 
@@ -17,27 +18,13 @@ std::string format_number(double x) {
   return format_value(ParamValue(x));
 }
 
-// "string", "number", "Progress" (bound userdata by their __name), or "no value".
-std::string type_of(lua_State* L, int index) {
-  if (lua_type(L, index) == LUA_TNONE) return "no value";
-  const int field = luaL_getmetafield(L, index, "__name");
-  if (field == LUA_TSTRING) {
-    std::string name = lua_tostring(L, -1);
-    lua_pop(L, 1);
-    if (name.rfind("invasim.", 0) == 0) name.erase(0, 8);
-    return name;
-  }
-  if (field != LUA_TNIL) lua_pop(L, 1);
-  return luaL_typename(L, index);
-}
-
 // Shown after "got": the value for numbers (1.5), the type name otherwise.
 std::string got(lua_State* L, int index) {
   if (lua_type(L, index) == LUA_TNUMBER) {
     if (lua_isinteger(L, index)) return std::to_string(lua_tointeger(L, index));
     return format_number(lua_tonumber(L, index));
   }
-  return type_of(L, index);
+  return type_name_at(L, index);
 }
 
 }  // namespace
@@ -62,7 +49,7 @@ Kwargs::Kwargs(lua_State* L, int index, std::string owner)
     : L_(L), index_(lua_absindex(L, index)), owner_(std::move(owner)) {
   if (lua_type(L, index_) != LUA_TTABLE)
     fail_input(owner_, ": expected a keyword table, as in ", owner_, "{key = value, ...}; got ",
-               type_of(L, index_));
+               type_name_at(L, index_));
 }
 
 int Kwargs::fetch(std::string_view key) {
