@@ -28,11 +28,9 @@ add_library(invasim_lua54 INTERFACE)
 target_include_directories(invasim_lua54 SYSTEM INTERFACE ${LUA54_INCLUDE_DIR})
 target_link_libraries(invasim_lua54 INTERFACE ${LUA54_LIBRARY})
 
-if(INVASIM_WITH_CGAL)
-  # CGAL is header-only on Debian 12 but links gmp/mpfr through its CMake config.
-  set(CGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE TRUE)
-  invasim_require(CGAL libcgal-dev)
-endif()
+# CGAL is header-only on Debian 12 but links gmp/mpfr through its CMake config.
+set(CGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE TRUE)
+invasim_require(CGAL libcgal-dev)
 
 if(BUILD_TESTING)
   invasim_require(Catch2 catch2)

@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "core/parallel.hpp"
+
 namespace invasim {
 
 constexpr std::size_t kSumBlock = 512;
@@ -15,7 +17,7 @@ template <typename T, typename F>
 T deterministic_sum(std::size_t n, const T& zero, F value) {
   const std::size_t blocks = (n + kSumBlock - 1) / kSumBlock;
   std::vector<T> partial(blocks, zero);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (parallel_light(n))
   for (std::size_t b = 0; b < blocks; ++b) {
     T s = zero;
     const std::size_t end = std::min(n, (b + 1) * kSumBlock);

@@ -1,4 +1,5 @@
 #include "forces/contact_force.hpp"
+#include "core/parallel.hpp"
 
 #include <cmath>
 
@@ -39,7 +40,13 @@ PairEval cohesive_spring(double r, double s, double eps, double alpha, double be
 }
 
 ContactForce::ContactForce(const ContactParams& params) : params_(params), list_(params.skin) {
-  params_.validate();
+  set_params(params);
+}
+
+void ContactForce::set_params(const ContactParams& params) {
+  params.validate();
+  params_ = params;
+  list_ = VerletList(params_.skin);
   CutoffRule rule;
   rule.factor[0][0] = params_.beta > 0.0 ? 1.0 + params_.alpha : 1.0;
   list_.set_cutoff_rule(rule);
@@ -61,7 +68,7 @@ ForceResult ContactForce::add_forces(System& sys, const ForceFlags& flags) {
   const double* diam = s.diameter.data();
   const SiteKind* kind = s.kind.data();
 
-#pragma omp parallel for schedule(dynamic, 128)
+#pragma omp parallel for schedule(dynamic, 128) if (parallel_heavy(n))
   for (std::size_t i = 0; i < n; ++i) {
     const double xi = pos[i][0], yi = pos[i][1], zi = pos[i][2];
     const double di = diam[i];

@@ -35,6 +35,9 @@ class ContactForce : public Force {
   std::string name() const override { return "contact"; }
   ForceResult add_forces(System& sys, const ForceFlags& flags) override;
   const ContactParams& params() const { return params_; }
+  // Changes the parameters (e.g. cohesion switched on after compression); the neighbour
+  // list is rebuilt with the new cutoffs and skin at the next evaluation.
+  void set_params(const ContactParams& params);
   VerletList& neighbor_list() { return list_; }
 
  private:

@@ -1,4 +1,5 @@
 #include "forces/shape_force.hpp"
+#include "core/parallel.hpp"
 
 #include "core/deterministic_sum.hpp"
 #include "core/errors.hpp"
@@ -43,7 +44,9 @@ ForceResult ShapeForce::add_forces(System& sys, const ForceFlags& flags) {
   const int nb = int(bodies.size());
   per_body_.resize(nb);
   Sites& s = sys.sites();
-#pragma omp parallel
+  // Bodies are ~42 vertices each: parallel only when there are enough of them.
+  const std::size_t body_sites = nb > 0 ? std::size_t(nb) * bodies[0].n_vertices() : 0;
+#pragma omp parallel if (parallel_heavy(body_sites))
   {
     std::vector<Vec3> x, grad;
 #pragma omp for schedule(static)

@@ -1,4 +1,5 @@
 #include "forces/wall_force.hpp"
+#include "core/parallel.hpp"
 
 #include "core/deterministic_sum.hpp"
 #include "core/errors.hpp"
@@ -16,7 +17,7 @@ ForceResult WallForce::add_forces(System& sys, const ForceFlags& flags) {
   const std::size_t n = s.size();
   const double xl = sys.box().lo()[0], xr = sys.box().hi()[0];
   per_site_.resize(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (parallel_light(n))
   for (std::size_t i = 0; i < n; ++i) {
     PerSite p;
     const double x = s.pos[i][0], sig = s.diameter[i];

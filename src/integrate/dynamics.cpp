@@ -1,4 +1,5 @@
 #include "integrate/dynamics.hpp"
+#include "core/parallel.hpp"
 
 #include <cmath>
 
@@ -80,7 +81,7 @@ void Method::drift(System& sys, double dt) const {
   Sites& s = sys.sites();
   const Box& box = sys.box();
   const int n = int(group_.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (parallel_light(std::size_t(n)))
   for (int k = 0; k < n; ++k) {
     const int i = group_[k];
     s.vel[i] += 0.5 * dt / s.mass[i] * s.force[i];
@@ -110,7 +111,7 @@ void Method::add_drive(System& sys, double dt) const {
   const double noise = noise_amplitude(params_, dt);
   const std::uint64_t seed = sys.seed(), step = sys.step;
   const int n = int(group_.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (parallel_light(std::size_t(n)))
   for (int k = 0; k < n; ++k) {
     const int i = group_[k];
     s.force[i] += drive_force(params_, noise, s, i, seed, step);
@@ -123,7 +124,7 @@ void Method::kick(System& sys, double dt) const {
   const double noise = noise_amplitude(p, dt);
   const std::uint64_t seed = sys.seed(), step = sys.step;
   const int n = int(group_.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (parallel_light(std::size_t(n)))
   for (int k = 0; k < n; ++k) {
     const int i = group_[k];
     if (p.f0 > 0.0) {
@@ -152,6 +153,36 @@ void Dynamics::set_dt(double dt) {
   prepared_ = false;
 }
 
+void Method::set_kT_ramp(std::optional<Ramp> ramp) {
+  if (ramp) {
+    ramp->validate("kT");
+    require_non_negative("kT ramp 'from'", ramp->from);
+    require_non_negative("kT ramp 'to'", ramp->to);
+    params_.kT = ramp->from;
+  }
+  kT_ramp_ = std::move(ramp);
+}
+
+void Method::set_f0_ramp(std::optional<Ramp> ramp) {
+  if (ramp) {
+    ramp->validate("f0");
+    require_non_negative("f0 ramp 'from'", ramp->from);
+    require_non_negative("f0 ramp 'to'", ramp->to);
+    params_.f0 = ramp->from;
+  }
+  f0_ramp_ = std::move(ramp);
+}
+
+void Method::apply_ramps(std::uint64_t step) {
+  if (kT_ramp_) params_.kT = kT_ramp_->value(step);
+  if (f0_ramp_) params_.f0 = f0_ramp_->value(step);
+}
+
+void Dynamics::apply_ramps(std::uint64_t step) {
+  for (const auto& m : methods_) m->apply_ramps(step);
+  if (wall_ && wall_->pressure_ramp) wall_->pressure = wall_->pressure_ramp->value(step);
+}
+
 void Dynamics::update_wall_force(System& sys) {
   if (!wall_) return;
   wall_->force = wall_->walls->left_wall_force() + wall_->pressure * sys.box().wall_area() -
@@ -167,6 +198,7 @@ void Dynamics::prepare(System& sys, ForceField& ff) {
       if (owner[i]++) fail_input("integrator: site ", i, " belongs to two integration methods");
     }
   if (wall_) wall_->validate();
+  apply_ramps(sys.step);
   ff.compute(sys);
   for (const auto& m : methods_) m->add_drive(sys, dt_);
   update_wall_force(sys);
@@ -183,6 +215,7 @@ void Dynamics::step(System& sys, ForceField& ff) {
   ff.compute(sys);
   ++sys.step;
   sys.time += dt_;
+  apply_ramps(sys.step);
   for (const auto& m : methods_) m->kick(sys, dt_);
   if (wall_) {
     update_wall_force(sys);

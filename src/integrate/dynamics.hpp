@@ -12,6 +12,7 @@
 
 #include "forces/force.hpp"
 #include "forces/wall_force.hpp"
+#include "integrate/ramp.hpp"
 
 namespace invasim {
 
@@ -35,6 +36,14 @@ class Method {
   const std::vector<int>& group() const { return group_; }
   const MethodParams& params() const { return params_; }
   MethodParams& params() { return params_; }
+  // Optional linear ramps of kT and f0 (applied at every step by the Dynamics); setting a
+  // number through params() does not clear a ramp, set_*_ramp({}) does.
+  void set_kT_ramp(std::optional<Ramp> ramp);
+  void set_f0_ramp(std::optional<Ramp> ramp);
+  const std::optional<Ramp>& kT_ramp() const { return kT_ramp_; }
+  const std::optional<Ramp>& f0_ramp() const { return f0_ramp_; }
+  // Sets kT and f0 from their ramps for time step `step` (no-op without ramps).
+  void apply_ramps(std::uint64_t step);
   // Gives every site of the group a random orientation (for active methods).
   void randomize_orientations(System& sys, std::uint64_t stream_step = 0) const;
 
@@ -48,6 +57,7 @@ class Method {
  private:
   std::vector<int> group_;
   MethodParams params_;
+  std::optional<Ramp> kT_ramp_, f0_ramp_;
 };
 
 // Rotates unit vector n about a uniformly random axis perpendicular to it by a Gaussian
@@ -62,6 +72,7 @@ struct PressureWall {
   double velocity = 0.0;
   double force = 0.0;  // total force on the wall at the last step
   std::shared_ptr<WallForce> walls;
+  std::optional<Ramp> pressure_ramp;  // if set, `pressure` follows it step by step
   void validate() const;
 };
 
@@ -85,6 +96,7 @@ class Dynamics {
 
  private:
   void update_wall_force(System& sys);
+  void apply_ramps(std::uint64_t step);
   double dt_;
   std::vector<std::shared_ptr<Method>> methods_;
   std::shared_ptr<PressureWall> wall_;

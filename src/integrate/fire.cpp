@@ -1,4 +1,5 @@
 #include "integrate/fire.hpp"
+#include "core/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -60,7 +61,7 @@ FireResult Fire::minimize(System& sys, ForceField& ff, PressureWall* wall) const
   auto wall_force = [&]() {
     return wall->walls->left_wall_force() + wall->pressure * sys.box().wall_area();
   };
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (parallel_light(n))
   for (std::size_t i = 0; i < n; ++i) s.vel[i].setZero();
   double dt = p.dt, alpha = p.alpha0;
   int n_positive = 0;
@@ -98,7 +99,7 @@ FireResult Fire::minimize(System& sys, ForceField& ff, PressureWall* wall) const
       dt = std::max(dt * p.f_dec, p.dt_min);
       alpha = p.alpha0;
       // Step back half a step and stop (FIRE 2.0).
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (parallel_light(n))
       for (std::size_t i = 0; i < n; ++i) {
         s.pos[i] -= 0.5 * dt * s.vel[i];
         s.vel[i].setZero();
@@ -111,7 +112,7 @@ FireResult Fire::minimize(System& sys, ForceField& ff, PressureWall* wall) const
       sum.v2 = 0.0;
     }
     // Semi-implicit Euler with FIRE velocity mixing, using |v| and |F| after the kick.
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (parallel_light(n))
     for (std::size_t i = 0; i < n; ++i) s.vel[i] += dt / s.mass[i] * s.force[i];
     if (wall) wall_v += dt / wall_mass * fw;
     Sums mixed = deterministic_sum(n, Sums{}, [&](std::size_t i) {
@@ -122,7 +123,7 @@ FireResult Fire::minimize(System& sys, ForceField& ff, PressureWall* wall) const
       mixed.f2 += fw * fw;
     }
     const double ratio = mixed.f2 > 0.0 ? std::sqrt(mixed.v2 / mixed.f2) : 0.0;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (parallel_light(n))
     for (std::size_t i = 0; i < n; ++i) {
       s.vel[i] = (1.0 - alpha) * s.vel[i] + alpha * ratio * s.force[i];
       s.pos[i] += dt * s.vel[i];
@@ -134,7 +135,7 @@ FireResult Fire::minimize(System& sys, ForceField& ff, PressureWall* wall) const
     }
     ff.compute(sys);
   }
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (parallel_light(n))
   for (std::size_t i = 0; i < n; ++i) s.vel[i].setZero();
   result.energy = ff.energy(sys);
   return result;

@@ -1,6 +1,7 @@
 // The setup stages that reshape the box (setup/compression.hpp):
 //   invasim.compress(sys, {to_phi =, step = 0.03, ftol =, dt =, dt_max =, max_steps =,
-//                          max_compressions = 1e5, progress = p}) -> report
+//                          max_compressions = 1e5, progress = p, callback = f}) -> report
+//   (f(report) is called after every compression step with the report so far)
 //   invasim.rescale(sys, {phi_a =, ftol =, dt =, dt_max =, max_steps =}) -> FIRE result
 // ftol, dt, dt_max and max_steps set the FIRE minimisation after each box change.
 #include <lua.hpp>
@@ -13,6 +14,18 @@
 namespace invasim::lua {
 
 namespace {
+
+// The compression report as a Lua table {steps, fire_steps, converged, phi, max_force, box}.
+void push_compression_report(lua_State* L, const CompressionReport& r) {
+  lua_createtable(L, 0, 6);
+  set_integer(L, "steps", static_cast<long long>(r.steps));
+  set_integer(L, "fire_steps", static_cast<long long>(r.fire_steps));
+  set_boolean(L, "converged", r.converged);
+  set_number(L, "phi", r.phi);
+  set_number(L, "max_force", r.max_force);
+  push_vec3(L, r.box_lengths);
+  lua_setfield(L, -2, "box");
+}
 
 int l_compress(lua_State* L) {
   const std::shared_ptr<Simulation> sim = check_shared<Simulation>(L, 1);
@@ -29,23 +42,27 @@ int l_compress(lua_State* L) {
     if (!progress)
       fail_input("compress: key 'progress' must be a Progress, got ", type_name_at(L, -1));
   }
+  int callback = 0;  // stack index of the Lua callback, 0 if none
+  if (kw.push("callback") != LUA_TNIL) {
+    if (!lua_isfunction(L, -1))
+      fail_input("compress: key 'callback' must be a function, got ", type_name_at(L, -1));
+    callback = lua_gettop(L);
+  } else {
+    lua_pop(L, 1);
+  }
   kw.finish();
-  CompressionCallback on_step;
-  if (progress)
-    on_step = [progress](const CompressionReport& r) {
-      progress->update(static_cast<long long>(r.steps));
-    };
+  CompressionCallback on_step = [&](const CompressionReport& r) {
+    if (progress) progress->update(static_cast<long long>(r.steps));
+    if (callback) {
+      lua_pushvalue(L, callback);
+      push_compression_report(L, r);
+      call_lua(L, 1, 0);
+    }
+  };
   sim->changed();
   const CompressionReport r = engine_call(
       "compress", [&] { return compress_to_phi(sim->system, sim->forces, p, on_step); });
-  lua_createtable(L, 0, 6);
-  set_integer(L, "steps", static_cast<long long>(r.steps));
-  set_integer(L, "fire_steps", static_cast<long long>(r.fire_steps));
-  set_boolean(L, "converged", r.converged);
-  set_number(L, "phi", r.phi);
-  set_number(L, "max_force", r.max_force);
-  push_vec3(L, r.box_lengths);
-  lua_setfield(L, -2, "box");
+  push_compression_report(L, r);
   return 1;
 }
 

@@ -16,19 +16,37 @@ std::string LuaType<Contacts>::describe(const Contacts& c) {
 
 namespace {
 
-int l_new(lua_State* L) {
-  Kwargs kw(L, 1, "Contacts");
-  ContactParams p;
+// Reads the contact keys into p (defaults: p's values).
+void read_contact_params(Kwargs& kw, ContactParams& p) {
   p.alpha = kw.number("alpha", p.alpha, Range::non_negative());
   p.beta = kw.number("beta", p.beta, Range::non_negative());
   p.eps_cc = kw.number("eps_cc", p.eps_cc, Range::positive());
   p.eps_cv = kw.number("eps_cv", p.eps_cv, Range::positive());
   p.eps_vv = kw.number("eps_vv", p.eps_vv, Range::positive());
   p.skin = kw.number("skin", p.skin, Range::non_negative());
+}
+
+int l_new(lua_State* L) {
+  Kwargs kw(L, 1, "Contacts");
+  ContactParams p;
+  read_contact_params(kw, p);
   kw.finish();
   auto force = engine_call("Contacts", [&] { return std::make_shared<ContactForce>(p); });
   push(L, std::make_shared<Contacts>(std::move(force)));
   return 1;
+}
+
+// c:set{alpha =, beta =, ...}: changes some parameters (the others keep their values), e.g.
+// switching cohesion on after an athermal compression.
+int l_set(lua_State* L) {
+  Contacts& c = check<Contacts>(L, 1);
+  Kwargs kw(L, 2, "Contacts:set");
+  ContactParams p = c.force->params();
+  read_contact_params(kw, p);
+  kw.finish();
+  engine_call("Contacts:set", [&] { c.force->set_params(p); });
+  if (auto sim = c.owner.lock()) sim->changed();
+  return 0;
 }
 
 // c:params() -> {alpha =, beta =, eps_cc =, eps_cv =, eps_vv =, skin =}
@@ -46,6 +64,7 @@ int l_params(lua_State* L) {
 
 const luaL_Reg kMethods[] = {
     {"params", &lua_wrap<&l_params>},
+    {"set", &lua_wrap<&l_set>},
     {nullptr, nullptr},
 };
 

@@ -83,7 +83,9 @@ int l_pressure_wall(lua_State* L) {
   DynamicsHandle& d = check<DynamicsHandle>(L, 1);
   Kwargs kw(L, 2, "pressure_wall");
   auto wall = std::make_shared<PressureWall>();
-  wall->pressure = kw.number("P", Range::non_negative());
+  const NumberOrRamp P = kw_number_or_ramp(kw, "P", Range::non_negative());
+  wall->pressure = P.value;
+  wall->pressure_ramp = P.ramp;
   wall->mass = kw.number("mass", wall->mass, Range::positive());
   wall->gamma = kw.number("gamma", wall->gamma, Range::non_negative());
   std::shared_ptr<Walls> walls;
@@ -112,6 +114,35 @@ int l_wall_state(lua_State* L) {
   set_number(L, "velocity", wall->velocity);
   set_number(L, "force", wall->force);
   return 1;
+}
+
+// dyn:set_pressure(P): a number or a ramp; the piston keeps its velocity.
+int l_set_pressure(lua_State* L) {
+  DynamicsHandle& d = check<DynamicsHandle>(L, 1);
+  const auto wall = d.dynamics.pressure_wall();
+  if (!wall)
+    fail_input(
+        "set_pressure: this Dynamics has no pressure wall; add one with dyn:pressure_wall{P = "
+        "...}");
+  lua_settop(L, 2);
+  lua_createtable(L, 0, 1);
+  lua_pushvalue(L, 2);
+  lua_setfield(L, -2, "P");
+  Kwargs kw(L, 3, "set_pressure");
+  const NumberOrRamp P = kw_number_or_ramp(kw, "P", Range::non_negative());
+  kw.finish();
+  wall->pressure = P.value;
+  wall->pressure_ramp = P.ramp;
+  return 0;
+}
+
+// dyn:set_dt(dt)
+int l_set_dt(lua_State* L) {
+  DynamicsHandle& d = check<DynamicsHandle>(L, 1);
+  const double dt = arg_number(L, 2);
+  engine_call("set_dt", [&] { d.dynamics.set_dt(dt); });
+  d.dynamics.invalidate();
+  return 0;
 }
 
 int l_dt(lua_State* L) {
@@ -193,6 +224,8 @@ const luaL_Reg kMethods[] = {
     {"pressure_wall", &lua_wrap<&l_pressure_wall>},
     {"wall_state", &lua_wrap<&l_wall_state>},
     {"dt", &lua_wrap<&l_dt>},
+    {"set_dt", &lua_wrap<&l_set_dt>},
+    {"set_pressure", &lua_wrap<&l_set_pressure>},
     {"methods", &lua_wrap<&l_methods>},
     {"run", &lua_wrap<&l_run>},
     {nullptr, nullptr},

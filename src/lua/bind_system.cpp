@@ -9,6 +9,7 @@
 #include "lua/module.hpp"
 #include "lua/names.hpp"
 #include "measure/packing.hpp"
+#include "mesh/geometry.hpp"
 #include "setup/placement.hpp"
 
 namespace invasim::lua {
@@ -214,6 +215,45 @@ int l_temperature(lua_State* L) {
   return 1;
 }
 
+// sys:positions([group]) -> {{x, y, z}, ...}: the sites' positions (wrapped into the box on
+// the periodic axes), in the group's order.
+int l_positions(lua_State* L) {
+  const Simulation& sim = check<Simulation>(L, 1);
+  const std::vector<int> sites = group_arg(L, 2, sim, "positions");
+  lua_createtable(L, int(sites.size()), 0);
+  for (std::size_t k = 0; k < sites.size(); ++k) {
+    push_vec3(L, sim.system.sites().pos[sites[k]]);
+    lua_rawseti(L, -2, lua_Integer(k + 1));
+  }
+  return 1;
+}
+
+// sys:adipocytes() -> {{volume =, ref_volume =, area =, shape_parameter =, centre = {..}}, ...}
+// per adipocyte: mesh volume v_i and its reference, mesh area, 3D shape parameter, and the
+// vertex centroid (unwrapped).
+int l_adipocytes(lua_State* L) {
+  const Simulation& sim = check<Simulation>(L, 1);
+  const auto& bodies = sim.system.bodies();
+  lua_createtable(L, int(bodies.size()), 0);
+  std::vector<Vec3> x;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const MeshBody& body = bodies[b];
+    x.resize(body.n_vertices());
+    sim.system.body_vertices(int(b), x.data());
+    const double volume = mesh_volume(*body.topology, x.data());
+    const double area = mesh_area(*body.topology, x.data());
+    lua_createtable(L, 0, 5);
+    set_number(L, "volume", volume);
+    set_number(L, "ref_volume", body.ref_volume);
+    set_number(L, "area", area);
+    set_number(L, "shape_parameter", shape_parameter(area, volume));
+    push_vec3(L, vertex_centroid(body.n_vertices(), x.data()));
+    lua_setfield(L, -2, "centre");
+    lua_rawseti(L, -2, lua_Integer(b + 1));
+  }
+  return 1;
+}
+
 // sys:set_velocities{group = g, kT = x}: Maxwell-Boltzmann velocities (stream kVelocity,
 // keyed by the current step), so that <m v^2> = 3 kT.
 int l_set_velocities(lua_State* L) {
@@ -325,6 +365,8 @@ const luaL_Reg kMethods[] = {
     {"packing", &lua_wrap<&l_packing>},
     {"temperature", &lua_wrap<&l_temperature>},
     {"set_velocities", &lua_wrap<&l_set_velocities>},
+    {"positions", &lua_wrap<&l_positions>},
+    {"adipocytes", &lua_wrap<&l_adipocytes>},
     {"add", &lua_wrap<&l_add>},
     {"forces", &lua_wrap<&l_forces>},
     {"compute", &lua_wrap<&l_compute>},
@@ -334,7 +376,12 @@ const luaL_Reg kMethods[] = {
 }  // namespace
 
 void open_system(lua_State* L) {
-  define_type<Simulation>(L, kMethods);
+  // The System's own methods plus the measurements (bind_measure.cpp).
+  std::vector<luaL_Reg> methods;
+  for (const luaL_Reg* r = kMethods; r->name; ++r) methods.push_back(*r);
+  for (const luaL_Reg* r = kSystemMeasureMethods; r->name; ++r) methods.push_back(*r);
+  methods.push_back({nullptr, nullptr});
+  define_type<Simulation>(L, methods.data());
   lua_pushcfunction(L, &lua_wrap<&l_new>);
   lua_setfield(L, -2, "System");
 }

@@ -102,6 +102,7 @@ INVASIM_LUA_TYPE(Tethers, "Tethers");
 INVASIM_LUA_TYPE(MethodHandle, "Method");
 INVASIM_LUA_TYPE(DynamicsHandle, "Dynamics");
 INVASIM_LUA_TYPE(Fire, "Fire");
+INVASIM_LUA_TYPE(Ramp, "Ramp");
 #undef INVASIM_LUA_TYPE
 
 // --- helpers shared by the engine bindings (engine_glue.cpp) ---
@@ -122,6 +123,15 @@ decltype(auto) engine_call(std::string_view owner, Fn&& fn) {
 
 // The Group of key `key` (required unless `required` is false: nullptr when absent).
 std::shared_ptr<Group> kw_group(Kwargs& kw, std::string_view key, bool required = true);
+
+// A number or an invasim.ramp{} (a copy: each use anchors its own start). Range applies to
+// the number and to both ends of a ramp. Required unless a fallback is given.
+struct NumberOrRamp {
+  double value = 0.0;  // the number, or the ramp's `from`
+  std::optional<Ramp> ramp;
+};
+NumberOrRamp kw_number_or_ramp(Kwargs& kw, std::string_view key, Range range,
+                               std::optional<double> fallback = std::nullopt);
 
 // FIRE settings from keys ftol, dt, dt_max, max_steps (defaults of FireParams).
 FireParams kw_fire(Kwargs& kw);
@@ -153,6 +163,9 @@ Progress* test_progress(lua_State* L, int index);
 // run. Returns the pressure wall or nullptr. Errors start with `what`.
 PressureWall* prepare_dynamics(DynamicsHandle& d, const std::shared_ptr<Simulation>& sim,
                                const std::string& what);
+
+// System methods defined in bind_measure.cpp (voronoi, shape_parameters, slices).
+extern const luaL_Reg kSystemMeasureMethods[];
 
 // Pushes a FIRE result table {converged, steps, max_force, energy}.
 void push_fire_result(lua_State* L, const FireResult& r);

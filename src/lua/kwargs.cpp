@@ -90,25 +90,46 @@ long long Kwargs::to_integer(std::string_view key, Range range) {
   return value;
 }
 
+void Kwargs::missing(std::string_view key, const char* expected) const {
+  // A misspelt key is more useful to name than the missing one alone: look for a key of the
+  // table that nobody asked for and that is close to `key`.
+  std::string typo;
+  const std::vector<std::string> wanted{std::string(key)};
+  lua_checkstack(L_, 3);
+  lua_pushnil(L_);
+  while (lua_next(L_, index_) != 0) {
+    lua_pop(L_, 1);
+    if (lua_type(L_, -1) != LUA_TSTRING) continue;
+    const std::string candidate = lua_tostring(L_, -1);
+    if (std::find(known_.begin(), known_.end(), candidate) == known_.end() &&
+        !did_you_mean(candidate, wanted).empty())
+      typo = candidate;
+  }
+  if (!typo.empty())
+    fail_input(owner_, ": missing required key '", key, "' (", expected, "); unknown key '", typo,
+               "' (did you mean '", key, "'?)");
+  fail_input(owner_, ": missing required key '", key, "' (", expected, ")");
+}
+
 double Kwargs::number(std::string_view key, Range range) {
-  if (fetch(key) == LUA_TNIL) fail_input(owner_, ": missing required key '", key, "' (a number)");
+  if (fetch(key) == LUA_TNIL) missing(key, "a number");
   return to_number(key, range);
 }
 
 long long Kwargs::integer(std::string_view key, Range range) {
-  if (fetch(key) == LUA_TNIL) fail_input(owner_, ": missing required key '", key, "' (an integer)");
+  if (fetch(key) == LUA_TNIL) missing(key, "an integer");
   return to_integer(key, range);
 }
 
 bool Kwargs::boolean(std::string_view key) {
   const auto value = maybe_boolean(key);
-  if (!value) fail_input(owner_, ": missing required key '", key, "' (true or false)");
+  if (!value) missing(key, "true or false");
   return *value;
 }
 
 std::string Kwargs::string(std::string_view key) {
   auto value = maybe_string(key);
-  if (!value) fail_input(owner_, ": missing required key '", key, "' (a string)");
+  if (!value) missing(key, "a string");
   return std::move(*value);
 }
 

@@ -95,6 +95,8 @@ class Kwargs {
   // Pushes the value of key (raw get) and records the key; returns its Lua type.
   int fetch(std::string_view key);
   [[noreturn]] void type_error(std::string_view key, const char* expected) const;
+  // Throws "missing required key", naming a misspelt key of the table if there is one.
+  [[noreturn]] void missing(std::string_view key, const char* expected) const;
   double to_number(std::string_view key, Range range);
   long long to_integer(std::string_view key, Range range);
   void check_range(std::string_view key, double value, const Range& range) const;

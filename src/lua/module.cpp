@@ -3,6 +3,8 @@
 #include <omp.h>
 #include <lua.hpp>
 
+#include <chrono>
+
 #include "invasim_version.hpp"
 #include "lua/context.hpp"
 
@@ -16,6 +18,14 @@ int l_threads(lua_State* L) {
   return 1;
 }
 
+// invasim.clock(): wall-clock seconds from a steady clock (for timing stages; os.clock is
+// CPU time summed over threads).
+int l_clock(lua_State* L) {
+  const auto now = std::chrono::steady_clock::now().time_since_epoch();
+  lua_pushnumber(L, std::chrono::duration<double>(now).count());
+  return 1;
+}
+
 }  // namespace
 
 int open_invasim(lua_State* L) {
@@ -23,12 +33,16 @@ int open_invasim(lua_State* L) {
   lua_newtable(L);
   lua_pushstring(L, kInvasimVersion);
   lua_setfield(L, -2, "version");
+  lua_pushstring(L, kInvasimGitRevision[0] ? kInvasimGitRevision : "unknown");
+  lua_setfield(L, -2, "git_revision");
   lua_pushstring(L, context.options.out_dir.c_str());
   lua_setfield(L, -2, "out_dir");
   lua_pushstring(L, context.options.script_path.c_str());
   lua_setfield(L, -2, "script");
   lua_pushcfunction(L, &l_threads);
   lua_setfield(L, -2, "threads");
+  lua_pushcfunction(L, &l_clock);
+  lua_setfield(L, -2, "clock");
   open_params(L);
   open_progress(L);
   open_system(L);
@@ -40,6 +54,10 @@ int open_invasim(lua_State* L) {
   open_method(L);
   open_dynamics(L);
   open_fire(L);
+  open_ramp(L);
+  open_measure(L);
+  open_correlator(L);
+  open_io(L);
   open_compression(L);
   return 1;
 }

@@ -21,6 +21,10 @@ void open_tethers(lua_State* L);      // invasim.Tethers{...}       (bind_tether
 void open_method(lua_State* L);       // invasim.Damped/Langevin/Active{...} (bind_method.cpp)
 void open_dynamics(lua_State* L);     // invasim.Dynamics{...}      (bind_dynamics.cpp)
 void open_fire(lua_State* L);         // invasim.Fire{...}          (bind_fire.cpp)
+void open_measure(lua_State* L);      // invasim.histogram, block_average (bind_measure.cpp)
+void open_correlator(lua_State* L);   // invasim.Correlator{...}    (bind_correlator.cpp)
+void open_io(lua_State* L);           // invasim.write_file, make_dirs, Snapshots (bind_io.cpp)
+void open_ramp(lua_State* L);         // invasim.ramp{...}          (bind_ramp.cpp)
 void open_compression(lua_State* L);  // invasim.compress, rescale  (bind_compression.cpp)
 
 }  // namespace invasim::lua

@@ -1,4 +1,5 @@
 #include "neighbor/verlet_list.hpp"
+#include "core/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -23,7 +24,7 @@ bool VerletList::needs_rebuild(const System& sys) const {
   const auto& pos = sys.sites().pos;
   const MinimumImage image(sys.box());
   int moved = 0;
-#pragma omp parallel for reduction(| : moved) schedule(static)
+#pragma omp parallel for reduction(| : moved) schedule(static) if (parallel_light(pos.size()))
   for (std::size_t i = 0; i < pos.size(); ++i) {
     const double dx = image.x(pos[i][0] - pos_at_build_[i][0]),
                  dy = image.y(pos[i][1] - pos_at_build_[i][1]),
@@ -68,7 +69,7 @@ void VerletList::build(const System& sys) {
     int c = int(std::floor((x - box.lo()[a]) / cell_len[a]));
     return std::clamp(c, 0, nc[a] - 1);  // sites slightly beyond a wall join the edge cell
   };
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (parallel_light(n))
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3& r = s.pos[i];
     cell_of_[i] = (axis_cell(r[0], 0) * nc[1] + axis_cell(r[1], 1)) * nc[2] + axis_cell(r[2], 2);
@@ -91,7 +92,7 @@ void VerletList::build(const System& sys) {
     overflow = false;
     list_.resize(n * stride_);
     int max_count = 0;
-#pragma omp parallel for schedule(dynamic, 64) reduction(max : max_count)
+#pragma omp parallel for schedule(dynamic, 64) reduction(max : max_count) if (parallel_heavy(n))
     for (std::size_t i = 0; i < n; ++i) {
       const int ci = cell_of_[i];
       const int cx = ci / (nc[1] * nc[2]), cy = (ci / nc[2]) % nc[1], cz = ci % nc[2];

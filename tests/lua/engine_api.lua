@@ -132,6 +132,36 @@ lonely:pressure_wall{ P = 1 }
 expect_error("run: the pressure wall needs a Walls force in the System", lonely.run, lonely, fresh, 1)
 check(dyn:run(sys, 0) == 0 and sys:step() == 0)
 
+-- Ramps and setters
+local ramp = iv.ramp{ from = 0, to = 1e-2, steps = 100 }
+check(tostring(ramp) == "Ramp(from=0, to=0.01, steps=100)", tostring(ramp))
+check(ramp:value(0) == 0 and ramp:value(50) == 5e-3 and ramp:value(500) == 1e-2)
+expect_error("ramp: missing required key 'steps'", iv.ramp, { from = 0, to = 1 })
+expect_error("ramp: key 'steps' = 0 is out of range %(must be >= 1%)", iv.ramp, { from = 0, to = 1, steps = 0 })
+expect_error("ramp: missing required key 'from' %(a number%); unknown key 'form' %(did you mean 'from'%?%)", iv.ramp, { form = 0, to = 1, steps = 1 })
+expect_error("Langevin: key 'kT': ramp end %-1 is out of range %(must be >= 0%)", iv.Langevin,
+             { group = cancer, kT = iv.ramp{ from = -1, to = 1, steps = 10 } })
+expect_error("Langevin: key 'kT' must be a number or an invasim.ramp{}, got Group", iv.Langevin,
+             { group = cancer, kT = cancer })
+check(iv.Langevin{ group = cancer, kT = ramp }:params().kT == 0)
+check(iv.Active{ group = cancer, f0 = ramp, tau_p = math.huge, randomize = false }:params().tau_p == math.huge)
+langevin:set{ kT = 2e-3, gamma = 0.3 }
+check(langevin:params().kT == 2e-3 and langevin:params().gamma == 0.3)
+langevin:set{ gamma = 0.2, kT = 1e-3 }
+expect_error("Langevin:set: unknown key 'f0'", langevin.set, langevin, { f0 = 1 })
+expect_error("Damped:set: unknown key 'kT'", damped.set, damped, { kT = 1 })
+expect_error("Active:set: key 'tau_p' = %-2 is out of range", active.set, active, { tau_p = -2 })
+contacts:set{ beta = 5e-3 }
+check(contacts:params().beta == 5e-3 and contacts:params().alpha == 0.2)
+expect_error("Contacts:set: cohesion: beta = 0.3 must be smaller than alpha", contacts.set, contacts, { beta = 0.3 })
+check(contacts:params().beta == 5e-3)
+contacts:set{ beta = 1e-2 }
+expect_error("set_pressure: this Dynamics has no pressure wall", iv.Dynamics{}.set_pressure, iv.Dynamics{}, 1)
+expect_error("set_dt: dt = 0 must be > 0", dyn.set_dt, dyn, 0)
+check(type(iv.clock()) == "number")
+check(#sys:positions(cancer) == cancer:size() and #sys:positions() == sys:n_sites())
+check(#sys:adipocytes() == sys:n_adipocytes() and sys:adipocytes()[1].ref_volume > 0)
+
 -- Fire, compress, rescale
 local fire = iv.Fire{ ftol = 1e-8, dt = 0.05, dt_max = 0.5, max_steps = 1e6 }
 check(tostring(fire):find("^Fire%(ftol=1e%-08"), tostring(fire))

@@ -87,4 +87,26 @@ end
 local one, chunked = dilute(nil), dilute(7)
 assert(one == chunked, one .. " ~= " .. chunked)
 
+-- Ramps reach the engine: kT, f0 and P follow their ramps step by step from the run's start.
+do
+  local s = iv.System{ box = {12, 10, 10}, periodic = {false, true, true}, seed = 4 }
+  s:place{ cells = { n = 20, x = {1, 11} } }
+  s:add(iv.Walls{})
+  s:add(iv.Contacts{})
+  local half = s:group("cancer"):sites()
+  local d = iv.Dynamics{ dt = 0.05 }
+  local m = d:add(iv.Langevin{ group = s:group("cancer"), kT = iv.ramp{ from = 0, to = 1e-2, steps = 100 } })
+  d:pressure_wall{ P = iv.ramp{ from = 1e-3, to = 3e-3, steps = 200 } }
+  d:run(s, 50)
+  assert(math.abs(m:params().kT - 5e-3) < 1e-15, "kT ramp: " .. m:params().kT)
+  assert(math.abs(d:wall_state().P - 1.5e-3) < 1e-15, "P ramp: " .. d:wall_state().P)
+  d:run(s, 200)
+  assert(m:params().kT == 1e-2 and d:wall_state().P == 3e-3)
+  m:set{ kT = 0 }
+  assert(m:params().kT == 0)
+  d:run(s, 10)
+  assert(m:params().kT == 0, "a number clears the ramp")
+  assert(#half == 20)
+end
+
 print(string.format("engine_run: ok phi=%.4f L=%.3f Tc=%.3g Ta=%.3g steps=%d", report.phi, L[1], Tc, Ta, sys:step()))

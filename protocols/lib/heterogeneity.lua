@@ -1,0 +1,17 @@
+-- Stage "heterogeneity" (MODEL.md protocol 5): tethers in the lower half of the box in z
+-- (by their midpoint) get rest length (1 - lambda) R_ij, the others (1 + lambda) R_ij.
+--
+--   require("lib.heterogeneity")(tissue, { lambda = 0.3 })
+local options = require("lib.options")
+local log = require("lib.log")
+
+local defaults = { lambda = options.REQUIRED }
+
+return function(tissue, opts)
+  local o = options.check("heterogeneity", opts, defaults, { lambda = "number" })
+  if not tissue.tethers then
+    options.fail("heterogeneity", "the tissue has no tethers; run the tether stage first")
+  end
+  tissue.tethers:heterogeneity{ lambda = o.lambda }
+  log.say("heterogeneity", "lambda = %g on %d tethers", o.lambda, tissue.tethers:count())
+end

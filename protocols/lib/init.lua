@@ -1,0 +1,59 @@
+-- Stage "init" (MODEL.md protocol 1): a dilute, de-mixed tissue in a cubic box of side L0,
+-- walls in x, periodic in y and z. Cancer-cell centres are placed at random with
+-- 2 < x < 12 and adipocyte centres with 16 < X < 68 (both scaled by L0 / 70), no overlaps.
+-- Decision: the adipocyte range is clipped to X <= L0 - R_out (R_out = diameter / 2, the
+-- outer radius with the vertex radii) so that no vertex starts outside the right wall: the
+-- paper's 68 with diameter 6 would reach x = 71 > 70.
+--
+--   local tissue = require("lib.init"){ N_a = 28, N_c = 1500, L0 = 70, seed = 1 }
+--
+-- Returns a tissue table shared by every later stage:
+--   tissue.sys (System), .cells and .vertices (Groups), .walls, .contacts, .shape (forces),
+--   .tethers (nil until the tether stage), .dyn (nil until quench), .params (init options).
+local iv = require("invasim")
+local options = require("lib.options")
+local log = require("lib.log")
+
+local defaults = {
+  N_a = 28, N_c = 1500, L0 = 70.0, seed = 1,
+  diameters = { 0.9, 1.1 },        -- cancer-cell diameters, used in turn (bidisperse 50/50)
+  diameter = 6.0,                  -- adipocyte outer diameter (vertex radii included)
+  vertex_diameter = 2.0,
+  shape_param = 1.1,               -- reference shape parameter A_0
+  eps_v = 1e3, eps_a = 1.0,        -- shape energy (docs/model.md: defaults and why)
+  alpha = 0.2, beta = 0.0,         -- cohesion of cancer cells (the compress stage may override)
+  eps_cc = 1.0, eps_cv = 1.0, eps_vv = 1.0,
+  wall_eps = 1.0,
+}
+
+return function(opts)
+  local o = options.check("init", opts, defaults)
+  local L = o.L0
+  local s = L / 70
+  local sys = iv.System{ box = { L, L, L }, periodic = { false, true, true }, seed = o.seed }
+  local R_out = o.diameter / 2
+  local x_hi = math.min(68 * s, L - R_out)
+  if x_hi <= 16 * s then
+    options.fail("init", string.format("L0 = %g is too small for adipocytes of diameter %g", L, o.diameter))
+  end
+  local placed = sys:place{
+    adipocytes = { n = o.N_a, x = { 16 * s, x_hi }, diameter = o.diameter,
+                   vertex_diameter = o.vertex_diameter, shape_param = o.shape_param },
+    cells = { n = o.N_c, x = { 2 * s, 12 * s }, diameters = o.diameters },
+  }
+  local tissue = {
+    sys = sys,
+    cells = sys:group("cancer"),
+    vertices = sys:group("vertices"),
+    walls = sys:add(iv.Walls{ eps = o.wall_eps }),
+    contacts = sys:add(iv.Contacts{ alpha = o.alpha, beta = o.beta, eps_cc = o.eps_cc,
+                                    eps_cv = o.eps_cv, eps_vv = o.eps_vv }),
+    shape = sys:add(iv.Shape{ eps_v = o.eps_v, eps_a = o.eps_a }),
+    params = o,
+  }
+  local phi = sys:packing()
+  log.say("init", "%d cancer cells, %d adipocytes in a box %s; phi = %.4f (cells %.4f, adipocytes %.4f)",
+          tissue.cells:size(), placed.adipocytes, log.box(sys:box().lengths), phi.total,
+          phi.cancer, phi.adipocyte)
+  return tissue
+end

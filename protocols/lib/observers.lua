@@ -1,0 +1,54 @@
+-- What the production stage measures while it runs (MODEL.md, "Measurements"). Each
+-- observer has `columns` (names), `units`, and `sample(row)` that adds its values to the
+-- row of the current step; the production stage calls them every `every` steps.
+local thermo = require("lib.thermo")
+
+local M = {}
+
+-- Temperatures, wall pressures, box length, packing fractions (lib/thermo.lua).
+function M.thermo(tissue)
+  return {
+    columns = thermo.columns, units = thermo.units,
+    sample = function(row)
+      for k, v in pairs(thermo.sample(tissue)) do row[k] = v end
+    end,
+  }
+end
+
+-- Interfacial area from the Voronoi tessellation of cells and vertices: A_t, A_t^max, their
+-- ratio, and the spread of the local adipocyte packing fraction Delta phi_a.
+function M.interface(tissue, radical)
+  local sys = tissue.sys
+  return {
+    columns = { "A_t", "A_t_max", "A_ratio", "phi_a_local_std" },
+    units = { A_t = "sigma^2", A_t_max = "sigma^2", A_ratio = "1", phi_a_local_std = "1" },
+    sample = function(row)
+      local v = sys:voronoi{ radical = radical }
+      row.A_t, row.A_t_max, row.A_ratio = v.A_t, v.A_t_max, v.A_ratio
+      row.phi_a_local_std = v.phi_a_local_std
+    end,
+  }
+end
+
+-- Energy of each force term (one extra force evaluation per sample; the trajectory is not
+-- changed: sys:compute() restores the forces the Dynamics keeps).
+function M.energy(tissue)
+  local columns, units = { "E_total" }, { E_total = "eps_c" }
+  for name in pairs(tissue.sys:compute()) do
+    if name ~= "total" and name ~= "virial" then
+      columns[#columns + 1] = "E_" .. name
+      units["E_" .. name] = "eps_c"
+    end
+  end
+  table.sort(columns, function(a, b) return a == "E_total" or (b ~= "E_total" and a < b) end)
+  return {
+    columns = columns, units = units,
+    sample = function(row)
+      for name, e in pairs(tissue.sys:compute()) do
+        if name ~= "virial" then row["E_" .. name] = e end
+      end
+    end,
+  }
+end
+
+return M

@@ -1,0 +1,135 @@
+-- Stage "production" (MODEL.md protocol 7): runs the tissue's Dynamics (made by quench) for
+-- `steps` steps with observers attached and returns the series and a summary: time averages
+-- over the last `average_fraction` of the run with block-averaging error bars, the
+-- correlation times and shape statistics.
+--   every `every` steps:           thermo columns, A_t (Voronoi) if `interface`, energies if
+--                                  `energy`; one row of the series (series.csv in `out`)
+--   every `correlate_every` steps: the cancer cells' correlators (C_vv, <n.n>, MSD, F_s)
+--   at the end:                    tau_d, tau_r, 3D shape parameters and random slices
+--
+--   local result = require("lib.production")(tissue, { steps = 1e5, every = 1000, out = dir })
+local iv = require("invasim")
+local options = require("lib.options")
+local log = require("lib.log")
+local observers = require("lib.observers")
+local series_file = require("lib.series")
+
+local defaults = {
+  steps = 100000, every = 1000,
+  interface = true,          -- Voronoi interfacial area every `every` steps
+  radical = false,           -- radical (power) tessellation instead of the paper's Voronoi
+  energy = false,            -- energy of each force term every `every` steps
+  correlate_every = 20,      -- 0: no correlators
+  lags = 250,                -- correlator window: lags * correlate_every steps
+  origin_every = 5,          -- a new time origin every this many correlator samples
+  slices_per_body = 20,      -- random slices per adipocyte at the end (0: none)
+  average_fraction = 0.5,    -- the summary averages the last half of the samples
+  out = options.OPTIONAL,    -- directory for series.csv, correlations.csv, shapes.csv
+  progress = true,
+  label = "production",
+  on_sample = options.OPTIONAL,   -- function(row, tissue) called after each sample
+}
+
+local function gcd(a, b)
+  while b ~= 0 do a, b = b, a % b end
+  return a
+end
+
+local function summarise(rows, columns, fraction)
+  local summary = {}
+  for _, c in ipairs(columns) do
+    if c ~= "step" and c ~= "time" then
+      local xs = {}
+      for i, row in ipairs(rows) do xs[i] = row[c] end
+      if #xs > 0 then
+        local b = iv.block_average(xs, { fraction = fraction })
+        summary[c] = { mean = b.mean, error = b.error, samples = b.n }
+      end
+    end
+  end
+  return summary
+end
+
+-- End-of-run shape statistics: 3D shape parameter per adipocyte, slice histogram.
+local function shapes(sys, per_body)
+  local s3 = sys:shape_parameters()
+  local mean3 = 0
+  for _, a in ipairs(s3) do mean3 = mean3 + a / #s3 end
+  local result = { shape_3d = s3, shape_3d_mean = mean3 }
+  if per_body > 0 and #s3 > 0 then
+    local a2 = sys:slices{ per_body = per_body }
+    local mean2 = 0
+    for _, a in ipairs(a2) do mean2 = mean2 + a / #a2 end
+    result.shape_2d_mean = mean2
+    result.shape_2d_histogram = iv.histogram(a2, { lo = 1.0, hi = 1.5, bins = 25 })
+  end
+  return result
+end
+
+return function(tissue, opts)
+  local o = options.check(opts and opts.label or "production", opts, defaults,
+                          { on_sample = "function", out = "string" })
+  if not tissue.dyn then options.fail(o.label, "run the quench stage first (it makes the Dynamics)") end
+  local sys, dyn = tissue.sys, tissue.dyn
+  local active = { observers.thermo(tissue) }
+  if o.interface and sys:n_adipocytes() > 0 then active[#active + 1] = observers.interface(tissue, o.radical) end
+  if o.energy then active[#active + 1] = observers.energy(tissue) end
+  local columns, units = {}, {}
+  for _, ob in ipairs(active) do
+    for _, c in ipairs(ob.columns) do columns[#columns + 1] = c; units[c] = ob.units[c] end
+  end
+  local file = o.out and series_file.open(o.out .. "/series.csv", columns, units) or nil
+
+  local correlator
+  if o.correlate_every > 0 then
+    correlator = iv.Correlator{ group = tissue.cells, interval = o.correlate_every * dyn:dt(),
+                                lags = o.lags, origin_every = o.origin_every }
+  end
+  local tick = correlator and gcd(o.every, o.correlate_every) or o.every
+  local rows = {}
+  local progress = o.progress and iv.Progress{ total = o.steps, label = o.label } or nil
+  local clock = iv.clock()
+  local first_step = sys:step()
+  local ok, err = pcall(dyn.run, dyn, sys, o.steps, {
+    every = tick, progress = progress,
+    callback = function(step)
+      if correlator and step % o.correlate_every == 0 then correlator:sample(sys) end
+      if step % o.every == 0 and step > first_step then
+        local row = {}
+        for _, ob in ipairs(active) do ob.sample(row) end
+        rows[#rows + 1] = row
+        if file then file:write(row) end
+        if o.on_sample then o.on_sample(row, tissue) end
+      end
+    end,
+  })
+  if file then file:close() end
+  if not ok then error(err, 0) end
+  if progress then progress:finish() end
+
+  local summary = summarise(rows, columns, o.average_fraction)
+  summary.samples = #rows
+  summary.seconds = iv.clock() - clock
+  if correlator then
+    summary.tau_d = correlator:tau_d()
+    summary.tau_d_standard = correlator:tau_d_standard()
+    summary.tau_r = correlator:tau_r()
+    summary.correlation_window = o.lags * o.correlate_every * dyn:dt()
+    if o.out then
+      require("lib.files").write(o.out .. "/correlations.csv", series_file.columns_text(correlator:result()))
+    end
+  end
+  local shape = shapes(sys, o.slices_per_body)
+  summary.shape_3d_mean = shape.shape_3d_mean
+  summary.shape_2d_mean = shape.shape_2d_mean
+  if o.out and shape.shape_2d_histogram then
+    local h = shape.shape_2d_histogram
+    local lines = { "A2_lo,A2_hi,count,density" }
+    for i = 1, #h.counts do
+      lines[#lines + 1] = string.format("%.6g,%.6g,%d,%.8g", h.edges[i], h.edges[i + 1], h.counts[i], h.density[i])
+    end
+    require("lib.files").write(o.out .. "/shapes.csv", table.concat(lines, "\n") .. "\n")
+  end
+  return { series = { columns = columns, units = units, rows = rows }, summary = summary,
+           correlator = correlator, shape = shape }
+end

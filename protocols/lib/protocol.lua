@@ -1,0 +1,94 @@
+-- Pieces shared by the protocols in this directory: the parameters every invasion protocol
+-- declares (one place, so invasion.lua, tethered.lua and packing.lua agree), and the chain
+-- init -> compress -> quench with those parameters.
+local presets = require("lib.presets")
+local options = require("lib.options")
+
+local M = {}
+
+-- The common parameter declarations (merged into a protocol's iv.params{} table).
+function M.declarations()
+  return {
+    system = { "reduced", help = "system size preset: reduced (8 adipocytes, 400 cells), paper (28, 1500) or large (128, 7000)" },
+    N_a = { 0, unit = "adipocytes", help = "number of adipocytes (0: from system)" },
+    N_c = { 0, unit = "cells", help = "number of cancer cells (0: from system)" },
+    L0 = { 0.0, unit = "sigma", help = "initial cubic box side (0: from system)" },
+    seed = { 1, help = "random seed (placement, noise, orientations)" },
+    phi = { 0.72, help = "total packing fraction reached by compression" },
+    P = { 1.3e-3, unit = "eps_c/sigma^3", help = "pressure on the left wall" },
+    beta = { 1e-2, help = "cancer-cell cohesion depth (0: repulsive)" },
+    alpha = { 0.2, help = "cancer-cell cohesion range" },
+    f0 = { 0.01, unit = "eps_c/sigma", help = "self-propulsion force (0: passive cells)" },
+    tau_p = { 25.0, unit = "tau", help = "persistence time of the active orientation" },
+    kT = { 0.0, unit = "eps_c", help = "thermal noise temperature of the cells" },
+    gamma = { 0.2, unit = "sqrt(m eps_c)/sigma", help = "damping coefficient" },
+    eps_v = { 1e3, unit = "eps_c", help = "adipocyte volume stiffness" },
+    eps_a = { 1.0, unit = "eps_c", help = "adipocyte face-area stiffness" },
+    dt = { 0.05, unit = "tau", help = "time step" },
+    cohesive_compression = { false, help = "keep the cells' cohesion on during compression (default: repulsive packing)" },
+    compress_ftol = { 1e-3, unit = "eps_c/sigma", help = "FIRE tolerance between compression steps" },
+    final_ftol = { 1e-6, unit = "eps_c/sigma", help = "FIRE tolerance of the compressed tissue" },
+    quench_steps = { 20000, type = "integer", help = "steps of the quench (wall to P, cells moving)" },
+    steps = { 100000, type = "integer", help = "production steps" },
+    every = { 1000, type = "integer", help = "steps between measurements (a row of series.csv)" },
+    snapshot_every = { 10000, type = "integer", help = "steps between snapshots (0: none)" },
+    correlate_every = { 20, type = "integer", help = "steps between correlator samples (0: none)" },
+  }
+end
+
+-- Adds a protocol's own declarations to the common ones.
+function M.merge(own)
+  local all = M.declarations()
+  for k, v in pairs(own or {}) do all[k] = v end
+  return all
+end
+
+-- The system size after the preset and the explicit overrides.
+function M.size(p)
+  local preset = presets[p.system]
+  if not preset then
+    local names = {}
+    for k in pairs(presets) do names[#names + 1] = k end
+    table.sort(names)
+    error(string.format("--set system=%s: unknown system; choose one of: %s", p.system,
+                        table.concat(names, ", ")), 0)
+  end
+  return (p.N_a > 0 and p.N_a or preset.N_a), (p.N_c > 0 and p.N_c or preset.N_c),
+         (p.L0 > 0 and p.L0 or preset.L0)
+end
+
+-- The production stage with the common parameters, writing into the run directory `out`,
+-- with snapshots every snapshot_every steps (and one at the start).
+function M.produce(tissue, p, out)
+  local iv = require("invasim")
+  local snapshots
+  if p.snapshot_every > 0 and out then
+    snapshots = iv.Snapshots{ dir = out .. "/snapshots" }
+    snapshots:write(tissue.sys)
+  end
+  local first = tissue.sys:step()
+  return require("lib.production")(tissue, {
+    steps = p.steps, every = p.every, correlate_every = p.correlate_every, out = out,
+    on_sample = snapshots and function(row)
+      if (row.step - first) % p.snapshot_every == 0 then snapshots:write(tissue.sys) end
+    end or nil,
+  })
+end
+
+-- init + compress + quench with the common parameters; returns the tissue.
+function M.prepare(p)
+  local N_a, N_c, L0 = M.size(p)
+  local tissue = require("lib.init"){
+    N_a = N_a, N_c = N_c, L0 = L0, seed = p.seed, eps_v = p.eps_v, eps_a = p.eps_a,
+    alpha = p.alpha, beta = p.beta,
+  }
+  tissue.compression = require("lib.compress")(tissue, {
+    to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.final_ftol,
+    beta = p.cohesive_compression and p.beta or 0.0,
+  })
+  require("lib.quench")(tissue, { P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p,
+                                  gamma = p.gamma, dt = p.dt, steps = p.quench_steps })
+  return tissue
+end
+
+return M

@@ -1,0 +1,57 @@
+-- The final summary of an invasion run, printed and (with a run directory) written to
+-- summary.json: the tissue, the averages of the production run with their error bars, the
+-- correlation times, shape statistics and the derived dimensionless temperature
+-- k_B T_c / (P sigma^3) (MODEL.md: results are plotted against the measured T_c).
+local log = require("lib.log")
+local summary_lines = require("lib.summary")
+
+local M = {}
+
+local function optional(x, fmt)
+  return x and string.format(fmt, x) or "not reached"
+end
+
+function M.final(tissue, p, result, seconds, out)
+  local sys = tissue.sys
+  local s = result.summary
+  local box = sys:box()
+  log.say("summary", "%d cancer cells, %d adipocytes; t = %g (%d steps); wall-clock %.1f s",
+          tissue.cells:size(), sys:n_adipocytes(), sys:time(), sys:step(), seconds)
+  if tissue.compression then
+    log.say("summary", "compressed box L_f = %s at phi = %.4f; now L_x = %.4f, phi = %.4f",
+            log.box(tissue.compression.box), tissue.compression.phi, box.lengths[1], sys:packing().total)
+  end
+  local n = s.T_c and s.T_c.samples or 0
+  log.say("summary", "averages over the last %d of %d samples (block-averaging errors):", n, s.samples)
+  summary_lines.print("summary", s, { "A_t", "A_t_max", "A_ratio", "T_c", "T_a", "P_left", "P_right",
+                                      "L_x", "phi", "phi_c", "phi_a", "phi_a_local_std" },
+                      result.series.units)
+  local derived = {}
+  if s.T_c and s.T_a and p.P > 0 then
+    derived.kT_over_P = s.T_c.mean / p.P
+    derived.T_c_over_T_a = s.T_c.mean / s.T_a.mean
+    log.say("summary", "k_B T_c / (P sigma^3) = %.4g, T_c / T_a = %.3g", derived.kT_over_P,
+            derived.T_c_over_T_a)
+  end
+  if s.correlation_window then
+    log.say("summary", "tau_d = %s (standard normalisation %s), tau_r = %s (window %g)",
+            optional(s.tau_d, "%.4g"), optional(s.tau_d_standard, "%.4g"), optional(s.tau_r, "%.4g"),
+            s.correlation_window)
+  end
+  if s.shape_3d_mean then
+    log.say("summary", "shape parameter: 3D mean %.4f, 2D slices mean %s", s.shape_3d_mean,
+            optional(s.shape_2d_mean, "%.4f"))
+  end
+  if out then
+    local json = require("lib.json")
+    require("lib.files").write(out .. "/summary.json", json.encode{
+      averages = s, derived = derived, wall_clock_seconds = seconds, steps = sys:step(),
+      time = sys:time(), box = box.lengths,
+      compression = tissue.compression and { box = tissue.compression.box, phi = tissue.compression.phi,
+                                             steps = tissue.compression.steps } or nil,
+    })
+    log.say("summary", "results in %s (series.csv, summary.json, correlations.csv, shapes.csv, snapshots/)", out)
+  end
+end
+
+return M

@@ -1,0 +1,23 @@
+-- Stage "rescale" (MODEL.md protocol 6): affine change of the box and of all positions
+-- (adipocytes rigidly) to the adipocyte packing fraction phi_a, then FIRE. With a Dynamics
+-- that has a pressure wall, the wall is minimised too (mechanical equilibrium at its P);
+-- `with_wall = false` keeps the walls fixed.
+--
+--   require("lib.rescale")(tissue, { phi_a = 0.6 })
+local iv = require("invasim")
+local options = require("lib.options")
+local log = require("lib.log")
+
+local defaults = { phi_a = options.REQUIRED, ftol = 1e-6, max_steps = 1000000 }
+
+return function(tissue, opts)
+  local o = options.check("rescale", opts, defaults, { phi_a = "number" })
+  local sys = tissue.sys
+  local before = sys:packing()
+  local r = iv.rescale(sys, { phi_a = o.phi_a, ftol = o.ftol, max_steps = o.max_steps })
+  local after = sys:packing()
+  log.say("rescale", "phi_a %.4f -> %.4f (phi %.4f), box %s, FIRE %d steps, max force %.2e%s",
+          before.adipocyte, after.adipocyte, after.total, log.box(sys:box().lengths), r.steps,
+          r.max_force, r.converged and "" or " (NOT converged)")
+  return r
+end

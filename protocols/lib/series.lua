@@ -1,0 +1,48 @@
+-- The run's time series as CSV (series.csv): a header row of `name [unit]` entries, then one
+-- row per sample, appended and flushed as the run goes, so that a killed run keeps every
+-- sample written so far.
+local M = {}
+M.__index = M
+
+-- Opens `path` for the given columns (names) with units (name -> unit, optional).
+function M.open(path, columns, units)
+  local file, err = io.open(path, "w")
+  if not file then error("series: cannot write " .. path .. ": " .. tostring(err), 2) end
+  local header = {}
+  for i, c in ipairs(columns) do
+    local unit = units and units[c]
+    header[i] = (unit and unit ~= "1") and (c .. " [" .. unit .. "]") or c
+  end
+  file:write(table.concat(header, ","), "\n")
+  file:flush()
+  return setmetatable({ file = file, columns = columns, path = path }, M)
+end
+
+function M:write(row)
+  local fields = {}
+  for i, c in ipairs(self.columns) do
+    local v = row[c]
+    fields[i] = v == nil and "" or (math.type(v) == "integer" and tostring(v) or string.format("%.10g", v))
+  end
+  self.file:write(table.concat(fields, ","), "\n")
+  self.file:flush()
+end
+
+function M:close()
+  if self.file then self.file:close(); self.file = nil end
+end
+
+-- CSV text of whole columns {names = {...}, columns = {name = {...}}}.
+function M.columns_text(result)
+  local rows = {}
+  rows[1] = table.concat(result.names, ",")
+  local n = #result.columns[result.names[1]]
+  for i = 1, n do
+    local fields = {}
+    for j, name in ipairs(result.names) do fields[j] = string.format("%.10g", result.columns[name][i]) end
+    rows[#rows + 1] = table.concat(fields, ",")
+  end
+  return table.concat(rows, "\n") .. "\n"
+end
+
+return M

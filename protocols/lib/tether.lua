@@ -1,0 +1,21 @@
+-- Stage "tether" (MODEL.md protocol 4): ECM springs U = K/2 (R_ij - l_ij0)^2 between
+-- adipocyte centres, the closest pairs so that each adipocyte has `mean_degree` tethers on
+-- average (cutoff d_c reported), rest lengths = the current separations.
+--
+--   require("lib.tether")(tissue, { K = 0.04 })
+local iv = require("invasim")
+local options = require("lib.options")
+local log = require("lib.log")
+
+local defaults = { K = 0.04, mean_degree = 6.0 }
+
+return function(tissue, opts)
+  local o = options.check("tether", opts, defaults)
+  if tissue.tethers then options.fail("tether", "this tissue already has tethers") end
+  local tethers = tissue.sys:add(iv.Tethers{ K = o.K })
+  local d_c = tethers:connect{ mean_degree = o.mean_degree }
+  tissue.tethers = tethers
+  log.say("tether", "%d tethers (K = %g) between %d adipocytes, cutoff d_c = %.4f",
+          tethers:count(), o.K, tissue.sys:n_adipocytes(), d_c)
+  return d_c
+end

@@ -1,0 +1,26 @@
+-- Thermodynamic columns of a tissue, measured from the engine (MODEL.md, "Measurements"):
+-- temperatures of the cells and the vertices (equipartition kT = m <v^2> / 3), the pressure
+-- each wall feels (|x force of the sites on it| / (L_y L_z)), the box length L_x, packing
+-- fractions, and (optionally) the energy of every force term.
+local M = {}
+
+M.columns = { "step", "time", "T_c", "T_a", "P_left", "P_right", "L_x", "phi", "phi_c", "phi_a" }
+M.units = { step = "1", time = "tau", T_c = "eps_c", T_a = "eps_c", P_left = "eps_c/sigma^3",
+            P_right = "eps_c/sigma^3", L_x = "sigma", phi = "1", phi_c = "1", phi_a = "1" }
+
+-- One row {name = value} for the current state.
+function M.sample(tissue)
+  local sys = tissue.sys
+  local box = sys:box()
+  local area = box.lengths[2] * box.lengths[3]
+  local left, right = tissue.walls:reaction()
+  local phi = sys:packing()
+  return {
+    step = sys:step(), time = sys:time(),
+    T_c = sys:temperature(tissue.cells), T_a = sys:temperature(tissue.vertices),
+    P_left = math.abs(left) / area, P_right = math.abs(right) / area,
+    L_x = box.lengths[1], phi = phi.total, phi_c = phi.cancer, phi_a = phi.adipocyte,
+  }
+end
+
+return M

@@ -1,0 +1,25 @@
+-- Invasion into tethered adipose tissue (MODEL.md protocols 1-5, 7): the main job's chain
+-- with ECM springs between neighbouring adipocytes (stiffness K_ecm, a mean of 6 per
+-- adipocyte) inserted after the quench, their heterogeneity lambda, a short equilibration,
+-- then production.
+--   invasim run protocols/tethered.lua --set K_ecm=0.04 --set lambda=0.3
+local iv = require("invasim")
+local protocol = require("lib.protocol")
+
+local p = iv.params(protocol.merge{
+  K_ecm = { 0.04, unit = "eps_c/sigma^2", help = "ECM tether stiffness" },
+  mean_degree = { 6.0, help = "mean number of tethers per adipocyte" },
+  lambda = { 0.0, help = "tether heterogeneity: rest lengths (1 -+ lambda) R_ij in the lower/upper half in z" },
+  equilibrate_steps = { 10000, type = "integer", help = "steps after tether insertion before production" },
+})
+
+local clock = iv.clock()
+local out = require("lib.run_dir").open(p)
+local tissue = protocol.prepare(p)
+require("lib.tether")(tissue, { K = p.K_ecm, mean_degree = p.mean_degree })
+if p.lambda > 0 then require("lib.heterogeneity")(tissue, { lambda = p.lambda }) end
+require("lib.quench")(tissue, { label = "equilibrate", P = p.P, kT = p.kT, f0 = p.f0,
+                                tau_p = p.tau_p, gamma = p.gamma, dt = p.dt,
+                                steps = p.equilibrate_steps })
+local result = protocol.produce(tissue, p, out)
+require("lib.report").final(tissue, p, result, iv.clock() - clock, out)

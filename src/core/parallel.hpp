@@ -1,0 +1,24 @@
+#pragma once
+// When a loop is worth an OpenMP parallel region. Opening one costs a few microseconds on an
+// idle machine and up to milliseconds when the cores are oversubscribed (threads spin-wait
+// at barriers), more than a small loop's whole work: loops over fewer items than these
+// thresholds run on the calling thread (`#pragma omp parallel for if (parallel_light(n))`).
+// Results never depend on this choice (every parallel loop in invasim writes per item or
+// reduces in a fixed order).
+#include <cstddef>
+
+namespace invasim {
+
+// Loops with trivial work per item (a few flops: drift, kick, zeroing, FIRE updates).
+inline constexpr std::size_t kParallelLightItems = 16384;
+// Loops with ~0.1-1 microsecond per item (pair forces of one site, neighbour-list rows).
+inline constexpr std::size_t kParallelHeavyItems = 1024;
+
+inline bool parallel_light(std::size_t n) {
+  return n >= kParallelLightItems;
+}
+inline bool parallel_heavy(std::size_t n) {
+  return n >= kParallelHeavyItems;
+}
+
+}  // namespace invasim

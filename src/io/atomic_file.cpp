@@ -1,0 +1,127 @@
+#include "io/atomic_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <system_error>
+
+#include "io/io_error.hpp"
+
+namespace invasim {
+
+namespace {
+
+// Closes a file descriptor when it goes out of scope (error paths).
+class FileDescriptor {
+ public:
+  explicit FileDescriptor(int fd) : fd_(fd) {}
+  FileDescriptor(const FileDescriptor&) = delete;
+  FileDescriptor& operator=(const FileDescriptor&) = delete;
+  ~FileDescriptor() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  int get() const { return fd_; }
+  // Closes now and reports close()'s result (write-back errors may surface here).
+  int close() {
+    const int rc = ::close(fd_);
+    fd_ = -1;
+    return rc;
+  }
+
+ private:
+  int fd_;
+};
+
+// Writes all bytes, retrying short writes and EINTR; returns false with errno set on error.
+bool write_all(int fd, std::string_view bytes) {
+  const char* p = bytes.data();
+  std::size_t left = bytes.size();
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return false;
+    }
+    p += n;
+    left -= std::size_t(n);
+  }
+  return true;
+}
+
+// Flushes a directory entry change (the rename) to disk. Some file systems refuse fsync on a
+// directory (EINVAL); the rename itself has already happened, so that is not an error.
+void sync_directory(const std::filesystem::path& dir, const std::filesystem::path& target) {
+  const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  FileDescriptor guard(fd);
+  if (::fsync(fd) != 0 && errno != EINVAL && errno != EROFS)
+    fail_io("cannot write ", quoted(target),
+            ": fsync of its directory failed: ", std::strerror(errno));
+}
+
+}  // namespace
+
+std::filesystem::path atomic_temp_path(const std::filesystem::path& path) {
+  return std::filesystem::path(path.string() + ".tmp." + std::to_string(::getpid()));
+}
+
+void write_file_atomically(const std::filesystem::path& path, std::string_view contents) {
+  const std::filesystem::path tmp = atomic_temp_path(path);
+  // Any failure: remember errno, remove the temporary file, throw.
+  auto fail = [&](const char* what) {
+    const int err = errno;
+    ::unlink(tmp.c_str());
+    fail_io("cannot write ", quoted(path), ": ", what, ": ", std::strerror(err));
+  };
+  FileDescriptor fd(::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644));
+  if (fd.get() < 0) {
+    const int err = errno;
+    fail_io("cannot write ", quoted(path), ": cannot create temporary file ", quoted(tmp), ": ",
+            std::strerror(err));
+  }
+  if (!write_all(fd.get(), contents)) fail("write failed");
+  if (::fsync(fd.get()) != 0) fail("fsync failed");
+  if (fd.close() != 0) fail("close failed");
+  if (::rename(tmp.c_str(), path.c_str()) != 0) fail("rename of the temporary file failed");
+  sync_directory(path.parent_path(), path);
+}
+
+void append_file_synced(const std::filesystem::path& path, std::string_view contents) {
+  FileDescriptor fd(::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644));
+  auto fail = [&](const char* what) {
+    const int err = errno;
+    fail_io("cannot append to ", quoted(path), ": ", what, ": ", std::strerror(err));
+  };
+  if (fd.get() < 0) fail("open failed");
+  if (!write_all(fd.get(), contents)) fail("write failed");
+  if (::fsync(fd.get()) != 0) fail("fsync failed");
+  if (fd.close() != 0) fail("close failed");
+}
+
+void ensure_directory(const std::filesystem::path& dir) {
+  if (dir.empty()) return;
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) fail_io("cannot create directory ", quoted(dir), ": ", ec.message());
+  if (!std::filesystem::is_directory(dir, ec))
+    fail_io("cannot create directory ", quoted(dir), ": the path exists and is not a directory");
+}
+
+std::string read_file(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    const int err = errno;
+    fail_io("cannot read ", quoted(path), ": ", std::strerror(err));
+  }
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  if (in.bad()) fail_io("cannot read ", quoted(path), ": read error");
+  return buffer.str();
+}
+
+}  // namespace invasim

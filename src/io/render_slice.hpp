@@ -1,0 +1,42 @@
+#pragma once
+// Pictures of a slice (docs/output_formats.md, "Slice pictures"): an SVG like the paper's
+// Fig. 1(c-d), with cancer cells as red discs, adipocytes as cyan polygons outlined in dark
+// cyan over their (unoutlined) cyan vertex-sphere sections, walls as thick black lines and
+// periodic edges as dashed lines; shapes that cross a periodic edge are drawn
+// again at their periodic image (clipped to the box). Entry point of `invasim render`.
+#include <filesystem>
+#include <string>
+
+#include "io/slice.hpp"
+
+namespace invasim {
+
+// What a picture shows: cells cut by the plane, adipocyte cross-sections (closed polygons),
+// and open chains (only for meshes that are not closed). Periodic copies are not counted.
+struct RenderCounts {
+  int discs = 0;
+  int polygons = 0;
+  int open_chains = 0;
+  int vertex_discs = 0;  // sections of adipocyte vertex spheres
+};
+RenderCounts count_shapes(const Slice& slice);
+
+// The SVG text of a slice; the longer box side spans `size_px` pixels.
+std::string slice_svg(const Slice& slice, double size_px = 800.0);
+
+// Cuts a frame and writes the SVG atomically to `out`.
+RenderCounts render_frame(const Frame& frame, const SlicePlane& plane,
+                          const std::filesystem::path& out);
+
+// The frame a snapshot file belongs to. Given any of cells_<step>.xyz, spheres_<step>.vtp or
+// adipocytes_<step>.vtp, it loads the cells (from the file given if it holds cells, else from
+// cells_<step>.xyz, else from spheres_<step>.vtp) and the meshes (adipocytes_<step>.vtp)
+// found next to it; a missing companion file just leaves that part empty. A file not named that way
+// is loaded alone (.xyz: cells; .vtp: meshes if it has polygons, else cells).
+Frame load_snapshot_frame(const std::filesystem::path& snapshot);
+
+// `invasim render SNAPSHOT --slice z=VALUE -o FILE.svg`: load_snapshot_frame + render_frame.
+RenderCounts render_snapshot(const std::filesystem::path& snapshot, const SlicePlane& plane,
+                             const std::filesystem::path& out);
+
+}  // namespace invasim

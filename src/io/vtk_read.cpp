@@ -1,0 +1,228 @@
+// Readers of the VTK XML snapshot files this layer writes (.vtp, .pvd).
+#include "io/vtk_format.hpp"
+
+#include <cmath>
+
+#include "io/atomic_file.hpp"
+#include "io/io_error.hpp"
+#include "io/text_format.hpp"
+#include "io/xml.hpp"
+
+namespace invasim {
+
+std::vector<PvdEntry> read_pvd(const std::filesystem::path& path) {
+  const std::string origin = quoted(path);
+  const XmlElement root = parse_xml(read_file(path), origin);
+  const std::string* type = root.attribute("type");
+  const XmlElement* coll = root.child("Collection");
+  if (root.name != "VTKFile" || !type || *type != "Collection" || !coll)
+    fail_io(origin, ": not a VTK collection (.pvd) file");
+  std::vector<PvdEntry> out;
+  for (const XmlElement* d : coll->children_named("DataSet")) {
+    const std::string* t = d->attribute("timestep");
+    const std::string* file = d->attribute("file");
+    const auto time = t ? text::parse<double>(*t) : std::nullopt;
+    if (!time || !file)
+      fail_io(origin, ": line ", d->line, ": DataSet needs a numeric timestep and a file");
+    out.push_back({*time, *file});
+  }
+  return out;
+}
+
+namespace {
+
+// Parses one DataArray; checks its size against `tuples` (if >= 0).
+VtpData::Array parse_array(const XmlElement& e, long tuples, const std::string& origin) {
+  VtpData::Array a;
+  const std::string* name = e.attribute("Name");
+  const std::string label = name ? *name : std::string("(unnamed)");
+  if (const std::string* t = e.attribute("type")) a.type = *t;
+  if (const std::string* f = e.attribute("format"); !f || *f != "ascii")
+    fail_io(origin, ": line ", e.line, ": DataArray ", label, " is not in ascii format");
+  if (const std::string* c = e.attribute("NumberOfComponents")) {
+    const auto n = text::parse<int>(*c);
+    if (!n || *n < 1) fail_io(origin, ": line ", e.line, ": bad NumberOfComponents");
+    a.components = *n;
+  }
+  if (const std::string* nt = e.attribute("NumberOfTuples"))
+    if (auto n = text::parse<long>(*nt)) tuples = *n;
+  std::vector<std::string_view> tok;
+  text::split_whitespace(e.text, tok);
+  a.values.reserve(tok.size());
+  for (auto t : tok) {
+    const auto v = text::parse<double>(t);
+    if (!v)
+      fail_io(origin, ": line ", e.line, ": DataArray ", label, ": '", t, "' is not a number");
+    a.values.push_back(*v);
+  }
+  if (tuples >= 0 && a.values.size() != std::size_t(tuples) * a.components)
+    fail_io(origin, ": line ", e.line, ": DataArray ", label, " has ", a.values.size(),
+            " values, expected ", tuples, " x ", a.components);
+  return a;
+}
+
+void parse_named_arrays(const XmlElement* parent, long tuples, const std::string& origin,
+                        std::map<std::string, VtpData::Array>& out) {
+  if (!parent) return;
+  for (const XmlElement* e : parent->children_named("DataArray")) {
+    const std::string* name = e->attribute("Name");
+    if (!name) fail_io(origin, ": line ", e->line, ": DataArray without a Name");
+    out[*name] = parse_array(*e, tuples, origin);
+  }
+}
+
+std::vector<std::int64_t> to_indices(const VtpData::Array& a, const std::string& what,
+                                     const std::string& origin) {
+  std::vector<std::int64_t> out;
+  out.reserve(a.values.size());
+  for (double v : a.values) {
+    if (v != std::floor(v) || v < 0) fail_io(origin, ": ", what, " holds a non-index value ", v);
+    out.push_back(std::int64_t(v));
+  }
+  return out;
+}
+
+// Connectivity and offsets of a Verts / Polys element with `count` cells.
+void parse_cells(const XmlElement* piece, const char* element, long count,
+                 const std::string& origin, std::vector<std::int64_t>& conn,
+                 std::vector<std::int64_t>& offsets) {
+  const XmlElement* e = piece->child(element);
+  if (!e) {
+    if (count > 0) fail_io(origin, ": Piece declares ", count, " ", element, " but has none");
+    return;
+  }
+  std::map<std::string, VtpData::Array> arrays;
+  parse_named_arrays(e, -1, origin, arrays);
+  if (!arrays.count("connectivity") || !arrays.count("offsets"))
+    fail_io(origin, ": ", element, " needs connectivity and offsets arrays");
+  conn = to_indices(arrays["connectivity"], std::string(element) + " connectivity", origin);
+  offsets = to_indices(arrays["offsets"], std::string(element) + " offsets", origin);
+  if (long(offsets.size()) != count)
+    fail_io(origin, ": ", element, ": ", offsets.size(), " offsets for ", count, " cells");
+  std::int64_t prev = 0;
+  for (std::int64_t o : offsets) {
+    if (o < prev || o > std::int64_t(conn.size()))
+      fail_io(origin, ": ", element, ": offsets are not increasing within the connectivity");
+    prev = o;
+  }
+  if (!offsets.empty() && offsets.back() != std::int64_t(conn.size()))
+    fail_io(origin, ": ", element, ": the last offset does not end the connectivity");
+}
+
+long count_attr(const XmlElement& piece, const char* key, const std::string& origin) {
+  const std::string* v = piece.attribute(key);
+  if (!v) return 0;
+  const auto n = text::parse<long>(*v);
+  if (!n || *n < 0) fail_io(origin, ": Piece ", key, "=\"", *v, "\" is not a count");
+  return *n;
+}
+
+// Box, time and step from the FieldData written by field_data().
+void frame_header_from_vtp(const VtpData& vtp, const std::string& origin, Frame& f) {
+  auto field = [&](const char* name, std::size_t n) -> const std::vector<double>& {
+    const auto it = vtp.field_data.find(name);
+    if (it == vtp.field_data.end() || it->second.values.size() != n)
+      fail_io(origin, ": FieldData ", name, " (", n, " values) is missing");
+    return it->second.values;
+  };
+  const auto& lo = field("box_lo", 3);
+  const auto& hi = field("box_hi", 3);
+  const auto& per = field("periodic", 3);
+  try {
+    f.box = Box(Vec3(lo[0], lo[1], lo[2]), Vec3(hi[0], hi[1], hi[2]),
+                {per[0] != 0, per[1] != 0, per[2] != 0});
+  } catch (const InputError& e) {
+    fail_io(origin, ": ", e.what());
+  }
+  f.time = field("TimeValue", 1)[0];
+  f.step = std::uint64_t(field("step", 1)[0]);
+}
+
+}  // namespace
+
+VtpData parse_vtp(std::string_view text, const std::string& origin) {
+  const XmlElement root = parse_xml(text, origin);
+  const std::string* type = root.attribute("type");
+  const XmlElement* poly = root.child("PolyData");
+  if (root.name != "VTKFile" || !type || *type != "PolyData" || !poly)
+    fail_io(origin, ": not a VTK PolyData (.vtp) file");
+  const auto pieces = poly->children_named("Piece");
+  if (pieces.size() != 1) fail_io(origin, ": expected one Piece, found ", pieces.size());
+  const XmlElement& piece = *pieces[0];
+  VtpData out;
+  parse_named_arrays(poly->child("FieldData"), -1, origin, out.field_data);
+  const long n_points = count_attr(piece, "NumberOfPoints", origin);
+  const long n_verts = count_attr(piece, "NumberOfVerts", origin);
+  const long n_polys = count_attr(piece, "NumberOfPolys", origin);
+  if (count_attr(piece, "NumberOfLines", origin) || count_attr(piece, "NumberOfStrips", origin))
+    fail_io(origin, ": lines and strips are not supported");
+  const XmlElement* pts = piece.child("Points");
+  const XmlElement* pts_array = pts ? pts->child("DataArray") : nullptr;
+  if (!pts_array) fail_io(origin, ": Piece has no Points DataArray");
+  const VtpData::Array p = parse_array(*pts_array, n_points, origin);
+  if (p.components != 3) fail_io(origin, ": Points must have 3 components");
+  for (long i = 0; i < n_points; ++i)
+    out.points.emplace_back(p.values[3 * i], p.values[3 * i + 1], p.values[3 * i + 2]);
+  parse_named_arrays(piece.child("PointData"), n_points, origin, out.point_data);
+  parse_named_arrays(piece.child("CellData"), n_verts + n_polys, origin, out.cell_data);
+  parse_cells(&piece, "Verts", n_verts, origin, out.vert_connectivity, out.vert_offsets);
+  parse_cells(&piece, "Polys", n_polys, origin, out.poly_connectivity, out.poly_offsets);
+  for (auto c : {&out.vert_connectivity, &out.poly_connectivity})
+    for (std::int64_t i : *c)
+      if (i >= n_points) fail_io(origin, ": connectivity refers to point ", i, " of ", n_points);
+  return out;
+}
+
+VtpData read_vtp(const std::filesystem::path& path) {
+  return parse_vtp(read_file(path), quoted(path));
+}
+
+Frame mesh_frame_from_vtp(const VtpData& vtp, const std::string& origin) {
+  Frame f;
+  frame_header_from_vtp(vtp, origin, f);
+  MeshFrame& m = f.meshes;
+  m.points = vtp.points;
+  std::int64_t start = 0;
+  for (std::int64_t end : vtp.poly_offsets) {
+    if (end - start != 3)
+      fail_io(origin, ": a poly with ", end - start, " points is not a triangle");
+    const auto* c = &vtp.poly_connectivity[start];
+    m.triangles.push_back({int(c[0]), int(c[1]), int(c[2])});
+    start = end;
+  }
+  const auto body = vtp.cell_data.find("adipocyte");
+  const auto shape = vtp.cell_data.find("shape_parameter");
+  if (body == vtp.cell_data.end() || shape == vtp.cell_data.end())
+    fail_io(origin, ": CellData needs the arrays adipocyte and shape_parameter");
+  for (double b : body->second.values) m.triangle_body.push_back(int(b));
+  m.triangle_shape = shape->second.values;
+  const auto radius = vtp.point_data.find("radius");  // optional: 0 when absent
+  m.point_radius = radius != vtp.point_data.end() && radius->second.components == 1
+                       ? radius->second.values
+                       : std::vector<double>(m.points.size(), 0.0);
+  return f;
+}
+
+Frame cell_frame_from_vtp(const VtpData& vtp, const std::string& origin) {
+  Frame f;
+  frame_header_from_vtp(vtp, origin, f);
+  CellFrame& c = f.cells;
+  auto array = [&](const char* name, int components) -> const std::vector<double>& {
+    const auto it = vtp.point_data.find(name);
+    if (it == vtp.point_data.end() || it->second.components != components)
+      fail_io(origin, ": PointData needs the array ", name, " with ", components, " components");
+    return it->second.values;
+  };
+  const auto& radius = array("radius", 1);
+  const auto& vel = array("velocity", 3);
+  const auto& orient = array("orientation", 3);
+  c.pos = vtp.points;
+  c.radius = radius;
+  for (std::size_t i = 0; i < c.pos.size(); ++i) {
+    c.vel.emplace_back(vel[3 * i], vel[3 * i + 1], vel[3 * i + 2]);
+    c.orient.emplace_back(orient[3 * i], orient[3 * i + 1], orient[3 * i + 2]);
+  }
+  return f;
+}
+
+}  // namespace invasim

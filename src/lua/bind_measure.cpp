@@ -1,0 +1,166 @@
+// Measurements of a System from Lua (src/measure), called by the production stage's
+// observers every N steps (never inside the engine's step loop):
+//   sys:voronoi{radical = false}   -> {A_t, A_t_max, A_ratio, cancer_adipocyte, cancer_wall,
+//                                      phi_a_local_mean, phi_a_local_std, adipocyte_surface = {..},
+//                                      local_phi_a = {..}, seconds}
+//   sys:shape_parameters()         -> {A_1, A_2, ...} 3D shape parameter per adipocyte
+//   sys:slices{per_body = 10, offset_fraction = 0.5, seed = 1} -> {a, ...} 2D shape parameters
+//   invasim.histogram(values, {lo =, hi =, bins = 20}) -> {edges, counts, density, below, above}
+//   invasim.block_average(values, {fraction = 1, min_blocks = 16})
+//                                  -> {mean, error, naive_error, n, block_size, n_blocks, plateau}
+#include <lua.hpp>
+
+#include <chrono>
+#include <vector>
+
+#include "lua/engine_types.hpp"
+#include "lua/module.hpp"
+#include "measure/block_average.hpp"
+#include "measure/slices.hpp"
+#include "measure/voronoi.hpp"
+
+namespace invasim::lua {
+
+namespace {
+
+void push_numbers(lua_State* L, const std::vector<double>& values) {
+  lua_createtable(L, int(values.size()), 0);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    lua_pushnumber(L, values[i]);
+    lua_rawseti(L, -2, lua_Integer(i + 1));
+  }
+}
+
+// A Lua array of numbers at `index` (every entry a number).
+std::vector<double> check_numbers(lua_State* L, int index, const char* what) {
+  if (!lua_istable(L, index))
+    fail_input(what, ": expected a list of numbers, got ", type_name_at(L, index));
+  const lua_Integer n = lua_Integer(lua_rawlen(L, index));
+  std::vector<double> values(static_cast<std::size_t>(n));
+  for (lua_Integer i = 1; i <= n; ++i) {
+    lua_rawgeti(L, index, i);
+    if (lua_type(L, -1) != LUA_TNUMBER)
+      fail_input(what, ": entry [", i, "] must be a number, got ", type_name_at(L, -1));
+    values[std::size_t(i - 1)] = lua_tonumber(L, -1);
+    lua_pop(L, 1);
+  }
+  return values;
+}
+
+int l_voronoi(lua_State* L) {
+  const Simulation& sim = check<Simulation>(L, 1);
+  VoronoiOptions options;
+  if (!lua_isnoneornil(L, 2)) {
+    Kwargs kw(L, 2, "voronoi");
+    options.radical = kw.boolean("radical", options.radical);
+    kw.finish();
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const VoronoiMeasurement m =
+      engine_call("voronoi", [&] { return measure_voronoi(sim.system, options); });
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  lua_createtable(L, 0, 10);
+  set_number(L, "A_t", m.interface_area);
+  set_number(L, "A_t_max", m.max_interface_area);
+  set_number(L, "A_ratio", m.interface_ratio);
+  set_number(L, "cancer_adipocyte", m.cancer_adipocyte_area);
+  set_number(L, "cancer_wall", m.cancer_wall_area);
+  set_number(L, "phi_a_local_mean", m.mean_local_phi_a);
+  set_number(L, "phi_a_local_std", m.std_local_phi_a);
+  set_number(L, "seconds", seconds);
+  push_numbers(L, m.adipocyte_surface);
+  lua_setfield(L, -2, "adipocyte_surface");
+  push_numbers(L, m.local_phi_a);
+  lua_setfield(L, -2, "local_phi_a");
+  return 1;
+}
+
+int l_shape_parameters(lua_State* L) {
+  push_numbers(L, body_shape_parameters(check<Simulation>(L, 1).system));
+  return 1;
+}
+
+int l_slices(lua_State* L) {
+  const Simulation& sim = check<Simulation>(L, 1);
+  SliceOptions options;
+  options.seed = sim.system.seed();
+  if (!lua_isnoneornil(L, 2)) {
+    Kwargs kw(L, 2, "slices");
+    options.per_body = int(kw.integer("per_body", options.per_body, Range::at_least(1)));
+    options.offset_fraction =
+        kw.number("offset_fraction", options.offset_fraction, Range::between(0, 1));
+    options.seed = std::uint64_t(kw.integer("seed", (long long)options.seed, Range::at_least(0)));
+    kw.finish();
+  }
+  const auto slices = engine_call("slices", [&] { return random_slices(sim.system, options); });
+  std::vector<double> shapes;
+  shapes.reserve(slices.size());
+  for (const BodySlice& s : slices) shapes.push_back(s.shape);
+  push_numbers(L, shapes);
+  return 1;
+}
+
+int l_histogram(lua_State* L) {
+  const std::vector<double> values = check_numbers(L, 1, "histogram");
+  Kwargs kw(L, 2, "histogram");
+  const double lo = kw.number("lo");
+  const double hi = kw.number("hi");
+  const int bins = int(kw.integer("bins", 20, Range::at_least(1)));
+  kw.finish();
+  if (!(hi > lo)) fail_input("histogram: hi = ", hi, " must be greater than lo = ", lo);
+  const Histogram h = histogram(values, lo, hi, bins);
+  lua_createtable(L, 0, 5);
+  push_numbers(L, h.edges);
+  lua_setfield(L, -2, "edges");
+  push_numbers(L, std::vector<double>(h.counts.begin(), h.counts.end()));
+  lua_setfield(L, -2, "counts");
+  push_numbers(L, h.density);
+  lua_setfield(L, -2, "density");
+  set_integer(L, "below", (long long)h.below);
+  set_integer(L, "above", (long long)h.above);
+  return 1;
+}
+
+int l_block_average(lua_State* L) {
+  const std::vector<double> values = check_numbers(L, 1, "block_average");
+  double fraction = 1.0;
+  BlockingOptions options;
+  if (!lua_isnoneornil(L, 2)) {
+    Kwargs kw(L, 2, "block_average");
+    fraction = kw.number("fraction", fraction, Range::between(0, 1));
+    options.min_blocks =
+        std::size_t(kw.integer("min_blocks", (long long)options.min_blocks, Range::at_least(2)));
+    kw.finish();
+  }
+  const BlockAverage b =
+      engine_call("block_average", [&] { return block_average_tail(values, fraction, options); });
+  lua_createtable(L, 0, 7);
+  set_number(L, "mean", b.mean);
+  set_number(L, "error", b.error);
+  set_number(L, "naive_error", b.naive_error);
+  set_integer(L, "n", (long long)b.n);
+  set_integer(L, "block_size", (long long)b.block_size);
+  set_integer(L, "n_blocks", (long long)b.n_blocks);
+  set_boolean(L, "plateau", b.plateau);
+  return 1;
+}
+
+}  // namespace
+
+// System methods added to the System's method table (bind_system.cpp registers them).
+const luaL_Reg kSystemMeasureMethods[] = {
+    {"voronoi", &lua_wrap<&l_voronoi>},
+    {"shape_parameters", &lua_wrap<&l_shape_parameters>},
+    {"slices", &lua_wrap<&l_slices>},
+    {nullptr, nullptr},
+};
+
+void open_measure(lua_State* L) {
+  lua_pushcfunction(L, &lua_wrap<&l_histogram>);
+  lua_setfield(L, -2, "histogram");
+  lua_pushcfunction(L, &lua_wrap<&l_block_average>);
+  lua_setfield(L, -2, "block_average");
+}
+
+}  // namespace invasim::lua

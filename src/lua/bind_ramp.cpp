@@ -1,0 +1,88 @@
+// Ramps, the parameter type that changes linearly over a run:
+//   invasim.ramp{from =, to =, steps =}   -> Ramp
+// accepted wherever a method or the pressure wall takes kT, f0 or P (Langevin{kT = ...},
+// Active{f0 = ...}, dyn:pressure_wall{P = ...}, m:set{...}, dyn:set_pressure(...)). The ramp
+// starts at the first step it is used in; after `steps` steps it stays at `to`.
+#include <lua.hpp>
+
+#include "lua/engine_types.hpp"
+#include "lua/module.hpp"
+#include "lua/names.hpp"
+
+namespace invasim::lua {
+
+std::string LuaType<Ramp>::describe(const Ramp& r) {
+  return cat("Ramp(from=", r.from, ", to=", r.to, ", steps=", r.steps, ")");
+}
+
+NumberOrRamp kw_number_or_ramp(Kwargs& kw, std::string_view key, Range range,
+                               std::optional<double> fallback) {
+  lua_State* L = kw.state();
+  const int type = kw.push(key);
+  if (type == LUA_TUSERDATA) {
+    auto* ramp =
+        static_cast<std::shared_ptr<Ramp>*>(luaL_testudata(L, -1, LuaType<Ramp>::metatable));
+    if (!ramp || !*ramp)
+      fail_input(kw.owner(), ": key '", key, "' must be a number or an invasim.ramp{}, got ",
+                 type_name_at(L, -1));
+    lua_pop(L, 1);
+    const Ramp& r = **ramp;
+    for (const double end : {r.from, r.to})
+      if (!range.contains(end))
+        fail_input(kw.owner(), ": key '", key, "': ramp end ", end, " is out of range (must be ",
+                   range.describe(), ")");
+    return {r.from, r};
+  }
+  lua_pop(L, 1);
+  if (fallback) return {kw.number(key, *fallback, range), std::nullopt};
+  return {kw.number(key, range), std::nullopt};
+}
+
+namespace {
+
+int l_ramp(lua_State* L) {
+  Kwargs kw(L, 1, "ramp");
+  Ramp r;
+  r.from = kw.number("from");
+  r.to = kw.number("to");
+  r.steps = static_cast<std::uint64_t>(kw.integer("steps", Range::at_least(1)));
+  kw.finish();
+  push(L, std::make_shared<Ramp>(r));
+  return 1;
+}
+
+// r:value(k): the value k steps after the ramp's start.
+int l_value(lua_State* L) {
+  Ramp r = check<Ramp>(L, 1);
+  r.start = 0;
+  const long long k = arg_integer(L, 2);
+  if (k < 0) fail_input("value: step ", k, " must be >= 0");
+  lua_pushnumber(L, r.value(static_cast<std::uint64_t>(k)));
+  return 1;
+}
+
+// r:params() -> {from =, to =, steps =}
+int l_params(lua_State* L) {
+  const Ramp& r = check<Ramp>(L, 1);
+  lua_createtable(L, 0, 3);
+  set_number(L, "from", r.from);
+  set_number(L, "to", r.to);
+  set_integer(L, "steps", static_cast<long long>(r.steps));
+  return 1;
+}
+
+const luaL_Reg kMethods[] = {
+    {"value", &lua_wrap<&l_value>},
+    {"params", &lua_wrap<&l_params>},
+    {nullptr, nullptr},
+};
+
+}  // namespace
+
+void open_ramp(lua_State* L) {
+  define_type<Ramp>(L, kMethods);
+  lua_pushcfunction(L, &lua_wrap<&l_ramp>);
+  lua_setfield(L, -2, "ramp");
+}
+
+}  // namespace invasim::lua

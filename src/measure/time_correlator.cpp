@@ -1,0 +1,256 @@
+#include "measure/time_correlator.hpp"
+
+#include <algorithm>
+
+#include "core/deterministic_sum.hpp"
+#include "core/errors.hpp"
+#include "core/parallel.hpp"
+
+namespace invasim {
+
+void TimeCorrelatorParams::validate() const {
+  if (lags < 1) fail_input("time correlator: lags = ", lags, " must be >= 1");
+  if (origin_every < 1)
+    fail_input("time correlator: origin_every = ", origin_every, " must be >= 1");
+  if (!(sample_interval > 0.0) || !std::isfinite(sample_interval))
+    fail_input("time correlator: sample_interval = ", sample_interval, " must be > 0");
+  if (!(k > 0.0) || !std::isfinite(k)) fail_input("time correlator: k = ", k, " must be > 0");
+  if (!velocity && !orientation && !position)
+    fail_input("time correlator: velocity, orientation and position are all switched off");
+}
+
+// Running sums of one block of sites for one (origin, sample) pair.
+struct TimeCorrelator::Partial {
+  double t[kTerms] = {};
+  Partial& operator+=(const Partial& o) {
+    for (int k = 0; k < kTerms; ++k) t[k] += o.t[k];
+    return *this;
+  }
+};
+
+namespace {
+inline Vec3 load(const std::vector<double>& a, std::size_t i) {
+  return {a[3 * i], a[3 * i + 1], a[3 * i + 2]};
+}
+inline void put(std::vector<double>& a, std::size_t i, const Vec3& v) {
+  a[3 * i] = v[0];
+  a[3 * i + 1] = v[1];
+  a[3 * i + 2] = v[2];
+}
+// sin(x)/x, exact 1 at x = 0 (Taylor below 1e-4, where the next term is < 1e-18).
+inline double sinc(double x) {
+  return x < 1e-4 ? 1.0 - x * x / 6.0 : std::sin(x) / x;
+}
+}  // namespace
+
+TimeCorrelator::TimeCorrelator(std::vector<int> group, const TimeCorrelatorParams& params)
+    : group_(std::move(group)), params_(params) {
+  params_.validate();
+  if (group_.empty()) fail_input("time correlator: the group of sites is empty");
+  for (int i : group_)
+    if (i < 0) fail_input("time correlator: site index ", i, " < 0");
+  const std::size_t snap = slots() * group_.size() * 3;
+  if (params_.velocity) state_.velocity.assign(snap, 0.0);
+  if (params_.orientation) state_.orientation.assign(snap, 0.0);
+  if (params_.position) state_.position.assign(snap, 0.0);
+  state_.origins.assign(std::size_t(params_.lags), 0);
+  state_.sums.assign(std::size_t(params_.lags) * kTerms, 0.0);
+}
+
+std::size_t TimeCorrelator::slots() const {
+  return std::size_t((params_.lags + params_.origin_every - 1) / params_.origin_every);
+}
+
+void TimeCorrelator::sample(const System& sys) {
+  const std::size_t n = group_.size();
+  if (state_.samples > 0) {
+    const double elapsed = sys.time - state_.last_time;
+    if (std::abs(elapsed - params_.sample_interval) > 1e-3 * params_.sample_interval)
+      fail_input("time correlator: sampled ", elapsed, " time units after the previous sample, ",
+                 "expected sample_interval = ", params_.sample_interval);
+  }
+  const Sites& s = sys.sites();
+  v_now_.resize(n);
+  n_now_.resize(n);
+  r_now_.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const int i = group_[k];
+    if (std::size_t(i) >= sys.n_sites())
+      fail_input("time correlator: site ", i, " is outside [0, ", sys.n_sites(), ")");
+    if (params_.velocity) v_now_[k] = s.vel[i];
+    if (params_.orientation) n_now_[k] = s.orient[i];
+    if (params_.position) r_now_[k] = sys.unwrapped(std::size_t(i));
+  }
+  add_sample(v_now_.data(), n_now_.data(), r_now_.data());
+  state_.last_time = sys.time;
+}
+
+void TimeCorrelator::store_origin(std::size_t slot, const Vec3* v, const Vec3* n, const Vec3* r) {
+  const std::size_t N = group_.size(), base = slot * N;
+  for (std::size_t i = 0; i < N; ++i) {
+    if (params_.velocity) put(state_.velocity, base + i, v[i]);
+    if (params_.orientation) put(state_.orientation, base + i, n[i]);
+    if (params_.position) put(state_.position, base + i, r[i]);
+  }
+}
+
+TimeCorrelator::Partial TimeCorrelator::block_terms(std::size_t slot, std::size_t lo,
+                                                    std::size_t hi, const Vec3* v, const Vec3* n,
+                                                    const Vec3* r) const {
+  Partial p;
+  const std::size_t base = slot * group_.size();
+  const double k = params_.k;
+  for (std::size_t i = lo; i < hi; ++i) {
+    if (params_.velocity) {
+      const Vec3 v0 = load(state_.velocity, base + i);
+      const double d = v0.dot(v[i]), v02 = v0.squaredNorm();
+      p.t[kVV] += d;
+      if (v02 > 0.0) {  // the per-particle normalisation skips particles at rest
+        p.t[kVVNorm] += d / v02;
+        p.t[kVVCount] += 1.0;
+      }
+    }
+    if (params_.orientation) p.t[kNN] += load(state_.orientation, base + i).dot(n[i]);
+    if (params_.position) {
+      const Vec3 dr = r[i] - load(state_.position, base + i);
+      const double r2 = dr.squaredNorm();
+      p.t[kDR2] += r2;
+      p.t[kDR4] += r2 * r2;
+      p.t[kFs] += params_.fs_average == FsAverage::kIsotropic
+                      ? sinc(k * std::sqrt(r2))
+                      : 0.5 * (std::cos(k * dr[1]) + std::cos(k * dr[2]));
+    }
+  }
+  return p;
+}
+
+void TimeCorrelator::add_sample(const Vec3* v, const Vec3* n, const Vec3* r) {
+  const std::uint64_t s = state_.samples, E = std::uint64_t(params_.origin_every);
+  const std::uint64_t L = std::uint64_t(params_.lags), S = slots();
+  if (s % E == 0) store_origin(std::size_t((s / E) % S), v, n, r);
+  // Origins j (taken at sample j E) still within the window: s - j E <= L - 1.
+  const std::uint64_t j_hi = s / E;
+  const std::uint64_t j_lo = s + 1 >= L ? (s + 1 - L + E - 1) / E : 0;
+  const std::size_t n_orig = std::size_t(j_hi - j_lo + 1);
+  const std::size_t N = group_.size(), blocks = (N + kSumBlock - 1) / kSumBlock;
+  // Every (origin, block of sites) pair is one task with its own partial sum; the partials
+  // are then added in a fixed order, so the result is independent of the thread count.
+  std::vector<Partial> partial(n_orig * blocks);
+  const std::int64_t tasks = std::int64_t(partial.size());
+  // Small work is not worth waking the thread team (core/parallel.hpp).
+#pragma omp parallel for schedule(static) if (parallel_light(n_orig * N))
+  for (std::int64_t task = 0; task < tasks; ++task) {
+    const std::size_t o = std::size_t(task) / blocks, b = std::size_t(task) % blocks;
+    const std::size_t slot = std::size_t((j_lo + o) % S);
+    partial[task] = block_terms(slot, b * kSumBlock, std::min(N, (b + 1) * kSumBlock), v, n, r);
+  }
+  for (std::size_t o = 0; o < n_orig; ++o) {
+    Partial total;
+    for (std::size_t b = 0; b < blocks; ++b) total += partial[o * blocks + b];
+    const std::size_t lag = std::size_t(s - (j_lo + o) * E);
+    for (int t = 0; t < kTerms; ++t) state_.sums[lag * kTerms + t] += total.t[t];
+    ++state_.origins[lag];
+  }
+  ++state_.samples;
+}
+
+CorrelationFunctions TimeCorrelator::result() const {
+  CorrelationFunctions f;
+  const double N = double(group_.size());
+  const std::size_t reached =
+      std::size_t(std::min<std::uint64_t>(state_.samples, std::uint64_t(params_.lags)));
+  auto sum = [&](std::size_t lag, Term t) { return state_.sums[lag * kTerms + t]; };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t lag = 0; lag < reached; ++lag) {
+    const double pairs = double(state_.origins[lag]) * N;
+    f.time.push_back(double(lag) * params_.sample_interval);
+    f.origins.push_back(double(state_.origins[lag]));
+    if (params_.velocity) {
+      const double vv = sum(lag, kVV) / pairs;
+      const double vv0 = sum(0, kVV) / (double(state_.origins[0]) * N);
+      const double count = sum(lag, kVVCount);
+      f.vv.push_back(vv);
+      f.cvv_standard.push_back(vv0 > 0.0 ? vv / vv0 : nan);
+      f.cvv.push_back(count > 0.0 ? sum(lag, kVVNorm) / count : nan);
+    }
+    if (params_.orientation) f.nn.push_back(sum(lag, kNN) / pairs);
+    if (params_.position) {
+      const double msd = sum(lag, kDR2) / pairs, dr4 = sum(lag, kDR4) / pairs;
+      f.msd.push_back(msd);
+      f.alpha2.push_back(msd > 0.0 ? 3.0 * dr4 / (5.0 * msd * msd) - 1.0 : nan);
+      f.fs.push_back(sum(lag, kFs) / pairs);
+    }
+  }
+  return f;
+}
+
+Columns TimeCorrelator::columns() const {
+  CorrelationFunctions f = result();
+  Columns c;
+  auto add = [&](const char* name, std::vector<double>& v) {
+    c.names.emplace_back(name);
+    c.values.push_back(std::move(v));
+  };
+  add("t", f.time);
+  add("origins", f.origins);
+  if (params_.velocity) {
+    add("cvv", f.cvv);
+    add("cvv_std", f.cvv_standard);
+    add("vv", f.vv);
+  }
+  if (params_.orientation) add("nn", f.nn);
+  if (params_.position) {
+    add("msd", f.msd);
+    add("alpha2", f.alpha2);
+    add("fs", f.fs);
+  }
+  return c;
+}
+
+std::optional<double> TimeCorrelator::tau_d() const {
+  if (!params_.velocity) return std::nullopt;
+  const CorrelationFunctions f = result();
+  return decay_time(f.time, f.cvv);
+}
+
+std::optional<double> TimeCorrelator::tau_d_standard() const {
+  if (!params_.velocity) return std::nullopt;
+  const CorrelationFunctions f = result();
+  return decay_time(f.time, f.cvv_standard);
+}
+
+std::optional<double> TimeCorrelator::tau_r() const {
+  if (!params_.position) return std::nullopt;
+  const CorrelationFunctions f = result();
+  return decay_time(f.time, f.fs);
+}
+
+void TimeCorrelator::restore(CorrelatorState state) {
+  const std::size_t snap = slots() * group_.size() * 3;
+  auto check = [](const char* what, std::size_t got, std::size_t want) {
+    if (got != want)
+      fail_input("time correlator: restored ", what, " has ", got, " values, expected ", want);
+  };
+  check("velocity snapshots", state.velocity.size(), params_.velocity ? snap : 0);
+  check("orientation snapshots", state.orientation.size(), params_.orientation ? snap : 0);
+  check("position snapshots", state.position.size(), params_.position ? snap : 0);
+  check("origin counts", state.origins.size(), std::size_t(params_.lags));
+  check("sums", state.sums.size(), std::size_t(params_.lags) * kTerms);
+  state_ = std::move(state);
+}
+
+std::optional<double> decay_time(const std::vector<double>& t, const std::vector<double>& y,
+                                 double level) {
+  if (t.size() != y.size())
+    fail_input("decay_time: ", t.size(), " times but ", y.size(), " values");
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    if (!(y[i] <= level)) continue;
+    if (i == 0) return t[0];
+    // y[i-1] > level >= y[i] (y[i-1] may be NaN only if it never was <= level: skip it).
+    if (!std::isfinite(y[i - 1])) return t[i];
+    return t[i - 1] + (t[i] - t[i - 1]) * (y[i - 1] - level) / (y[i - 1] - y[i]);
+  }
+  return std::nullopt;
+}
+
+}  // namespace invasim

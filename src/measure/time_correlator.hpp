@@ -1,0 +1,124 @@
+#pragma once
+// Time correlation functions of a fixed group of sites (MODEL.md, "Measurements"), with many
+// time origins and bounded memory: velocity autocorrelation C_vv(t) (the paper's
+// per-particle normalisation and the standard one), orientation autocorrelation
+// <n(0).n(t)>, mean-square displacement of the unwrapped positions, the non-Gaussian
+// parameter and the self-intermediate scattering function F_s(k, t). Decorrelation times
+// tau_d (C_vv = 1/e) and tau_r (F_s = 1/e) by linear interpolation between lags.
+//
+// The caller samples every `every` steps (sample interval every * dt). A new time origin is
+// taken every `origin_every` samples; only the origins still within the lag window are kept
+// (a ring of ceil(L / origin_every) snapshots of N sites), so memory does not grow with the
+// run. Pure measurement: reads the System, never changes it. The sums over sites are done
+// in fixed-size blocks and reduced in a fixed order, so results do not depend on the number
+// of OpenMP threads.
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "state/system.hpp"
+
+namespace invasim {
+
+// How F_s(k, t) = <cos(k . dr)> is averaged over the direction of k.
+enum class FsAverage {
+  kIsotropic,  // exact average over all directions: <sin(k |dr|) / (k |dr|)>
+  kAxesYZ      // average over k along y and z (the periodic axes): <cos(k dy) + cos(k dz)> / 2
+};
+
+struct TimeCorrelatorParams {
+  int lags = 100;                // L: lags 0 .. L-1, in sample intervals
+  int origin_every = 1;          // a new time origin every this many samples
+  double sample_interval = 1.0;  // time between two samples (every * dt)
+  double k = 2.0 * M_PI;         // wave number of F_s (2 pi / sigma, sigma = 1)
+  FsAverage fs_average = FsAverage::kIsotropic;
+  // Channels to record (each costs a ring of snapshots): velocities (C_vv), orientations
+  // (<n.n>), unwrapped positions (MSD, alpha_2, F_s).
+  bool velocity = true, orientation = true, position = true;
+  void validate() const;  // throws InputError naming the bad value
+};
+
+// Result columns for writing: one name per column, all columns of equal length.
+struct Columns {
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> values;
+};
+
+// The correlation functions at every lag that has at least one (origin, sample) pair.
+// Columns of disabled channels are empty.
+struct CorrelationFunctions {
+  std::vector<double> time;          // lag time
+  std::vector<double> origins;       // number of time origins averaged at this lag
+  std::vector<double> cvv;           // < v(t').v(t'+t) / |v(t')|^2 > (paper)
+  std::vector<double> cvv_standard;  // < v(t').v(t'+t) > / < v^2 >
+  std::vector<double> vv;            // < v(t').v(t'+t) > (unnormalised)
+  std::vector<double> nn;            // < n(t').n(t'+t) >
+  std::vector<double> msd;           // < |r(t'+t) - r(t')|^2 >, unwrapped positions
+  std::vector<double> alpha2;        // 3 <dr^4> / (5 <dr^2>^2) - 1 (NaN where msd = 0)
+  std::vector<double> fs;            // F_s(k, t)
+};
+
+// Everything that changes while sampling, as plain vectors (for checkpoints). Snapshots are
+// slot-major: value (slot * N + site) * 3 + axis. `sums` holds kTerms running sums per lag.
+struct CorrelatorState {
+  std::uint64_t samples = 0;                                    // samples taken so far
+  double last_time = std::numeric_limits<double>::quiet_NaN();  // System::time of the last
+  std::vector<double> velocity, orientation, position;          // origin snapshots
+  std::vector<std::uint64_t> origins;                           // per lag: origins accumulated
+  std::vector<double> sums;                                     // per lag x kTerms
+};
+
+class TimeCorrelator {
+ public:
+  // Indices of the running sums kept per lag, in CorrelatorState::sums.
+  enum Term { kVV = 0, kVVNorm, kVVCount, kNN, kDR2, kDR4, kFs, kTerms };
+
+  // group: site indices (e.g. System::sites_of_kind(SiteKind::kCancer)); must be non-empty.
+  TimeCorrelator(std::vector<int> group, const TimeCorrelatorParams& params);
+
+  // Samples the group's velocities, orientations and unwrapped positions. Throws InputError
+  // if sys.time has not advanced by sample_interval (to 1e-3 relative) since the last sample.
+  void sample(const System& sys);
+  // Same from arrays in group order (size N each); a disabled channel's array is ignored.
+  void add_sample(const Vec3* velocity, const Vec3* orientation, const Vec3* position);
+
+  std::uint64_t samples() const { return state_.samples; }
+  const std::vector<int>& group() const { return group_; }
+  const TimeCorrelatorParams& params() const { return params_; }
+
+  CorrelationFunctions result() const;
+  // Columns t, origins, then cvv, cvv_std, vv (velocity), nn (orientation), msd, alpha2, fs
+  // (position), for the enabled channels.
+  Columns columns() const;
+  // tau_d from the paper's C_vv, from the standard one, and tau_r from F_s; nullopt when the
+  // function has not fallen to 1/e within the lags reached (or the channel is off).
+  std::optional<double> tau_d() const;
+  std::optional<double> tau_d_standard() const;
+  std::optional<double> tau_r() const;
+
+  const CorrelatorState& state() const { return state_; }
+  // Replaces the accumulated state (from a checkpoint); throws InputError if its sizes do not
+  // match this correlator's group and parameters.
+  void restore(CorrelatorState state);
+
+ private:
+  struct Partial;
+  void store_origin(std::size_t slot, const Vec3* v, const Vec3* n, const Vec3* r);
+  Partial block_terms(std::size_t slot, std::size_t lo, std::size_t hi, const Vec3* v,
+                      const Vec3* n, const Vec3* r) const;
+  std::size_t slots() const;
+  std::vector<int> group_;
+  TimeCorrelatorParams params_;
+  CorrelatorState state_;
+  std::vector<Vec3> v_now_, n_now_, r_now_;  // gather buffers for sample()
+};
+
+// First time at which y falls to `level` or below, linearly interpolated between the two
+// samples around the crossing; nullopt if it never does. t and y have equal sizes.
+std::optional<double> decay_time(const std::vector<double>& t, const std::vector<double>& y,
+                                 double level = std::exp(-1.0));
+
+}  // namespace invasim

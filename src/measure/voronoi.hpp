@@ -1,0 +1,85 @@
+#pragma once
+// Voronoi measurements (MODEL.md "Measurements"): the tessellation of all sites (cancer-cell
+// centres and adipocyte vertices) in the box with walls in x and periodic y, z; from it the
+// interfacial area A_t, the adipocyte surfaces S_i, A_t^max, the Voronoi cell volumes and the
+// local adipocyte packing fraction. Definitions and decisions: docs/measurements.md.
+//
+// Method (ARCHITECTURE.md): CGAL's 3D Delaunay triangulation of the sites plus their periodic
+// images in y, z and their mirror images across the walls within a margin around the box.
+// Every tetrahedron touching a real site is then verified against the infinite unfolded point
+// set (no image anywhere inside its circumsphere; missing images found there are inserted), so
+// every real cell is exact. Only voronoi.cpp includes CGAL.
+#include <vector>
+
+#include "state/system.hpp"
+
+namespace invasim {
+
+struct VoronoiOptions {
+  // Width of the layer of images inserted around the box at the start (0: automatic, 2 mean
+  // site spacings). The verification inserts whatever further images a real cell needs; the
+  // margin doubles (a rebuild) only when a real site is left on the convex hull, which
+  // happens for very few sites in a large box.
+  double margin = 0.0;
+  // Builds of the triangulation allowed before giving up (SimulationError).
+  int max_builds = 20;
+  // Radical (power) tessellation with weights (diameter/2)^2: invasim's variant, not the
+  // paper's (the paper uses the plain Voronoi tessellation, the default).
+  bool radical = false;
+};
+
+// Neighbour codes of a face lying on a wall.
+inline constexpr int kLeftWall = -1;
+inline constexpr int kRightWall = -2;
+
+// One face of the tessellation, listed once: between the cells of sites a and b (a <= b),
+// or between the cell of a and a wall (b = kLeftWall / kRightWall). A site may share several
+// faces with another site (different periodic images) or with itself (small boxes).
+struct VoronoiFace {
+  int a = 0;
+  int b = 0;
+  double area = 0.0;
+  // From site a to the image of b across the face (for a wall face: to a's mirror image);
+  // the face's outward normal seen from a is offset / |offset|.
+  Vec3 offset = Vec3::Zero();
+};
+
+struct VoronoiTessellation {
+  std::vector<VoronoiFace> faces;  // every face of positive area once
+  std::vector<double> volume;      // per site; 0 for a site without a cell (see docs)
+  double margin = 0.0;             // image margin of the accepted build
+  int builds = 0;                  // triangulations built (1: no site reached the hull)
+  int refinements = 0;             // verification passes that had to insert images
+  std::size_t n_points = 0;        // points triangulated (sites and images)
+  std::size_t n_added = 0;         // images inserted by the verification (beyond the margin)
+};
+
+// Tessellation of `points` in `box` (walls in x, periodic y and z; positions need not be
+// wrapped). With opt.radical, `weights` (one per point) give the power diagram. Throws
+// InputError if the box is not walled in x and periodic in y, z or the weights are missing,
+// SimulationError if no margin could be verified within opt.max_builds builds.
+VoronoiTessellation tessellate(const Box& box, const std::vector<Vec3>& points,
+                               const VoronoiOptions& opt = {},
+                               const std::vector<double>& weights = {});
+
+// The Voronoi measurements of one configuration (MODEL.md "Measurements").
+struct VoronoiMeasurement {
+  double interface_area = 0.0;            // A_t = cancer_adipocyte_area + cancer_wall_area
+  double cancer_adipocyte_area = 0.0;     // faces between cancer-cell and vertex cells
+  double cancer_wall_area = 0.0;          // faces of cancer-cell cells on either wall
+  double max_interface_area = 0.0;        // A_t^max = 2 L_y L_z + sum_i S_i
+  double interface_ratio = 0.0;           // A_t / A_t^max
+  std::vector<double> adipocyte_surface;  // S_i: surface of the union of i's vertex cells
+  std::vector<double> adipocyte_volume;   // volume of the union of i's vertex cells
+  // phi_a,i = V_i / adipocyte_volume[i], V_i = MeshBody::outer_volume; NaN where V_i is
+  // unknown (outer_volume == 0). Mean and population standard deviation (Delta phi_a) over
+  // the bodies with known V_i (NaN if none).
+  std::vector<double> local_phi_a;
+  double mean_local_phi_a = 0.0;
+  double std_local_phi_a = 0.0;
+  VoronoiTessellation tessellation;  // per-site volumes, faces, margin
+};
+
+VoronoiMeasurement measure_voronoi(const System& sys, const VoronoiOptions& opt = {});
+
+}  // namespace invasim

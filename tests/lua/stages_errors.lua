@@ -1,0 +1,37 @@
+-- Issue 3 test: the stage library's keyword checking. Every stage rejects an unknown key
+-- (naming it, suggesting the nearest and listing the valid ones), a wrong type, a missing
+-- required key and a wrong order of stages, with the caller's file and line.
+package.path = "../../protocols/?.lua;" .. package.path
+local iv = require("invasim")
+local checks = 0
+
+-- fn is called from a Lua closure, as a script would call it: errors carry this file's line.
+local function expect_error(pattern, fn, ...)
+  local args = table.pack(...)
+  local ok, err = pcall(function() local r = fn(table.unpack(args, 1, args.n)); return r end)
+  assert(not ok, "expected an error matching: " .. pattern)
+  if not tostring(err):find(pattern) then
+    error("error message\n  " .. tostring(err) .. "\ndoes not match\n  " .. pattern, 2)
+  end
+  checks = checks + 1
+end
+
+local init = require("lib.init")
+expect_error("^stages_errors.lua:%d+: init: unknown key 'N_cc' %(did you mean 'N_c'%?%); valid keys: .*N_a, N_c",
+             init, { N_cc = 10 })
+expect_error("^stages_errors.lua:%d+: init: key 'N_a' must be a number, got string", init, { N_a = "many" })
+expect_error("^stages_errors.lua:%d+: init: expected a keyword table, got number", init, 5)
+-- Engine errors pass through the stages with their own messages.
+expect_error("cells: key 'n' must be an integer", init, { N_a = 0, N_c = 2.5, L0 = 30.0 })
+
+local tissue = init{ N_a = 1, N_c = 20, L0 = 30.0 }
+expect_error("compress: unknown key 'to_ph' %(did you mean 'to_phi'%?%)", require("lib.compress"), tissue, { to_ph = 0.5 })
+expect_error("heterogeneity: missing required key 'lambda'", require("lib.heterogeneity"), tissue, {})
+expect_error("heterogeneity: the tissue has no tethers; run the tether stage first",
+             require("lib.heterogeneity"), tissue, { lambda = 0.3 })
+expect_error("production: run the quench stage first", require("lib.production"), tissue, { steps = 10 })
+expect_error("quench: key 'P' must be a number or an invasim.ramp{}, got string",
+             require("lib.quench"), tissue, { P = "high" })
+expect_error("rescale: key 'phi_a' must be a number, got boolean", require("lib.rescale"), tissue, { phi_a = true })
+expect_error("tether: unknown key 'k'", require("lib.tether"), tissue, { k = 1 })
+print("stages_errors: all " .. checks .. " checks passed")

@@ -1,0 +1,194 @@
+// Slice pictures: cells and adipocyte meshes cut by a plane (counts and geometry), periodic
+// images across the plane's axis, degenerate cuts, and SVGs rendered from snapshot files.
+#include <catch2/catch.hpp>
+
+#include "../io/io_test_support.hpp"
+#include "core/errors.hpp"
+#include "io/atomic_file.hpp"
+#include "io/render_slice.hpp"
+#include "io/snapshot_writer.hpp"
+#include "mesh/geometry.hpp"
+
+using namespace invasim;
+using Catch::Matchers::Contains;
+using iotest::TempDir;
+
+namespace {
+
+double polygon_area(const std::vector<Point2>& p) {
+  double a = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Point2 &q = p[i], &r = p[(i + 1) % p.size()];
+    a += q[0] * r[1] - r[0] * q[1];
+  }
+  return 0.5 * std::abs(a);
+}
+
+std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t k = text.find(what); k != std::string::npos; k = text.find(what, k + 1)) ++n;
+  return n;
+}
+
+// Box 12 x 10 x 10, walls in x. Cells of radius 0.5: three cut by z = 5 (at z = 5, 5.3, 4.8),
+// two not (z = 2, 7); one adipocyte (radius 2) at z = 5 crossing the plane, one at z = 8.9
+// (spanning about 6.9..10.9) that does not.
+System known_configuration() {
+  System sys(Box(Vec3::Zero(), Vec3(12.0, 10.0, 10.0), {false, true, true}), 1);
+  for (double z : {5.0, 5.3, 4.8, 2.0, 7.0}) sys.add_sphere(Vec3(2.0, 1.0 + z, z), 1.0);
+  const MeshShape shape = icosphere(1);
+  sys.add_mesh_scaled(shape, Vec3(7.0, 5.0, 5.0), 2.0, 2.0, 1.1);
+  sys.add_mesh_scaled(shape, Vec3(7.0, 5.0, 8.9), 2.0, 2.0, 1.1);
+  return sys;
+}
+
+}  // namespace
+
+TEST_CASE("slice plane specifications") {
+  const SlicePlane p = parse_slice_plane("z=12.5");
+  CHECK(p.axis == 2);
+  CHECK(p.value == 12.5);
+  CHECK(parse_slice_plane("x = -1").axis == 0);
+  CHECK(parse_slice_plane("y=3e-1").value == 0.3);
+  CHECK_THROWS_AS(parse_slice_plane("q=1"), InputError);
+  CHECK_THROWS_WITH(parse_slice_plane("x=abc"),
+                    "slice 'x=abc': expected x=VALUE, y=VALUE or z=VALUE");
+  CHECK_THROWS_WITH(parse_slice_plane("z"), Contains("expected x=VALUE"));
+}
+
+TEST_CASE("a known configuration: 3 of 5 cells and 1 of 2 adipocytes cut by z = 5") {
+  const Frame f = frame_from_system(known_configuration());
+  const Slice s = cut_frame(f, {2, 5.0});
+  CHECK(s.u_axis == 0);
+  CHECK(s.w_axis == 1);
+  const RenderCounts c = count_shapes(s);
+  CHECK(c.discs == 3);
+  CHECK(c.polygons == 1);
+  CHECK(c.open_chains == 0);
+  REQUIRE(s.discs.size() == 3);
+  CHECK(s.discs[0].cell == 0);
+  CHECK(s.discs[0].radius == Approx(0.5));
+  CHECK(s.discs[1].radius == Approx(0.4));  // sqrt(0.5^2 - 0.3^2)
+  CHECK(s.discs[2].radius == Approx(std::sqrt(0.25 - 0.04)));
+  CHECK(s.discs[1].centre == Point2{2.0, 6.3});
+  // The adipocyte's cross-section through its centre: a polygon inside the circle of radius 2
+  // about (7, 5), with nearly the circle's area.
+  const SlicePolygon& poly = s.polygons[0];
+  CHECK(poly.body == 0);
+  CHECK(poly.closed);
+  for (const Point2& q : poly.points) CHECK(std::hypot(q[0] - 7.0, q[1] - 5.0) <= 2.0 + 1e-9);
+  CHECK(polygon_area(poly.points) > 0.85 * M_PI * 4.0);
+  CHECK(polygon_area(poly.points) < M_PI * 4.0);
+
+  // Other planes: z = 9.5 cuts only the upper adipocyte; x = 2 cuts the 5 cells and nothing
+  // else; a plane outside the walls is refused.
+  CHECK(count_shapes(cut_frame(f, {2, 9.5})).polygons == 1);
+  CHECK(count_shapes(cut_frame(f, {2, 9.5})).discs == 0);
+  const RenderCounts cx = count_shapes(cut_frame(f, {0, 2.0}));
+  CHECK(cx.discs == 5);
+  CHECK(cx.polygons == 0);
+  CHECK_THROWS_WITH(cut_frame(f, {0, 12.5}), "slice x = 12.5 lies outside the walls [0, 12]");
+}
+
+TEST_CASE("periodic images across the plane's axis are cut too") {
+  System sys(Box(Vec3::Zero(), Vec3(12.0, 10.0, 10.0), {false, true, true}), 1);
+  sys.add_sphere(Vec3(2.0, 5.0, 9.9), 1.0);  // its image at z = -0.1 crosses z = 0.2
+  sys.add_mesh_scaled(icosphere(1), Vec3(7.0, 5.0, 9.5), 2.0, 2.0, 1.1);  // wraps in z
+  const Frame f = frame_from_system(sys);
+  const Slice s = cut_frame(f, {2, 0.2});
+  REQUIRE(s.discs.size() == 1);
+  CHECK(s.discs[0].radius == Approx(std::sqrt(0.25 - 0.09)));
+  REQUIRE(s.polygons.size() == 1);
+  CHECK(polygon_area(s.polygons[0].points) > 0.5);
+  // The plane value is wrapped: z = 10.2 is z = 0.2.
+  const Slice t = cut_frame(f, {2, 10.2});
+  CHECK(t.plane.value == Approx(0.2));
+  CHECK(count_shapes(t).discs == 1);
+  CHECK(count_shapes(t).polygons == 1);
+}
+
+TEST_CASE("cuts through mesh vertices are well defined") {
+  const MeshShape shape = icosphere(1);
+  std::vector<Vec3> x;
+  for (const Vec3& v : shape.vertices) x.push_back(2.0 * v);
+  const auto& faces = shape.topology->faces();
+  const std::vector<std::array<int, 3>> tris(faces.begin(), faces.end());
+  double top = -1e300;
+  for (const Vec3& v : x) top = std::max(top, v[2]);
+  // Through vertices at the same height as vertex 0 (exactly on the plane): one closed
+  // polygon, no repeated points.
+  for (std::size_t v = 0; v < x.size(); ++v) {
+    if (std::abs(x[v][2]) > 1.9) continue;  // vertices away from the poles
+    const auto polys = cut_mesh(x, tris, 2, x[v][2]);
+    INFO("plane through vertex " << v);
+    REQUIRE(polys.size() == 1);
+    CHECK(polys[0].closed);
+    for (std::size_t k = 0; k < polys[0].points.size(); ++k)
+      CHECK(polys[0].points[k] != polys[0].points[(k + 1) % polys[0].points.size()]);
+  }
+  CHECK(cut_mesh(x, tris, 2, top).empty());  // touching the top vertex: nothing
+  CHECK(cut_mesh(x, tris, 2, top + 1e-9).empty());
+  CHECK(cut_mesh(x, tris, 2, 0.0).size() == 1);
+  CHECK(cut_mesh(x, tris, 0, 0.3).size() == 1);
+}
+
+TEST_CASE("render from snapshot files: the same counts and the documented SVG elements") {
+  TempDir dir("render");
+  System sys = known_configuration();
+  sys.step = 1200;
+  SnapshotWriter w(dir / "snaps");
+  w.write(sys);
+  const auto xyz = dir / "snaps" / "cells_000001200.xyz";
+  const auto vtp = dir / "snaps" / "adipocytes_000001200.vtp";
+  const auto sph = dir / "snaps" / "spheres_000001200.vtp";
+  for (const auto& input : {xyz, vtp, sph}) {
+    INFO(input);
+    const RenderCounts c = render_snapshot(input, parse_slice_plane("z=5"), dir / "s.svg");
+    CHECK(c.discs == 3);
+    CHECK(c.polygons == 1);
+    CHECK(c.vertex_discs > 0);
+  }
+  const std::string svg = read_file(dir / "s.svg");
+  CHECK(svg.rfind("<?xml", 0) == 0);
+  CHECK(svg.find("<svg xmlns=\"http://www.w3.org/2000/svg\"") != std::string::npos);
+  CHECK(occurrences(svg, "<circle data-cell=") == 3);
+  CHECK(occurrences(svg, "fill=\"red\"") == 3);
+  CHECK(occurrences(svg, "<polygon data-body=\"0\"") == 1);
+  CHECK(occurrences(svg, "fill=\"cyan\" stroke=") == 1);
+  // The vertex spheres of adipocyte 0 within one vertex radius of the plane, in cyan.
+  const System sys0 = known_configuration();
+  int near = 0;
+  for (int v = 0; v < 42; ++v) near += std::abs(sys0.sites().pos[5 + v][2] - 5.0) < 1.0;
+  CHECK(near > 0);
+  CHECK(occurrences(svg, "<circle data-vertex=") == std::size_t(near));
+  CHECK(occurrences(svg, "fill=\"cyan\"/>") == std::size_t(near));
+  // Plane z: horizontal x (walls: thick), vertical y (periodic: dashed).
+  CHECK(occurrences(svg, "stroke-width=\"4\"") == 2);
+  CHECK(occurrences(svg, "stroke-dasharray") == 2);
+  CHECK(svg.find("z = 5, step 1200") != std::string::npos);
+
+  // A plane x = 7 cuts both adipocytes; the upper one crosses the periodic z edge and is drawn
+  // twice (once per side); all four edges are periodic.
+  const RenderCounts c = render_snapshot(vtp, parse_slice_plane("x=7"), dir / "x.svg");
+  CHECK(c.polygons == 2);
+  const std::string xs = read_file(dir / "x.svg");
+  CHECK(occurrences(xs, "<polygon") == 3);
+  CHECK(occurrences(xs, "stroke-dasharray") == 4);
+
+  // The sample system's adipocyte 1 sticks out of the box past y = 10 and below z = 0: cut by
+  // x = 7.5, it is drawn four times (itself and its images in y, z and both).
+  SnapshotWriter w2(dir / "sample");
+  w2.write(iotest::sample_system());
+  const RenderCounts c2 = render_snapshot(dir / "sample" / "adipocytes_000001200.vtp",
+                                          parse_slice_plane("x=7.5"), dir / "y.svg");
+  CHECK(c2.polygons == 2);
+  const std::string ys = read_file(dir / "y.svg");
+  CHECK(occurrences(ys, "<polygon data-body=\"0\"") == 1);
+  CHECK(occurrences(ys, "<polygon data-body=\"1\"") == 4);
+
+  // Cells only, when the adipocyte file is missing; a missing snapshot is an IoError.
+  std::filesystem::remove(vtp);
+  CHECK(render_snapshot(xyz, parse_slice_plane("z=5"), dir / "c.svg").polygons == 0);
+  CHECK_THROWS_WITH(render_snapshot(vtp, parse_slice_plane("z=5"), dir / "c.svg"),
+                    Contains("cannot read snapshot '" + vtp.string() + "'"));
+}
