@@ -1,12 +1,10 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, and runs the main job. Until the Lua protocol layer lands
-# (protocols/invasion.lua, issue 3) the main job is the engine demonstration: the benchmark
-# workloads, a few hundred steps each, printing throughput in particle-steps per second.
+# Installs what is missing, builds, and runs the main job: protocols/invasion.lua with its
+# embedded defaults (the reduced system: about a minute on 2 cores), printing progress and a
+# final summary; results in out/invasion/. Extra arguments go to `invasim run`, e.g.
+#   bash scripts/run.sh --set system=paper --out runs/paper
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
 bash scripts/build.sh
-if [ -x build/invasim ] && [ -f protocols/invasion.lua ]; then
-  exec build/invasim run protocols/invasion.lua "$@"
-fi
-exec build/tests/bench/bench_engine "${1:-300}"
+exec build/invasim run protocols/invasion.lua "$@"

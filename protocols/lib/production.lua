@@ -19,6 +19,8 @@ local defaults = {
   interface = true,          -- Voronoi interfacial area every `every` steps
   radical = false,           -- radical (power) tessellation instead of the paper's Voronoi
   energy = false,            -- energy of each force term every `every` steps
+  columns = options.OPTIONAL,  -- the series' columns, LAMMPS thermo style: {"step", "A_t", ...}
+                               -- (default: every column of the observers switched on)
   correlate_every = 20,      -- 0: no correlators
   lags = 250,                -- correlator window: lags * correlate_every steps
   origin_every = 5,          -- a new time origin every this many correlator samples
@@ -68,7 +70,7 @@ end
 
 return function(tissue, opts)
   local o = options.check(opts and opts.label or "production", opts, defaults,
-                          { on_sample = "function", out = "string" })
+                          { on_sample = "function", out = "string", columns = "table" })
   if not tissue.dyn then options.fail(o.label, "run the quench stage first (it makes the Dynamics)") end
   local sys, dyn = tissue.sys, tissue.dyn
   local active = { observers.thermo(tissue) }
@@ -77,6 +79,19 @@ return function(tissue, opts)
   local columns, units = {}, {}
   for _, ob in ipairs(active) do
     for _, c in ipairs(ob.columns) do columns[#columns + 1] = c; units[c] = ob.units[c] end
+  end
+  if o.columns then
+    local chosen = {}
+    for i, c in ipairs(o.columns) do
+      if not units[c] and c ~= "step" and c ~= "time" then
+        local names = {}
+        for _, name in ipairs(columns) do names[#names + 1] = name end
+        options.fail(o.label, string.format("columns[%d] = '%s' is not measured; available: %s (energies with energy = true)",
+                                            i, tostring(c), table.concat(names, ", ")))
+      end
+      chosen[i] = c
+    end
+    columns = chosen
   end
   local file = o.out and series_file.open(o.out .. "/series.csv", columns, units) or nil
 

@@ -58,7 +58,7 @@ function M.size(p)
 end
 
 -- The production stage with the common parameters, writing into the run directory `out`,
--- with snapshots every snapshot_every steps (and one at the start).
+-- with snapshots at the steps that are multiples of snapshot_every (and one at the start).
 function M.produce(tissue, p, out)
   local iv = require("invasim")
   local snapshots
@@ -66,11 +66,13 @@ function M.produce(tissue, p, out)
     snapshots = iv.Snapshots{ dir = out .. "/snapshots" }
     snapshots:write(tissue.sys)
   end
-  local first = tissue.sys:step()
+  if p.snapshot_every % p.every ~= 0 then
+    error(string.format("snapshot_every = %d must be a multiple of every = %d", p.snapshot_every, p.every), 0)
+  end
   return require("lib.production")(tissue, {
     steps = p.steps, every = p.every, correlate_every = p.correlate_every, out = out,
     on_sample = snapshots and function(row)
-      if (row.step - first) % p.snapshot_every == 0 then snapshots:write(tissue.sys) end
+      if row.step % p.snapshot_every == 0 then snapshots:write(tissue.sys) end
     end or nil,
   })
 end

@@ -12,7 +12,7 @@ local function expect_error(pattern, f, ...)
   checks = checks + 1
 end
 local function check(condition, message)
-  assert(condition, message)
+  if not condition then error("check failed" .. (message and (": " .. message) or ""), 2) end
   checks = checks + 1
 end
 
@@ -161,6 +161,33 @@ expect_error("set_dt: dt = 0 must be > 0", dyn.set_dt, dyn, 0)
 check(type(iv.clock()) == "number")
 check(#sys:positions(cancer) == cancer:size() and #sys:positions() == sys:n_sites())
 check(#sys:adipocytes() == sys:n_adipocytes() and sys:adipocytes()[1].ref_volume > 0)
+
+-- Measurements and files
+local vor = sys:voronoi()
+check(vor.A_t >= 0 and vor.A_t_max > 0 and math.abs(vor.A_ratio - vor.A_t / vor.A_t_max) < 1e-12)
+check(#vor.adipocyte_surface == sys:n_adipocytes() and #vor.local_phi_a == sys:n_adipocytes())
+check(sys:voronoi{ radical = true }.A_t_max > 0)
+expect_error("voronoi: unknown key 'radial' %(did you mean 'radical'%?%)", sys.voronoi, sys, { radial = true })
+check(#sys:shape_parameters() == sys:n_adipocytes())
+check(#sys:slices{ per_body = 3 } >= 3 * sys:n_adipocytes())
+expect_error("slices: key 'per_body' = 0 is out of range %(must be >= 1%)", sys.slices, sys, { per_body = 0 })
+local h = iv.histogram({ 1, 2, 2, 3, 9 }, { lo = 0, hi = 4, bins = 4 })
+check(h.counts[3] == 2 and h.above == 1 and #h.edges == 5)
+expect_error("histogram: hi = 0 must be greater than lo = 1", iv.histogram, { 1 }, { lo = 1, hi = 0 })
+expect_error("histogram: entry %[2%] must be a number, got string", iv.histogram, { 1, "x" }, { lo = 0, hi = 1 })
+local ba = iv.block_average({ 1, 2, 3, 4, 5, 6, 7, 8 })
+check(ba.mean == 4.5 and ba.n == 8)
+expect_error("block_average: key 'fraction' = 2 is out of range", iv.block_average, { 1, 2 }, { fraction = 2 })
+local corr = iv.Correlator{ group = cancer, interval = 0.05, lags = 10 }
+check(tostring(corr):find("^Correlator%(group 'cancer'"), tostring(corr))
+corr:sample(sys)
+check(corr:samples() == 1 and corr:result().columns.fs[1] == 1 and corr:result().columns.msd[1] == 0 and corr:tau_d() == nil)
+expect_error("Correlator: missing required key 'interval'", iv.Correlator, { group = cancer })
+expect_error("Correlator: key 'fs_average' must be one of: isotropic, yz", iv.Correlator,
+             { group = cancer, interval = 1, fs_average = "xy" })
+expect_error("sample: group 'cancer' belongs to another System", corr.sample, corr, iv.System{ box = {10, 10, 10} })
+expect_error("Snapshots: missing required key 'dir'", iv.Snapshots, {})
+expect_error("bad argument #2 to '.-' %(string expected, got no value%)", iv.write_file, "x")
 
 -- Fire, compress, rescale
 local fire = iv.Fire{ ftol = 1e-8, dt = 0.05, dt_max = 0.5, max_steps = 1e6 }

@@ -34,4 +34,12 @@ expect_error("quench: key 'P' must be a number or an invasim.ramp{}, got string"
              require("lib.quench"), tissue, { P = "high" })
 expect_error("rescale: key 'phi_a' must be a number, got boolean", require("lib.rescale"), tissue, { phi_a = true })
 expect_error("tether: unknown key 'k'", require("lib.tether"), tissue, { k = 1 })
+-- The production stage's column list (LAMMPS thermo style) names unknown columns.
+require("lib.quench")(tissue, { steps = 10, progress = false })
+expect_error("production: columns%[2%] = 'A_T' is not measured; available: step, time, T_c",
+             require("lib.production"), tissue, { steps = 10, every = 5, columns = { "step", "A_T" } })
+local chosen = require("lib.production")(tissue, { steps = 10, every = 5, columns = { "step", "A_t", "T_c" },
+                                                  progress = false, correlate_every = 0 })
+assert(#chosen.series.columns == 3 and chosen.series.rows[1].A_t and chosen.summary.A_t, "chosen columns")
+checks = checks + 1
 print("stages_errors: all " .. checks .. " checks passed")

@@ -1,0 +1,55 @@
+-- Issue 4/5 test: the production stage's observers write the run directory: series.csv
+-- (header with units, one row per `every` steps, A_t within [0, A_t^max]), correlations.csv
+-- (C_vv(0) = F_s(0) = 1), shapes.csv, summary.json, params.json, log.txt and snapshots.
+package.path = "../../protocols/?.lua;" .. package.path
+local iv = require("invasim")
+local protocol = require("lib.protocol")
+local p = iv.params(protocol.merge{})
+local out = require("lib.run_dir").open(p)
+local tissue = protocol.prepare(p)
+local result = protocol.produce(tissue, p, out)
+require("lib.report").final(tissue, p, result, 0, out)
+
+local function lines(path)
+  local t = {}
+  for line in assert(io.open(path)):lines() do t[#t + 1] = line end
+  return t
+end
+local function split(line)
+  local t = {}
+  for field in (line .. ","):gmatch("([^,]*),") do t[#t + 1] = field end
+  return t
+end
+
+local series = lines(out .. "/series.csv")
+local header = split(series[1])
+assert(series[1]:find("^step,time %[tau%],T_c %[eps_c%],T_a %[eps_c%],P_left %[eps_c/sigma%^3%]"), series[1])
+assert(series[1]:find("A_t %[sigma%^2%],A_t_max %[sigma%^2%],A_ratio"), series[1])
+local expected_rows = p.steps // p.every
+assert(#series == expected_rows + 1, "series.csv has " .. (#series - 1) .. " rows, expected " .. expected_rows)
+local col = {}
+for j, h in ipairs(header) do col[h:match("^(%S+)")] = j end
+for i = 2, #series do
+  local f = split(series[i])
+  local A_t, A_max = tonumber(f[col.A_t]), tonumber(f[col.A_t_max])
+  assert(A_t > 0 and A_t <= A_max, "A_t out of range in row " .. i)
+  -- Samples are taken at the steps of the System that are multiples of `every`.
+  local step = tonumber(f[col.step])
+  assert(step % p.every == 0 and step > tissue.sys:step() - p.steps and step <= tissue.sys:step(),
+         "step column: " .. step)
+  if i > 2 then assert(step == tonumber(split(series[i - 1])[col.step]) + p.every, "step spacing") end
+end
+local corr = lines(out .. "/correlations.csv")
+assert(corr[1] == "t,origins,cvv,cvv_std,vv,nn,msd,alpha2,fs", corr[1])
+local c0 = split(corr[2])
+assert(tonumber(c0[3]) == 1 and tonumber(c0[9]) == 1, "C_vv(0) and F_s(0) must be 1: " .. corr[2])
+assert(lines(out .. "/shapes.csv")[1] == "A2_lo,A2_hi,count,density")
+local summary = table.concat(lines(out .. "/summary.json"), "\n")
+assert(summary:find('"A_t": {') and summary:find('"wall_clock_seconds"'), "summary.json")
+assert(table.concat(lines(out .. "/params.json"), "\n"):find('"N_c": 60'), "params.json")
+assert(table.concat(lines(out .. "/log.txt"), "\n"):find("summary: results in"), "log.txt")
+local pvd = table.concat(lines(out .. "/snapshots/adipocytes.pvd"), "\n")
+local frames = 0
+for _ in pvd:gmatch("<DataSet ") do frames = frames + 1 end
+assert(frames == 1 + p.steps // p.snapshot_every, "adipocytes.pvd has " .. frames .. " frames")
+print("production_outputs: ok (" .. expected_rows .. " rows, " .. frames .. " frames)")
