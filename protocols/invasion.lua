@@ -17,6 +17,6 @@ local p = iv.params(protocol.declarations())
 
 local clock = iv.clock()
 local out = require("lib.run_dir").open(p)
-local tissue = protocol.prepare(p)
+local tissue = protocol.prepare(p, out)
 local result = protocol.produce(tissue, p, out)
 require("lib.report").final(tissue, p, result, iv.clock() - clock, out)

@@ -15,13 +15,7 @@ local p = iv.params(protocol.merge{
 
 local clock = iv.clock()
 local out = require("lib.run_dir").open(p)
-local N_a, N_c, L0 = protocol.size(p)
-local tissue = require("lib.init"){ N_a = N_a, N_c = N_c, L0 = L0, seed = p.seed, eps_v = p.eps_v,
-                                    eps_a = p.eps_a, alpha = p.alpha, beta = p.beta }
-tissue.compression = require("lib.compress")(tissue, {
-  to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.final_ftol,
-  beta = p.cohesive_compression and p.beta or 0.0,
-})
+local tissue = protocol.compressed(p, out)
 require("lib.rescale")(tissue, { phi_a = p.phi_a, ftol = p.final_ftol })
 if p.K_ecm > 0 then
   require("lib.tether")(tissue, { K = p.K_ecm })

@@ -15,7 +15,7 @@ local p = iv.params(protocol.merge{
 
 local clock = iv.clock()
 local out = require("lib.run_dir").open(p)
-local tissue = protocol.prepare(p)
+local tissue = protocol.prepare(p, out)
 require("lib.tether")(tissue, { K = p.K_ecm, mean_degree = p.mean_degree })
 if p.lambda > 0 then require("lib.heterogeneity")(tissue, { lambda = p.lambda }) end
 require("lib.quench")(tissue, { label = "equilibrate", P = p.P, kT = p.kT, f0 = p.f0,

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages invasim needs, only those missing. Run as root.
 set -euo pipefail
-packages=(g++ cmake make libeigen3-dev liblua5.4-dev lua5.4 libcgal-dev libgmp-dev catch2)
+# python3-numpy and python3-matplotlib: scripts/plot_run.py (and its test).
+packages=(g++ cmake make libeigen3-dev liblua5.4-dev lua5.4 libcgal-dev libgmp-dev catch2
+          python3 python3-numpy python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

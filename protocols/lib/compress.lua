@@ -19,10 +19,17 @@ local defaults = {
   beta = 0.0,                 -- cohesion depth during compression
   max_steps = 1000000,        -- FIRE iterations per minimisation
   progress = true,
+  save = options.OPTIONAL,    -- path: save the compressed tissue there (a checkpoint)
 }
 
+local resume = require("lib.resume")
+
 return function(tissue, opts)
-  local o = options.check("compress", opts, defaults)
+  local o = options.check("compress", opts, defaults, { save = "string" })
+  if resume.pending() then
+    log.say("compress", "skipped: resuming from a checkpoint")
+    return { skipped = true }
+  end
   local sys, contacts = tissue.sys, tissue.contacts
   local beta = contacts:params().beta
   contacts:set{ beta = o.beta }
@@ -45,6 +52,10 @@ return function(tissue, opts)
   report.max_force = final.max_force
   report.converged = final.converged
   report.seconds = iv.clock() - clock
+  if o.save then  -- the compressed tissue, for runs started with --from this run's directory
+    iv.save_checkpoint(o.save, { system = sys, extra = require("lib.resume").serialize{
+      box = report.box, phi = report.phi, steps = report.steps } })
+  end
   local box = sys:box().lengths
   log.say("compress", "phi = %.4f after %d steps (%d FIRE iterations); final box L_f = %s; max force %.2e (%s)",
           sys:packing().total, last, report.fire_steps + final.steps, log.box(box), final.max_force,

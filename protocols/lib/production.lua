@@ -13,6 +13,7 @@ local options = require("lib.options")
 local log = require("lib.log")
 local observers = require("lib.observers")
 local series_file = require("lib.series")
+local resume = require("lib.resume")
 
 local defaults = {
   steps = 100000, every = 1000,
@@ -27,6 +28,8 @@ local defaults = {
   slices_per_body = 20,      -- random slices per adipocyte at the end (0: none)
   average_fraction = 0.5,    -- the summary averages the last half of the samples
   out = options.OPTIONAL,    -- directory for series.csv, correlations.csv, shapes.csv
+  checkpoint_every = 0,      -- steps between checkpoints in out/checkpoint/ (0: only on a
+                             -- stop signal, if out is set)
   progress = true,
   label = "production",
   on_sample = options.OPTIONAL,   -- function(row, tissue) called after each sample
@@ -93,19 +96,36 @@ return function(tissue, opts)
     end
     columns = chosen
   end
-  local file = o.out and series_file.open(o.out .. "/series.csv", columns, units) or nil
-
   local correlator
   if o.correlate_every > 0 then
     correlator = iv.Correlator{ group = tissue.cells, interval = o.correlate_every * dyn:dt(),
                                 lags = o.lags, origin_every = o.origin_every }
   end
+  local parts = { system = sys, dynamics = dyn, tethers = tissue.tethers, correlator = correlator }
+  local checkpoint = o.out and resume.checkpoint_path(o.out) or nil
+  local rows, end_step = {}, sys:step() + o.steps
+  if resume.pending() and checkpoint then
+    local state = resume.deserialize(iv.load_checkpoint(checkpoint, parts))
+    rows, end_step, tissue.compression = state.rows, state.end_step, state.compression
+    resume.done()
+    log.say(o.label, "resumed at step %d (t = %g) from %s; %d steps to go", sys:step(), sys:time(),
+            checkpoint, end_step - sys:step())
+  end
+  local function save_checkpoint()
+    iv.save_checkpoint(checkpoint, { system = sys, dynamics = dyn, tethers = tissue.tethers,
+                                     correlator = correlator, extra = resume.serialize{
+                                       rows = rows, end_step = end_step, compression = tissue.compression } })
+    tissue.last_checkpoint = { path = checkpoint, step = sys:step() }
+  end
+
+  local file = o.out and series_file.open(o.out .. "/series.csv", columns, units) or nil
+  if file then for _, row in ipairs(rows) do file:write(row) end end
   local tick = correlator and gcd(o.every, o.correlate_every) or o.every
-  local rows = {}
-  local progress = o.progress and iv.Progress{ total = o.steps, label = o.label } or nil
+  local n = end_step - sys:step()
+  local progress = o.progress and iv.Progress{ total = n, label = o.label } or nil
   local clock = iv.clock()
   local first_step = sys:step()
-  local ok, err = pcall(dyn.run, dyn, sys, o.steps, {
+  local ok, err = pcall(dyn.run, dyn, sys, n, {
     every = tick, progress = progress,
     callback = function(step)
       if correlator and step % o.correlate_every == 0 then correlator:sample(sys) end
@@ -116,10 +136,27 @@ return function(tissue, opts)
         if file then file:write(row) end
         if o.on_sample then o.on_sample(row, tissue) end
       end
+      if checkpoint and o.checkpoint_every > 0 and step % o.checkpoint_every == 0 then save_checkpoint() end
     end,
   })
   if file then file:close() end
-  if not ok then error(err, 0) end
+  if not ok then
+    local last = tissue.last_checkpoint
+    local where = last and string.format("; last good checkpoint: %s (step %d)", last.path, last.step)
+                  or (checkpoint and "; no checkpoint was written by this run" or "")
+    error(tostring(err) .. where, 0)
+  end
+  local signal = iv.interrupted()
+  if signal then
+    if progress then progress:finish() end
+    if checkpoint then
+      save_checkpoint()
+      error(string.format("stopped by %s at step %d (t = %g); checkpoint saved to %s; continue with: invasim run --resume %s",
+                          signal, sys:step(), sys:time(), checkpoint, o.out), 0)
+    end
+    error(string.format("stopped by %s at step %d (t = %g); no run directory, nothing saved", signal,
+                        sys:step(), sys:time()), 0)
+  end
   if progress then progress:finish() end
 
   local summary = summarise(rows, columns, o.average_fraction)

@@ -32,6 +32,7 @@ function M.declarations()
     steps = { 100000, type = "integer", help = "production steps" },
     every = { 1000, type = "integer", help = "steps between measurements (a row of series.csv)" },
     snapshot_every = { 10000, type = "integer", help = "steps between snapshots (0: none)" },
+    checkpoint_every = { 10000, type = "integer", help = "steps between checkpoints (0: only on SIGINT/SIGTERM)" },
     correlate_every = { 20, type = "integer", help = "steps between correlator samples (0: none)" },
   }
 end
@@ -64,30 +65,52 @@ function M.produce(tissue, p, out)
   local snapshots
   if p.snapshot_every > 0 and out then
     snapshots = iv.Snapshots{ dir = out .. "/snapshots" }
-    snapshots:write(tissue.sys)
+    if not require("lib.resume").pending() then snapshots:write(tissue.sys) end
   end
   if p.snapshot_every % p.every ~= 0 then
     error(string.format("snapshot_every = %d must be a multiple of every = %d", p.snapshot_every, p.every), 0)
   end
   return require("lib.production")(tissue, {
     steps = p.steps, every = p.every, correlate_every = p.correlate_every, out = out,
+    checkpoint_every = p.checkpoint_every,
     on_sample = snapshots and function(row)
       if row.step % p.snapshot_every == 0 then snapshots:write(tissue.sys) end
     end or nil,
   })
 end
 
--- init + compress + quench with the common parameters; returns the tissue.
-function M.prepare(p)
+-- init + compress with the common parameters; returns the tissue. With --from RUN_DIR, the
+-- compressed tissue that run saved (RUN_DIR/checkpoint/compressed.ckpt) replaces the
+-- compression (the paper's sweeps share one compressed tissue): same system size, this
+-- run's seed.
+function M.compressed(p, out)
+  local iv = require("invasim")
+  local resume = require("lib.resume")
   local N_a, N_c, L0 = M.size(p)
   local tissue = require("lib.init"){
     N_a = N_a, N_c = N_c, L0 = L0, seed = p.seed, eps_v = p.eps_v, eps_a = p.eps_a,
     alpha = p.alpha, beta = p.beta,
   }
-  tissue.compression = require("lib.compress")(tissue, {
-    to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.final_ftol,
-    beta = p.cohesive_compression and p.beta or 0.0,
-  })
+  if iv.from and not resume.pending() then
+    local path = resume.compressed_path(iv.from)
+    local saved = resume.deserialize(iv.load_checkpoint(path, { system = tissue.sys, seed = p.seed }))
+    saved.from = path
+    tissue.compression = saved
+    require("lib.log").say("compress", "skipped: the compressed tissue of %s (box %.4g, phi = %.4f)",
+                           iv.from, saved.box[1], saved.phi)
+  else
+    tissue.compression = require("lib.compress")(tissue, {
+      to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.final_ftol,
+      beta = p.cohesive_compression and p.beta or 0.0,
+      save = out and resume.compressed_path(out) or nil,
+    })
+  end
+  return tissue
+end
+
+-- init + compress (or --from) + quench with the common parameters; returns the tissue.
+function M.prepare(p, out)
+  local tissue = M.compressed(p, out)
   require("lib.quench")(tissue, { P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p,
                                   gamma = p.gamma, dt = p.dt, steps = p.quench_steps })
   return tissue

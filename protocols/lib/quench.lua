@@ -56,9 +56,18 @@ return function(tissue, opts)
                 or "fixed walls"
   log.say(o.label, "%s, %s (%s), %d steps of dt = %g", walls, motion.describe(o),
           tissue.cell_method:kind(), o.steps, dyn:dt())
+  if require("lib.resume").pending() then
+    log.say(o.label, "steps skipped: resuming from a checkpoint")
+    return tissue
+  end
   local progress = o.progress and iv.Progress{ total = o.steps, label = o.label } or nil
   dyn:run(sys, o.steps, { every = o.every, progress = progress })
   if progress then progress:finish() end
+  local signal = iv.interrupted()
+  if signal then
+    error(string.format("stopped by %s during %s at step %d; checkpoints are written during production " ..
+                        "only: run the protocol again from the start", signal, o.label, sys:step()), 0)
+  end
   local box = sys:box()
   log.say(o.label, "t = %g, L_x = %.4f, phi = %.4f, T_c = %.3e, T_a = %.3e", sys:time(),
           box.lengths[1], sys:packing().total, sys:temperature(tissue.cells),

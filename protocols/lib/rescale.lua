@@ -12,6 +12,10 @@ local defaults = { phi_a = options.REQUIRED, ftol = 1e-6, max_steps = 1000000 }
 
 return function(tissue, opts)
   local o = options.check("rescale", opts, defaults, { phi_a = "number" })
+  if require("lib.resume").pending() then
+    log.say("rescale", "skipped: resuming from a checkpoint")
+    return { skipped = true }
+  end
   local sys = tissue.sys
   local before = sys:packing()
   local r = iv.rescale(sys, { phi_a = o.phi_a, ftol = o.ftol, max_steps = o.max_steps })

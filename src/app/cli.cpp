@@ -1,5 +1,7 @@
 #include "app/cli.hpp"
 
+#include "app/resume_options.hpp"
+
 #include <charconv>
 #include <filesystem>
 
@@ -14,23 +16,130 @@ Usage:
   invasim run PROTOCOL.lua [options]     run a protocol
   invasim params PROTOCOL.lua [options]  list the protocol's parameters (default, unit,
                                          meaning) without running it
+  invasim render SNAPSHOT --slice z=VALUE -o FILE.svg [--size PIXELS]
+                                         draw a cross-section of a snapshot frame as SVG
   invasim --help                         this text
   invasim --version                      version and git revision
 
-Options:
+Options of run and params:
   --set key=value   override a parameter declared with invasim.params{...} (repeatable);
                     an undeclared key or a value of the wrong type is an error
   --seed S          same as --set seed=S (the protocol must declare `seed`)
   --out DIR         output directory, invasim.out_dir in scripts (default out/<protocol name>)
   --threads N       number of OpenMP threads (default: OMP_NUM_THREADS or all cores)
   --traceback       on a Lua error, also print the Lua stack traceback
+  --from RUN_DIR    start from the compressed tissue that run saved (invasim.from)
+  invasim run --resume DIR [--threads N]
+                    continue the run in DIR (killed, or stopped by Ctrl-C / SIGTERM) from
+                    its last checkpoint, with the protocol and parameters it was started with
 
-Exit status: 0 on success, 1 on an error in the protocol or the run, 2 on a bad command line.
-See docs/lua.md for the Lua API.
+Options of render:
+  --slice A=VALUE   the cutting plane, x=VALUE, y=VALUE or z=VALUE (required)
+  -o FILE.svg       the picture to write, also --output FILE.svg (required)
+  --size PIXELS     length of the longer box side in the picture (default 800)
+  SNAPSHOT is any file of one frame (cells_<step>.xyz, spheres_<step>.vtp or
+  adipocytes_<step>.vtp); the other files of the same step next to it are read too.
+
+Exit status: 0 on success, 1 on an error in the protocol, the run or the rendering,
+2 on a bad command line.
+See docs/lua.md for the Lua API and docs/output_formats.md for the pictures.
 )";
 }
 
 namespace {
+
+Command of_kind(Command::Kind kind) {
+  Command command;
+  command.kind = kind;
+  return command;
+}
+
+// The command word: the first argument that is neither an option nor an option's value.
+std::string command_word(const std::vector<std::string>& args) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    if (arg == "-o") {
+      ++i;
+    } else if (arg.rfind("--", 0) == 0) {
+      static const char* const with_value[] = {"--set",     "--seed",   "--out",
+                                               "--threads", "--slice",  "--size",
+                                               "--output",  "--resume", "--from"};
+      for (const char* name : with_value)
+        if (arg == name) ++i;
+    } else {
+      return arg;
+    }
+  }
+  return "";
+}
+
+double parse_size(const std::string& text) {
+  double value = 0.0;
+  const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (result.ec != std::errc() || result.ptr != text.data() + text.size() || !(value > 0.0) ||
+      !(value <= 1e5))
+    throw UsageError("--size expects a number of pixels in (0, 100000], got '" + text + "'");
+  return value;
+}
+
+// `invasim render SNAPSHOT --slice A=VALUE -o FILE.svg [--size PIXELS]`.
+Command parse_render(const std::vector<std::string>& args) {
+  Command command = of_kind(Command::Kind::kRender);
+  RenderOptions& render = command.render;
+  std::vector<std::string> positional;
+  std::optional<std::string> slice, output, size;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    if (arg == "-h" || arg == "--help") return of_kind(Command::Kind::kHelp);
+    if (arg == "--version") return of_kind(Command::Kind::kVersion);
+    if (arg == "--") throw UsageError("unexpected '--'");
+    std::string name = arg, value;  // -o is --output
+    bool has_value = false;
+    if (arg == "-o") {
+      name = "--output";
+    } else if (arg.rfind("--", 0) == 0) {
+      if (const auto eq = arg.find('='); eq != std::string::npos) {
+        name = arg.substr(0, eq);
+        value = arg.substr(eq + 1);
+        has_value = true;
+      }
+    } else if (arg.size() > 1 && arg[0] == '-') {
+      throw UsageError("unknown option '" + arg + "' (render takes --slice, -o and --size)");
+    } else {
+      positional.push_back(arg);
+      continue;
+    }
+    if (name == "--out")
+      throw UsageError("invasim render writes one file: give it with -o FILE.svg, not --out");
+    if (name != "--output" && name != "--slice" && name != "--size")
+      throw UsageError("unknown option '" + name + "' (render takes --slice, -o and --size)");
+    if (!has_value) {
+      if (i + 1 >= args.size()) throw UsageError((arg == "-o" ? arg : name) + " needs a value");
+      value = args[++i];
+    }
+    std::optional<std::string>& slot = name == "--slice" ? slice : name == "--size" ? size : output;
+    if (slot) throw UsageError((name == "--output" ? "-o" : name) + " given twice");
+    slot = value;
+  }
+  if (positional.size() < 2)
+    throw UsageError(
+        "invasim render: missing SNAPSHOT (a cells_*.xyz, spheres_*.vtp or adipocytes_*.vtp "
+        "file)");
+  if (positional.size() > 2)
+    throw UsageError("invasim render: unexpected argument '" + positional[2] + "'");
+  render.snapshot = positional[1];
+  if (!slice) throw UsageError("invasim render: missing --slice x=VALUE, y=VALUE or z=VALUE");
+  try {
+    render.plane = parse_slice_plane(*slice);
+  } catch (const InputError&) {
+    throw UsageError("--slice expects x=VALUE, y=VALUE or z=VALUE, got '" + *slice + "'");
+  }
+  if (!output) throw UsageError("invasim render: missing -o FILE.svg");
+  if (output->empty()) throw UsageError("-o needs a file name");
+  render.output = *output;
+  if (size) render.size_px = parse_size(*size);
+  return command;
+}
 
 int parse_threads(const std::string& text) {
   int value = 0;
@@ -43,13 +152,14 @@ int parse_threads(const std::string& text) {
 }  // namespace
 
 Command parse_command_line(const std::vector<std::string>& args) {
+  if (command_word(args) == "render") return parse_render(args);
   Command command;
   std::vector<std::string> positional;
-  std::optional<std::string> out;
+  std::optional<std::string> out, resume;
   for (std::size_t i = 0; i < args.size(); ++i) {
     std::string arg = args[i];
-    if (arg == "-h" || arg == "--help") return Command{Command::Kind::kHelp, {}, {}, false};
-    if (arg == "--version") return Command{Command::Kind::kVersion, {}, {}, false};
+    if (arg == "-h" || arg == "--help") return of_kind(Command::Kind::kHelp);
+    if (arg == "--version") return of_kind(Command::Kind::kVersion);
     if (arg.rfind("--", 0) != 0 || arg == "--") {
       if (arg == "--") throw UsageError("unexpected '--'");
       positional.push_back(arg);
@@ -68,7 +178,8 @@ Command parse_command_line(const std::vector<std::string>& args) {
       command.traceback = true;
       continue;
     }
-    if (name != "--set" && name != "--seed" && name != "--out" && name != "--threads")
+    if (name != "--set" && name != "--seed" && name != "--out" && name != "--threads" &&
+        name != "--resume" && name != "--from")
       throw UsageError("unknown option '" + name + "'");
     if (!has_value) {
       if (i + 1 >= args.size()) throw UsageError(name + " needs a value");
@@ -86,20 +197,45 @@ Command parse_command_line(const std::vector<std::string>& args) {
     } else if (name == "--out") {
       if (value.empty()) throw UsageError("--out needs a directory");
       out = value;
+    } else if (name == "--resume") {
+      if (value.empty()) throw UsageError("--resume needs a run directory");
+      if (resume) throw UsageError("--resume given twice");
+      resume = value;
+    } else if (name == "--from") {
+      if (value.empty()) throw UsageError("--from needs a run directory");
+      if (!command.options.from_dir.empty()) throw UsageError("--from given twice");
+      command.options.from_dir = value;
     } else {
       command.threads = parse_threads(value);
     }
   }
-  if (positional.empty()) throw UsageError("missing command (run or params)");
+  if (positional.empty()) throw UsageError("missing command (run, params or render)");
   const std::string& verb = positional[0];
   if (verb == "run")
     command.kind = Command::Kind::kRun;
   else if (verb == "params")
     command.kind = Command::Kind::kParams;
   else if (verb == "help")
-    return Command{Command::Kind::kHelp, {}, {}, false};
+    return of_kind(Command::Kind::kHelp);
   else
-    throw UsageError("unknown command '" + verb + "' (expected run or params)");
+    throw UsageError("unknown command '" + verb + "' (expected run, params or render)");
+  if (resume) {
+    if (command.kind != Command::Kind::kRun) throw UsageError("--resume goes with invasim run");
+    if (positional.size() > 1)
+      throw UsageError(
+          "invasim run --resume DIR takes no PROTOCOL.lua (the run directory names it)");
+    if (!command.options.overrides.empty() || command.options.seed || out ||
+        !command.options.from_dir.empty())
+      throw UsageError(
+          "--resume continues a run with its own parameters: --set, --seed, --out and --from "
+          "cannot be combined with it");
+    try {
+      command.options = read_resume_options(*resume);
+    } catch (const InputError& e) {
+      throw UsageError(e.what());
+    }
+    return command;
+  }
   if (positional.size() < 2) throw UsageError("invasim " + verb + ": missing PROTOCOL.lua");
   if (positional.size() > 2)
     throw UsageError("invasim " + verb + ": unexpected argument '" + positional[2] + "'");

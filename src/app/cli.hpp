@@ -2,12 +2,14 @@
 // The command line of the `invasim` executable:
 //   invasim run PROTOCOL.lua [--set key=value ...] [--out DIR] [--threads N] [--seed S]
 //   invasim params PROTOCOL.lua [--set key=value ...] [--seed S]
+//   invasim render SNAPSHOT --slice x|y|z=VALUE -o FILE.svg [--size PIXELS]
 //   invasim --help | --version
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "io/slice.hpp"
 #include "lua/context.hpp"
 
 namespace invasim::app {
@@ -18,12 +20,21 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// `invasim render`: a slice picture of one snapshot frame (io/render_slice.hpp).
+struct RenderOptions {
+  std::string snapshot;  // any file of the frame: cells_*.xyz, spheres_*.vtp, adipocytes_*.vtp
+  SlicePlane plane;      // --slice x=|y=|z=VALUE
+  std::string output;    // -o / --output FILE.svg
+  double size_px = 800;  // --size PIXELS: the longer box side in the picture
+};
+
 struct Command {
-  enum class Kind { kRun, kParams, kHelp, kVersion };
+  enum class Kind { kRun, kParams, kHelp, kVersion, kRender };
   Kind kind = Kind::kHelp;
   lua::RunOptions options;     // script path, --set, --seed, --out
   std::optional<int> threads;  // --threads N
   bool traceback = false;      // --traceback: print the Lua stack on errors
+  RenderOptions render;        // kRender only
 };
 
 // Parses argv (without argv[0]); throws UsageError. --out defaults to out/<protocol stem>.

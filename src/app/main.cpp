@@ -1,5 +1,6 @@
 // invasim: the command-line driver. Parses the command line, runs (or lists the parameters
-// of) a Lua protocol, and turns every error into one line on stderr and a nonzero exit code.
+// of) a Lua protocol or renders a snapshot slice, and turns every error into one line on
+// stderr and a nonzero exit code.
 #include <omp.h>
 #include <lua.hpp>
 
@@ -7,6 +8,7 @@
 #include <iostream>
 
 #include "app/cli.hpp"
+#include "app/render_command.hpp"
 #include "core/errors.hpp"
 #include "invasim_version.hpp"
 #include "lua/lua_state.hpp"
@@ -73,6 +75,8 @@ int main(int argc, char** argv) {
         return list_params(command);
       case Command::Kind::kRun:
         return run(command);
+      case Command::Kind::kRender:
+        return invasim::app::run_render(command.render, std::cout);
     }
   } catch (const invasim::app::UsageError& e) {
     std::cerr << "invasim: " << e.what() << " (see invasim --help)\n";

@@ -38,6 +38,7 @@ class ContactForce : public Force {
   // Changes the parameters (e.g. cohesion switched on after compression); the neighbour
   // list is rebuilt with the new cutoffs and skin at the next evaluation.
   void set_params(const ContactParams& params);
+  void invalidate_caches() override { list_.invalidate(); }
   VerletList& neighbor_list() { return list_; }
 
  private:

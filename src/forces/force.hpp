@@ -29,6 +29,9 @@ class Force {
   virtual std::string name() const = 0;
   // Adds this term's forces into sys.sites().force.
   virtual ForceResult add_forces(System& sys, const ForceFlags& flags) = 0;
+  // Drops cached state derived from positions (neighbour lists), e.g. after the System was
+  // replaced by a checkpoint.
+  virtual void invalidate_caches() {}
 };
 
 // An ordered list of force terms, evaluated together.

@@ -20,6 +20,8 @@ class TetherForce : public Force {
   double stiffness() const { return stiffness_; }
   void set_stiffness(double k);
   const std::vector<Tether>& tethers() const { return tethers_; }
+  // Removes every tether (before restoring them from a checkpoint).
+  void clear() { tethers_.clear(); }
   // Adds one tether; rest length must be >= 0, bodies distinct and valid.
   void add(const System& sys, int a, int b, double rest_length);
   // Tethers every pair of bodies whose centres are closer than a cutoff d_c chosen so that

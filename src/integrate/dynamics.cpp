@@ -224,7 +224,11 @@ void Dynamics::step(System& sys, ForceField& ff) {
 }
 
 void Dynamics::run(System& sys, ForceField& ff, std::uint64_t n_steps) {
-  for (std::uint64_t k = 0; k < n_steps; ++k) step(sys, ff);
+  for (std::uint64_t k = 0; k < n_steps; ++k) {
+    step(sys, ff);
+    if (blowup_guard_.due(sys.step)) check_blowup(sys);
+  }
+  if (n_steps > 0 && !blowup_guard_.due(sys.step)) check_blowup(sys);
 }
 
 }  // namespace invasim

@@ -12,6 +12,7 @@
 
 #include "forces/force.hpp"
 #include "forces/wall_force.hpp"
+#include "integrate/blowup_guard.hpp"
 #include "integrate/ramp.hpp"
 
 namespace invasim {
@@ -90,9 +91,18 @@ class Dynamics {
   // run() call it once when forces are stale (after construction or a state change).
   void prepare(System& sys, ForceField& ff);
   void invalidate() { prepared_ = false; }
+  // Declares the site forces current (restored from a checkpoint together with the state they
+  // belong to), so that the next step does not re-evaluate them: a restored run then
+  // continues bit for bit like one that was never interrupted.
+  void mark_prepared() { prepared_ = true; }
+  bool prepared() const { return prepared_; }
   // One time step.
   void step(System& sys, ForceField& ff);
+  // n_steps steps, checked for a blow-up (integrate/blowup_guard.hpp) every check_every()
+  // steps and at the end; throws SimulationError naming the first blown-up site.
   void run(System& sys, ForceField& ff, std::uint64_t n_steps);
+  std::uint64_t check_every() const { return blowup_guard_.every(); }
+  void set_check_every(std::uint64_t n) { blowup_guard_.set_every(n); }
 
  private:
   void update_wall_force(System& sys);
@@ -101,6 +111,7 @@ class Dynamics {
   std::vector<std::shared_ptr<Method>> methods_;
   std::shared_ptr<PressureWall> wall_;
   bool prepared_ = false;
+  BlowupGuard blowup_guard_;
 };
 
 }  // namespace invasim

@@ -127,6 +127,12 @@ const luaL_Reg kMethods[] = {
 
 }  // namespace
 
+TimeCorrelator* test_correlator(lua_State* L, int index) {
+  auto* slot = static_cast<std::shared_ptr<CorrelatorHandle>*>(
+      luaL_testudata(L, index, LuaType<CorrelatorHandle>::metatable));
+  return slot && *slot ? &(*slot)->correlator : nullptr;
+}
+
 void open_correlator(lua_State* L) {
   define_type<CorrelatorHandle>(L, kMethods);
   lua_pushcfunction(L, &lua_wrap<&l_new>);

@@ -5,6 +5,8 @@
 // run steps the engine in C++ chunks and returns to Lua only between chunks.
 #include <lua.hpp>
 
+#include "core/stop_request.hpp"
+
 #include <algorithm>
 
 #include "lua/engine_types.hpp"
@@ -192,7 +194,9 @@ int l_run(lua_State* L) {
     if (callback && !every) fail_input("run: a callback needs key 'every' (call it every N steps)");
   }
   Simulation& s = *sim;
-  const long long chunk = every ? *every : (progress ? kProgressChunk : std::max(n, 1LL));
+  // Without `every`, chunks of kProgressChunk steps (bit-identical to one long run) so that
+  // a stop request (Ctrl-C, SIGTERM) is honoured within a chunk.
+  const long long chunk = every ? *every : kProgressChunk;
   long long done = 0;
   while (done < n) {
     prepare_dynamics(d, sim, "run");
@@ -214,6 +218,7 @@ int l_run(lua_State* L) {
       lua_pop(L, 1);
       if (stop) break;
     }
+    if (stop_requested()) break;  // the caller checks invasim.interrupted()
   }
   lua_pushinteger(L, done);
   return 1;

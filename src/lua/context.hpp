@@ -19,6 +19,8 @@ struct RunOptions {
   std::optional<std::string> seed;  // --seed S: sets the declared parameter `seed`
   std::string out_dir;              // exposed to scripts as invasim.out_dir
   bool list_params = false;         // `invasim params`: stop at invasim.params{...}
+  bool resume = false;              // --resume DIR: continue the run in out_dir (invasim.resume)
+  std::string from_dir;  // --from RUN_DIR: start from its compressed tissue (invasim.from)
 };
 
 // Per-state shared data: the options in, the declared parameters out.

@@ -37,6 +37,14 @@ int open_invasim(lua_State* L) {
   lua_setfield(L, -2, "git_revision");
   lua_pushstring(L, context.options.out_dir.c_str());
   lua_setfield(L, -2, "out_dir");
+  if (!context.options.from_dir.empty()) {  // invasim.from: a run whose tissue to start from
+    lua_pushstring(L, context.options.from_dir.c_str());
+    lua_setfield(L, -2, "from");
+  }
+  if (context.options.resume) {  // invasim.resume: the run directory to continue, else nil
+    lua_pushstring(L, context.options.out_dir.c_str());
+    lua_setfield(L, -2, "resume");
+  }
   lua_pushstring(L, context.options.script_path.c_str());
   lua_setfield(L, -2, "script");
   lua_pushcfunction(L, &l_threads);
@@ -58,6 +66,7 @@ int open_invasim(lua_State* L) {
   open_measure(L);
   open_correlator(L);
   open_io(L);
+  open_checkpoint(L);
   open_compression(L);
   return 1;
 }

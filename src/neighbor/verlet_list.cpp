@@ -140,6 +140,9 @@ void VerletList::build(const System& sys) {
             ++m;
           }
         }
+      // Rows in index order: the force sums then do not depend on when the list was built
+      // (a run restarted from a checkpoint rebuilds at another step).
+      if (m <= int(stride_)) std::sort(out, out + m);
       counts_[i] = m;
       max_count = std::max(max_count, m);
     }

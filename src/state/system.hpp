@@ -48,6 +48,8 @@ class System {
   const std::vector<MeshBody>& bodies() const { return bodies_; }
   std::vector<MeshBody>& bodies() { return bodies_; }
   std::uint64_t seed() const { return seed_; }
+  // A new random seed (a run started from another run's saved state draws its own noise).
+  void set_seed(std::uint64_t seed) { seed_ = seed; }
   std::uint64_t step = 0;  // completed time steps
   double time = 0.0;       // simulated time
 

@@ -1,0 +1,257 @@
+#!/usr/bin/env python3
+"""Plots the time series of an invasim run directory.
+
+Usage: plot_run.py RUN_DIR
+
+Reads RUN_DIR/series.csv (a header row of `name [unit]` or `name` entries, then one row of
+numbers per sample) and writes PNG plots into RUN_DIR/plots/, one per group of columns that is
+present: A_t.png (A_t, A_t_max and, below, A_ratio = A_t/A_t^max), temperature.png (T_c, T_a),
+pressure.png (P_left, P_right), box_length.png (L_x), packing.png (phi, phi_c, phi_a, ...).
+Missing columns are skipped. The horizontal axis is `time` if present, else `step`.
+
+Needs numpy and matplotlib (Debian 12: apt-get install python3-numpy python3-matplotlib). If
+the python3 running this script lacks them, it re-runs itself with /usr/bin/python3.
+Exit status: 0 on success, 1 on an error (unreadable or malformed series.csv, missing
+modules), 2 on a bad command line.
+"""
+
+import argparse
+import csv
+import math
+import os
+import re
+import sys
+
+SYSTEM_PYTHON = "/usr/bin/python3"
+NO_REEXEC = "INVASIM_PLOT_NO_REEXEC"  # set when re-executed, so it happens at most once
+DEBIAN_PACKAGES = {"numpy": "python3-numpy", "matplotlib": "python3-matplotlib"}
+
+# Plot groups: output file, columns (in legend order), y-axis label. packing.png takes every
+# column named phi or phi_*.
+GROUPS = [
+    ("temperature.png", ["T_c", "T_a"], "temperature"),
+    ("pressure.png", ["P_left", "P_right"], "pressure"),
+    ("box_length.png", ["L_x"], "box length"),
+]
+LABELS = {
+    "T_c": "$T_c$ (cancer cells)",
+    "T_a": "$T_a$ (adipocytes)",
+    "P_left": r"$P_\mathrm{left}$",
+    "P_right": r"$P_\mathrm{right}$",
+    "L_x": "$L_x$",
+    "A_t": "$A_t$",
+    "A_t_max": r"$A_t^\mathrm{max}$",
+    "A_ratio": r"$A_t / A_t^\mathrm{max}$",
+    "phi": r"$\phi$",
+    "phi_c": r"$\phi_c$",
+    "phi_a": r"$\phi_a$",
+}
+
+
+class SeriesError(Exception):
+    """A series.csv that cannot be read or is malformed (the message names file and line)."""
+
+
+def fail(message, status=1):
+    print("plot_run.py: " + message, file=sys.stderr)
+    sys.exit(status)
+
+
+def import_plotting():
+    """Returns (numpy, pyplot) with the Agg backend. If a module is missing, re-runs the script
+    with /usr/bin/python3 when that is another interpreter, else exits naming the packages."""
+    import importlib.util
+
+    missing = [m for m in ("numpy", "matplotlib") if importlib.util.find_spec(m) is None]
+    if not missing:
+        import numpy
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as pyplot
+
+        return numpy, pyplot
+    here = os.path.realpath(sys.executable) if sys.executable else ""
+    if (
+        not os.environ.get(NO_REEXEC)
+        and os.path.exists(SYSTEM_PYTHON)
+        and os.path.realpath(SYSTEM_PYTHON) != here
+    ):
+        os.environ[NO_REEXEC] = "1"
+        sys.stdout.flush()
+        os.execv(SYSTEM_PYTHON, [SYSTEM_PYTHON, os.path.abspath(__file__)] + sys.argv[1:])
+    packages = " ".join(DEBIAN_PACKAGES[m] for m in missing)
+    fail(
+        "%s not available to %s; on Debian install: apt-get install %s"
+        % (" and ".join(missing), sys.executable or "python3", packages)
+    )
+
+
+def parse_header_entry(entry):
+    """`name [unit]` -> (name, unit); `name` -> (name, "")."""
+    m = re.fullmatch(r"\s*([^\[\]]*?)\s*(?:\[([^\]]*)\])?\s*", entry)
+    if not m or not m.group(1):
+        return None
+    return m.group(1), (m.group(2) or "").strip()
+
+
+def read_series(path):
+    """Returns (names, units, columns): column name -> list of floats (empty field: nan)."""
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.reader(f))
+    except OSError as e:
+        raise SeriesError("cannot read %s: %s" % (path, e.strerror or e))
+    if not rows or not any(field.strip() for field in rows[0]):
+        raise SeriesError("%s is empty (no header row)" % path)
+    names, units = [], {}
+    for k, entry in enumerate(rows[0]):
+        parsed = parse_header_entry(entry)
+        if parsed is None:
+            raise SeriesError("%s: line 1, column %d: bad header entry '%s' (expected "
+                              "'name [unit]' or 'name')" % (path, k + 1, entry))
+        if parsed[0] in units:
+            raise SeriesError("%s: line 1: column '%s' appears twice" % (path, parsed[0]))
+        names.append(parsed[0])
+        units[parsed[0]] = parsed[1]
+    columns = {n: [] for n in names}
+    data = [(i + 2, r) for i, r in enumerate(rows[1:]) if any(field.strip() for field in r)]
+    for index, (line, row) in enumerate(data):
+        if len(row) != len(names):
+            if index == len(data) - 1 and len(row) < len(names):
+                # A run killed while writing its last row: keep every complete row.
+                print("plot_run.py: %s: line %d is incomplete (%d of %d fields), ignored"
+                      % (path, line, len(row), len(names)), file=sys.stderr)
+                break
+            raise SeriesError("%s: line %d has %d fields, the header has %d"
+                              % (path, line, len(row), len(names)))
+        for name, field in zip(names, row):
+            text = field.strip()
+            try:
+                value = float(text) if text else math.nan
+            except ValueError:
+                raise SeriesError("%s: line %d, column '%s': '%s' is not a number"
+                                  % (path, line, name, field))
+            columns[name].append(value)
+    if not columns[names[0]]:
+        raise SeriesError("%s has a header but no data rows" % path)
+    return names, units, columns
+
+
+def axis_label(text, unit):
+    return "%s [%s]" % (text, unit) if unit else text
+
+
+def save(figure, path):
+    """Writes the figure as PNG atomically (temporary file, then rename)."""
+    temporary = path + ".tmp.%d" % os.getpid()
+    try:
+        figure.savefig(temporary, format="png", dpi=120)
+        os.replace(temporary, path)
+    finally:
+        if os.path.exists(temporary):
+            os.remove(temporary)
+
+
+def plot_lines(np, plt, x, x_label, names, units, columns, y_label, path):
+    """One PNG with the given columns against x."""
+    figure, axes = plt.subplots(figsize=(6.4, 4.0), constrained_layout=True)
+    for name in names:
+        axes.plot(x, np.asarray(columns[name]), label=LABELS.get(name, name))
+    axes.set_xlabel(x_label)
+    axes.set_ylabel(axis_label(y_label, units[names[0]]))
+    if len(names) > 1:
+        axes.legend()
+    axes.grid(alpha=0.3)
+    save(figure, path)
+    plt.close(figure)
+
+
+def plot_interface(np, plt, x, x_label, units, columns, path):
+    """A_t.png: A_t (and A_t_max) on top; A_t/A_t^max below when known. Returns the columns
+    shown (A_ratio computed from A_t and A_t_max if the file has no A_ratio column)."""
+    shown = [n for n in ("A_t", "A_t_max") if n in columns]
+    ratio = None
+    if "A_ratio" in columns:
+        ratio = np.asarray(columns["A_ratio"])
+        shown.append("A_ratio")
+    elif "A_t" in columns and "A_t_max" in columns:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.asarray(columns["A_t"]) / np.asarray(columns["A_t_max"])
+        shown.append("A_t/A_t_max (computed)")
+    areas = [n for n in ("A_t", "A_t_max") if n in columns]
+    panels = (1 if areas else 0) + (1 if ratio is not None else 0)
+    figure, axes = plt.subplots(panels, 1, figsize=(6.4, 3.2 * panels + 0.8), sharex=True,
+                                squeeze=False, constrained_layout=True)
+    axes = axes[:, 0]
+    if areas:
+        for name in areas:
+            axes[0].plot(x, np.asarray(columns[name]), label=LABELS[name])
+        axes[0].set_ylabel(axis_label("interfacial area", units[areas[0]]))
+        axes[0].legend()
+        axes[0].grid(alpha=0.3)
+    if ratio is not None:
+        axes[-1].plot(x, ratio, color="C2")
+        axes[-1].set_ylabel(LABELS["A_ratio"])
+        axes[-1].grid(alpha=0.3)
+    axes[-1].set_xlabel(x_label)
+    save(figure, path)
+    plt.close(figure)
+    return shown
+
+
+def main():
+    parser = argparse.ArgumentParser(
+        description="Plots RUN_DIR/series.csv of an invasim run into RUN_DIR/plots/*.png.")
+    parser.add_argument("run_dir", metavar="RUN_DIR", help="run directory holding series.csv")
+    args = parser.parse_args()  # exits with status 2 on a bad command line
+    np, plt = import_plotting()
+
+    series = os.path.join(args.run_dir, "series.csv")
+    if not os.path.isdir(args.run_dir):
+        fail("run directory '%s' does not exist" % args.run_dir)
+    if not os.path.isfile(series):
+        fail("'%s' not found (is '%s' an invasim run directory?)" % (series, args.run_dir))
+    try:
+        names, units, columns = read_series(series)
+    except SeriesError as e:
+        fail(str(e))
+
+    if "time" in columns:
+        x, x_label = np.asarray(columns["time"]), axis_label("time", units["time"])
+    elif "step" in columns:
+        x, x_label = np.asarray(columns["step"]), axis_label("step", units["step"])
+    else:
+        x, x_label = np.arange(len(columns[names[0]])), "sample"
+
+    out_dir = os.path.join(args.run_dir, "plots")
+    os.makedirs(out_dir, exist_ok=True)
+    written, skipped = [], []
+    if any(n in columns for n in ("A_t", "A_t_max", "A_ratio")):
+        path = os.path.join(out_dir, "A_t.png")
+        written.append((path, plot_interface(np, plt, x, x_label, units, columns, path)))
+    else:
+        skipped.append("A_t.png (A_t, A_t_max, A_ratio)")
+    phi = [n for n in names if n == "phi" or n.startswith("phi_")]
+    for file_name, wanted, y_label in GROUPS + [("packing.png", phi, "packing fraction")]:
+        present = [n for n in wanted if n in columns]
+        if not present:
+            skipped.append("%s (%s)" % (file_name, ", ".join(wanted) or "phi, phi_*"))
+            continue
+        path = os.path.join(out_dir, file_name)
+        plot_lines(np, plt, x, x_label, present, units, columns, y_label, path)
+        written.append((path, present))
+
+    rows = len(columns[names[0]])
+    for path, shown in written:
+        print("wrote %s: %s" % (path, ", ".join(shown)))
+    if skipped:
+        print("skipped (no such columns): " + "; ".join(skipped))
+    if not written:
+        fail("%s (%d rows) has none of the plotted columns" % (series, rows))
+    print("plot_run.py: %d plot%s of %d rows in %s"
+          % (len(written), "" if len(written) == 1 else "s", rows, out_dir))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,15 @@
+#pragma once
+// `invasim run --resume DIR`: the protocol and parameters of the run in DIR, read from the
+// DIR/resume.txt its run directory wrote (protocols/lib/run_dir.lua): the protocol path on the
+// first line, then one `key=value` per parameter in --set syntax.
+#include <string>
+
+#include "lua/context.hpp"
+
+namespace invasim::app {
+
+// Options that start the same protocol again in DIR with resume set; InputError if DIR holds
+// no readable resume.txt (naming the file) or a line is malformed (naming the line).
+lua::RunOptions read_resume_options(const std::string& dir);
+
+}  // namespace invasim::app

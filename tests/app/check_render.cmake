@@ -1,0 +1,42 @@
+# Runs `${INVASIM} render ${ARGS}` (writing ${OUT}) and checks, independently of the renderer:
+# exit status 0; stdout exactly "render: ${DISCS} discs, ${POLYGONS} polygons -> ${OUT}" and
+# nothing on stderr; the SVG holds exactly ${DISCS} cell circles (<circle data-cell=...>) and
+# ${POLYGONS} adipocyte polygons (<polygon data-body=...>), no open chains, and, if given,
+# matches the regex ${SVG_EXPECT} (e.g. the title or the width).
+file(REMOVE ${OUT})
+execute_process(COMMAND ${INVASIM} render ${ARGS} RESULT_VARIABLE rc OUTPUT_VARIABLE out
+                ERROR_VARIABLE err)
+message("exit status ${rc}; stdout:\n${out}stderr:\n${err}")
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "expected exit status 0")
+endif()
+set(line "render: ${DISCS} discs, ${POLYGONS} polygons -> ${OUT}\n")
+if(NOT out STREQUAL line)
+  message(FATAL_ERROR "expected exactly this output: ${line}")
+endif()
+if(NOT err STREQUAL "")
+  message(FATAL_ERROR "expected nothing on stderr")
+endif()
+if(NOT EXISTS ${OUT})
+  message(FATAL_ERROR "${OUT} was not written")
+endif()
+file(READ ${OUT} svg)
+if(NOT svg MATCHES "^<\\?xml.*<svg .*</svg>\n$")
+  message(FATAL_ERROR "${OUT} is not a complete SVG document")
+endif()
+# Counts the occurrences of a literal string in the SVG.
+function(count_of text result)
+  string(REGEX MATCHALL "${text}" hits "${svg}")
+  list(LENGTH hits n)
+  set(${result} ${n} PARENT_SCOPE)
+endfunction()
+count_of("<circle data-cell=\"" n_discs)
+count_of("<polygon data-body=\"" n_polygons)
+count_of("<polyline" n_chains)
+message("SVG: ${n_discs} cell circles, ${n_polygons} polygons, ${n_chains} polylines")
+if(NOT n_discs EQUAL DISCS OR NOT n_polygons EQUAL POLYGONS OR NOT n_chains EQUAL 0)
+  message(FATAL_ERROR "expected ${DISCS} cell circles, ${POLYGONS} polygons, no polylines")
+endif()
+if(NOT "${SVG_EXPECT}" STREQUAL "" AND NOT svg MATCHES "${SVG_EXPECT}")
+  message(FATAL_ERROR "the SVG does not match: ${SVG_EXPECT}")
+endif()
