@@ -15,6 +15,7 @@ local protocol = require("lib.protocol")
 
 local p = iv.params(protocol.declarations())
 
+protocol.validate(p)
 local clock = iv.clock()
 local out = require("lib.run_dir").open(p)
 local tissue = protocol.prepare(p, out)

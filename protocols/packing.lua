@@ -13,6 +13,7 @@ local p = iv.params(protocol.merge{
   lambda = { 0.0, help = "tether heterogeneity" },
 })
 
+protocol.validate(p)
 local clock = iv.clock()
 local out = require("lib.run_dir").open(p)
 local tissue = protocol.compressed(p, out)

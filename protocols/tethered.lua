@@ -13,6 +13,7 @@ local p = iv.params(protocol.merge{
   equilibrate_steps = { 10000, type = "integer", help = "steps after tether insertion before production" },
 })
 
+protocol.validate(p)
 local clock = iv.clock()
 local out = require("lib.run_dir").open(p)
 local tissue = protocol.prepare(p, out)

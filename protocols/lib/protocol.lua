@@ -67,9 +67,6 @@ function M.produce(tissue, p, out)
     snapshots = iv.Snapshots{ dir = out .. "/snapshots" }
     if not require("lib.resume").pending() then snapshots:write(tissue.sys) end
   end
-  if p.snapshot_every % p.every ~= 0 then
-    error(string.format("snapshot_every = %d must be a multiple of every = %d", p.snapshot_every, p.every), 0)
-  end
   return require("lib.production")(tissue, {
     steps = p.steps, every = p.every, correlate_every = p.correlate_every, out = out,
     checkpoint_every = p.checkpoint_every,
@@ -77,6 +74,17 @@ function M.produce(tissue, p, out)
       if row.step % p.snapshot_every == 0 then snapshots:write(tissue.sys) end
     end or nil,
   })
+end
+
+-- Checks the parameters' combinations before anything runs or any file is written.
+function M.validate(p)
+  M.size(p)
+  if p.snapshot_every > 0 and p.snapshot_every % p.every ~= 0 then
+    error(string.format("--set snapshot_every=%d must be a multiple of every = %d", p.snapshot_every, p.every), 0)
+  end
+  if p.checkpoint_every > 0 and p.checkpoint_every % p.every ~= 0 then
+    error(string.format("--set checkpoint_every=%d must be a multiple of every = %d", p.checkpoint_every, p.every), 0)
+  end
 end
 
 -- init + compress with the common parameters; returns the tissue. With --from RUN_DIR, the
