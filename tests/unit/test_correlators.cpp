@@ -156,35 +156,13 @@ double root(F f, double level, double hi) {
 // ---------------------------------------------------------------------------------------
 // Engine trajectories
 
-std::vector<int> all_sites(const System& sys) {
-  std::vector<int> g(sys.n_sites());
-  for (std::size_t i = 0; i < g.size(); ++i) g[i] = int(i);
-  return g;
-}
+using test::all_sites;
+using test::estimate;
+using test::Estimate;
 
 // n non-interacting unit-mass spheres at random positions in a fully periodic box.
 System free_particles(int n, std::uint64_t seed) {
-  const double L = 40.0;
-  System sys(test::cube(L, false), seed);
-  for (int i = 0; i < n; ++i)
-    sys.add_sphere(
-        L * Vec3(test::uniform(seed, i, 0), test::uniform(seed, i, 1), test::uniform(seed, i, 2)),
-        1.0);
-  return sys;
-}
-
-// Mean and standard error over independent groups.
-struct Estimate {
-  double mean = 0.0, error = 0.0;
-};
-Estimate estimate(const std::vector<double>& x) {
-  Estimate e;
-  for (double v : x) e.mean += v;
-  e.mean /= double(x.size());
-  double var = 0.0;
-  for (double v : x) var += (v - e.mean) * (v - e.mean);
-  e.error = std::sqrt(var / double(x.size() - 1) / double(x.size()));
-  return e;
+  return test::free_particles(n, 1.0, seed);
 }
 
 // Independent correlators over equal groups of particles. Every group has as many particles

@@ -26,36 +26,10 @@ namespace {
 constexpr double kDt = 0.05;
 constexpr double kGamma = 0.2;
 
-std::vector<int> all_sites(const System& sys) {
-  std::vector<int> g(sys.n_sites());
-  for (std::size_t i = 0; i < g.size(); ++i) g[i] = int(i);
-  return g;
-}
-
-// n non-interacting spheres of mass m at random positions in a fully periodic box.
-System free_particles(int n, double mass, std::uint64_t seed) {
-  const double L = 40.0;
-  System sys(test::cube(L, false), seed);
-  for (int i = 0; i < n; ++i)
-    sys.add_sphere(
-        L * Vec3(test::uniform(seed, i, 0), test::uniform(seed, i, 1), test::uniform(seed, i, 2)),
-        1.0, mass);
-  return sys;
-}
-
-// Mean and standard error of a set of independent estimates.
-struct Estimate {
-  double mean = 0.0, error = 0.0;
-};
-Estimate estimate(const std::vector<double>& x) {
-  Estimate e;
-  for (double v : x) e.mean += v;
-  e.mean /= double(x.size());
-  double var = 0.0;
-  for (double v : x) var += (v - e.mean) * (v - e.mean);
-  e.error = std::sqrt(var / double(x.size() - 1) / double(x.size()));
-  return e;
-}
+using test::all_sites;
+using test::estimate;
+using test::Estimate;
+using test::free_particles;
 
 // Autocorrelation <a_i(t0) . a_i(t0 + k)> of a per-site vector, in units of the sampling
 // interval, averaged over sites and over every sampled time origin t0, for k = 0..n_lags.

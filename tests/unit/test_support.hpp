@@ -1,5 +1,6 @@
 #pragma once
 // Builders of small test systems shared by the unit tests and the benchmarks.
+#include <cmath>
 #include <memory>
 
 #include "core/rng.hpp"
@@ -104,6 +105,37 @@ inline System slab_system(int nx, int n_yz, int n_cells, double spacing, double 
             2.0, 1.1);
   sys.wrap_all();
   return sys;
+}
+
+// Every site index of a system (a group of all sites).
+inline std::vector<int> all_sites(const System& sys) {
+  std::vector<int> g(sys.n_sites());
+  for (std::size_t i = 0; i < g.size(); ++i) g[i] = int(i);
+  return g;
+}
+
+// n non-interacting spheres of mass m at random positions in a fully periodic box.
+inline System free_particles(int n, double mass, std::uint64_t seed) {
+  const double L = 40.0;
+  System sys(cube(L, false), seed);
+  for (int i = 0; i < n; ++i)
+    sys.add_sphere(L * Vec3(uniform(seed, i, 0), uniform(seed, i, 1), uniform(seed, i, 2)), 1.0,
+                   mass);
+  return sys;
+}
+
+// Mean and standard error of a set of independent estimates.
+struct Estimate {
+  double mean = 0.0, error = 0.0;
+};
+inline Estimate estimate(const std::vector<double>& x) {
+  Estimate e;
+  for (double v : x) e.mean += v;
+  e.mean /= double(x.size());
+  double var = 0.0;
+  for (double v : x) var += (v - e.mean) * (v - e.mean);
+  e.error = std::sqrt(var / double(x.size() - 1) / double(x.size()));
+  return e;
 }
 
 }  // namespace invasim::test
