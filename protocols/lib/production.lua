@@ -173,6 +173,7 @@ return function(tissue, opts)
   end
   local shape = shapes(sys, o.slices_per_body)
   summary.shape_3d_mean = shape.shape_3d_mean
+  summary.shape_3d = shape.shape_3d   -- per adipocyte, at the end of the run
   summary.shape_2d_mean = shape.shape_2d_mean
   if o.out and shape.shape_2d_histogram then
     local h = shape.shape_2d_histogram

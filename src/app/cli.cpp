@@ -25,7 +25,8 @@ Options of run and params:
   --set key=value   override a parameter declared with invasim.params{...} (repeatable);
                     an undeclared key or a value of the wrong type is an error
   --seed S          same as --set seed=S (the protocol must declare `seed`)
-  --out DIR         output directory, invasim.out_dir in scripts (default out/<protocol name>)
+  --out DIR         output directory, invasim.out_dir in scripts (default out/<protocol name>
+                    followed by _key=value for each --set, e.g. out/invasion_P=2e-3)
   --threads N       number of OpenMP threads (default: OMP_NUM_THREADS or all cores)
   --traceback       on a Lua error, also print the Lua stack traceback
   --from RUN_DIR    start from the compressed tissue that run saved (invasim.from)
@@ -80,6 +81,22 @@ double parse_size(const std::string& text) {
       !(value <= 1e5))
     throw UsageError("--size expects a number of pixels in (0, 100000], got '" + text + "'");
   return value;
+}
+
+// out/<protocol stem>, then _key=value for each --set (and --seed) in command-line order, so
+// that runs of a sweep get their own directories: out/invasion_P=2e-3_seed=7. Characters
+// that do not belong in a file name become '-'.
+std::string default_out_dir(const lua::RunOptions& options) {
+  std::string name = std::filesystem::path(options.script_path).stem().string();
+  auto append = [&](const std::string& key, const std::string& value) {
+    std::string part = "_" + key + "=" + value;
+    for (char& c : part)
+      if (c == '/' || c == '\\' || c == ' ' || c == ':' || c == '*' || c == '?') c = '-';
+    name += part;
+  };
+  for (const auto& o : options.overrides) append(o.key, o.text);
+  if (options.seed) append("seed", *options.seed);
+  return (std::filesystem::path("out") / name).string();
 }
 
 // `invasim render SNAPSHOT --slice A=VALUE -o FILE.svg [--size PIXELS]`.
@@ -241,9 +258,7 @@ Command parse_command_line(const std::vector<std::string>& args) {
     throw UsageError("invasim " + verb + ": unexpected argument '" + positional[2] + "'");
   command.options.script_path = positional[1];
   command.options.list_params = command.kind == Command::Kind::kParams;
-  command.options.out_dir =
-      out ? *out
-          : (std::filesystem::path("out") / std::filesystem::path(positional[1]).stem()).string();
+  command.options.out_dir = out ? *out : default_out_dir(command.options);
   return command;
 }
 

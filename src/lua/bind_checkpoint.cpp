@@ -221,6 +221,8 @@ void open_checkpoint(lua_State* L) {
   lua_setfield(L, -2, "save_checkpoint");
   lua_pushcfunction(L, &lua_wrap<&l_load>);
   lua_setfield(L, -2, "load_checkpoint");
+  lua_pushcfunction(L, &lua_wrap<&l_load>);
+  lua_setfield(L, -2, "load");  // invasim.load(path, {...}): the same, shorter
   lua_pushcfunction(L, &lua_wrap<&l_interrupted>);
   lua_setfield(L, -2, "interrupted");
 }
