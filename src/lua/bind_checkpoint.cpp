@@ -183,6 +183,13 @@ int l_load(lua_State* L) {
     const CheckpointReader r = CheckpointReader::read(path);
     System restored = read_system(r);
     Simulation& sim = *p.sim;
+    // Groups, methods and forces index the sites: the System must be built the same way.
+    if (restored.n_sites() != sim.system.n_sites() ||
+        restored.bodies().size() != sim.system.bodies().size())
+      fail_input("the checkpoint '", path, "' holds ", restored.n_sites(), " sites and ",
+                 restored.bodies().size(), " adipocytes, this System ", sim.system.n_sites(),
+                 " sites and ", sim.system.bodies().size(),
+                 " adipocytes (load into a System built with the same sizes)");
     sim.system = std::move(restored);
     if (seed) sim.system.set_seed(std::uint64_t(*seed));
     for (const auto& term : sim.forces.terms()) term->invalidate_caches();

@@ -20,4 +20,9 @@ grep -q "quench: P = 0.002" "$work/second.log" || { echo "FAILED: own parameters
 ! "$invasim" "${args[@]}" --from "$work/missing" --out "$work/third" > "$work/third.log" 2>&1 ||
   { echo "FAILED: a missing run directory was accepted"; exit 1; }
 grep -q "missing/checkpoint/compressed.ckpt" "$work/third.log" || { echo "FAILED: message"; cat "$work/third.log"; exit 1; }
+# A tissue of another size is refused (groups and forces index the sites).
+! "$invasim" run ../../protocols/invasion.lua --set N_a=4 --set N_c=61 --set L0=32.0 --from "$work/first" --out "$work/fourth" > "$work/fourth.log" 2>&1 ||
+  { echo "FAILED: a tissue of another size was accepted"; exit 1; }
+grep -q "holds 228 sites and 4 adipocytes, this System 229 sites" "$work/fourth.log" ||
+  { echo "FAILED: size message"; cat "$work/fourth.log"; exit 1; }
 echo "from_run: the second run started from the first run's compressed tissue (L_f = $first_box)"
