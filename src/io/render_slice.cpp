@@ -1,6 +1,7 @@
 #include "io/render_slice.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "io/atomic_file.hpp"
 #include "io/io_error.hpp"
@@ -21,6 +22,14 @@ RenderCounts count_shapes(const Slice& slice) {
 }
 
 namespace {
+
+// Simulated time for a caption: 10 significant digits hide the round-off that summing dt
+// accumulates (6000.000000013062 -> 6000).
+std::string time_label(double t) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", t);
+  return buf;
+}
 
 // Maps simulation coordinates (u, w) to SVG pixels (w upwards).
 struct Canvas {
@@ -106,7 +115,7 @@ std::string slice_svg(const Slice& s, double size_px) {
   std::string title;
   title += "xyz"[s.plane.axis];
   title += " = " + text::str(s.plane.value) + ", step " + std::to_string(s.step) +
-           ", t = " + text::str(s.time);
+           ", t = " + time_label(s.time);
   out += xml_escape(title);
   out += "</title>\n  <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   out += "  <text x=\"";
