@@ -36,7 +36,8 @@ Options of run and params:
 
 Options of render:
   --slice A=VALUE   the cutting plane, x=VALUE, y=VALUE or z=VALUE (required)
-  -o FILE.svg       the picture to write, also --output FILE.svg (required)
+  -o FILE.svg       the picture to write, also --output FILE (required; FILE.png needs
+                    rsvg-convert from Debian's librsvg2-bin)
   --size PIXELS     length of the longer box side in the picture (default 800)
   SNAPSHOT is any file of one frame (cells_<step>.xyz, spheres_<step>.vtp or
   adipocytes_<step>.vtp); the other files of the same step next to it are read too.
