@@ -32,8 +32,9 @@ check(report.converged and report.max_force < 1e-6, "max force %.3e < 1e-6 (conv
 local fire = iv.Fire{ ftol = 1e-6, max_steps = 0 }:minimize(sys)
 check(fire.max_force < 1e-6, "re-evaluated max force %.3e < 1e-6", fire.max_force)
 
+local adipocytes = sys:adipocytes()
 local worst = 0
-for _, a in ipairs(sys:adipocytes()) do
+for _, a in ipairs(adipocytes) do
   worst = math.max(worst, math.abs(a.volume / a.ref_volume - 1))
 end
 check(worst < 0.01, "largest adipocyte volume deviation %.3e < 1 %%", worst)
@@ -44,7 +45,7 @@ for _, r in ipairs(cells) do mean_cell_x = mean_cell_x + r[1] / #cells end
 local box = sys:box()
 local L = box.lengths[1]
 local min_centre_x = math.huge
-for _, a in ipairs(sys:adipocytes()) do min_centre_x = math.min(min_centre_x, a.centre[1]) end
+for _, a in ipairs(adipocytes) do min_centre_x = math.min(min_centre_x, a.centre[1]) end
 check(mean_cell_x < min_centre_x, "de-mixed: mean cancer-cell x = %.3f < leftmost adipocyte centre X = %.3f",
       mean_cell_x, min_centre_x)
 
@@ -61,7 +62,7 @@ local function yz_distance(r, c)
 end
 local closest, closest_x, closest_X = math.huge, nil, nil
 for _, r in ipairs(cells) do
-  for _, a in ipairs(sys:adipocytes()) do
+  for _, a in ipairs(adipocytes) do
     if a.centre[1] < r[1] then
       local d = yz_distance(r, a.centre)
       if d < closest then closest, closest_x, closest_X = d, r[1], a.centre[1] end

@@ -95,44 +95,55 @@ TEST_CASE("placement refuses regions that cannot hold the bodies, naming the reg
 
 namespace {
 
-// The cancer cell that comes closest to lying behind an adipocyte (further from the left
-// wall than the adipocyte's centre) in the y-z plane, with their periodic y-z distance.
-struct Clearance {
-  int cell = -1;
-  double cell_x = 0.0, body_x = 0.0, yz_distance = 1e300;
+// How de-mixed the cancer cells and adipocytes are (see demixing).
+struct Demixing {
+  double mean_cell_x = 0.0;           // mean x of the cancer cells
+  double leftmost_centre_x = 1e300;   // smallest x of an adipocyte's vertex centroid
+  int cell = -1;                      // the cell closest to lying behind an adipocyte,
+  double cell_x = 0.0, body_x = 0.0;  // its x and that adipocyte's centre x,
+  double yz_distance = 1e300;         // and their periodic y-z distance
 };
 
-// De-mixed with a planar interface means the cells fill a slab at the left wall whose surface
-// follows the first layer of adipocytes: cells may fill the grooves between adipocytes, whose
-// depth is about one adipocyte radius, but none may sit behind one. A cell counts as behind
-// adipocyte b when b's centre is left of it (smaller x) and within half the outer radius
-// (1.5 sigma) of it in the periodic y-z plane, i.e. well inside b's shadow on the wall: to get
-// there the cell would have passed through the adipocyte layer. A cell in a groove between
-// two or three touching adipocytes stays about one outer radius (2.5-3 sigma) from their
-// centres in y-z; a mixed packing has cells deep in the tissue, most of them behind several.
-Clearance demixing_clearance(const System& sys) {
+// De-mixed with a planar interface means the cells fill a slab at the left wall (their mean
+// x is left of every adipocyte centre) whose surface follows the first layer of adipocytes:
+// cells may fill the grooves between adipocytes, whose depth is about one adipocyte radius,
+// but none may sit behind one. A cell counts as behind adipocyte b when b's centre is left of
+// it (smaller x) and within half the outer radius (1.5 sigma) of it in the periodic y-z
+// plane, i.e. well inside b's shadow on the wall: to get there the cell would have passed
+// through the adipocyte layer. A cell in a groove between two or three touching adipocytes
+// stays about one outer radius (2.5-3 sigma) from their centres in y-z; a mixed packing has
+// cells deep in the tissue, most of them behind several.
+Demixing demixing(const System& sys) {
+  Demixing m;
   std::vector<Vec3> x(42), centres;
   for (std::size_t b = 0; b < sys.bodies().size(); ++b) {
     sys.body_vertices(int(b), x.data());
     centres.push_back(vertex_centroid(42, x.data()));
+    m.leftmost_centre_x = std::min(m.leftmost_centre_x, centres.back()[0]);
   }
-  Clearance worst;
-  for (int i : sys.sites_of_kind(SiteKind::kCancer)) {
+  const std::vector<int> cells = sys.sites_of_kind(SiteKind::kCancer);
+  for (int i : cells) {
     const Vec3& r = sys.sites().pos[i];
+    m.mean_cell_x += r[0] / double(cells.size());
     for (const Vec3& c : centres) {
       if (c[0] >= r[0]) continue;
-      Vec3 d = sys.box().minimum_image(r - c);
+      const Vec3 d = sys.box().minimum_image(r - c);
       const double yz = std::hypot(d[1], d[2]);
-      if (yz < worst.yz_distance) worst = {i, r[0], c[0], yz};
+      if (yz < m.yz_distance) {
+        m.cell = i;
+        m.cell_x = r[0];
+        m.body_x = c[0];
+        m.yz_distance = yz;
+      }
     }
   }
-  return worst;
+  return m;
 }
 
 // Compresses a dilute de-mixed start to phi = 0.72 with FIRE to `ftol` after every 3 % step,
 // then minimises to `final_ftol` (the protocol's compress stage), and checks: every
 // minimisation converged, phi within 1e-3, the final max force below final_ftol, the number
-// of steps, adipocyte volumes within 1 %, and a de-mixed packing (see demixing_clearance).
+// of steps, adipocyte volumes within 1 %, and a de-mixed packing (see demixing).
 void check_compression(int n_a, int n_c, double ftol, double final_ftol) {
   System sys = dilute_start(n_a, n_c, 5);
   const double phi0 = packing_fractions(sys).total;
@@ -153,31 +164,27 @@ void check_compression(int n_a, int n_c, double ftol, double final_ftol) {
   CHECK(f.max_force < final_ftol);
   CHECK(r.steps == std::size_t(std::ceil(std::log(0.72 / phi0) / std::log(1.03))));
   std::vector<Vec3> x(42);
-  double min_body_x = 1e300;
   for (std::size_t b = 0; b < sys.bodies().size(); ++b) {
     sys.body_vertices(int(b), x.data());
     const double v = mesh_volume(*sys.bodies()[b].topology, x.data());
     CHECK(std::abs(v / sys.bodies()[b].ref_volume - 1.0) < 0.01);
-    min_body_x = std::min(min_body_x, vertex_centroid(42, x.data())[0]);
   }
-  const std::vector<int> cells = sys.sites_of_kind(SiteKind::kCancer);
-  double mean_x = 0.0;
-  for (int i : cells) mean_x += sys.sites().pos[i][0] / double(cells.size());
   if (n_a > 0) {
-    const Clearance c = demixing_clearance(sys);
-    INFO("mean cell x " << mean_x << ", leftmost adipocyte centre " << min_body_x
-                        << "; closest cell behind an adipocyte: cell " << c.cell << " at x "
-                        << c.cell_x << ", adipocyte centre x " << c.body_x << ", y-z distance "
-                        << c.yz_distance);
-    CHECK(mean_x < min_body_x);
-    CHECK(c.yz_distance >= 1.5);
+    const Demixing m = demixing(sys);
+    INFO("mean cell x " << m.mean_cell_x << ", leftmost adipocyte centre " << m.leftmost_centre_x
+                        << "; closest cell behind an adipocyte: cell " << m.cell << " at x "
+                        << m.cell_x << ", adipocyte centre x " << m.body_x << ", y-z distance "
+                        << m.yz_distance);
+    CHECK(m.mean_cell_x < m.leftmost_centre_x);
+    CHECK(m.yz_distance >= 1.5);
   }
 }
+
 }  // namespace
 
 TEST_CASE("the de-mixing criterion passes the de-mixed start and flags cells among adipocytes") {
-  CHECK(demixing_clearance(dilute_start(28, 1500, 5)).yz_distance >= 1.5);
-  const Clearance mixed = demixing_clearance(dilute_start(28, 1500, 5, nullptr, true));
+  CHECK(demixing(dilute_start(28, 1500, 5)).yz_distance >= 1.5);
+  const Demixing mixed = demixing(dilute_start(28, 1500, 5, nullptr, true));
   INFO("cell " << mixed.cell << " at x " << mixed.cell_x << ", adipocyte centre x "
                << mixed.body_x);
   CHECK(mixed.yz_distance < 1.5);
