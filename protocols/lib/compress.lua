@@ -53,7 +53,8 @@ return function(tissue, opts)
   report.converged = final.converged
   report.seconds = iv.clock() - clock
   if o.save then  -- the compressed tissue, for runs started with --from this run's directory
-    iv.save_checkpoint(o.save, { system = sys, extra = require("lib.resume").serialize{
+    local resume = require("lib.resume")
+    iv.save_checkpoint(o.save, resume.stamp{ system = sys, extra = resume.serialize{
       box = report.box, phi = report.phi, steps = report.steps } })
   end
   local box = sys:box().lengths

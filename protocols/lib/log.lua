@@ -19,6 +19,15 @@ function M.say(stage, fmt, ...)
   end
 end
 
+-- A message for log.txt only (e.g. each checkpoint written: on stdout it would break the
+-- progress line of a terminal).
+function M.note(stage, fmt, ...)
+  if tee_file then
+    tee_file:write(stage .. ": " .. string.format(fmt, ...) .. "\n")
+    tee_file:flush()
+  end
+end
+
 -- "70 x 70 x 70" from a {Lx, Ly, Lz} list.
 function M.box(lengths)
   return string.format("%.4g x %.4g x %.4g", lengths[1], lengths[2], lengths[3])

@@ -111,11 +111,13 @@ return function(tissue, opts)
     log.say(o.label, "resumed at step %d (t = %g) from %s; %d steps to go", sys:step(), sys:time(),
             checkpoint, end_step - sys:step())
   end
+  -- Writes the checkpoint (stamped with the run's identity) and notes it in log.txt.
   local function save_checkpoint()
-    iv.save_checkpoint(checkpoint, { system = sys, dynamics = dyn, tethers = tissue.tethers,
-                                     correlator = correlator, extra = resume.serialize{
-                                       rows = rows, end_step = end_step, compression = tissue.compression } })
+    iv.save_checkpoint(checkpoint, resume.stamp{ system = sys, dynamics = dyn, tethers = tissue.tethers,
+                                                 correlator = correlator, extra = resume.serialize{
+                                                   rows = rows, end_step = end_step, compression = tissue.compression } })
     tissue.last_checkpoint = { path = checkpoint, step = sys:step() }
+    log.note(o.label, "checkpoint of step %d written to %s", sys:step(), checkpoint)
   end
 
   local file = o.out and series_file.open(o.out .. "/series.csv", columns, units) or nil

@@ -3,21 +3,60 @@
 -- build their objects (init places, tether connects, quench makes the Dynamics) and skip
 -- their work (compression, minimisation, steps), then the production stage loads
 -- DIR/checkpoint/state.ckpt into those objects and continues from the saved step, bit for
--- bit. A run killed before its first checkpoint starts again from the beginning.
+-- bit. A run killed before its first checkpoint starts again from the beginning (from the
+-- same --from tissue, which resume.txt records). The checkpoint must be this run's: its
+-- identity (lib.run_identity) is compared with the run's before anything runs.
 local iv = require("invasim")
+local run_identity = require("lib.run_identity")
 
 local M = {}
 local pending = false
+local identity = nil  -- this run's identity, set by lib.run_dir
 
 function M.checkpoint_path(out) return out .. "/checkpoint/state.ckpt" end
 -- The compressed tissue a run saves for others (invasim run --from DIR).
 function M.compressed_path(out) return out .. "/checkpoint/compressed.ckpt" end
 
--- Called by lib.run_dir: a resume is pending if --resume was given and a checkpoint exists.
+-- This run's identity (lib.run_identity.of), set by lib.run_dir.
+function M.set_identity(id) identity = id end
+function M.identity() return identity end
+
+-- Adds this run's identity to a save_checkpoint keyword table (nothing outside a run
+-- directory); returns the table.
+function M.stamp(t)
+  if identity then t.run_id, t.run_parameters = identity.id, identity.text end
+  return t
+end
+
+-- Refuses (an error naming both runs and what differs) a checkpoint that this run did not
+-- write.
+function M.check(out, path)
+  local id, text = iv.checkpoint_run(path)
+  if id == identity.id then return end
+  local restart = string.format("to run %s again from the beginning, delete %s and resume, or " ..
+                                "start it anew with --overwrite", out, path)
+  if not id then
+    error(string.format("--resume %s: refusing the checkpoint %s: it records no run identity " ..
+                        "(it was not written by a protocol run), so it cannot be told to belong " ..
+                        "to run %s; %s", out, path, identity.id, restart), 0)
+  end
+  local diff = run_identity.differences(text, identity.text, "the checkpoint", "this run")
+  error(string.format("--resume %s: refusing the checkpoint %s: it was written by run %s, not " ..
+                      "by the run %s/resume.txt describes (run %s), so continuing it would " ..
+                      "simulate other parameters than this run records; %s; %s", out, path, id,
+                      out, identity.id, #diff > 0 and "what differs: " .. table.concat(diff, "; ")
+                      or "the parameters cannot be told apart", restart), 0)
+end
+
+-- Called by lib.run_dir: a resume is pending if --resume was given and a checkpoint of this
+-- run exists (a checkpoint of another run is an error).
 function M.start(out)
   if not iv.resume then return false end
-  local f = io.open(M.checkpoint_path(out), "rb")
-  if f then f:close(); pending = true end
+  local path = M.checkpoint_path(out)
+  if iv.exists(path) then
+    M.check(out, path)
+    pending = true
+  end
   return pending
 end
 

@@ -30,9 +30,15 @@ Options of run and params:
   --threads N       number of OpenMP threads (default: OMP_NUM_THREADS or all cores)
   --traceback       on a Lua error, also print the Lua stack traceback
   --from RUN_DIR    start from the compressed tissue that run saved (invasim.from)
+  --overwrite       the --out directory may hold another run: delete that run's files
+                    (params.json, resume.txt, log.txt, series.csv, summary.json,
+                    correlations.csv, shapes.csv, checkpoint/, snapshots/, plots/) and
+                    start anew (without it, a protocol refuses a directory holding a run)
   invasim run --resume DIR [--threads N]
                     continue the run in DIR (killed, or stopped by Ctrl-C / SIGTERM) from
-                    its last checkpoint, with the protocol and parameters it was started with
+                    its last checkpoint, with the protocol, parameters and --from it was
+                    started with; a checkpoint written by another run (other parameters) is
+                    refused
 
 Options of render:
   --slice A=VALUE   the cutting plane, x=VALUE, y=VALUE or z=VALUE (required)
@@ -196,6 +202,11 @@ Command parse_command_line(const std::vector<std::string>& args) {
       command.traceback = true;
       continue;
     }
+    if (name == "--overwrite") {
+      if (has_value) throw UsageError("--overwrite takes no value");
+      command.options.overwrite = true;
+      continue;
+    }
     if (name != "--set" && name != "--seed" && name != "--out" && name != "--threads" &&
         name != "--resume" && name != "--from")
       throw UsageError("unknown option '" + name + "'");
@@ -247,6 +258,9 @@ Command parse_command_line(const std::vector<std::string>& args) {
       throw UsageError(
           "--resume continues a run with its own parameters: --set, --seed, --out and --from "
           "cannot be combined with it");
+    if (command.options.overwrite)
+      throw UsageError(
+          "--resume continues the run in its directory, --overwrite deletes it: choose one");
     try {
       command.options = read_resume_options(*resume);
     } catch (const InputError& e) {
@@ -257,6 +271,8 @@ Command parse_command_line(const std::vector<std::string>& args) {
   if (positional.size() < 2) throw UsageError("invasim " + verb + ": missing PROTOCOL.lua");
   if (positional.size() > 2)
     throw UsageError("invasim " + verb + ": unexpected argument '" + positional[2] + "'");
+  if (command.options.overwrite && command.kind != Command::Kind::kRun)
+    throw UsageError("--overwrite goes with invasim run");
   command.options.script_path = positional[1];
   command.options.list_params = command.kind == Command::Kind::kParams;
   command.options.out_dir = out ? *out : default_out_dir(command.options);

@@ -17,7 +17,13 @@ lua::RunOptions read_resume_options(const std::string& dir) {
     fail_input("--resume ", dir, ": ", path, " has no protocol path on its first line");
   std::string line;
   for (int number = 2; std::getline(in, line); ++number) {
-    if (line.empty()) continue;
+    if (line.empty() || line[0] == '#') continue;  // # run_id=...: for the reader
+    if (line.rfind("--from=", 0) == 0) {
+      options.from_dir = line.substr(7);
+      if (options.from_dir.empty())
+        fail_input("--resume ", dir, ": ", path, ":", number, ": --from= names no run directory");
+      continue;
+    }
     if (line.find('=') == std::string::npos)
       fail_input("--resume ", dir, ": ", path, ":", number, ": expected key=value, got '", line,
                  "'");

@@ -177,6 +177,11 @@ CheckpointReader CheckpointReader::parse(std::string bytes, std::string origin) 
   if (size < kCheckpointHeaderSize)
     r.fail("truncated: ", size, " bytes, shorter than the ", kCheckpointHeaderSize, "-byte header");
   r.version_ = std::uint32_t(get_uint(d, 11, 4));
+  if (r.version_ < kCheckpointVersion)
+    r.fail("format version ", r.version_, " is not supported (this build reads version ",
+           kCheckpointVersion,
+           "; older checkpoints do not record the run that wrote them, so they cannot be "
+           "continued: start that run again)");
   if (r.version_ != kCheckpointVersion)
     r.fail("format version ", r.version_, " is not supported (this build reads version ",
            kCheckpointVersion, ")");

@@ -23,7 +23,10 @@
 namespace invasim {
 
 inline constexpr std::string_view kCheckpointMagic = "INVASIMCKPT";
-inline constexpr std::uint32_t kCheckpointVersion = 1;
+// Version 2: checkpoints of a protocol run carry the run's identity (sections "run.id" and
+// "run.parameters"); version 1 files, which cannot be told apart from another run's, are
+// refused.
+inline constexpr std::uint32_t kCheckpointVersion = 2;
 // Bytes before the first section: magic, version, file length, section count.
 inline constexpr std::size_t kCheckpointHeaderSize = 11 + 4 + 8 + 4;
 

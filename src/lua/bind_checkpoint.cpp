@@ -1,14 +1,21 @@
 // Checkpoints of a protocol's state (src/io/checkpoint.hpp, state_checkpoint.hpp):
-//   invasim.save_checkpoint(path, {system =, dynamics =, tethers =, correlator =, extra = ""})
+//   invasim.save_checkpoint(path, {system =, dynamics =, tethers =, correlator =, extra = "",
+//                                  run_id = "", run_parameters = ""})
 //   local extra = invasim.load_checkpoint(path, {system =, dynamics =, tethers =, correlator =,
 //                                                seed =})   -- seed: give the System a new one
+//   local id, parameters = invasim.checkpoint_run(path)  -- the run that wrote it (nil, nil if
+//                                                          -- it was written outside a run)
 //   invasim.interrupted()   -> "SIGINT" / "SIGTERM" once a stop was requested, else nil
 // save writes the System (every site array, bit for bit), the Dynamics (time step, method
 // parameters and ramp anchors, the pressure wall), the tethers, a correlator's accumulators
 // and a string of the protocol's own (`extra`), atomically. load restores them into objects
 // built the same way (same protocol, same parameters) and marks the Dynamics prepared, so the
-// run continues bit for bit as if it had never stopped.
+// run continues bit for bit as if it had never stopped. run_id / run_parameters identify the
+// run that writes the checkpoint (protocols/lib/run_identity.lua): they go into the sections
+// "run.id" and "run.parameters", which --resume compares with the run it continues.
 #include <lua.hpp>
+
+#include <optional>
 
 #include "core/stop_request.hpp"
 #include "io/state_checkpoint.hpp"
@@ -159,7 +166,11 @@ int l_save(lua_State* L) {
   Kwargs kw(L, 2, "save_checkpoint");
   const Parts p = read_parts(kw);
   const std::string extra = kw.string("extra", "");
+  const auto run_id = kw.maybe_string("run_id");
+  const auto run_parameters = kw.maybe_string("run_parameters");
   kw.finish();
+  if (run_parameters && !run_id)
+    fail_input("save_checkpoint: run_parameters without run_id (give the run's identity too)");
   engine_call("save_checkpoint", [&] {
     CheckpointWriter w;
     write_system(w, p.sim->system);
@@ -167,6 +178,8 @@ int l_save(lua_State* L) {
     if (p.tethers) write_tethers(w, *p.tethers->force);
     if (p.correlator) write_correlator(w, *p.correlator);
     w.put_string("extra", extra);
+    if (run_id) w.put_string("run.id", *run_id);
+    if (run_parameters) w.put_string("run.parameters", *run_parameters);
     w.write(path);
   });
   return 0;
@@ -212,6 +225,24 @@ int l_load(lua_State* L) {
   return 1;
 }
 
+// invasim.checkpoint_run(path) -> run id, run parameters (strings; nil where not stored).
+int l_checkpoint_run(lua_State* L) {
+  const std::string path = arg_string(L, 1);
+  std::optional<std::string> id, parameters;
+  engine_call("checkpoint_run", [&] {
+    const CheckpointReader r = CheckpointReader::read(path);
+    if (r.has("run.id")) id = r.get_string("run.id");
+    if (r.has("run.parameters")) parameters = r.get_string("run.parameters");
+  });
+  for (const auto& value : {id, parameters}) {
+    if (value)
+      lua_pushlstring(L, value->data(), value->size());
+    else
+      lua_pushnil(L);
+  }
+  return 2;
+}
+
 int l_interrupted(lua_State* L) {
   if (const int signal = stop_requested())
     lua_pushstring(L, stop_signal_name(signal));
@@ -230,6 +261,8 @@ void open_checkpoint(lua_State* L) {
   lua_setfield(L, -2, "load_checkpoint");
   lua_pushcfunction(L, &lua_wrap<&l_load>);
   lua_setfield(L, -2, "load");  // invasim.load(path, {...}): the same, shorter
+  lua_pushcfunction(L, &lua_wrap<&l_checkpoint_run>);
+  lua_setfield(L, -2, "checkpoint_run");
   lua_pushcfunction(L, &lua_wrap<&l_interrupted>);
   lua_setfield(L, -2, "interrupted");
 }

@@ -1,10 +1,16 @@
 // Files from Lua (src/io), for the run directory that protocols fill:
 //   invasim.write_file(path, text)   -- atomically (temp file + rename)
 //   invasim.make_dirs(path)          -- like mkdir -p
+//   invasim.exists(path)             -- true if a file or directory is there
+//   invasim.resolve_path(path)       -- absolute, with symbolic links and . / .. resolved
+//   invasim.remove_path(path)        -- like rm -rf; returns the number of entries removed
 //   local snap = invasim.Snapshots{dir =, cells_xyz = true, spheres_vtp = true,
 //                                  adipocytes_vtp = true}
 //   snap:write(sys)                  -- one frame: extended XYZ + VTK .vtp + .pvd indexes
 #include <lua.hpp>
+
+#include <filesystem>
+#include <system_error>
 
 #include "io/atomic_file.hpp"
 #include "io/snapshot_writer.hpp"
@@ -38,6 +44,37 @@ int l_make_dirs(lua_State* L) {
   return 0;
 }
 
+int l_exists(lua_State* L) {
+  const std::string path = arg_string(L, 1);
+  std::error_code error;
+  lua_pushboolean(L, std::filesystem::exists(path, error));
+  return 1;
+}
+
+int l_resolve_path(lua_State* L) {
+  const std::string path = arg_string(L, 1);
+  const std::string resolved = engine_call("resolve_path", [&] {
+    std::error_code error;
+    const auto p = std::filesystem::weakly_canonical(std::filesystem::absolute(path), error);
+    if (error) fail_input("resolve_path: cannot resolve '", path, "': ", error.message());
+    return p.string();
+  });
+  lua_pushstring(L, resolved.c_str());
+  return 1;
+}
+
+int l_remove_path(lua_State* L) {
+  const std::string path = arg_string(L, 1);
+  const auto removed = engine_call("remove_path", [&] {
+    std::error_code error;
+    const auto n = std::filesystem::remove_all(path, error);
+    if (error) fail_input("remove_path: cannot remove '", path, "': ", error.message());
+    return n;
+  });
+  lua_pushinteger(L, lua_Integer(removed));
+  return 1;
+}
+
 int l_snapshots(lua_State* L) {
   Kwargs kw(L, 1, "Snapshots");
   const std::string dir = kw.string("dir");
@@ -69,6 +106,12 @@ void open_io(lua_State* L) {
   lua_setfield(L, -2, "write_file");
   lua_pushcfunction(L, &lua_wrap<&l_make_dirs>);
   lua_setfield(L, -2, "make_dirs");
+  lua_pushcfunction(L, &lua_wrap<&l_exists>);
+  lua_setfield(L, -2, "exists");
+  lua_pushcfunction(L, &lua_wrap<&l_resolve_path>);
+  lua_setfield(L, -2, "resolve_path");
+  lua_pushcfunction(L, &lua_wrap<&l_remove_path>);
+  lua_setfield(L, -2, "remove_path");
   define_type<SnapshotWriter>(L, kSnapshotMethods);
   lua_pushcfunction(L, &lua_wrap<&l_snapshots>);
   lua_setfield(L, -2, "Snapshots");

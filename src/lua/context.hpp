@@ -20,7 +20,9 @@ struct RunOptions {
   std::string out_dir;              // exposed to scripts as invasim.out_dir
   bool list_params = false;         // `invasim params`: stop at invasim.params{...}
   bool resume = false;              // --resume DIR: continue the run in out_dir (invasim.resume)
-  std::string from_dir;  // --from RUN_DIR: start from its compressed tissue (invasim.from)
+  std::string from_dir;    // --from RUN_DIR: start from its compressed tissue (invasim.from)
+  bool overwrite = false;  // --overwrite: a new run may replace the run in out_dir
+                           // (invasim.overwrite)
 };
 
 // Per-state shared data: the options in, the declared parameters out.

@@ -5,6 +5,7 @@
 
 #include <chrono>
 
+#include "core/fnv1a.hpp"
 #include "invasim_version.hpp"
 #include "lua/context.hpp"
 
@@ -23,6 +24,15 @@ int l_threads(lua_State* L) {
 int l_clock(lua_State* L) {
   const auto now = std::chrono::steady_clock::now().time_since_epoch();
   lua_pushnumber(L, std::chrono::duration<double>(now).count());
+  return 1;
+}
+
+// invasim.hash(text): FNV-1a 64 of the bytes, as 16 hex digits (a run's identity).
+int l_hash(lua_State* L) {
+  std::size_t size = 0;
+  const char* text = luaL_checklstring(L, 1, &size);
+  const std::string hex = fnv1a64_hex(std::string_view(text, size));
+  lua_pushlstring(L, hex.data(), hex.size());
   return 1;
 }
 
@@ -45,12 +55,16 @@ int open_invasim(lua_State* L) {
     lua_pushstring(L, context.options.out_dir.c_str());
     lua_setfield(L, -2, "resume");
   }
+  lua_pushboolean(L, context.options.overwrite);  // --overwrite: replace the run in out_dir
+  lua_setfield(L, -2, "overwrite");
   lua_pushstring(L, context.options.script_path.c_str());
   lua_setfield(L, -2, "script");
   lua_pushcfunction(L, &l_threads);
   lua_setfield(L, -2, "threads");
   lua_pushcfunction(L, &l_clock);
   lua_setfield(L, -2, "clock");
+  lua_pushcfunction(L, &l_hash);
+  lua_setfield(L, -2, "hash");
   open_params(L);
   open_progress(L);
   open_system(L);

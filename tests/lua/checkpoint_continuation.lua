@@ -54,6 +54,15 @@ local second = build()
 local extra = iv.load_checkpoint(path, { system = second.sys, dynamics = second.dyn,
                                          tethers = second.tethers, correlator = second.correlator })
 assert(extra == "stage B next", "extra: " .. extra)
+-- The run identity sections (issue 17): absent outside a run, stored and read back when given.
+local id, text = iv.checkpoint_run(path)
+assert(id == nil and text == nil, "a checkpoint saved without run_id has no run identity")
+local stamped = iv.out_dir .. "/stamped.ckpt"
+iv.save_checkpoint(stamped, { system = second.sys, run_id = iv.hash("a=1\n"), run_parameters = "a=1\n" })
+id, text = iv.checkpoint_run(stamped)
+assert(id == "ed9ed282c45f76f4" and id == iv.hash("a=1\n") and text == "a=1\n", "run identity: " .. tostring(id))
+local ok, err = pcall(iv.save_checkpoint, stamped, { system = second.sys, run_parameters = "a=1\n" })
+assert(not ok and err:find("run_parameters without run_id"), tostring(err))
 assert(second.sys:step() == straight.sys:step() - p.steps, "restored step")
 run(second, p.steps)
 local got = fingerprint(second)

@@ -2,7 +2,8 @@
 # Issue 5 test: a run killed by SIGTERM during production and continued with
 # `invasim run --resume DIR` ends exactly like a run that was never interrupted: the last
 # snapshot (positions, velocities, orientations in shortest round-trip form), series.csv and
-# correlations.csv are identical. Usage: resume_after_kill.sh INVASIM WORKDIR
+# correlations.csv are identical. The kill waits for the first checkpoint of production (an
+# event, not a time: issue 17, item 8). Usage: resume_after_kill.sh INVASIM WORKDIR
 set -euo pipefail
 invasim=$1
 work=$2
@@ -16,11 +17,16 @@ args=(run ../../protocols/invasion.lua --set N_a=4 --set N_c=60 --set L0=32.0 --
 
 "$invasim" "${args[@]}" --out "$work/killed" > "$work/killed.log" 2>&1 &
 pid=$!
-# Wait for the first periodic checkpoint, then stop the run as a batch system would.
-for _ in $(seq 1 600); do
-  [ -f "$work/killed/checkpoint/state.ckpt" ] && break
-  sleep 0.05
-done
+# Wait for the first periodic checkpoint (the file, and log.txt saying production wrote it),
+# however long compression and quench take, then stop the run as a batch system would.
+. ./wait_for.sh
+checkpoint_written() {
+  [ -f "$work/killed/checkpoint/state.ckpt" ] &&
+    grep -q "^production: checkpoint of step [0-9]* written" "$work/killed/log.txt" 2> /dev/null
+}
+wait_for "$pid" "the first production checkpoint (checkpoint/state.ckpt and its line in log.txt)" \
+  checkpoint_written || { cat "$work/killed.log"; exit 1; }
+first=$(grep -o "^production: checkpoint of step [0-9]*" "$work/killed/log.txt" | head -1 | grep -o "[0-9]*$")
 kill -TERM "$pid"
 status=0
 wait "$pid" || status=$?
@@ -28,7 +34,12 @@ if [ "$status" -ne 1 ]; then
   echo "FAILED: the killed run exited with $status (expected 1)"; cat "$work/killed.log"; exit 1
 fi
 grep -q "stopped by SIGTERM at step [0-9]*.*checkpoint saved to .*continue with: invasim run --resume" "$work/killed.log" ||
-  { echo "FAILED: no stop message"; cat "$work/killed.log"; exit 1; }
+  { echo "FAILED: no stop message from production"; cat "$work/killed.log"; exit 1; }
+# The signal landed in production, after the checkpoint we waited for.
+stopped=$(grep -o "stopped by SIGTERM at step [0-9]*" "$work/killed.log" | grep -o "[0-9]*$")
+if [ "$stopped" -lt "$first" ]; then
+  echo "FAILED: stopped at step $stopped, before the checkpoint of step $first"; exit 1
+fi
 
 "$invasim" run --resume "$work/killed" > "$work/resumed.log" 2>&1 ||
   { echo "FAILED: resume"; cat "$work/resumed.log"; exit 1; }

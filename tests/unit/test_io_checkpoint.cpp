@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "../io/io_test_support.hpp"
+#include "core/fnv1a.hpp"
 #include "integrate/dynamics.hpp"
 #include "io/atomic_file.hpp"
 #include "io/checkpoint.hpp"
@@ -64,6 +65,15 @@ TEST_CASE("CRC-32 matches the standard check value") {
   CHECK(crc32("123456789") == 0xCBF43926u);
   CHECK(crc32("") == 0u);
   CHECK(crc32("56789", crc32("1234")) == 0xCBF43926u);
+}
+
+// The run identity's hash (core/fnv1a.hpp): the published FNV-1a 64 test vectors.
+TEST_CASE("FNV-1a 64 matches the reference values") {
+  CHECK(fnv1a64("") == 0xcbf29ce484222325ULL);
+  CHECK(fnv1a64("a") == 0xaf63dc4c8601ec8cULL);
+  CHECK(fnv1a64("foobar") == 0x85944171f73967e8ULL);
+  CHECK(fnv1a64_hex("") == "cbf29ce484222325");
+  CHECK(fnv1a64_hex("foobar") == "85944171f73967e8");
 }
 
 TEST_CASE("checkpoint container: every section type round-trips bit for bit") {
@@ -155,10 +165,18 @@ TEST_CASE("checkpoint files are written atomically and refused when damaged") {
   }
   SECTION("wrong version") {
     std::string bad = good;
-    bad[11] = 2;
+    bad[11] = 3;
     write_plain(path, bad);
     CHECK_THROWS_WITH(CheckpointReader::read(path),
-                      where + "format version 2 is not supported (this build reads version 1)");
+                      where + "format version 3 is not supported (this build reads version 2)");
+    // Version 1 (before checkpoints carried their run's identity) is refused with the reason.
+    bad[11] = 1;
+    write_plain(path, bad);
+    CHECK_THROWS_WITH(CheckpointReader::read(path),
+                      where +
+                          "format version 1 is not supported (this build reads version 2; older "
+                          "checkpoints do not record the run that wrote them, so they cannot be "
+                          "continued: start that run again)");
   }
   SECTION("missing file") {
     CHECK_THROWS_WITH(CheckpointReader::read(dir / "none.ckpt"),

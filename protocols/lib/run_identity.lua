@@ -1,0 +1,80 @@
+-- A run's identity (issue 17): the FNV-1a 64 hash (invasim.hash) of the text
+--   protocol <resolved path of the protocol>
+--   from <resolved path of the --from run directory>      (only with --from)
+--   key=value                                             (every resolved parameter, sorted)
+-- with floats in their shortest round-trip form. params.json (run_id), resume.txt and every
+-- checkpoint the run writes (sections run.id and run.parameters, which hold this text) carry
+-- it; `invasim run --resume` refuses a checkpoint whose identity is not the run's.
+local iv = require("invasim")
+
+local M = {}
+
+-- A parameter value as text: floats in the shortest %g form that reads back to the same
+-- double, everything else with tostring.
+function M.format_value(v)
+  if math.type(v) == "float" and v == v and v ~= math.huge and v ~= -math.huge then
+    for digits = 1, 17 do
+      local text = string.format("%." .. digits .. "g", v)
+      if tonumber(text) == v then return text end
+    end
+  end
+  return tostring(v)
+end
+
+-- The parameters as sorted key=value lines (the --set syntax of resume.txt).
+function M.parameter_lines(p)
+  local names = {}
+  for k in pairs(p) do names[#names + 1] = k end
+  table.sort(names)
+  local lines = {}
+  for i, k in ipairs(names) do lines[i] = k .. "=" .. M.format_value(p[k]) end
+  return lines
+end
+
+-- The identity of the running protocol with resolved parameters p:
+-- { id = 16 hex digits, text = the hashed text, from = resolved --from or nil, lines = the
+--   parameter lines }.
+function M.of(p)
+  local from = iv.from and iv.resolve_path(iv.from) or nil
+  local head = { "protocol " .. iv.resolve_path(iv.script) }
+  if from then head[#head + 1] = "from " .. from end
+  local lines = M.parameter_lines(p)
+  local text = table.concat(head, "\n") .. "\n" .. table.concat(lines, "\n") .. "\n"
+  return { id = iv.hash(text), text = text, from = from, lines = lines }
+end
+
+-- The entries of an identity text: protocol, --from and each parameter.
+local function entries(text)
+  local t = {}
+  for line in (text or ""):gmatch("[^\n]+") do
+    local key, value = line:match("^(protocol) (.*)$")
+    if not key then key, value = line:match("^(from) (.*)$") end
+    if key == "from" then key = "--from" end
+    if not key then key, value = line:match("^([^=]+)=(.*)$") end
+    if key then t[key] = value end
+  end
+  return t
+end
+
+-- What differs between two identity texts, e.g. "P = 0.0013 in the checkpoint, 0.002 in this
+-- run"; an empty list if nothing can be told.
+function M.differences(a_text, b_text, a_name, b_name)
+  local a, b = entries(a_text), entries(b_text)
+  local keys, seen = {}, {}
+  for _, t in ipairs{ a, b } do
+    for k in pairs(t) do
+      if not seen[k] then seen[k] = true; keys[#keys + 1] = k end
+    end
+  end
+  table.sort(keys)
+  local out = {}
+  for _, k in ipairs(keys) do
+    if a[k] ~= b[k] then
+      out[#out + 1] = string.format("%s = %s in %s, %s in %s", k, a[k] or "(not set)", a_name,
+                                    b[k] or "(not set)", b_name)
+    end
+  end
+  return out
+end
+
+return M

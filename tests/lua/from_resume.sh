@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Issue 17, item 2: a run started with --from RUN_DIR and killed before its first checkpoint
+# (here: during its quench) starts again, on --resume, from the same compressed tissue
+# (resume.txt records --from), and ends exactly like the same run never interrupted.
+# Usage: from_resume.sh INVASIM WORKDIR
+set -euo pipefail
+invasim=$1
+work=$2
+cd "$(dirname "$0")"
+. ./wait_for.sh
+rm -rf "$work" && mkdir -p "$work"
+fail() { echo "FAILED: $1"; [ -n "${2:-}" ] && cat "$2"; exit 1; }
+base=(run ../../protocols/invasion.lua --set N_a=4 --set N_c=60 --set L0=32.0 --set every=200
+      --set snapshot_every=0 --set correlate_every=0)
+"$invasim" "${base[@]}" --set quench_steps=200 --set steps=200 --out "$work/first" > "$work/first.log" 2>&1 ||
+  fail "first run" "$work/first.log"
+first=$(cd "$work/first" && pwd -P)
+second=("${base[@]}" --seed 7 --set P=2e-3 --set quench_steps=3000 --set steps=400 --from "$work/first")
+"$invasim" "${second[@]}" --out "$work/straight" > "$work/straight.log" 2>&1 || fail "straight run" "$work/straight.log"
+
+"$invasim" "${second[@]}" --out "$work/killed" > "$work/killed.log" 2>&1 &
+pid=$!
+# The quench's first line is logged before its steps: the signal lands in the quench.
+wait_for "$pid" "the start of the quench (its 'quench: P =' line in log.txt)" \
+  grep -qs "^quench: P = " "$work/killed/log.txt" || { cat "$work/killed.log"; exit 1; }
+kill -TERM "$pid"
+status=0
+wait "$pid" || status=$?
+[ "$status" -eq 1 ] || fail "the killed run exited with $status" "$work/killed.log"
+grep -q "stopped by SIGTERM during quench at step" "$work/killed.log" ||
+  fail "the signal did not land in the quench" "$work/killed.log"
+[ ! -e "$work/killed/checkpoint/state.ckpt" ] || fail "a checkpoint was written before production"
+
+"$invasim" run --resume "$work/killed" > "$work/resumed.log" 2>&1 || fail "--resume" "$work/resumed.log"
+grep -qF "compress: skipped: the compressed tissue of $first" "$work/resumed.log" ||
+  fail "the resumed run did not start from the first run's compressed tissue" "$work/resumed.log"
+! grep -q "^compress: to phi" "$work/resumed.log" || fail "the resumed run compressed a new tissue" "$work/resumed.log"
+grep -qxF -- "--from=$first" "$work/killed/resume.txt" || fail "resume.txt does not record --from" "$work/killed/resume.txt"
+cmp "$work/straight/series.csv" "$work/killed/series.csv" || fail "series.csv differs from the uninterrupted run"
+echo "from_resume: a --from run killed in its quench resumed from $first's tissue, identical to the uninterrupted run"
