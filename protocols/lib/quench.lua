@@ -65,8 +65,11 @@ return function(tissue, opts)
   if progress then progress:finish() end
   local signal = iv.interrupted()
   if signal then
+    local dir = require("lib.resume").run_dir()
     error(string.format("stopped by %s during %s at step %d; checkpoints are written during production " ..
-                        "only: run the protocol again from the start", signal, o.label, sys:step()), 0)
+                        "only: %s", signal, o.label, sys:step(),
+                        dir and "invasim run --resume " .. dir .. " starts the run again from the beginning"
+                        or "run the protocol again from the start"), 0)
   end
   local box = sys:box()
   log.say(o.label, "t = %g, L_x = %.4f, phi = %.4f, T_c = %.3e, T_a = %.3e", sys:time(),

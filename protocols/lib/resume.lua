@@ -17,9 +17,12 @@ function M.checkpoint_path(out) return out .. "/checkpoint/state.ckpt" end
 -- The compressed tissue a run saves for others (invasim run --from DIR).
 function M.compressed_path(out) return out .. "/checkpoint/compressed.ckpt" end
 
--- This run's identity (lib.run_identity.of), set by lib.run_dir.
-function M.set_identity(id) identity = id end
+local run_dir = nil   -- this run's directory, set with the identity
+
+-- This run's identity (lib.run_identity.of) and directory, set by lib.run_dir.
+function M.set_identity(id, dir) identity, run_dir = id, dir end
 function M.identity() return identity end
+function M.run_dir() return run_dir end
 
 -- Adds this run's identity to a save_checkpoint keyword table (nothing outside a run
 -- directory); returns the table.

@@ -64,7 +64,7 @@ end
 function M.open(p, dir)
   dir = dir or iv.out_dir
   local identity = run_identity.of(p)
-  resume.set_identity(identity)
+  resume.set_identity(identity, dir)
   local removed = {}
   if not iv.resume then removed = claim(dir, identity) end
   files.mkdir(dir)

@@ -29,6 +29,8 @@ wait "$pid" || status=$?
 [ "$status" -eq 1 ] || fail "the killed run exited with $status" "$work/killed.log"
 grep -q "stopped by SIGTERM during quench at step" "$work/killed.log" ||
   fail "the signal did not land in the quench" "$work/killed.log"
+grep -qF "invasim run --resume $work/killed starts the run again from the beginning" "$work/killed.log" ||
+  fail "the stop message does not name the way to continue" "$work/killed.log"
 [ ! -e "$work/killed/checkpoint/state.ckpt" ] || fail "a checkpoint was written before production"
 
 "$invasim" run --resume "$work/killed" > "$work/resumed.log" 2>&1 || fail "--resume" "$work/resumed.log"
