@@ -8,9 +8,9 @@ local iv = require("invasim")
 local protocol = require("lib.protocol")
 
 local p = iv.params(protocol.merge{
-  phi_a = { 0.6, help = "adipocyte packing fraction of this scan point (0.4-0.9)" },
-  K_ecm = { 0.04, unit = "eps_c/sigma^2", help = "ECM tether stiffness (0: no tethers)" },
-  lambda = { 0.0, help = "tether heterogeneity" },
+  phi_a = { 0.6, range = "(0, 1)", help = "adipocyte packing fraction of this scan point (0.4-0.9)" },
+  K_ecm = { 0.04, range = "[0, inf)", unit = "eps_c/sigma^2", help = "ECM tether stiffness (0: no tethers)" },
+  lambda = { 0.0, range = "[0, 1]", help = "tether heterogeneity" },
 })
 
 protocol.validate(p)

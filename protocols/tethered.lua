@@ -7,10 +7,10 @@ local iv = require("invasim")
 local protocol = require("lib.protocol")
 
 local p = iv.params(protocol.merge{
-  K_ecm = { 0.04, unit = "eps_c/sigma^2", help = "ECM tether stiffness" },
-  mean_degree = { 6.0, help = "mean number of tethers per adipocyte" },
-  lambda = { 0.0, help = "tether heterogeneity: rest lengths (1 -+ lambda) R_ij in the lower/upper half in z" },
-  equilibrate_steps = { 10000, type = "integer", help = "steps after tether insertion before production" },
+  K_ecm = { 0.04, range = "[0, inf)", unit = "eps_c/sigma^2", help = "ECM tether stiffness" },
+  mean_degree = { 6.0, range = "(0, inf)", help = "mean number of tethers per adipocyte" },
+  lambda = { 0.0, range = "[0, 1]", help = "tether heterogeneity: rest lengths (1 -+ lambda) R_ij in the lower/upper half in z" },
+  equilibrate_steps = { 10000, type = "integer", range = "[0, inf)", help = "steps after tether insertion before production" },
 })
 
 protocol.validate(p)

@@ -80,6 +80,14 @@ function M.check(stage, given, defaults, types)
   return out
 end
 
+-- Raises "stage: key 'every' = 0 must be >= 1" at the stage's caller if o[key] < lo: for
+-- stages called directly (the protocols' parameters are range-checked by iv.params).
+function M.at_least(stage, o, key, lo)
+  if o[key] < lo then
+    error(string.format("%s: key '%s' = %s must be >= %s", stage, key, tostring(o[key]), tostring(lo)), 3)
+  end
+end
+
 -- Raises a stage error at the stage's caller.
 function M.fail(stage, message)
   error(stage .. ": " .. message, 3)

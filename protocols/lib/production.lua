@@ -74,6 +74,10 @@ end
 return function(tissue, opts)
   local o = options.check(opts and opts.label or "production", opts, defaults,
                           { on_sample = "function", out = "string", columns = "table" })
+  options.at_least(o.label, o, "every", 1)
+  for _, key in ipairs{ "steps", "correlate_every", "checkpoint_every", "slices_per_body" } do
+    options.at_least(o.label, o, key, 0)
+  end
   if not tissue.dyn then options.fail(o.label, "run the quench stage first (it makes the Dynamics)") end
   local sys, dyn = tissue.sys, tissue.dyn
   local active = { observers.thermo(tissue) }

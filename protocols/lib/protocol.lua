@@ -6,34 +6,45 @@ local options = require("lib.options")
 
 local M = {}
 
--- The common parameter declarations (merged into a protocol's iv.params{} table).
+-- The preset names, the allowed values of `system`.
+local function preset_names()
+  local names = {}
+  for k in pairs(presets) do names[#names + 1] = k end
+  table.sort(names)
+  return names
+end
+
+-- The common parameter declarations (merged into a protocol's iv.params{} table). Each number
+-- carries its allowed range (interval notation, checked with the --set values when the
+-- protocol calls iv.params, before anything runs); 0 means "from the preset" for N_a, N_c, L0
+-- and "off" for the *_every intervals.
 function M.declarations()
   return {
-    system = { "reduced", help = "system size preset: reduced (8 adipocytes, 400 cells), paper (28, 1500) or large (128, 7000)" },
-    N_a = { 0, unit = "adipocytes", help = "number of adipocytes (0: from system)" },
-    N_c = { 0, unit = "cells", help = "number of cancer cells (0: from system)" },
-    L0 = { 0.0, unit = "sigma", help = "initial cubic box side (0: from system)" },
-    seed = { 1, help = "random seed (placement, noise, orientations)" },
-    phi = { 0.72, help = "total packing fraction reached by compression" },
-    P = { 1.3e-3, unit = "eps_c/sigma^3", help = "pressure on the left wall" },
-    beta = { 1e-2, help = "cancer-cell cohesion depth (0: repulsive)" },
-    alpha = { 0.2, help = "cancer-cell cohesion range" },
-    f0 = { 0.01, unit = "eps_c/sigma", help = "self-propulsion force (0: passive cells)" },
-    tau_p = { 25.0, unit = "tau", help = "persistence time of the active orientation" },
-    kT = { 0.0, unit = "eps_c", help = "thermal noise temperature of the cells" },
-    gamma = { 0.2, unit = "sqrt(m eps_c)/sigma", help = "damping coefficient" },
-    eps_v = { 1e3, unit = "eps_c", help = "adipocyte volume stiffness" },
-    eps_a = { 1.0, unit = "eps_c", help = "adipocyte face-area stiffness" },
-    dt = { 0.05, unit = "tau", help = "time step" },
+    system = { "reduced", choices = preset_names(), help = "system size preset: reduced (8 adipocytes, 400 cells), paper (28, 1500) or large (128, 7000)" },
+    N_a = { 0, range = "[0, inf)", unit = "adipocytes", help = "number of adipocytes (0: from system)" },
+    N_c = { 0, range = "[0, inf)", unit = "cells", help = "number of cancer cells (0: from system)" },
+    L0 = { 0.0, range = "[0, inf)", unit = "sigma", help = "initial cubic box side (0: from system)" },
+    seed = { 1, range = "[0, inf)", help = "random seed (placement, noise, orientations)" },
+    phi = { 0.72, range = "(0, 1)", help = "total packing fraction reached by compression" },
+    P = { 1.3e-3, range = "[0, inf)", unit = "eps_c/sigma^3", help = "pressure on the left wall" },
+    beta = { 1e-2, range = "[0, inf)", help = "cancer-cell cohesion depth (0: repulsive; below alpha)" },
+    alpha = { 0.2, range = "[0, inf)", help = "cancer-cell cohesion range" },
+    f0 = { 0.01, range = "[0, inf)", unit = "eps_c/sigma", help = "self-propulsion force (0: passive cells)" },
+    tau_p = { 25.0, range = "[0, inf)", unit = "tau", help = "persistence time of the active orientation (0: uncorrelated)" },
+    kT = { 0.0, range = "[0, inf)", unit = "eps_c", help = "thermal noise temperature of the cells" },
+    gamma = { 0.2, range = "[0, inf)", unit = "sqrt(m eps_c)/sigma", help = "damping coefficient" },
+    eps_v = { 1e3, range = "[0, inf)", unit = "eps_c", help = "adipocyte volume stiffness" },
+    eps_a = { 1.0, range = "[0, inf)", unit = "eps_c", help = "adipocyte face-area stiffness" },
+    dt = { 0.05, range = "(0, inf)", unit = "tau", help = "time step" },
     cohesive_compression = { false, help = "keep the cells' cohesion on during compression (default: repulsive packing)" },
-    compress_ftol = { 1e-3, unit = "eps_c/sigma", help = "FIRE tolerance between compression steps" },
-    final_ftol = { 1e-6, unit = "eps_c/sigma", help = "FIRE tolerance of the compressed tissue" },
-    quench_steps = { 20000, type = "integer", help = "steps of the quench (wall to P, cells moving)" },
-    steps = { 100000, type = "integer", help = "production steps" },
-    every = { 1000, type = "integer", help = "steps between measurements (a row of series.csv)" },
-    snapshot_every = { 10000, type = "integer", help = "steps between snapshots (0: none)" },
-    checkpoint_every = { 10000, type = "integer", help = "steps between checkpoints (0: only on SIGINT/SIGTERM)" },
-    correlate_every = { 20, type = "integer", help = "steps between correlator samples (0: none)" },
+    compress_ftol = { 1e-3, range = "(0, inf)", unit = "eps_c/sigma", help = "FIRE tolerance between compression steps" },
+    final_ftol = { 1e-6, range = "(0, inf)", unit = "eps_c/sigma", help = "FIRE tolerance of the compressed tissue" },
+    quench_steps = { 20000, type = "integer", range = "[0, inf)", help = "steps of the quench (wall to P, cells moving)" },
+    steps = { 100000, type = "integer", range = "[0, inf)", help = "production steps" },
+    every = { 1000, type = "integer", range = "[1, inf)", help = "steps between measurements (a row of series.csv)" },
+    snapshot_every = { 10000, type = "integer", range = "[0, inf)", help = "steps between snapshots (0: none)" },
+    checkpoint_every = { 10000, type = "integer", range = "[0, inf)", help = "steps between checkpoints (0: only on SIGINT/SIGTERM)" },
+    correlate_every = { 20, type = "integer", range = "[0, inf)", help = "steps between correlator samples (0: none)" },
   }
 end
 
@@ -48,11 +59,8 @@ end
 function M.size(p)
   local preset = presets[p.system]
   if not preset then
-    local names = {}
-    for k in pairs(presets) do names[#names + 1] = k end
-    table.sort(names)
     error(string.format("--set system=%s: unknown system; choose one of: %s", p.system,
-                        table.concat(names, ", ")), 0)
+                        table.concat(preset_names(), ", ")), 0)
   end
   return (p.N_a > 0 and p.N_a or preset.N_a), (p.N_c > 0 and p.N_c or preset.N_c),
          (p.L0 > 0 and p.L0 or preset.L0)
@@ -76,9 +84,14 @@ function M.produce(tissue, p, out)
   })
 end
 
--- Checks the parameters' combinations before anything runs or any file is written.
+-- Checks the parameters' combinations before anything runs or any file is written (each
+-- parameter's own range is checked by iv.params).
 function M.validate(p)
   M.size(p)
+  if p.beta > 0 and p.beta >= p.alpha then
+    error(string.format("cohesion: beta = %g must be smaller than alpha = %g (--set beta=... or --set alpha=...; beta = 0 switches cohesion off)",
+                        p.beta, p.alpha), 0)
+  end
   if p.snapshot_every > 0 and p.snapshot_every % p.every ~= 0 then
     error(string.format("--set snapshot_every=%d must be a multiple of every = %d", p.snapshot_every, p.every), 0)
   end

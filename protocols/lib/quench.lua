@@ -22,6 +22,7 @@ local defaults = {
 }
 return function(tissue, opts)
   local o = options.check(opts and opts.label or "quench", opts, defaults)
+  for _, key in ipairs{ "kT", "f0", "steps" } do options.at_least(o.label, o, key, 0) end
   if o.P == nil then o.P = 1.3e-3 end
   if type(o.P) ~= "number" and type(o.P) ~= "userdata" then
     options.fail("quench", "key 'P' must be a number or an invasim.ramp{}, got " .. type(o.P))

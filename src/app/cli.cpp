@@ -27,7 +27,8 @@ Options of run and params:
   --seed S          same as --set seed=S (the protocol must declare `seed`)
   --out DIR         output directory, invasim.out_dir in scripts (default out/<protocol name>
                     followed by _key=value for each --set, e.g. out/invasion_P=2e-3)
-  --threads N       number of OpenMP threads (default: OMP_NUM_THREADS or all cores)
+  --threads N       number of OpenMP threads, 1 to 1024 (default: OMP_NUM_THREADS or all
+                    cores)
   --traceback       on a Lua error, also print the Lua stack traceback
   --from RUN_DIR    start from the compressed tissue that run saved (invasim.from)
   --overwrite       the --out directory may hold another run: delete that run's files
@@ -165,11 +166,15 @@ Command parse_render(const std::vector<std::string>& args) {
   return command;
 }
 
+// --threads N with N in [1, kMaxThreads]: more threads than any node has cores is a typo.
 int parse_threads(const std::string& text) {
   int value = 0;
   const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
   if (result.ec != std::errc() || result.ptr != text.data() + text.size() || value < 1)
     throw UsageError("--threads expects a positive integer, got '" + text + "'");
+  if (value > kMaxThreads)
+    throw UsageError("--threads must be in [1, " + std::to_string(kMaxThreads) + "], got '" + text +
+                     "'");
   return value;
 }
 
@@ -225,6 +230,7 @@ Command parse_command_line(const std::vector<std::string>& args) {
       command.options.seed = value;
     } else if (name == "--out") {
       if (value.empty()) throw UsageError("--out needs a directory");
+      if (out) throw UsageError("--out given twice ('" + *out + "' and '" + value + "')");
       out = value;
     } else if (name == "--resume") {
       if (value.empty()) throw UsageError("--resume needs a run directory");
@@ -235,6 +241,9 @@ Command parse_command_line(const std::vector<std::string>& args) {
       if (!command.options.from_dir.empty()) throw UsageError("--from given twice");
       command.options.from_dir = value;
     } else {
+      if (command.threads)
+        throw UsageError("--threads given twice (" + std::to_string(*command.threads) + " and '" +
+                         value + "')");
       command.threads = parse_threads(value);
     }
   }

@@ -28,6 +28,9 @@ struct RenderOptions {
   double size_px = 800;  // --size PIXELS: the longer box side in the picture
 };
 
+// The largest --threads accepted (more than any node has cores: a typo, not a request).
+constexpr int kMaxThreads = 1024;
+
 struct Command {
   enum class Kind { kRun, kParams, kHelp, kVersion, kRender };
   Kind kind = Kind::kHelp;

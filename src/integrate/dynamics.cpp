@@ -143,12 +143,23 @@ void PressureWall::validate() const {
   if (!walls) fail_input("pressure wall: no wall force to couple to");
 }
 
-Dynamics::Dynamics(double dt) : dt_(dt) {
+namespace {
+
+// A time step must be finite and > 0: an infinite one (dyn:set_dt(math.huge)) would turn the
+// next step's positions into inf/NaN.
+void require_time_step(double dt) {
   require_positive("dt", dt);
+  if (!std::isfinite(dt)) fail_input("dt = ", dt, " must be finite (in (0, inf))");
+}
+
+}  // namespace
+
+Dynamics::Dynamics(double dt) : dt_(dt) {
+  require_time_step(dt);
 }
 
 void Dynamics::set_dt(double dt) {
-  require_positive("dt", dt);
+  require_time_step(dt);
   dt_ = dt;
   prepared_ = false;
 }

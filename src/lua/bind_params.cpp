@@ -3,11 +3,15 @@
 //   local p = iv.params{
 //     N_c  = {1500, unit = "cells", help = "number of cancer cells"},
 //     phi  = {0.72, help = "packing fraction"},
+//     dt   = {0.05, unit = "tau", range = "(0, inf)"},
+//     mode = {"a", choices = {"a", "b"}},
 //     seed = 1,                                  -- bare default: no unit, no help
 //   }
 //
 // The type comes from the default (integer, number, boolean, string) unless `type = ...` says
-// otherwise; --set/--seed overrides are applied here, and the result is a read-only table.
+// otherwise; `range` (interval notation) and `choices` restrict the values. --set/--seed
+// overrides are applied and checked here, before the protocol does anything else, and the
+// result is a read-only table.
 #include <lua.hpp>
 
 #include <algorithm>
@@ -25,6 +29,30 @@ namespace invasim::lua {
 namespace {
 
 constexpr const char* kForm = "write name = default or name = {default, unit = ..., help = ...}";
+
+// The `choices = {"a", "b"}` of parameter `name` (a list of strings) on top of the stack.
+std::vector<std::string> read_choices(lua_State* L, const std::string& name) {
+  const auto bad = [&] {
+    fail_input("params: parameter '", name, "': key 'choices' must be a list of strings, as in ",
+               "choices = {\"a\", \"b\"}");
+  };
+  if (lua_type(L, -1) != LUA_TTABLE) bad();
+  std::vector<std::string> choices;
+  const auto n = static_cast<lua_Integer>(lua_rawlen(L, -1));
+  for (lua_Integer i = 1; i <= n; ++i) {
+    if (lua_rawgeti(L, -1, i) != LUA_TSTRING) bad();
+    choices.emplace_back(lua_tostring(L, -1));
+    lua_pop(L, 1);
+  }
+  // Only the list part: any other key (choices = {a = 1}) is a mistake.
+  lua_pushnil(L);
+  while (lua_next(L, -2) != 0) {
+    lua_pop(L, 1);
+    if (!lua_isinteger(L, -1) || lua_tointeger(L, -1) < 1 || lua_tointeger(L, -1) > n) bad();
+  }
+  if (choices.empty()) bad();
+  return choices;
+}
 
 // The value at `index` as a default of the given (or inferred, when type is empty) type.
 Param read_default(lua_State* L, int index, const std::string& name, const std::string& type) {
@@ -90,12 +118,19 @@ Param read_param(lua_State* L, const std::string& name) {
   const std::string help = kw.string("help", "");
   const std::string type =
       kw.choice("type", {"number", "integer", "boolean", "string"}, std::string());
+  const auto range = kw.maybe_string("range");
+  std::vector<std::string> choices;
+  if (kw.push("choices") != LUA_TNIL) choices = read_choices(L, name);
+  lua_pop(L, 1);
   kw.push_index(1);
   Param p = read_default(L, -1, name, type);
   lua_pop(L, 1);
   kw.finish();
   p.unit = unit;
   p.help = help;
+  if (range) p.range = parse_range(name, *range);
+  p.choices = choices;
+  check_declaration(p);
   return p;
 }
 

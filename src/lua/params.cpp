@@ -108,6 +108,91 @@ ParamValue parse_value(ParamType type, const std::string& key, const std::string
   return raw;
 }
 
+bool ParamRange::contains(double x) const {
+  const bool above = lo_open ? x > lo : x >= lo;
+  const bool below = hi_open ? x < hi : x <= hi;
+  return above && below;
+}
+
+std::string ParamRange::text() const {
+  const auto bound = [](double b) {
+    return std::isinf(b) ? std::string(b < 0 ? "-inf" : "inf") : format_value(ParamValue(b));
+  };
+  return cat(lo_open ? "(" : "[", bound(lo), ", ", bound(hi), hi_open ? ")" : "]");
+}
+
+ParamRange parse_range(const std::string& key, const std::string& raw) {
+  const std::string text = trim(raw);
+  const auto fail = [&](const std::string& why) -> ParamRange {
+    fail_input("params: parameter '", key, "': range '", raw, "' ", why);
+  };
+  const std::string form =
+      "is not in interval notation: write \"[lo, hi]\" with [ ] inclusive, ( ) exclusive and "
+      "inf for no bound, e.g. \"(0, inf)\"";
+  if (text.size() < 2) return fail(form);
+  const char open = text.front(), close = text.back();
+  const auto comma = text.find(',');
+  if ((open != '[' && open != '(') || (close != ']' && close != ')') ||
+      comma == std::string::npos || text.find(',', comma + 1) != std::string::npos)
+    return fail(form);
+  const auto lo = parse_double(trim(text.substr(1, comma - 1)));
+  const auto hi = parse_double(trim(text.substr(comma + 1, text.size() - comma - 2)));
+  if (!lo || !hi || std::isnan(*lo) || std::isnan(*hi)) return fail(form);
+  ParamRange range{*lo, *hi, open == '(', close == ')'};
+  const bool empty =
+      range.lo > range.hi ||
+      (range.lo == range.hi && (range.lo_open || range.hi_open || std::isinf(range.lo)));
+  if (empty) return fail("is empty: no value lies in it");
+  return range;
+}
+
+namespace {
+
+// Whether `value` satisfies p's range and choices (true if p has neither).
+bool allowed(const Param& p, const ParamValue& value) {
+  if (p.range) {
+    if (const auto* d = std::get_if<double>(&value)) return p.range->contains(*d);
+    if (const auto* i = std::get_if<long long>(&value))
+      return p.range->contains(static_cast<double>(*i));
+  }
+  if (const auto* s = std::get_if<std::string>(&value); s && !p.choices.empty())
+    return std::find(p.choices.begin(), p.choices.end(), *s) != p.choices.end();
+  return true;
+}
+
+// "in (0, inf)" or "one of a, b".
+std::string allowed_text(const Param& p) {
+  return p.range ? "in " + p.range->text() : "one of " + join_names(p.choices);
+}
+
+// A value as a message quotes it: strings in single quotes.
+std::string quoted(const ParamValue& value) {
+  return std::holds_alternative<std::string>(value) ? cat("'", format_value(value), "'")
+                                                    : format_value(value);
+}
+
+}  // namespace
+
+std::string value_violation(const Param& p, const ParamValue& value) {
+  if (allowed(p, value)) return "";
+  const auto* s = std::get_if<std::string>(&value);
+  return cat("must be ", allowed_text(p), "; got ", quoted(value),
+             s ? did_you_mean(*s, p.choices) : "");
+}
+
+void check_declaration(const Param& p) {
+  const bool numeric = p.type == ParamType::kNumber || p.type == ParamType::kInteger;
+  if (p.range && !numeric)
+    fail_input("params: parameter '", p.name, "' is a ", type_name(p.type),
+               ": a range applies to number and integer parameters only");
+  if (!p.choices.empty() && p.type != ParamType::kString)
+    fail_input("params: parameter '", p.name, "' is a ", type_name(p.type),
+               ": choices apply to string parameters only");
+  if (!allowed(p, p.default_value))
+    fail_input("params: parameter '", p.name, "' must be ", allowed_text(p), "; its default is ",
+               quoted(p.default_value));
+}
+
 Override parse_override(const std::string& argument) {
   const auto eq = argument.find('=');
   if (eq == std::string::npos) fail_input("--set expects key=value, got '", argument, "'");
@@ -152,6 +237,8 @@ void apply_overrides(std::vector<Param>& params, const std::vector<Override>& ov
                                         format_value(it->default_value), ".0)")
                                   : "");
     }
+    if (const std::string why = value_violation(*it, it->value); !why.empty())
+      fail_input(describe(o), ": parameter '", it->name, "' ", why);
     it->overridden = true;
   }
 }
@@ -160,17 +247,27 @@ std::string format_param_table(const std::vector<Param>& params) {
   if (params.empty()) return "  (no parameters)\n";
   const bool any_overridden =
       std::any_of(params.begin(), params.end(), [](const Param& p) { return p.overridden; });
+  const bool any_range = std::any_of(params.begin(), params.end(),
+                                     [](const Param& p) { return p.range || !p.choices.empty(); });
   const auto shown = [](const Param& p, const ParamValue& v) {
     return p.type == ParamType::kString ? cat('"', format_value(v), '"') : format_value(v);
+  };
+  // "(0, inf)" for a range, "{a, b}" for choices, "-" for neither.
+  const auto allowed_cell = [](const Param& p) {
+    if (p.range) return p.range->text();
+    if (!p.choices.empty()) return cat("{", join_names(p.choices), "}");
+    return std::string("-");
   };
   std::vector<std::vector<std::string>> rows;
   std::vector<std::string> header = {"name", "type", "default"};
   if (any_overridden) header.push_back("value");
+  if (any_range) header.push_back("range");
   header.insert(header.end(), {"unit", "meaning"});
   rows.push_back(header);
   for (const auto& p : params) {
     std::vector<std::string> row = {p.name, type_name(p.type), shown(p, p.default_value)};
     if (any_overridden) row.push_back(p.overridden ? shown(p, p.value) : "");
+    if (any_range) row.push_back(allowed_cell(p));
     row.insert(row.end(), {p.unit.empty() ? "-" : p.unit, p.help});
     rows.push_back(row);
   }

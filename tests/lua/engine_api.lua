@@ -114,6 +114,7 @@ check(dyn:add(damped) == damped and dyn:add(langevin) == langevin and dyn:dt() =
 check(#dyn:methods() == 2 and dyn:wall_state() == nil)
 expect_error("add: this Langevin method is already in the Dynamics", dyn.add, dyn, langevin)
 expect_error("Dynamics: key 'dt' = %-1 is out of range %(must be > 0%)", iv.Dynamics, { dt = -1 })
+expect_error("Dynamics: key 'dt' must be a finite number, got inf", iv.Dynamics, { dt = math.huge })
 expect_error("pressure_wall: missing required key 'P' %(a number%)", dyn.pressure_wall, dyn, {})
 expect_error("pressure_wall: key 'walls' must be a Walls force, got Contacts", dyn.pressure_wall, dyn,
              { P = 1e-3, walls = contacts })
@@ -158,6 +159,9 @@ check(contacts:params().beta == 5e-3)
 contacts:set{ beta = 1e-2 }
 expect_error("set_pressure: this Dynamics has no pressure wall", iv.Dynamics{}.set_pressure, iv.Dynamics{}, 1)
 expect_error("set_dt: dt = 0 must be > 0", dyn.set_dt, dyn, 0)
+expect_error("set_dt: dt = inf must be finite", dyn.set_dt, dyn, math.huge)
+expect_error("set_dt: dt = %-?nan must be > 0", dyn.set_dt, dyn, 0 / 0)
+check(dyn:dt() == 0.05)
 check(type(iv.clock()) == "number")
 check(#sys:positions(cancer) == cancer:size() and #sys:positions() == sys:n_sites())
 check(#sys:adipocytes() == sys:n_adipocytes() and sys:adipocytes()[1].ref_volume > 0)

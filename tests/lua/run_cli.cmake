@@ -1,5 +1,9 @@
 # Runs ${INVASIM} ${ARGS} and checks: exit status zero (FAIL=0) or nonzero (FAIL=1); the
-# combined stdout+stderr matches EXPECT and does not match REJECT (regexes, may be empty).
+# combined stdout+stderr matches EXPECT and does not match REJECT (regexes, may be empty);
+# NO_FILE (if not empty) does not exist afterwards (it is removed first).
+if(NOT NO_FILE STREQUAL "")
+  file(REMOVE_RECURSE ${NO_FILE})
+endif()
 execute_process(COMMAND ${INVASIM} ${ARGS} RESULT_VARIABLE rc OUTPUT_VARIABLE out
                 ERROR_VARIABLE err)
 set(all "${out}${err}")
@@ -17,4 +21,7 @@ if(NOT EXPECT STREQUAL "" AND NOT all MATCHES "${EXPECT}")
 endif()
 if(NOT REJECT STREQUAL "" AND all MATCHES "${REJECT}")
   message(FATAL_ERROR "output matches what it must not: ${REJECT}")
+endif()
+if(NOT NO_FILE STREQUAL "" AND EXISTS ${NO_FILE})
+  message(FATAL_ERROR "${NO_FILE} was created despite the error")
 endif()

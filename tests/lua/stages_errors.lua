@@ -32,6 +32,14 @@ expect_error("heterogeneity: the tissue has no tethers; run the tether stage fir
 expect_error("production: run the quench stage first", require("lib.production"), tissue, { steps = 10 })
 expect_error("quench: key 'P' must be a number or an invasim.ramp{}, got string",
              require("lib.quench"), tissue, { P = "high" })
+-- Values out of range, for stages called directly (issue 17: f0 = -1 ran as athermal cells,
+-- every = 0 failed with a raw "attempt to perform 'n%%0'").
+expect_error("^stages_errors.lua:%d+: quench: key 'f0' = %-1 must be >= 0", require("lib.quench"), tissue, { f0 = -1 })
+expect_error("^stages_errors.lua:%d+: quench: key 'kT' = %-0.5 must be >= 0", require("lib.quench"), tissue, { kT = -0.5 })
+expect_error("^stages_errors.lua:%d+: production: key 'every' = 0 must be >= 1",
+             require("lib.production"), tissue, { every = 0 })
+expect_error("^stages_errors.lua:%d+: production: key 'correlate_every' = %-5 must be >= 0",
+             require("lib.production"), tissue, { correlate_every = -5 })
 expect_error("rescale: key 'phi_a' must be a number, got boolean", require("lib.rescale"), tissue, { phi_a = true })
 expect_error("tether: unknown key 'k'", require("lib.tether"), tissue, { k = 1 })
 -- The production stage's column list (LAMMPS thermo style) names unknown columns.

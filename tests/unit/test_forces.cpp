@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <limits>
 
 #include "core/errors.hpp"
 #include "integrate/dynamics.hpp"
@@ -811,6 +812,11 @@ TEST_CASE("bad input is refused with a message naming the problem") {
   CHECK_THROWS_WITH(Dynamics(-0.05), Contains("dt = -0.05 must be > 0"));
   Dynamics dyn(0.05);
   CHECK_THROWS_WITH(dyn.set_dt(0.0), Contains("dt = 0"));
+  CHECK_THROWS_WITH(dyn.set_dt(std::numeric_limits<double>::infinity()),
+                    Contains("dt = inf must be finite"));
+  CHECK_THROWS_WITH(Dynamics(std::numeric_limits<double>::infinity()),
+                    Contains("dt = inf must be finite"));
+  CHECK(dyn.dt() == 0.05);
   CHECK_THROWS_WITH(Method::active({0}, 0.2, 1.0, -1.0), Contains("tau_p = -1 must be >= 0"));
   CHECK_NOTHROW(Method::active({0}, 0.2, 1.0, 0.0));
 

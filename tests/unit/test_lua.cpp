@@ -98,6 +98,19 @@ std::string script_error(LuaState& state, const std::string& code) {
   return "(no error)";
 }
 
+// A declared parameter with its default as value (no range, no choices).
+Param declared(const std::string& name, ParamType type, const ParamValue& value,
+               const std::string& unit, const std::string& help) {
+  Param p;
+  p.name = name;
+  p.type = type;
+  p.default_value = value;
+  p.value = value;
+  p.unit = unit;
+  p.help = help;
+  return p;
+}
+
 }  // namespace
 
 TEST_CASE("Kwargs reads typed keys with defaults", "[lua][kwargs]") {
@@ -232,8 +245,8 @@ TEST_CASE("parse_value converts override text to the declared type", "[lua][para
 
 TEST_CASE("apply_overrides: undeclared keys, duplicates and --seed", "[lua][params]") {
   std::vector<Param> params = {
-      {"n", ParamType::kInteger, 5LL, 5LL, "cells", "number", false},
-      {"phi", ParamType::kNumber, 0.5, 0.5, "", "fraction", false},
+      declared("n", ParamType::kInteger, 5LL, "cells", "number"),
+      declared("phi", ParamType::kNumber, 0.5, "", "fraction"),
   };
   SECTION("applied") {
     apply_overrides(params, {parse_override("phi=0.75"), parse_override("n=8")});
@@ -302,9 +315,177 @@ TEST_CASE("invasim.params errors", "[lua][params]") {
         "{default, unit = ..., help = ...}");
   CHECK(script_error(state, "require('invasim').params{x = {1, unti = 'm'}}") ==
         "test.lua:1: params: parameter 'x': unknown key 'unti' (did you mean 'unit'?); valid "
-        "keys: help, type, unit");
+        "keys: choices, help, range, type, unit");
   CHECK(script_error(state, "require('invasim').params{x = {1.5, type = 'integer'}}") ==
         "test.lua:1: params: parameter 'x' is declared an integer but its default 1.5 is not");
+}
+
+TEST_CASE("parse_range reads interval notation", "[lua][params]") {
+  const ParamRange half_open = parse_range("x", "[0, 1)");
+  CHECK(half_open.contains(0.0));
+  CHECK(half_open.contains(0.999));
+  CHECK_FALSE(half_open.contains(1.0));
+  CHECK_FALSE(half_open.contains(-1e-12));
+  CHECK(half_open.text() == "[0, 1)");
+  const ParamRange positive = parse_range("dt", " ( 0 ,inf ) ");
+  CHECK_FALSE(positive.contains(0.0));
+  CHECK(positive.contains(1e-300));
+  CHECK(positive.contains(1e300));
+  CHECK(positive.text() == "(0, inf)");
+  CHECK(parse_range("x", "(-inf, 2.5e-3]").text() == "(-inf, 0.0025]");
+  CHECK(parse_range("x", "(-inf, +inf)").contains(-1e300));
+  CHECK(parse_range("n", "[1, 1]").contains(1.0));
+  const std::string form =
+      "is not in interval notation: write \"[lo, hi]\" with [ ] inclusive, ( ) exclusive and inf "
+      "for no bound, e.g. \"(0, inf)\"";
+  CHECK_THROWS_WITH(parse_range("x", "0, 1"), "params: parameter 'x': range '0, 1' " + form);
+  CHECK_THROWS_WITH(parse_range("x", "[0; 1]"), "params: parameter 'x': range '[0; 1]' " + form);
+  CHECK_THROWS_WITH(parse_range("x", "[0, 1, 2]"), Catch::Contains("interval notation"));
+  CHECK_THROWS_WITH(parse_range("x", "[a, 1]"), Catch::Contains("interval notation"));
+  CHECK_THROWS_WITH(parse_range("x", "[0, nan]"), Catch::Contains("interval notation"));
+  CHECK_THROWS_WITH(parse_range("x", "[0,]"), Catch::Contains("interval notation"));
+  CHECK_THROWS_WITH(parse_range("x", ""), Catch::Contains("interval notation"));
+  CHECK_THROWS_WITH(parse_range("x", "[1, 0]"),
+                    "params: parameter 'x': range '[1, 0]' is empty: no value lies in it");
+  CHECK_THROWS_WITH(parse_range("x", "(1, 1]"), Catch::Contains("is empty"));
+  CHECK_THROWS_WITH(parse_range("x", "[inf, inf]"), Catch::Contains("is empty"));
+}
+
+TEST_CASE("ranges and choices refuse overrides and defaults outside them", "[lua][params]") {
+  Param dt = declared("dt", ParamType::kNumber, 0.05, "tau", "time step");
+  dt.range = parse_range("dt", "(0, inf)");
+  Param every = declared("every", ParamType::kInteger, 1000LL, "", "sampling");
+  every.range = parse_range("every", "[1, inf)");
+  Param seed = declared("seed", ParamType::kInteger, 1LL, "", "seed");
+  seed.range = parse_range("seed", "[0, inf)");
+  Param system = declared("system", ParamType::kString, std::string("reduced"), "", "preset");
+  system.choices = {"reduced", "paper", "large"};
+  std::vector<Param> params = {dt, every, seed, system};
+  for (const auto& p : params) CHECK_NOTHROW(check_declaration(p));
+
+  SECTION("inside") {
+    apply_overrides(params, {parse_override("dt=1e-3"), parse_override("every=1"),
+                             parse_override("system=paper"), Override{"seed", "0", true}});
+    CHECK(std::get<double>(params[0].value) == 1e-3);
+    CHECK(std::get<std::string>(params[3].value) == "paper");
+  }
+  SECTION("outside, naming the override, the parameter, the range and the value") {
+    CHECK_THROWS_WITH(apply_overrides(params, {parse_override("dt=0")}),
+                      "--set dt=0: parameter 'dt' must be in (0, inf); got 0");
+    CHECK_THROWS_WITH(apply_overrides(params, {parse_override("dt=-1e-3")}),
+                      "--set dt=-1e-3: parameter 'dt' must be in (0, inf); got -0.001");
+    CHECK_THROWS_WITH(apply_overrides(params, {parse_override("every=0")}),
+                      "--set every=0: parameter 'every' must be in [1, inf); got 0");
+    CHECK_THROWS_WITH(apply_overrides(params, {parse_override("every=-1")}),
+                      "--set every=-1: parameter 'every' must be in [1, inf); got -1");
+    CHECK_THROWS_WITH(apply_overrides(params, {Override{"seed", "-2", true}}),
+                      "--seed -2: parameter 'seed' must be in [0, inf); got -2");
+    CHECK_THROWS_WITH(apply_overrides(params, {parse_override("system=huge")}),
+                      "--set system=huge: parameter 'system' must be one of large, paper, "
+                      "reduced; got 'huge'");
+    CHECK_THROWS_WITH(apply_overrides(params, {parse_override("system=paer")}),
+                      "--set system=paer: parameter 'system' must be one of large, paper, "
+                      "reduced; got 'paer' (did you mean 'paper'?)");
+  }
+  SECTION("a default outside its own range") {
+    Param bad = dt;
+    bad.default_value = 0.0;
+    CHECK_THROWS_WITH(check_declaration(bad),
+                      "params: parameter 'dt' must be in (0, inf); its default is 0");
+    Param bad_choice = system;
+    bad_choice.default_value = std::string("medium");
+    CHECK_THROWS_WITH(check_declaration(bad_choice),
+                      "params: parameter 'system' must be one of large, paper, reduced; its "
+                      "default is 'medium'");
+  }
+  SECTION("a range on a string, choices on a number") {
+    Param s = system;
+    s.choices.clear();
+    s.range = parse_range("system", "[0, 1]");
+    CHECK_THROWS_WITH(check_declaration(s),
+                      "params: parameter 'system' is a string: a range applies to number and "
+                      "integer parameters only");
+    Param n = dt;
+    n.range.reset();
+    n.choices = {"a"};
+    CHECK_THROWS_WITH(check_declaration(n),
+                      "params: parameter 'dt' is a number: choices apply to string parameters "
+                      "only");
+  }
+  SECTION("the listing shows the range or the choices") {
+    params.push_back(declared("flag", ParamType::kBoolean, false, "", "a switch"));
+    const std::string table = format_param_table(params);
+    CHECK(std::regex_search(table,
+                            std::regex("\n  dt +number +0.05 +\\(0, inf\\) +tau +time step\n")));
+    CHECK(std::regex_search(table,
+                            std::regex("\n  every +integer +1000 +\\[1, inf\\) +- +sampling\n")));
+    CHECK(std::regex_search(
+        table,
+        std::regex("\n  system +string +\"reduced\" +\\{large, paper, reduced\\} +- +preset\n")));
+    CHECK(std::regex_search(table, std::regex("\n  flag +boolean +false +- +- +a switch\n")));
+    CHECK(table.find("  name ") == 0);
+    CHECK(table.find(" range ") != std::string::npos);
+  }
+}
+
+TEST_CASE("invasim.params reads range and choices and checks them first", "[lua][params]") {
+  SECTION("declaration errors") {
+    LuaState state;
+    CHECK(script_error(state,
+                       "local iv = require('invasim')\n"
+                       "iv.params{dt = {0.0, range = '(0, inf)'}}") ==
+          "test.lua:2: params: parameter 'dt' must be in (0, inf); its default is 0");
+    CHECK(script_error(state, "require('invasim').params{n = {-1, range = '[0, inf)'}}") ==
+          "test.lua:1: params: parameter 'n' must be in [0, inf); its default is -1");
+    CHECK(script_error(state, "require('invasim').params{s = {'x', choices = {'a', 'b'}}}") ==
+          "test.lua:1: params: parameter 's' must be one of a, b; its default is 'x'");
+    CHECK(script_error(state, "require('invasim').params{b = {true, range = '[0, 1]'}}") ==
+          "test.lua:1: params: parameter 'b' is a boolean: a range applies to number and "
+          "integer parameters only");
+    CHECK(script_error(state, "require('invasim').params{x = {1.0, range = 5}}") ==
+          "test.lua:1: params: parameter 'x': key 'range' must be a string, got 5");
+    CHECK(script_error(state, "require('invasim').params{x = {1.0, range = '0 < x'}}") ==
+          "test.lua:1: params: parameter 'x': range '0 < x' is not in interval notation: write "
+          "\"[lo, hi]\" with [ ] inclusive, ( ) exclusive and inf for no bound, e.g. \"(0, "
+          "inf)\"");
+    const std::string list_error =
+        "test.lua:1: params: parameter 's': key 'choices' must be a list of strings, as in "
+        "choices = {\"a\", \"b\"}";
+    CHECK(script_error(state, "require('invasim').params{s = {'a', choices = 'a'}}") == list_error);
+    CHECK(script_error(state, "require('invasim').params{s = {'a', choices = {'a', 2}}}") ==
+          list_error);
+    CHECK(script_error(state, "require('invasim').params{s = {'a', choices = {}}}") == list_error);
+    CHECK(script_error(state, "require('invasim').params{s = {'a', choices = {'a', x = 'b'}}}") ==
+          list_error);
+  }
+  SECTION("an override out of range stops the script at invasim.params") {
+    RunOptions options;
+    options.overrides = {parse_override("dt=0")};
+    LuaState state(options);
+    CHECK(script_error(state,
+                       "ran_before = true\n"
+                       "local p = require('invasim').params{\n"
+                       "  dt = {0.05, range = '(0, inf)'}}\n"
+                       "ran_after = true") ==
+          "test.lua:2: --set dt=0: parameter 'dt' must be in (0, inf); got 0");
+    lua_getglobal(state.get(), "ran_after");
+    CHECK(lua_isnil(state.get(), -1));
+  }
+  SECTION("values inside reach the script") {
+    RunOptions options;
+    options.overrides = {parse_override("mode=b"), parse_override("n=0")};
+    LuaState state(options);
+    state.run_string(R"lua(
+      local p = require("invasim").params{ mode = {"a", choices = {"a", "b"}},
+                                           n = {3, range = "[0, 10]"} }
+      assert(p.mode == "b" and p.n == 0)
+    )lua");
+    const auto& params = *state.context().params;
+    REQUIRE(params.size() == 2);
+    CHECK(params[0].choices == std::vector<std::string>{"a", "b"});
+    REQUIRE(params[1].range);
+    CHECK(params[1].range->text() == "[0, 10]");
+  }
 }
 
 TEST_CASE("invasim.params in list mode stops the script after recording", "[lua][params]") {
