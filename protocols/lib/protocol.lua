@@ -15,6 +15,8 @@ function M.declarations()
     L0 = { 0.0, unit = "sigma", help = "initial cubic box side (0: from system)" },
     seed = { 1, help = "random seed (placement, noise, orientations)" },
     phi = { 0.72, help = "total packing fraction reached by compression" },
+    start = { "demixed", help = "initial placement: demixed (cells left of the adipocytes) or mixed (both over the whole box)" },
+    A_0 = { 1.1, help = "reference shape parameter of the adipocytes (>= 1; the paper's Appendix A: 1.0, 1.1, 1.3)" },
     P = { 1.3e-3, unit = "eps_c/sigma^3", help = "pressure on the left wall" },
     beta = { 1e-2, help = "cancer-cell cohesion depth (0: repulsive)" },
     alpha = { 0.2, help = "cancer-cell cohesion range" },
@@ -76,9 +78,18 @@ function M.produce(tissue, p, out)
   })
 end
 
+-- The values `--set start=` accepts (lib/init.lua places the bodies accordingly).
+M.starts = { demixed = true, mixed = true }
+
 -- Checks the parameters' combinations before anything runs or any file is written.
 function M.validate(p)
   M.size(p)
+  if not M.starts[p.start] then
+    error(string.format("--set start=%s: unknown initial placement; choose one of: demixed, mixed", p.start), 0)
+  end
+  if not (p.A_0 >= 1) then
+    error(string.format("--set A_0=%s: the reference shape parameter must be >= 1 (a sphere has 1)", tostring(p.A_0)), 0)
+  end
   if p.snapshot_every > 0 and p.snapshot_every % p.every ~= 0 then
     error(string.format("--set snapshot_every=%d must be a multiple of every = %d", p.snapshot_every, p.every), 0)
   end
@@ -97,7 +108,7 @@ function M.compressed(p, out)
   local N_a, N_c, L0 = M.size(p)
   local tissue = require("lib.init"){
     N_a = N_a, N_c = N_c, L0 = L0, seed = p.seed, eps_v = p.eps_v, eps_a = p.eps_a,
-    alpha = p.alpha, beta = p.beta,
+    alpha = p.alpha, beta = p.beta, shape_param = p.A_0, start = p.start,
   }
   if iv.from and not resume.pending() then
     local path = resume.compressed_path(iv.from)
