@@ -4,6 +4,9 @@
 -- Decision: the adipocyte range is clipped to X <= L0 - R_out (R_out = diameter / 2, the
 -- outer radius with the vertex radii) so that no vertex starts outside the right wall: the
 -- paper's 68 with diameter 6 would reach x = 71 > 70.
+-- start = "mixed" (the inset of the paper's Fig. 5(b)): both populations over the whole box,
+-- i.e. over the union 2 < x < 68 of the two de-mixed ranges (scaled, adipocytes clipped to
+-- R_out <= X <= L0 - R_out); the adipocytes are placed first, the cells fill the gaps.
 --
 --   local tissue = require("lib.init"){ N_a = 28, N_c = 1500, L0 = 70, seed = 1 }
 --
@@ -20,6 +23,7 @@ local defaults = {
   diameter = 6.0,                  -- adipocyte outer diameter (vertex radii included)
   vertex_diameter = 2.0,
   shape_param = 1.1,               -- reference shape parameter A_0
+  start = "demixed",               -- or "mixed": cells and adipocytes over the whole box
   eps_v = 1e3, eps_a = 1.0,        -- shape energy (docs/model.md: defaults and why)
   alpha = 0.2, beta = 0.0,         -- cohesion of cancer cells (the compress stage may override)
   eps_cc = 1.0, eps_cv = 1.0, eps_vv = 1.0,
@@ -31,15 +35,20 @@ return function(opts)
   local L = o.L0
   local s = L / 70
   local sys = iv.System{ box = { L, L, L }, periodic = { false, true, true }, seed = o.seed }
+  if o.start ~= "demixed" and o.start ~= "mixed" then
+    options.fail("init", string.format("start = '%s' is not an initial placement; choose demixed or mixed", o.start))
+  end
+  local mixed = o.start == "mixed"
   local R_out = o.diameter / 2
+  local x_lo = mixed and math.max(2 * s, R_out) or 16 * s
   local x_hi = math.min(68 * s, L - R_out)
-  if x_hi <= 16 * s then
+  if x_hi <= x_lo then
     options.fail("init", string.format("L0 = %g is too small for adipocytes of diameter %g", L, o.diameter))
   end
   local placed = sys:place{
-    adipocytes = { n = o.N_a, x = { 16 * s, x_hi }, diameter = o.diameter,
+    adipocytes = { n = o.N_a, x = { x_lo, x_hi }, diameter = o.diameter,
                    vertex_diameter = o.vertex_diameter, shape_param = o.shape_param },
-    cells = { n = o.N_c, x = { 2 * s, 12 * s }, diameters = o.diameters },
+    cells = { n = o.N_c, x = { 2 * s, (mixed and 68 or 12) * s }, diameters = o.diameters },
   }
   local tissue = {
     sys = sys,
@@ -52,8 +61,8 @@ return function(opts)
     params = o,
   }
   local phi = sys:packing()
-  log.say("init", "%d cancer cells, %d adipocytes in a box %s; phi = %.4f (cells %.4f, adipocytes %.4f)",
-          tissue.cells:size(), placed.adipocytes, log.box(sys:box().lengths), phi.total,
-          phi.cancer, phi.adipocyte)
+  log.say("init", "%d cancer cells, %d adipocytes in a box %s, %s start, A_0 = %g; phi = %.4f (cells %.4f, adipocytes %.4f)",
+          tissue.cells:size(), placed.adipocytes, log.box(sys:box().lengths), o.start, o.shape_param,
+          phi.total, phi.cancer, phi.adipocyte)
   return tissue
 end

@@ -8,7 +8,7 @@ local M = {}
 -- Temperatures, wall pressures, box length, packing fractions (lib/thermo.lua).
 function M.thermo(tissue)
   return {
-    columns = thermo.columns, units = thermo.units,
+    columns = thermo.columns_of(tissue), units = thermo.units,
     sample = function(row)
       for k, v in pairs(thermo.sample(tissue)) do row[k] = v end
     end,

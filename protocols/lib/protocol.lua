@@ -35,6 +35,8 @@ function M.declarations()
     gamma = { 0.2, range = "[0, inf)", unit = "sqrt(m eps_c)/sigma", help = "damping coefficient" },
     eps_v = { 1e3, range = "[0, inf)", unit = "eps_c", help = "adipocyte volume stiffness" },
     eps_a = { 1.0, range = "[0, inf)", unit = "eps_c", help = "adipocyte face-area stiffness" },
+    start = { "demixed", choices = { "demixed", "mixed" }, help = "initial placement: demixed (cells left of the adipocytes) or mixed (both over the whole box)" },
+    A_0 = { 1.1, range = "[1, inf)", help = "reference shape parameter of the adipocytes (a sphere has 1; the paper's Appendix A: 1.0, 1.1, 1.3)" },
     dt = { 0.05, range = "(0, inf)", unit = "tau", help = "time step" },
     cohesive_compression = { false, help = "keep the cells' cohesion on during compression (default: repulsive packing)" },
     compress_ftol = { 1e-3, range = "(0, inf)", unit = "eps_c/sigma", help = "FIRE tolerance between compression steps" },
@@ -110,7 +112,7 @@ function M.compressed(p, out)
   local N_a, N_c, L0 = M.size(p)
   local tissue = require("lib.init"){
     N_a = N_a, N_c = N_c, L0 = L0, seed = p.seed, eps_v = p.eps_v, eps_a = p.eps_a,
-    alpha = p.alpha, beta = p.beta,
+    alpha = p.alpha, beta = p.beta, shape_param = p.A_0, start = p.start,
   }
   if iv.from and not resume.pending() then
     local path = resume.compressed_path(iv.from)

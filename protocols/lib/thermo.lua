@@ -8,19 +8,35 @@ M.columns = { "step", "time", "T_c", "T_a", "P_left", "P_right", "L_x", "phi", "
 M.units = { step = "1", time = "tau", T_c = "eps_c", T_a = "eps_c", P_left = "eps_c/sigma^3",
             P_right = "eps_c/sigma^3", L_x = "sigma", phi = "1", phi_c = "1", phi_a = "1" }
 
+-- The columns of a tissue: without walls (a fully periodic box, protocols/cells_only.lua)
+-- no wall pressures, without adipocyte vertices no T_a.
+function M.columns_of(tissue)
+  local columns = {}
+  for _, c in ipairs(M.columns) do
+    local wall = c == "P_left" or c == "P_right"
+    if not (wall and not tissue.walls) and not (c == "T_a" and not tissue.vertices) then
+      columns[#columns + 1] = c
+    end
+  end
+  return columns
+end
+
 -- One row {name = value} for the current state.
 function M.sample(tissue)
   local sys = tissue.sys
   local box = sys:box()
   local area = box.lengths[2] * box.lengths[3]
-  local left, right = tissue.walls:reaction()
   local phi = sys:packing()
-  return {
-    step = sys:step(), time = sys:time(),
-    T_c = sys:temperature(tissue.cells), T_a = sys:temperature(tissue.vertices),
-    P_left = math.abs(left) / area, P_right = math.abs(right) / area,
+  local row = {
+    step = sys:step(), time = sys:time(), T_c = sys:temperature(tissue.cells),
     L_x = box.lengths[1], phi = phi.total, phi_c = phi.cancer, phi_a = phi.adipocyte,
   }
+  if tissue.vertices then row.T_a = sys:temperature(tissue.vertices) end
+  if tissue.walls then
+    local left, right = tissue.walls:reaction()
+    row.P_left, row.P_right = math.abs(left) / area, math.abs(right) / area
+  end
+  return row
 end
 
 return M

@@ -228,9 +228,11 @@ int l_positions(lua_State* L) {
   return 1;
 }
 
-// sys:adipocytes() -> {{volume =, ref_volume =, area =, shape_parameter =, centre = {..}}, ...}
-// per adipocyte: mesh volume v_i and its reference, mesh area, 3D shape parameter, and the
-// vertex centroid (unwrapped).
+// sys:adipocytes() -> {{volume =, ref_volume =, area =, shape_parameter =,
+// ref_shape_parameter =, centre = {..}}, ...}
+// per adipocyte: mesh volume v_i and its reference, mesh area, 3D shape parameter, the
+// reference one A_0 (from the sum of the reference face areas and v_i0), and the vertex
+// centroid (unwrapped).
 int l_adipocytes(lua_State* L) {
   const Simulation& sim = check<Simulation>(L, 1);
   const auto& bodies = sim.system.bodies();
@@ -242,11 +244,14 @@ int l_adipocytes(lua_State* L) {
     sim.system.body_vertices(int(b), x.data());
     const double volume = mesh_volume(*body.topology, x.data());
     const double area = mesh_area(*body.topology, x.data());
-    lua_createtable(L, 0, 5);
+    double ref_area = 0.0;
+    for (double a : body.ref_area) ref_area += a;
+    lua_createtable(L, 0, 6);
     set_number(L, "volume", volume);
     set_number(L, "ref_volume", body.ref_volume);
     set_number(L, "area", area);
     set_number(L, "shape_parameter", shape_parameter(area, volume));
+    set_number(L, "ref_shape_parameter", shape_parameter(ref_area, body.ref_volume));
     push_vec3(L, vertex_centroid(body.n_vertices(), x.data()));
     lua_setfield(L, -2, "centre");
     lua_rawseti(L, -2, lua_Integer(b + 1));

@@ -24,8 +24,15 @@ bool overlaps(const Box& box, const std::vector<Ball>& balls, const Ball& b) {
   return false;
 }
 
+// The centres' x range must lie inside the box; with walls in x, the bodies too.
 void check_range(const Box& box, const Range& x, double radius, const char* what) {
   if (!(x.hi >= x.lo)) fail_input(what, ": x range [", x.lo, ", ", x.hi, "] is empty");
+  if (box.periodic(0)) {
+    if (x.lo < box.lo()[0] || x.hi > box.hi()[0])
+      fail_input(what, ": x range [", x.lo, ", ", x.hi, "] is outside the periodic box [",
+                 box.lo()[0], ", ", box.hi()[0], "]");
+    return;
+  }
   if (x.lo - radius < box.lo()[0] || x.hi + radius > box.hi()[0])
     fail_input(what, ": x range [", x.lo, ", ", x.hi, "] with body radius ", radius,
                " does not fit between the walls [", box.lo()[0], ", ", box.hi()[0], "]");

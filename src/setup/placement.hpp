@@ -2,8 +2,9 @@
 // Dilute random placement without overlaps (MODEL.md, protocol step 1): cancer cells and
 // adipocytes at random positions inside given x ranges (all of y and z), each body treated
 // as a ball (a cell: its diameter; an adipocyte: mesh radius + vertex radius) that must not
-// overlap any ball already placed. Random numbers come from the system seed (stream
-// kPlacement), so a placement is reproducible.
+// overlap any ball already placed. With walls in x the balls stay between the walls; in a box
+// periodic in x the centres' range may span the whole box (overlaps use the minimum image). Random
+// numbers come from the system seed (stream kPlacement), so a placement is reproducible.
 #include <vector>
 
 #include "state/system.hpp"

@@ -93,6 +93,27 @@ TEST_CASE("placement refuses regions that cannot hold the bodies, naming the reg
                     Contains("does not fit between the walls"));
 }
 
+// protocols/cells_only.lua: cells over the whole of a box periodic in x, no walls.
+TEST_CASE("placement in a box periodic in x spans the whole box without overlaps") {
+  System sys(Box(Vec3::Zero(), Vec3::Constant(12.0), {true, true, true}), 2);
+  SpherePlacement sp;
+  sp.n = 300;  // phi = 0.18
+  sp.x = {0.0, 12.0};
+  const PlacementResult r = place_random(sys, MeshPlacement{}, sp);
+  REQUIRE(r.cells.size() == 300);
+  CHECK(min_pair_gap(sys) >= 0.0);
+  double x_min = 1e300, x_max = -1e300;
+  for (int i : r.cells) {
+    x_min = std::min(x_min, sys.sites().pos[i][0]);
+    x_max = std::max(x_max, sys.sites().pos[i][0]);
+  }
+  CHECK(x_min < 0.45);  // closer to the periodic edges than a wall would allow
+  CHECK(x_max > 11.55);
+  sp.x = {-1.0, 12.0};
+  CHECK_THROWS_WITH(place_random(sys, MeshPlacement{}, sp),
+                    Contains("is outside the periodic box [0, 12]"));
+}
+
 namespace {
 
 // How de-mixed the cancer cells and adipocytes are (see demixing).
