@@ -21,7 +21,9 @@ function M.declarations()
     f0 = { 0.01, unit = "eps_c/sigma", help = "self-propulsion force (0: passive cells)" },
     tau_p = { 25.0, unit = "tau", help = "persistence time of the active orientation" },
     kT = { 0.0, unit = "eps_c", help = "thermal noise temperature of the cells" },
-    gamma = { 0.2, unit = "sqrt(m eps_c)/sigma", help = "damping coefficient" },
+    gamma = { 0.2, unit = "sqrt(m eps_c)/sigma", help = "damping coefficient of the cancer cells" },
+    vertex_bath = { "langevin", help = "bath of the adipocyte vertices and the piston: langevin (FDT noise at kT) or damped (no noise)" },
+    vertex_gamma = { 0.2, unit = "sqrt(m eps_c)/sigma", help = "damping coefficient of the adipocyte vertices" },
     eps_v = { 1e3, unit = "eps_c", help = "adipocyte volume stiffness" },
     eps_a = { 1.0, unit = "eps_c", help = "adipocyte face-area stiffness" },
     dt = { 0.05, unit = "tau", help = "time step" },
@@ -79,6 +81,12 @@ end
 -- Checks the parameters' combinations before anything runs or any file is written.
 function M.validate(p)
   M.size(p)
+  local bad_bath = require("lib.motion").check_vertex_bath(p.vertex_bath)
+  if bad_bath then error(string.format("--set vertex_bath=%s: %s", p.vertex_bath, bad_bath), 0) end
+  if not (p.vertex_gamma >= 0) then
+    error(string.format("--set vertex_gamma=%g: must be >= 0 (the vertices' damping coefficient)",
+                        p.vertex_gamma), 0)
+  end
   if p.snapshot_every > 0 and p.snapshot_every % p.every ~= 0 then
     error(string.format("--set snapshot_every=%d must be a multiple of every = %d", p.snapshot_every, p.every), 0)
   end
@@ -120,7 +128,8 @@ end
 function M.prepare(p, out)
   local tissue = M.compressed(p, out)
   require("lib.quench")(tissue, { P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p,
-                                  gamma = p.gamma, dt = p.dt, steps = p.quench_steps })
+                                  gamma = p.gamma, vertex_bath = p.vertex_bath,
+                                  vertex_gamma = p.vertex_gamma, dt = p.dt, steps = p.quench_steps })
   return tissue
 end
 

@@ -1,11 +1,14 @@
 -- Thermodynamic columns of a tissue, measured from the engine (MODEL.md, "Measurements"):
--- temperatures of the cells and the vertices (equipartition kT = m <v^2> / 3), the pressure
+-- temperatures of the cells and the vertices (equipartition kT = m <v^2> / 3), their ratio
+-- T_c/T_a, the cells' temperature in the paper's convention (kT_c_paper = (2m/3N) sum v^2 =
+-- 2 T_c, the axis of its figures), the pressure
 -- each wall feels (|x force of the sites on it| / (L_y L_z)), the box length L_x, packing
 -- fractions, and (optionally) the energy of every force term.
 local M = {}
 
-M.columns = { "step", "time", "T_c", "T_a", "P_left", "P_right", "L_x", "phi", "phi_c", "phi_a" }
-M.units = { step = "1", time = "tau", T_c = "eps_c", T_a = "eps_c", P_left = "eps_c/sigma^3",
+M.columns = { "step", "time", "T_c", "T_a", "T_c_over_T_a", "kT_c_paper", "P_left", "P_right", "L_x", "phi", "phi_c", "phi_a" }
+M.units = { step = "1", time = "tau", T_c = "eps_c", T_a = "eps_c", T_c_over_T_a = "1",
+            kT_c_paper = "eps_c", P_left = "eps_c/sigma^3",
             P_right = "eps_c/sigma^3", L_x = "sigma", phi = "1", phi_c = "1", phi_a = "1" }
 
 -- One row {name = value} for the current state.
@@ -15,9 +18,10 @@ function M.sample(tissue)
   local area = box.lengths[2] * box.lengths[3]
   local left, right = tissue.walls:reaction()
   local phi = sys:packing()
+  local T_c, T_a = sys:temperature(tissue.cells), sys:temperature(tissue.vertices)
   return {
     step = sys:step(), time = sys:time(),
-    T_c = sys:temperature(tissue.cells), T_a = sys:temperature(tissue.vertices),
+    T_c = T_c, T_a = T_a, T_c_over_T_a = T_a > 0 and T_c / T_a or 0 / 0, kT_c_paper = 2 * T_c,
     P_left = math.abs(left) / area, P_right = math.abs(right) / area,
     L_x = box.lengths[1], phi = phi.total, phi_c = phi.cancer, phi_a = phi.adipocyte,
   }
