@@ -121,8 +121,12 @@ def markdown(rows):
                 hit = [r for r in rows if (r["vertex_bath"], r["vertex_gamma"]) == (b, g)
                        and r["motion"] == motion and r["x"] == x
                        and (motion == "passive" or r["tau_p"] == tau_p)]
-                cells.append("%.3g +- %.2g (%.3g)" % (hit[0]["T_c_over_T_a"], hit[0]["T_c_over_T_a_err"],
-                                                     hit[0]["kT_c_over_P"]) if hit else "")
+                if hit:
+                    r, e = hit[0]["T_c_over_T_a"], hit[0]["T_c_over_T_a_err"]
+                    fmt = "%.3f +- %.3f (%.3g)" if r < 10 else "%.1f +- %.1f (%.3g)"
+                    cells.append(fmt % (r, e, hit[0]["kT_c_over_P"]))
+                else:
+                    cells.append("")
             name = "passive" if motion == "passive" else "active, tau_p = %g" % tau_p
             lines.append("| " + " | ".join([name, "%g" % x] + cells) + " |")
     return "\n".join(lines)

@@ -26,6 +26,6 @@ local r = result.summary.T_c_over_T_a
 print(string.format("vertex_bath = %s, vertex_gamma = %g: T_c/T_a = %.4f +- %.4f (%d samples), T_c/kT = %.4f",
                     p.vertex_bath, p.vertex_gamma, r.mean, r.error, r.samples,
                     result.summary.T_c.mean / p.kT))
-assert(r.error > 0 and r.error < 0.005, "FAILED: the error bar " .. r.error .. " is not well below 2 %")
 assert(math.abs(r.mean - 1) < 0.02, string.format("FAILED: T_c/T_a = %.4f is not 1 within 2 %%", r.mean))
+assert(r.error > 0 and r.error < 0.005, "FAILED: the error bar " .. r.error .. " is not well below 2 %")
 print("ok: passive T_c/T_a = 1 within 2 %")
