@@ -71,8 +71,8 @@ return function(tissue, opts)
   local wall = dyn:wall_state()
   local walls = wall and string.format("P = %g%s", wall.P, type(o.P) == "userdata" and " (ramp)" or "")
                 or "fixed walls"
-  log.say(o.label, "%s, %s (%s), %s, %d steps of dt = %g", walls, motion.describe(o),
-          tissue.cell_method:kind(), motion.describe_vertices(o), o.steps, dyn:dt())
+  log.say(o.label, "%s, %s (%s), %d steps of dt = %g; %s", walls, motion.describe(o),
+          tissue.cell_method:kind(), o.steps, dyn:dt(), motion.describe_vertices(o))
   if require("lib.resume").pending() then
     log.say(o.label, "steps skipped: resuming from a checkpoint")
     return tissue
