@@ -30,7 +30,7 @@ end
 
 function M.describe_vertices(o)
   if o.vertex_bath == "langevin" then
-    return string.format("Langevin vertices and piston (gamma = %g, kT = %g)", o.vertex_gamma, o.kT)
+    return string.format("Langevin vertices (gamma = %g, kT = %g)", o.vertex_gamma, o.kT)
   end
   return string.format("damped vertices (gamma = %g, no noise)", o.vertex_gamma)
 end
