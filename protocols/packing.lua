@@ -23,6 +23,7 @@ if p.K_ecm > 0 then
   if p.lambda > 0 then require("lib.heterogeneity")(tissue, { lambda = p.lambda }) end
 end
 require("lib.quench")(tissue, { barostat = false, kT = p.kT, f0 = p.f0, tau_p = p.tau_p,
-                                gamma = p.gamma, dt = p.dt, steps = p.quench_steps })
+                                gamma = p.gamma, vertex_bath = p.vertex_bath,
+                                vertex_gamma = p.vertex_gamma, dt = p.dt, steps = p.quench_steps })
 local result = protocol.produce(tissue, p, out)
 require("lib.report").final(tissue, p, result, iv.clock() - clock, out)

@@ -20,7 +20,8 @@ local tissue = protocol.prepare(p, out)
 require("lib.tether")(tissue, { K = p.K_ecm, mean_degree = p.mean_degree })
 if p.lambda > 0 then require("lib.heterogeneity")(tissue, { lambda = p.lambda }) end
 require("lib.quench")(tissue, { label = "equilibrate", P = p.P, kT = p.kT, f0 = p.f0,
-                                tau_p = p.tau_p, gamma = p.gamma, dt = p.dt,
+                                tau_p = p.tau_p, gamma = p.gamma, vertex_bath = p.vertex_bath,
+                                vertex_gamma = p.vertex_gamma, dt = p.dt,
                                 steps = p.equilibrate_steps })
 local result = protocol.produce(tissue, p, out)
 require("lib.report").final(tissue, p, result, iv.clock() - clock, out)

@@ -32,7 +32,9 @@ function M.declarations()
     f0 = { 0.01, range = "[0, inf)", unit = "eps_c/sigma", help = "self-propulsion force (0: passive cells)" },
     tau_p = { 25.0, range = "[0, inf)", unit = "tau", help = "persistence time of the active orientation (0: uncorrelated)" },
     kT = { 0.0, range = "[0, inf)", unit = "eps_c", help = "thermal noise temperature of the cells" },
-    gamma = { 0.2, range = "[0, inf)", unit = "sqrt(m eps_c)/sigma", help = "damping coefficient" },
+    gamma = { 0.2, range = "[0, inf)", unit = "sqrt(m eps_c)/sigma", help = "damping coefficient of the cancer cells" },
+    vertex_bath = { "langevin", choices = { "langevin", "damped" }, help = "bath of the adipocyte vertices and the piston: langevin (FDT noise at kT) or damped (no noise)" },
+    vertex_gamma = { 0.2, range = "[0, inf)", unit = "sqrt(m eps_c)/sigma", help = "damping coefficient of the adipocyte vertices" },
     eps_v = { 1e3, range = "[0, inf)", unit = "eps_c", help = "adipocyte volume stiffness" },
     eps_a = { 1.0, range = "[0, inf)", unit = "eps_c", help = "adipocyte face-area stiffness" },
     start = { "demixed", choices = { "demixed", "mixed" }, help = "initial placement: demixed (cells left of the adipocytes) or mixed (both over the whole box)" },
@@ -135,7 +137,8 @@ end
 function M.prepare(p, out)
   local tissue = M.compressed(p, out)
   require("lib.quench")(tissue, { P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p,
-                                  gamma = p.gamma, dt = p.dt, steps = p.quench_steps })
+                                  gamma = p.gamma, vertex_bath = p.vertex_bath,
+                                  vertex_gamma = p.vertex_gamma, dt = p.dt, steps = p.quench_steps })
   return tissue
 end
 

@@ -1,5 +1,6 @@
 -- Stage "quench" / "equilibrate" (MODEL.md protocol 3): the left wall becomes a piston under
--- pressure P, the cells get their thermostat or activity, the vertices are damped, and the
+-- pressure P, the cells get their thermostat or activity, the vertices their bath (vertex_bath:
+-- "langevin" at the background kT, with the piston, or "damped" with vertex_gamma), and the
 -- system runs for `steps` steps of dt. It creates tissue.dyn (the Dynamics every later stage
 -- runs with); calling it again (equilibrate) replaces the cells' motion and the pressure and
 -- keeps the piston's velocity.
@@ -13,6 +14,8 @@ local motion = require("lib.motion")
 local defaults = {
   P = options.ANY,      -- target pressure on the left wall (number or invasim.ramp); 1.3e-3
   kT = 0.0, f0 = 0.0, tau_p = 25.0, gamma = 0.2,
+  vertex_bath = "langevin",   -- "langevin" (noise at kT, vertices and piston) or "damped"
+  vertex_gamma = 0.2,         -- the vertices' damping coefficient
   dt = 0.05, steps = 20000,
   wall_mass = 1.0, wall_gamma = options.OPTIONAL,   -- default: gamma
   barostat = true,      -- false: both walls stay fixed (the box keeps its size; P unused)
@@ -27,19 +30,33 @@ return function(tissue, opts)
   if type(o.P) ~= "number" and type(o.P) ~= "userdata" then
     options.fail("quench", "key 'P' must be a number or an invasim.ramp{}, got " .. type(o.P))
   end
+  local bad_bath = motion.check_vertex_bath(o.vertex_bath)
+  if bad_bath then options.fail(o.label, string.format("vertex_bath = '%s': %s", o.vertex_bath, bad_bath)) end
   local sys = tissue.sys
   local dyn = tissue.dyn
   if not dyn then
     dyn = iv.Dynamics{ dt = o.dt }
-    tissue.vertex_method = dyn:add(iv.Damped{ group = tissue.vertices, gamma = o.gamma })
+    tissue.vertex_method = dyn:add(motion.vertex_method(tissue.vertices, o))
     tissue.cell_method = dyn:add(motion.cell_method(tissue.cells, o))
     if o.barostat then
-      dyn:pressure_wall{ P = o.P, mass = o.wall_mass, gamma = o.wall_gamma or o.gamma, walls = tissue.walls }
+      local piston = { P = o.P, mass = o.wall_mass, gamma = o.wall_gamma or o.gamma, walls = tissue.walls }
+      if o.vertex_bath == "langevin" then piston.kT = o.kT end  -- damped: no noise (kT = 0)
+      dyn:pressure_wall(piston)
     end
     tissue.dyn = dyn
   else
+    local vertex_kind = o.vertex_bath == "langevin" and "Langevin" or "Damped"
+    if tissue.vertex_method:kind() ~= vertex_kind then
+      options.fail(o.label, "cannot change the vertex bath of an existing Dynamics (" ..
+                   tissue.vertex_method:kind() .. " vertices); run quench first with the bath you want")
+    end
     dyn:set_dt(o.dt)
-    if dyn:wall_state() then dyn:set_pressure(o.P) end
+    if dyn:wall_state() then
+      dyn:set_pressure(o.P)
+      if o.vertex_bath == "langevin" then dyn:set_wall_kT(o.kT) end
+    end
+    tissue.vertex_method:set{ gamma = o.vertex_gamma }
+    if vertex_kind == "Langevin" then tissue.vertex_method:set{ kT = o.kT } end
     tissue.cell_method:set{ gamma = o.gamma }
     if tissue.cell_method:kind() ~= motion.kind(o) then
       options.fail(o.label, "cannot change the kind of cell motion of an existing Dynamics (" ..
@@ -55,8 +72,8 @@ return function(tissue, opts)
   local wall = dyn:wall_state()
   local walls = wall and string.format("P = %g%s", wall.P, type(o.P) == "userdata" and " (ramp)" or "")
                 or "fixed walls"
-  log.say(o.label, "%s, %s (%s), %d steps of dt = %g", walls, motion.describe(o),
-          tissue.cell_method:kind(), o.steps, dyn:dt())
+  log.say(o.label, "%s, %s (%s), %d steps of dt = %g; %s", walls, motion.describe(o),
+          tissue.cell_method:kind(), o.steps, dyn:dt(), motion.describe_vertices(o))
   if require("lib.resume").pending() then
     log.say(o.label, "steps skipped: resuming from a checkpoint")
     return tissue
@@ -73,8 +90,8 @@ return function(tissue, opts)
                         or "run the protocol again from the start"), 0)
   end
   local box = sys:box()
-  log.say(o.label, "t = %g, L_x = %.4f, phi = %.4f, T_c = %.3e, T_a = %.3e", sys:time(),
-          box.lengths[1], sys:packing().total, sys:temperature(tissue.cells),
-          sys:temperature(tissue.vertices))
+  local T_c, T_a = sys:temperature(tissue.cells), sys:temperature(tissue.vertices)
+  log.say(o.label, "t = %g, L_x = %.4f, phi = %.4f, T_c = %.3e, T_a = %.3e, T_c/T_a = %.3g",
+          sys:time(), box.lengths[1], sys:packing().total, T_c, T_a, T_c / T_a)
   return tissue
 end

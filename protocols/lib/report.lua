@@ -1,7 +1,8 @@
 -- The final summary of an invasion run, printed and (with a run directory) written to
 -- summary.json: the tissue, the averages of the production run with their error bars, the
 -- correlation times, shape statistics and the derived dimensionless temperature
--- k_B T_c / (P sigma^3) (MODEL.md: results are plotted against the measured T_c).
+-- k_B T_c / (P sigma^3) (MODEL.md: results are plotted against the measured T_c), also in
+-- the paper's convention (kT_c_paper = 2 T_c), and T_c/T_a.
 local log = require("lib.log")
 local summary_lines = require("lib.summary")
 
@@ -23,15 +24,17 @@ function M.final(tissue, p, result, seconds, out)
   end
   local n = s.T_c and s.T_c.samples or 0
   log.say("summary", "averages over the last %d of %d samples (block-averaging errors):", n, s.samples)
-  summary_lines.print("summary", s, { "A_t", "A_t_max", "A_ratio", "T_c", "T_a", "P_left", "P_right",
+  summary_lines.print("summary", s, { "A_t", "A_t_max", "A_ratio", "T_c", "T_a", "T_c_over_T_a",
+                                      "kT_c_paper", "P_left", "P_right",
                                       "L_x", "phi", "phi_c", "phi_a", "phi_a_local_std" },
                       result.series.units)
   local derived = {}
   if s.T_c and s.T_a and p.P > 0 then
     derived.kT_over_P = s.T_c.mean / p.P
+    derived.kT_c_paper_over_P = 2 * derived.kT_over_P
     derived.T_c_over_T_a = s.T_c.mean / s.T_a.mean
-    log.say("summary", "k_B T_c / (P sigma^3) = %.4g, T_c / T_a = %.3g", derived.kT_over_P,
-            derived.T_c_over_T_a)
+    log.say("summary", "k_B T_c / (P sigma^3) = %.4g (paper's convention: %.4g), T_c / T_a = %.3g",
+            derived.kT_over_P, derived.kT_c_paper_over_P, derived.T_c_over_T_a)
   end
   if s.correlation_window then
     log.say("summary", "tau_d = %s (standard normalisation %s), tau_r = %s (window %g)",

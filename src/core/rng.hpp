@@ -32,6 +32,7 @@ enum class RngStream : std::uint32_t {
   kOrientation = 2,  // rotational diffusion of an active cell
   kPlacement = 3,    // initial placement
   kVelocity = 4,     // initial velocities
+  kPiston = 5,       // Langevin force on the pressure wall (site 0)
   kUser = 16         // first id free for later uses
 };
 

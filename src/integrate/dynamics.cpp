@@ -140,6 +140,7 @@ void PressureWall::validate() const {
   require_non_negative("pressure", pressure);
   require_positive("wall mass", mass);
   require_non_negative("wall gamma", gamma);
+  require_non_negative("wall kT", kT);
   if (!walls) fail_input("pressure wall: no wall force to couple to");
 }
 
@@ -198,6 +199,10 @@ void Dynamics::update_wall_force(System& sys) {
   if (!wall_) return;
   wall_->force = wall_->walls->left_wall_force() + wall_->pressure * sys.box().wall_area() -
                  wall_->gamma * wall_->velocity;
+  if (wall_->kT > 0.0) {
+    const double noise = std::sqrt(2.0 * wall_->gamma * wall_->kT / dt_);
+    wall_->force += noise * RandomKey(sys.seed(), sys.step, 0u, RngStream::kPiston).normal3()[0];
+  }
 }
 
 void Dynamics::prepare(System& sys, ForceField& ff) {

@@ -65,11 +65,15 @@ class Method {
 // angle of variance 2 dt / tau_p, so E[n'.n] = exp(-dt/tau_p) for any dt (u: 4 uniforms).
 Vec3 rotate_orientation(const Vec3& n, double dt, double tau_p, const std::array<double, 4>& u);
 
-// The left wall as a massive piston: M x'' = F_sites_on_wall + P A - gamma_w x'.
+// The left wall as a massive piston: M x'' = F_sites_on_wall + P A - gamma_w x' + xi, with
+// xi the fluctuation-dissipation random force at temperature kT (variance 2 gamma_w kT / dt per
+// step; kT = 0: no noise), drawn from the counter-based RNG (stream kPiston), so that it does
+// not depend on the thread count and a restored run repeats it bit for bit.
 struct PressureWall {
   double pressure = 0.0;
   double mass = 1.0;
   double gamma = 0.2;
+  double kT = 0.0;  // temperature of the piston's bath
   double velocity = 0.0;
   double force = 0.0;  // total force on the wall at the last step
   std::shared_ptr<WallForce> walls;

@@ -288,6 +288,7 @@ void write_pressure_wall(CheckpointWriter& out, const PressureWall& wall,
   out.put_f64(key("pressure"), wall.pressure);
   out.put_f64(key("mass"), wall.mass);
   out.put_f64(key("gamma"), wall.gamma);
+  out.put_f64(key("kT"), wall.kT);
   out.put_f64(key("velocity"), wall.velocity);
   out.put_f64(key("force"), wall.force);
 }
@@ -297,6 +298,8 @@ void read_pressure_wall(const CheckpointReader& in, PressureWall& wall, const st
   wall.pressure = in.get_f64(key("pressure"));
   wall.mass = in.get_f64(key("mass"));
   wall.gamma = in.get_f64(key("gamma"));
+  // Checkpoints written before the piston had a bath: kT = 0 (no noise), as they ran.
+  wall.kT = in.has(key("kT")) ? in.get_f64(key("kT")) : 0.0;
   wall.velocity = in.get_f64(key("velocity"));
   wall.force = in.get_f64(key("force"));
 }

@@ -1,6 +1,6 @@
 // invasim.Dynamics{dt = 0.05}: time stepping of a System by a list of methods (Damped,
 // Langevin, Active), with an optional pressure-controlled left wall:
-//   dyn:add(method); dyn:pressure_wall{P =, mass = 1, gamma = 0.2, walls = w}
+//   dyn:add(method); dyn:pressure_wall{P =, mass = 1, gamma = 0.2, kT = 0, walls = w}
 //   dyn:run(sys, nsteps [, {every = N, callback = function(step, time) end, progress = p}])
 // run steps the engine in C++ chunks and returns to Lua only between chunks.
 #include <lua.hpp>
@@ -79,8 +79,9 @@ int l_add(lua_State* L) {
   return 1;
 }
 
-// dyn:pressure_wall{P =, mass = 1, gamma = 0.2, walls = w}: the left wall becomes a piston
-// under pressure P. walls defaults to the System's only Walls force (found at run time).
+// dyn:pressure_wall{P =, mass = 1, gamma = 0.2, kT = 0, walls = w}: the left wall becomes a
+// piston under pressure P, damped by gamma, with FDT noise at temperature kT (0: none). walls
+// defaults to the System's only Walls force (found at run time).
 int l_pressure_wall(lua_State* L) {
   DynamicsHandle& d = check<DynamicsHandle>(L, 1);
   Kwargs kw(L, 2, "pressure_wall");
@@ -90,6 +91,7 @@ int l_pressure_wall(lua_State* L) {
   wall->pressure_ramp = P.ramp;
   wall->mass = kw.number("mass", wall->mass, Range::positive());
   wall->gamma = kw.number("gamma", wall->gamma, Range::non_negative());
+  wall->kT = kw.number("kT", wall->kT, Range::non_negative());
   std::shared_ptr<Walls> walls;
   if (kw.push("walls") != LUA_TNIL) {
     if (!luaL_testudata(L, -1, LuaType<Walls>::metatable))
@@ -104,18 +106,34 @@ int l_pressure_wall(lua_State* L) {
   return 0;
 }
 
-// dyn:wall_state() -> {P =, velocity =, force =} or nil without a pressure wall.
+// dyn:wall_state() -> {P =, velocity =, force =, kT =} or nil without a pressure wall.
 int l_wall_state(lua_State* L) {
   const auto wall = check<DynamicsHandle>(L, 1).dynamics.pressure_wall();
   if (!wall) {
     lua_pushnil(L);
     return 1;
   }
-  lua_createtable(L, 0, 3);
+  lua_createtable(L, 0, 4);
   set_number(L, "P", wall->pressure);
   set_number(L, "velocity", wall->velocity);
   set_number(L, "force", wall->force);
+  set_number(L, "kT", wall->kT);
   return 1;
+}
+
+// dyn:set_wall_kT(kT): the temperature of the piston's bath (>= 0; 0: no noise).
+int l_set_wall_kT(lua_State* L) {
+  DynamicsHandle& d = check<DynamicsHandle>(L, 1);
+  const auto wall = d.dynamics.pressure_wall();
+  if (!wall)
+    fail_input(
+        "set_wall_kT: this Dynamics has no pressure wall; add one with dyn:pressure_wall{P = "
+        "...}");
+  const double kT = arg_number(L, 2);
+  if (!(kT >= 0.0)) fail_input("set_wall_kT: kT = ", kT, " must be >= 0");
+  wall->kT = kT;
+  d.dynamics.invalidate();
+  return 0;
 }
 
 // dyn:set_pressure(P): a number or a ramp; the piston keeps its velocity.
@@ -231,6 +249,7 @@ const luaL_Reg kMethods[] = {
     {"dt", &lua_wrap<&l_dt>},
     {"set_dt", &lua_wrap<&l_set_dt>},
     {"set_pressure", &lua_wrap<&l_set_pressure>},
+    {"set_wall_kT", &lua_wrap<&l_set_wall_kT>},
     {"methods", &lua_wrap<&l_methods>},
     {"run", &lua_wrap<&l_run>},
     {nullptr, nullptr},

@@ -125,8 +125,16 @@ expect_error("run: key 'every' = 0 is out of range %(must be >= 1%)", dyn.run, d
 expect_error("bad argument #1 to 'run' %(System expected, got nil%)", function() return dyn:run(nil, 1) end)
 local other = iv.System{ box = {10, 10, 10} }
 expect_error("run: Damped: group 'vertices' belongs to another System", dyn.run, dyn, other, 1)
+expect_error("pressure_wall: key 'kT' = %-1 is out of range %(must be >= 0%)", dyn.pressure_wall, dyn,
+             { P = 1e-3, kT = -1 })
+expect_error("set_wall_kT: this Dynamics has no pressure wall", dyn.set_wall_kT, dyn, 1e-3)
 dyn:pressure_wall{ P = 1e-3, mass = 1, gamma = 0.2, walls = walls }
-check(dyn:wall_state().P == 1e-3)
+check(dyn:wall_state().P == 1e-3 and dyn:wall_state().kT == 0)
+dyn:set_wall_kT(2e-4)
+check(dyn:wall_state().kT == 2e-4)
+expect_error("set_wall_kT: kT = %-1 must be >= 0", dyn.set_wall_kT, dyn, -1)
+dyn:pressure_wall{ P = 1e-3, kT = 1e-4, walls = walls }
+check(dyn:wall_state().kT == 1e-4)
 local fresh = iv.System{ box = {10, 10, 10} }
 local lonely = iv.Dynamics{}
 lonely:pressure_wall{ P = 1 }

@@ -1,6 +1,7 @@
 -- Issue 4/5 test: the production stage's observers write the run directory: series.csv
 -- (header with units, one row per `every` steps, A_t within [0, A_t^max]), correlations.csv
--- (C_vv(0) = F_s(0) = 1), shapes.csv, summary.json, params.json, log.txt and snapshots.
+-- (C_vv(0) = F_s(0) = 1), shapes.csv, summary.json, params.json, log.txt and snapshots;
+-- series.csv and the summary report T_c/T_a and kT_c_paper (= 2 T_c, the paper's convention).
 package.path = "../../protocols/?.lua;" .. package.path
 local iv = require("invasim")
 local protocol = require("lib.protocol")
@@ -23,7 +24,7 @@ end
 
 local series = lines(out .. "/series.csv")
 local header = split(series[1])
-assert(series[1]:find("^step,time %[tau%],T_c %[eps_c%],T_a %[eps_c%],P_left %[eps_c/sigma%^3%]"), series[1])
+assert(series[1]:find("^step,time %[tau%],T_c %[eps_c%],T_a %[eps_c%],T_c_over_T_a,kT_c_paper %[eps_c%],P_left %[eps_c/sigma%^3%]"), series[1])
 assert(series[1]:find("A_t %[sigma%^2%],A_t_max %[sigma%^2%],A_ratio"), series[1])
 local expected_rows = p.steps // p.every
 assert(#series == expected_rows + 1, "series.csv has " .. (#series - 1) .. " rows, expected " .. expected_rows)
@@ -33,6 +34,10 @@ for i = 2, #series do
   local f = split(series[i])
   local A_t, A_max = tonumber(f[col.A_t]), tonumber(f[col.A_t_max])
   assert(A_t > 0 and A_t <= A_max, "A_t out of range in row " .. i)
+  -- T_c/T_a and the paper's temperature convention (2 T_c) are derived from the same row.
+  local T_c, T_a = tonumber(f[col.T_c]), tonumber(f[col.T_a])
+  assert(math.abs(tonumber(f[col.T_c_over_T_a]) - T_c / T_a) <= 1e-9 * T_c / T_a, "T_c_over_T_a in row " .. i)
+  assert(math.abs(tonumber(f[col.kT_c_paper]) - 2 * T_c) <= 1e-9 * T_c, "kT_c_paper in row " .. i)
   -- Samples are taken at the steps of the System that are multiples of `every`.
   local step = tonumber(f[col.step])
   assert(step % p.every == 0 and step > tissue.sys:step() - p.steps and step <= tissue.sys:step(),
@@ -46,6 +51,11 @@ assert(tonumber(c0[3]) == 1 and tonumber(c0[9]) == 1, "C_vv(0) and F_s(0) must b
 assert(lines(out .. "/shapes.csv")[1] == "A2_lo,A2_hi,count,density")
 local summary = table.concat(lines(out .. "/summary.json"), "\n")
 assert(summary:find('"A_t": {') and summary:find('"wall_clock_seconds"'), "summary.json")
+assert(summary:find('"T_c_over_T_a": {') and summary:find('"kT_c_paper": {') and
+       summary:find('"kT_c_paper_over_P": '), "summary.json: T_c/T_a and the paper's kT_c")
+local log_text = table.concat(lines(out .. "/log.txt"), "\n")
+assert(log_text:find("summary: T_c_over_T_a = ") and log_text:find("summary: kT_c_paper = ") and
+       log_text:find("paper's convention: "), "the printed summary shows T_c/T_a and kT_c_paper")
 assert(table.concat(lines(out .. "/params.json"), "\n"):find('"N_c": 60'), "params.json")
 assert(table.concat(lines(out .. "/log.txt"), "\n"):find("summary: results in"), "log.txt")
 local pvd = table.concat(lines(out .. "/snapshots/adipocytes.pvd"), "\n")

@@ -40,14 +40,31 @@ expect_error("^stages_errors.lua:%d+: production: key 'every' = 0 must be >= 1",
              require("lib.production"), tissue, { every = 0 })
 expect_error("^stages_errors.lua:%d+: production: key 'correlate_every' = %-5 must be >= 0",
              require("lib.production"), tissue, { correlate_every = -5 })
+expect_error("^stages_errors.lua:%d+: quench: vertex_bath = 'hot': unknown vertex bath; choose one of: damped, langevin",
+             require("lib.quench"), tissue, { vertex_bath = "hot" })
+expect_error("quench: key 'vertex_gamma' must be a number, got string",
+             require("lib.quench"), tissue, { vertex_gamma = "low" })
 expect_error("rescale: key 'phi_a' must be a number, got boolean", require("lib.rescale"), tissue, { phi_a = true })
 expect_error("tether: unknown key 'k'", require("lib.tether"), tissue, { k = 1 })
 -- The production stage's column list (LAMMPS thermo style) names unknown columns.
-require("lib.quench")(tissue, { steps = 10, progress = false })
+require("lib.quench")(tissue, { steps = 10, progress = false, vertex_bath = "damped", vertex_gamma = 0.02 })
+-- The Dynamics keeps the vertex bath it was made with (equilibrate cannot switch it).
+expect_error("equilibrate: cannot change the vertex bath of an existing Dynamics %(Damped vertices%)",
+             require("lib.quench"), tissue, { label = "equilibrate", steps = 10, vertex_bath = "langevin" })
+assert(tissue.vertex_method:kind() == "Damped" and tissue.vertex_method:params().gamma == 0.02, "damped vertex bath")
+assert(tissue.dyn:wall_state().kT == 0, "no piston noise with damped vertices")
+checks = checks + 1
 expect_error("production: columns%[2%] = 'A_T' is not measured; available: step, time, T_c",
              require("lib.production"), tissue, { steps = 10, every = 5, columns = { "step", "A_T" } })
 local chosen = require("lib.production")(tissue, { steps = 10, every = 5, columns = { "step", "A_t", "T_c" },
                                                   progress = false, correlate_every = 0 })
 assert(#chosen.series.columns == 3 and chosen.series.rows[1].A_t and chosen.summary.A_t, "chosen columns")
+checks = checks + 1
+-- The Langevin vertex bath: vertices and piston at the background kT.
+local warm = init{ N_a = 1, N_c = 20, L0 = 30.0 }
+require("lib.quench")(warm, { steps = 10, progress = false, kT = 1e-3, vertex_bath = "langevin", vertex_gamma = 0.1 })
+local vp = warm.vertex_method:params()
+assert(warm.vertex_method:kind() == "Langevin" and vp.kT == 1e-3 and vp.gamma == 0.1, "Langevin vertex bath")
+assert(warm.dyn:wall_state().kT == 1e-3, "the piston's bath is at kT")
 checks = checks + 1
 print("stages_errors: all " .. checks .. " checks passed")

@@ -64,7 +64,8 @@ struct Snapshot {
 
 // The mixed system of the brief: 8 adipocytes (damped vertices), 300 active cancer cells with
 // thermal noise, cohesive contacts, walls, shape, tethers (mean degree 4 plus heterogeneity)
-// and a pressure-controlled left wall; `steps` steps from scratch with `threads` threads.
+// and a pressure-controlled left wall with its own bath (noise at kT = 1e-3); `steps` steps
+// from scratch with `threads` threads.
 Snapshot run_mixed(int threads, std::uint64_t dyn_seed, int steps) {
   omp_set_num_threads(threads);
   REQUIRE(threads_in_region() == threads);
@@ -88,6 +89,7 @@ Snapshot run_mixed(int threads, std::uint64_t dyn_seed, int steps) {
   dyn.add(Method::damped(sys.sites_of_kind(SiteKind::kVertex), 0.2));
   auto wall = std::make_shared<PressureWall>();
   wall->pressure = 1e-3;
+  wall->kT = 1e-3;
   wall->walls = walls;
   dyn.set_pressure_wall(wall);
   dyn.run(sys, ff, steps);

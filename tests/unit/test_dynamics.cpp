@@ -6,11 +6,13 @@
 // Statistical tests use fixed seeds, so they are deterministic; each one also reports its
 // statistical error (from the scatter between independent groups of particles), and the
 // tolerances asserted are several of those errors wide.
+#include <omp.h>
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 #include "core/errors.hpp"
@@ -660,4 +662,83 @@ TEST_CASE(
   CHECK(wall->velocity < 0.0);  // net outward force 0.75 P A from the start
   dyn.run(sys, ff, 190);
   CHECK(sys.box().lo()[0] < x1 - 1e-3);
+}
+
+namespace {
+
+// <v_w^2> M / kT of a free piston (P = 0, no site near it) with FDT noise at kT, and its
+// standard error from 20 consecutive blocks of the run (each many times the velocity
+// relaxation time M / gamma_w long).
+Estimate free_piston_temperature(double mass, double gamma, double kT, int steps) {
+  System sys(test::cube(40.0, true), 0x9157'0000ull);
+  sys.add_sphere(Vec3(20.0, 20.0, 20.0), 1.0);  // far from both walls: no force on them
+  auto walls = std::make_shared<WallForce>();
+  ForceField ff;
+  ff.add(walls);
+  auto wall = std::make_shared<PressureWall>();
+  wall->pressure = 0.0;
+  wall->mass = mass;
+  wall->gamma = gamma;
+  wall->kT = kT;
+  wall->walls = walls;
+  Dynamics dyn(kDt);
+  dyn.add(Method::damped(all_sites(sys), kGamma));
+  dyn.set_pressure_wall(wall);
+  dyn.run(sys, ff, std::uint64_t(20.0 * mass / gamma / kDt));  // forget v_w = 0
+  const int blocks = 20, every = 10, per_block = steps / blocks / every;
+  std::vector<double> v2(blocks, 0.0);
+  for (int b = 0; b < blocks; ++b)
+    for (int k = 0; k < per_block; ++k) {
+      dyn.run(sys, ff, every);
+      v2[b] += wall->velocity * wall->velocity * mass / kT / per_block;
+    }
+  REQUIRE(walls->left_wall_force() == 0.0);
+  return estimate(v2);
+}
+
+}  // namespace
+
+TEST_CASE("a free piston with noise at kT reaches M <v_w^2> = kT (fluctuation-dissipation)",
+          "[barostat]") {
+  // M / gamma_w = 1 and 2 (20 and 40 steps); 1e6 steps give >= 1.2e4 independent samples
+  // (error < 1%).
+  for (const auto& [mass, gamma] : {std::pair{1.0, 1.0}, std::pair{4.0, 2.0}}) {
+    const Estimate r = free_piston_temperature(mass, gamma, 1e-6, 1000000);
+    std::printf(
+        "[dynamics] free piston M = %g, gamma_w = %g, kT = 1e-6: M <v^2> / kT = %.4f +- %.4f\n",
+        mass, gamma, r.mean, r.error);
+    INFO("M = " << mass << ": M <v^2> / kT = " << r.mean << " +- " << r.error);
+    CHECK(r.error < 0.015);
+    CHECK(std::abs(r.mean - 1.0) < std::max(0.03, 4.0 * r.error));
+  }
+}
+
+TEST_CASE("piston noise: set by kT, zero at kT = 0, the same with 1 and 2 threads", "[barostat]") {
+  auto run = [](double kT, int threads) {
+    omp_set_num_threads(threads);
+    System sys = test::random_spheres(200, 0.3, true, 0xB0A7ull);
+    auto walls = std::make_shared<WallForce>();
+    ForceField ff;
+    ff.add(std::make_shared<ContactForce>(ContactParams{}));
+    ff.add(walls);
+    auto wall = std::make_shared<PressureWall>();
+    wall->pressure = 1e-3;
+    wall->kT = kT;
+    wall->walls = walls;
+    Dynamics dyn(kDt);
+    dyn.add(Method::langevin(all_sites(sys), kGamma, 1e-3));
+    dyn.set_pressure_wall(wall);
+    dyn.run(sys, ff, 400);
+    return std::pair{sys.box().lo()[0], wall->velocity};
+  };
+  const int saved = omp_get_max_threads();
+  const auto quiet = run(0.0, 1), noisy1 = run(1e-3, 1), noisy2 = run(1e-3, 2);
+  omp_set_num_threads(saved);
+  CHECK(noisy1.first != quiet.first);   // the noise moves the piston
+  CHECK(noisy1.first == noisy2.first);  // bit for bit, whatever the thread count
+  CHECK(noisy1.second == noisy2.second);
+  PressureWall bad;
+  bad.walls = std::make_shared<WallForce>();
+  bad.kT = -1.0;
+  CHECK_THROWS_WITH(bad.validate(), Catch::Contains("wall kT"));
 }

@@ -228,6 +228,7 @@ TEST_CASE("a System with cells, 2 adipocytes and tethers is restored bit for bit
   wall.pressure = 1.3e-3;
   wall.mass = 2.5;
   wall.gamma = 0.2;
+  wall.kT = 1.0 / 7.0;
   wall.velocity = -1.0 / 3.0;
   wall.force = 0.017;
 
@@ -259,6 +260,7 @@ TEST_CASE("a System with cells, 2 adipocytes and tethers is restored bit for bit
   CHECK(same_bits(w2.velocity, -1.0 / 3.0));
   CHECK(w2.pressure == 1.3e-3);
   CHECK(w2.mass == 2.5);
+  CHECK(same_bits(w2.kT, 1.0 / 7.0));
   CHECK(w2.force == 0.017);
   CHECK(w2.walls != nullptr);
 
