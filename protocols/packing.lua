@@ -5,7 +5,7 @@
 -- whole scan is at one k_B T/(P sigma^3) = 0.37) and measure. The pressure wall lets the
 -- tissue move away from the target phi_a: the run reports the measured phi_a (mean over
 -- production and final value) beside the target, and says so in the log when it drifts by
--- more than DRIFT (docs/model.md gives the numbers).
+-- more than 0.05 (lib/packing_drift.lua; docs/model.md gives the numbers).
 --   invasim run protocols/packing.lua --set phi_a=0.6
 local iv = require("invasim")
 local protocol = require("lib.protocol")
