@@ -133,13 +133,19 @@ function M.compressed(p, out)
   return tissue
 end
 
+-- The quench with the common parameters (pressure wall at P, the cells' motion).
+function M.quench(tissue, p)
+  return require("lib.quench")(tissue, { P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p,
+                                         gamma = p.gamma, vertex_bath = p.vertex_bath,
+                                         vertex_gamma = p.vertex_gamma, dt = p.dt,
+                                         steps = p.quench_steps })
+end
+
 -- init + compress (or --from) + quench with the common parameters; returns the tissue.
+-- (Protocols with tethers call compressed(), insert them, then quench(): MODEL.md protocol 4.)
 function M.prepare(p, out)
   local tissue = M.compressed(p, out)
-  require("lib.quench")(tissue, { P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p,
-                                  gamma = p.gamma, vertex_bath = p.vertex_bath,
-                                  vertex_gamma = p.vertex_gamma, dt = p.dt, steps = p.quench_steps })
-  return tissue
+  return M.quench(tissue, p)
 end
 
 return M

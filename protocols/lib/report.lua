@@ -12,7 +12,8 @@ local function optional(x, fmt)
   return x and string.format(fmt, x) or "not reached"
 end
 
-function M.final(tissue, p, result, seconds, out)
+-- `extra` (optional): more top-level entries of summary.json (e.g. packing_scan).
+function M.final(tissue, p, result, seconds, out, extra)
   local sys = tissue.sys
   local s = result.summary
   local box = sys:box()
@@ -47,12 +48,17 @@ function M.final(tissue, p, result, seconds, out)
   end
   if out then
     local json = require("lib.json")
-    require("lib.files").write(out .. "/summary.json", json.encode{
+    local doc = {
       averages = s, derived = derived, wall_clock_seconds = seconds, steps = sys:step(),
       time = sys:time(), box = box.lengths,
       compression = tissue.compression and { box = tissue.compression.box, phi = tissue.compression.phi,
                                              steps = tissue.compression.steps } or nil,
-    })
+    }
+    for k, v in pairs(extra or {}) do
+      if doc[k] ~= nil then error("report: extra entry '" .. k .. "' would replace a summary entry", 2) end
+      doc[k] = v
+    end
+    require("lib.files").write(out .. "/summary.json", json.encode(doc))
     log.say("summary", "results in %s (series.csv, summary.json, correlations.csv, shapes.csv, snapshots/)", out)
   end
 end

@@ -1,7 +1,8 @@
 // Measurements of a System from Lua (src/measure), called by the production stage's
 // observers every N steps (never inside the engine's step loop):
 //   sys:voronoi{radical = false}   -> {A_t, A_t_max, A_ratio, cancer_adipocyte, cancer_wall,
-//                                      phi_a_local_mean, phi_a_local_std, adipocyte_surface = {..},
+//                                      adipocyte_wall, phi_a_local_mean, phi_a_local_std,
+//                                      adipocyte_surface = {..}, adipocyte_wall_area = {..},
 //                                      local_phi_a = {..}, seconds}
 //   sys:shape_parameters()         -> {A_1, A_2, ...} 3D shape parameter per adipocyte
 //   sys:slices{per_body = 10, offset_fraction = 0.5, seed = 1} -> {a, ...} 2D shape parameters
@@ -60,17 +61,20 @@ int l_voronoi(lua_State* L) {
       engine_call("voronoi", [&] { return measure_voronoi(sim.system, options); });
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  lua_createtable(L, 0, 10);
+  lua_createtable(L, 0, 12);
   set_number(L, "A_t", m.interface_area);
   set_number(L, "A_t_max", m.max_interface_area);
   set_number(L, "A_ratio", m.interface_ratio);
   set_number(L, "cancer_adipocyte", m.cancer_adipocyte_area);
   set_number(L, "cancer_wall", m.cancer_wall_area);
+  set_number(L, "adipocyte_wall", m.adipocyte_wall_total);
   set_number(L, "phi_a_local_mean", m.mean_local_phi_a);
   set_number(L, "phi_a_local_std", m.std_local_phi_a);
   set_number(L, "seconds", seconds);
   push_numbers(L, m.adipocyte_surface);
   lua_setfield(L, -2, "adipocyte_surface");
+  push_numbers(L, m.adipocyte_wall_area);
+  lua_setfield(L, -2, "adipocyte_wall_area");
   push_numbers(L, m.local_phi_a);
   lua_setfield(L, -2, "local_phi_a");
   return 1;

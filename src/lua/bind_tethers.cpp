@@ -1,6 +1,6 @@
 // invasim.Tethers{K =}: ECM springs between adipocyte centres (TetherForce), with
-// :connect{mean_degree = 6} and :heterogeneity{lambda =} acting on the System the tethers were
-// added to (sys:add(tethers) first).
+// :connect{mean_degree = 6}, :heterogeneity{lambda =} and :list() acting on the System the
+// tethers were added to (sys:add(tethers) first).
 #include <lua.hpp>
 
 #include "lua/engine_types.hpp"
@@ -74,10 +74,36 @@ int l_set_K(lua_State* L) {
   return 0;
 }
 
+// t:list() -> {{i =, j =, rest_length =, length =}, ...} in tether order: the two adipocytes
+// (1-based, as in sys:adipocytes()), l_ij0 and the current centre separation R_ij (minimum
+// image) in the System the tethers act on.
+int l_list(lua_State* L) {
+  const Tethers& t = check<Tethers>(L, 1);
+  const Simulation& sim = system_of(t, "list");
+  const std::vector<Tether>& tethers = t.force->tethers();
+  const std::vector<Vec3> c =
+      engine_call("list", [&] { return TetherForce::body_centres(sim.system); });
+  lua_createtable(L, int(tethers.size()), 0);
+  for (std::size_t k = 0; k < tethers.size(); ++k) {
+    const Tether& e = tethers[k];
+    lua_createtable(L, 0, 4);
+    set_integer(L, "i", e.a + 1);
+    set_integer(L, "j", e.b + 1);
+    set_number(L, "rest_length", e.rest_length);
+    set_number(L, "length", sim.system.box().minimum_image(c[e.a] - c[e.b]).norm());
+    lua_rawseti(L, -2, lua_Integer(k + 1));
+  }
+  return 1;
+}
+
 const luaL_Reg kMethods[] = {
-    {"connect", &lua_wrap<&l_connect>}, {"heterogeneity", &lua_wrap<&l_heterogeneity>},
-    {"count", &lua_wrap<&l_count>},     {"K", &lua_wrap<&l_K>},
-    {"set_K", &lua_wrap<&l_set_K>},     {nullptr, nullptr},
+    {"connect", &lua_wrap<&l_connect>},
+    {"heterogeneity", &lua_wrap<&l_heterogeneity>},
+    {"count", &lua_wrap<&l_count>},
+    {"K", &lua_wrap<&l_K>},
+    {"set_K", &lua_wrap<&l_set_K>},
+    {"list", &lua_wrap<&l_list>},
+    {nullptr, nullptr},
 };
 
 }  // namespace

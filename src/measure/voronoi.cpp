@@ -498,11 +498,17 @@ void check_box(const Box& box) {
     fail_input("Voronoi: the box must have walls in x and be periodic in y and z");
 }
 
-// Adds face f to S_i of each body i that it separates from something else: a face between a
-// vertex of i and anything that is not a vertex of i (a cell, another body, a wall).
-void add_surfaces(const Sites& sites, const VoronoiFace& f, std::vector<double>& surface) {
+// Adds face f to the surface of the union of the vertex cells of each body it separates
+// from something else: to S_i (`surface`) if the other side is a cancer cell or another body,
+// to i's wall area (`wall`) if it is a wall. Faces between two vertices of i are inside.
+void add_surfaces(const Sites& sites, const VoronoiFace& f, std::vector<double>& surface,
+                  std::vector<double>& wall) {
   const int body_a = sites.body[f.a];
-  const int body_b = f.b >= 0 ? sites.body[f.b] : -1;
+  if (f.b < 0) {
+    if (body_a >= 0) wall[body_a] += f.area;
+    return;
+  }
+  const int body_b = sites.body[f.b];
   if (body_a == body_b) return;
   if (body_a >= 0) surface[body_a] += f.area;
   if (body_b >= 0) surface[body_b] += f.area;
@@ -565,10 +571,12 @@ VoronoiMeasurement measure_voronoi(const System& sys, const VoronoiOptions& opt)
   VoronoiMeasurement m;
   m.tessellation = tessellate(sys.box(), sites.pos, opt, weights);
   m.adipocyte_surface.assign(sys.bodies().size(), 0.0);
+  m.adipocyte_wall_area.assign(sys.bodies().size(), 0.0);
   for (const VoronoiFace& f : m.tessellation.faces) {
     add_interface(sites, f, m);
-    add_surfaces(sites, f, m.adipocyte_surface);
+    add_surfaces(sites, f, m.adipocyte_surface, m.adipocyte_wall_area);
   }
+  for (double w : m.adipocyte_wall_area) m.adipocyte_wall_total += w;
   m.interface_area = m.cancer_adipocyte_area + m.cancer_wall_area;
   m.max_interface_area = 2.0 * sys.box().wall_area();
   for (double s : m.adipocyte_surface) m.max_interface_area += s;

@@ -64,13 +64,19 @@ VoronoiTessellation tessellate(const Box& box, const std::vector<Vec3>& points,
 
 // The Voronoi measurements of one configuration (MODEL.md "Measurements").
 struct VoronoiMeasurement {
-  double interface_area = 0.0;            // A_t = cancer_adipocyte_area + cancer_wall_area
-  double cancer_adipocyte_area = 0.0;     // faces between cancer-cell and vertex cells
-  double cancer_wall_area = 0.0;          // faces of cancer-cell cells on either wall
-  double max_interface_area = 0.0;        // A_t^max = 2 L_y L_z + sum_i S_i
-  double interface_ratio = 0.0;           // A_t / A_t^max
-  std::vector<double> adipocyte_surface;  // S_i: surface of the union of i's vertex cells
-  std::vector<double> adipocyte_volume;   // volume of the union of i's vertex cells
+  double interface_area = 0.0;         // A_t = cancer_adipocyte_area + cancer_wall_area
+  double cancer_adipocyte_area = 0.0;  // faces between cancer-cell and vertex cells
+  double cancer_wall_area = 0.0;       // faces of cancer-cell cells on either wall
+  double max_interface_area = 0.0;     // A_t^max = 2 L_y L_z + sum_i S_i
+  double interface_ratio = 0.0;        // A_t / A_t^max
+  // S_i: the faces of the union of i's vertex cells that are not on a wall (the 2 L_y L_z of
+  // A_t^max already counts both walls as fully covered by cancer cells).
+  std::vector<double> adipocyte_surface;
+  // The faces of the union of i's vertex cells on either wall: the union's whole surface is
+  // adipocyte_surface[i] + adipocyte_wall_area[i].
+  std::vector<double> adipocyte_wall_area;
+  double adipocyte_wall_total = 0.0;     // sum_i adipocyte_wall_area[i]
+  std::vector<double> adipocyte_volume;  // volume of the union of i's vertex cells
   // phi_a,i = V_i / adipocyte_volume[i], V_i = MeshBody::outer_volume; NaN where V_i is
   // unknown (outer_volume == 0). Mean and population standard deviation (Delta phi_a) over
   // the bodies with known V_i (NaN if none).

@@ -178,6 +178,15 @@ check(#sys:adipocytes() == sys:n_adipocytes() and sys:adipocytes()[1].ref_volume
 local vor = sys:voronoi()
 check(vor.A_t >= 0 and vor.A_t_max > 0 and math.abs(vor.A_ratio - vor.A_t / vor.A_t_max) < 1e-12)
 check(#vor.adipocyte_surface == sys:n_adipocytes() and #vor.local_phi_a == sys:n_adipocytes())
+do  -- A_t^max = 2 L_y L_z + sum S_i; the wall faces of the adipocytes are reported apart
+  local L = sys:box().lengths
+  local s_sum, w_sum = 0.0, 0.0
+  for i = 1, sys:n_adipocytes() do
+    s_sum, w_sum = s_sum + vor.adipocyte_surface[i], w_sum + vor.adipocyte_wall_area[i]
+  end
+  check(math.abs(vor.A_t_max - (2 * L[2] * L[3] + s_sum)) < 1e-9 * vor.A_t_max)
+  check(vor.adipocyte_wall >= 0 and math.abs(vor.adipocyte_wall - w_sum) < 1e-9 * (1 + w_sum))
+end
 check(sys:voronoi{ radical = true }.A_t_max > 0)
 expect_error("voronoi: unknown key 'radial' %(did you mean 'radical'%?%)", sys.voronoi, sys, { radial = true })
 check(#sys:shape_parameters() == sys:n_adipocytes())

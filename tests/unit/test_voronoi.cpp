@@ -3,7 +3,9 @@
 // local adipocyte packing fractions and the radical variant.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 
@@ -171,10 +173,17 @@ TEST_CASE("a cancer slab against an adipocyte slab: A_t, S_i, A_t^max and local 
   CHECK(m.cancer_adipocyte_area == Approx(wall).epsilon(1e-12));
   CHECK(m.cancer_wall_area == Approx(wall).epsilon(1e-12));
   CHECK(m.interface_area == Approx(2.0 * wall).epsilon(1e-12));
-  // Each body is a 2a cube of cells whose six sides face other bodies, cells or a wall.
-  for (double s : m.adipocyte_surface) CHECK(s == Approx(24.0 * a * a).epsilon(1e-12));
-  CHECK(m.max_interface_area == Approx(2.0 * wall + 8 * 24.0 * a * a).epsilon(1e-12));
-  CHECK(m.interface_ratio == Approx(32.0 / 224.0).epsilon(1e-12));
+  // Each body is a 2a cube of cells whose six sides face other bodies, cells or a wall. Bodies
+  // 0-3 (layers 2-3) face cells and bodies on all six sides; bodies 4-5 (layers 4-5) have one
+  // side on the right wall, which is not part of S_i.
+  for (std::size_t b = 0; b < 8; ++b) {
+    INFO("body " << b);
+    CHECK(m.adipocyte_surface[b] == Approx((b < 4 ? 24.0 : 20.0) * a * a).epsilon(1e-12));
+    CHECK(m.adipocyte_wall_area[b] == Approx(b < 4 ? 0.0 : 4.0 * a * a).margin(1e-12));
+  }
+  CHECK(m.adipocyte_wall_total == Approx(wall).epsilon(1e-12));
+  CHECK(m.max_interface_area == Approx(2.0 * wall + (4 * 24.0 + 4 * 20.0) * a * a).epsilon(1e-12));
+  CHECK(m.interface_ratio == Approx(32.0 / 208.0).epsilon(1e-12));
   // Local phi_a = V_i / (8 a^3) with V_i = (b + 1) a^3: (b + 1) / 8.
   for (std::size_t b = 0; b < 8; ++b) {
     CHECK(m.adipocyte_volume[b] == Approx(8.0 * a * a * a).epsilon(1e-12));
@@ -207,9 +216,83 @@ TEST_CASE("a cancer slab against an adipocyte slab: A_t, S_i, A_t^max and local 
     CHECK(w.cancer_wall_area == Approx(2.0 * wall).epsilon(1e-12));
     CHECK(w.cancer_adipocyte_area == Approx(2.0 * wall).epsilon(1e-12));
     for (double s : w.adipocyte_surface) CHECK(s == Approx(24.0 * a * a).epsilon(1e-12));
+    CHECK(w.adipocyte_wall_total == 0.0);
     CHECK(w.max_interface_area == Approx(2.0 * wall + 4 * 24.0 * a * a).epsilon(1e-12));
     CHECK(std::isnan(w.mean_local_phi_a));
   }
+}
+
+TEST_CASE("an adipocyte on a wall: its wall faces count in neither S_i nor A_t^max") {
+  // A 4 x 4 x 4 simple cubic lattice of spacing a: one cube "adipocyte" of 2 x 2 x 2 sites
+  // against the left (layers 0-1) or the right wall (layers 2-3), cancer cells elsewhere.
+  // Every cell is a cube of side a, so the union of the adipocyte's cells is a 2a cube: one
+  // side (4 a^2) on the wall, five sides (20 a^2) against cancer cells.
+  const double a = 1.3;
+  const Vec3 lo(-0.7, 2.0, 5.0);
+  for (int first_layer : {0, 2}) {
+    INFO("adipocyte in layers " << first_layer << "-" << first_layer + 1);
+    System sys(walled_box(lo, a * Vec3(4, 4, 4)), 1);
+    for (const Vec3& r : lattice(lo, 4, 4, 4, a)) {
+      const int layer = int(std::floor((r.x() - lo.x()) / a));
+      const bool in_body = layer >= first_layer && layer < first_layer + 2 &&
+                           r.y() - lo.y() < 2.0 * a && r.z() - lo.z() < 2.0 * a;
+      if (!in_body) sys.add_sphere(r, 1.0);
+    }
+    std::vector<Vec3> x;
+    for (int v = 0; v < 8; ++v)
+      x.push_back(lo + a * Vec3(first_layer + v % 2 + 0.5, v / 2 % 2 + 0.5, v / 4 + 0.5));
+    sys.add_mesh(cube_topology(), x, 1.0, std::vector<double>(12, 1.0), 1.0);
+    REQUIRE(sys.sites().pos.size() == 64);
+    const double a2 = a * a, wall = 16.0 * a2;  // wall = L_y L_z
+    const VoronoiMeasurement m = measure_voronoi(sys);
+    REQUIRE(m.adipocyte_surface.size() == 1);
+    CHECK(m.adipocyte_surface[0] == Approx(20.0 * a2).epsilon(1e-12));
+    CHECK(m.adipocyte_wall_area[0] == Approx(4.0 * a2).epsilon(1e-12));
+    CHECK(m.adipocyte_wall_total == Approx(4.0 * a2).epsilon(1e-12));
+    CHECK(m.cancer_adipocyte_area == Approx(20.0 * a2).epsilon(1e-12));
+    CHECK(m.cancer_wall_area == Approx(2.0 * wall - 4.0 * a2).epsilon(1e-12));
+    CHECK(m.interface_area == Approx(48.0 * a2).epsilon(1e-12));
+    // 2 L_y L_z + S = 32 a^2 + 20 a^2 (counting the wall side too would give 56 a^2).
+    CHECK(m.max_interface_area == Approx(52.0 * a2).epsilon(1e-12));
+    CHECK(m.interface_ratio == Approx(48.0 / 52.0).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("S_i and the adipocytes' wall area recounted from the face list of a random packing") {
+  // Independent bookkeeping: from tessellate()'s faces, the surface of each body's union of
+  // vertex cells split into wall and non-wall parts; A_t <= A_t^max always.
+  System sys = test::mixed_system(3, 150, 5.0, 0.4, 31);
+  // Push the first body against the left wall so that it surely has wall faces.
+  const Sites& sites = sys.sites();
+  double x_min = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < sites.pos.size(); ++i)
+    if (sites.body[i] == 0) x_min = std::min(x_min, sites.pos[i].x());
+  for (std::size_t i = 0; i < sites.pos.size(); ++i)
+    if (sites.body[i] == 0) sys.sites().pos[i].x() -= x_min - sys.box().lo().x() - 0.05;
+  const VoronoiMeasurement m = measure_voronoi(sys);
+  const std::size_t nb = sys.bodies().size();
+  std::vector<double> surface(nb, 0.0), on_wall(nb, 0.0);
+  for (const VoronoiFace& f : m.tessellation.faces) {
+    const int ba = sites.body[f.a];
+    if (f.b < 0) {
+      if (ba >= 0) on_wall[ba] += f.area;
+      continue;
+    }
+    const int bb = sites.body[f.b];
+    if (ba >= 0 && ba != bb) surface[ba] += f.area;
+    if (bb >= 0 && bb != ba) surface[bb] += f.area;
+  }
+  REQUIRE(on_wall[0] > 0.0);
+  double total = 2.0 * sys.box().wall_area(), wall_total = 0.0;
+  for (std::size_t b = 0; b < nb; ++b) {
+    CHECK(m.adipocyte_surface[b] == Approx(surface[b]).epsilon(1e-12));
+    CHECK(m.adipocyte_wall_area[b] == Approx(on_wall[b]).epsilon(1e-12).margin(1e-12));
+    total += surface[b];
+    wall_total += on_wall[b];
+  }
+  CHECK(m.adipocyte_wall_total == Approx(wall_total).epsilon(1e-12));
+  CHECK(m.max_interface_area == Approx(total).epsilon(1e-12));
+  CHECK(m.interface_area <= m.max_interface_area);
 }
 
 TEST_CASE("random points: volumes fill the box, every cell closed, every face listed once") {
