@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "mesh/geometry.hpp"
 
@@ -11,6 +12,19 @@ int MeshFrame::n_bodies() const {
   int n = 0;
   for (int b : triangle_body) n = std::max(n, b + 1);
   return n;
+}
+
+bool same_box(const Box& a, const Box& b) {
+  if (a.periodic() != b.periodic()) return false;
+  constexpr double kUlps = 4.0 * std::numeric_limits<double>::epsilon();
+  for (int k = 0; k < 3; ++k) {
+    const double scale = std::max({std::abs(a.lo()[k]), std::abs(a.hi()[k]), std::abs(b.lo()[k]),
+                                   std::abs(b.hi()[k]), a.length(k), b.length(k)});
+    const double tol = kUlps * scale;
+    if (!(std::abs(a.lo()[k] - b.lo()[k]) <= tol) || !(std::abs(a.hi()[k] - b.hi()[k]) <= tol))
+      return false;
+  }
+  return true;
 }
 
 void shift_into_box(const Box& box, std::vector<Vec3>& points) {

@@ -42,6 +42,14 @@ struct Frame {
 // and every body as a mesh.
 Frame frame_from_system(const System& sys);
 
+// Whether two boxes read from the files of one frame are the same box. The formats store
+// different quantities (extended XYZ: Origin and Lattice lengths; VTP: box_lo and box_hi), each
+// in its shortest round-trip form, so a box read back from XYZ has hi = lo + (hi - lo), which
+// can differ from the written hi by one rounding of each operation. The periodic flags must
+// match exactly; corners may differ by at most 4 ulp of the axis's largest magnitude
+// (max(|lo|, |hi|, length)): far below any physical difference, far above the round-off.
+bool same_box(const Box& a, const Box& b);
+
 // Shifts a whole body (points unwrapped) by whole periods along periodic axes so that its
 // centroid lies in [lo, hi).
 void shift_into_box(const Box& box, std::vector<Vec3>& points);

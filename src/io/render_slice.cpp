@@ -175,11 +175,23 @@ RenderCounts render_frame(const Frame& frame, const SlicePlane& plane,
 
 namespace {
 
-// Box, step and time of two frame files of one snapshot must agree.
-void check_same_frame(const Frame& a, const Frame& b, const std::filesystem::path& file) {
-  if (a.step != b.step || a.box.lo() != b.box.lo() || a.box.hi() != b.box.hi() ||
-      a.box.periodic() != b.box.periodic())
-    fail_io(quoted(file), ": its box or step differs from the other files of the frame");
+// Box and step of two frame files of one snapshot must agree (the box up to the round-off of
+// the formats, see same_box).
+void check_same_frame(const Frame& a, const std::filesystem::path& a_file, const Frame& b,
+                      const std::filesystem::path& file) {
+  auto box_text = [](const Box& box) {
+    std::string t = "lo (";
+    for (int k = 0; k < 3; ++k) text::append(t += k ? ", " : "", box.lo()[k]);
+    t += ") hi (";
+    for (int k = 0; k < 3; ++k) text::append(t += k ? ", " : "", box.hi()[k]);
+    return t + ")";
+  };
+  if (a.step != b.step)
+    fail_io(quoted(file), ": its step ", b.step, " differs from step ", a.step, " of ",
+            quoted(a_file), " (the files of one frame must agree)");
+  if (!same_box(a.box, b.box))
+    fail_io(quoted(file), ": its box ", box_text(b.box), " differs from the box ", box_text(a.box),
+            " of ", quoted(a_file), " beyond round-off (the files of one frame must agree)");
 }
 
 Frame load_vtp_alone(const std::filesystem::path& path) {
@@ -214,18 +226,18 @@ Frame load_snapshot_frame(const std::filesystem::path& snapshot) {
   if (kind == "adipocytes") meshes = snapshot;
 
   Frame f;
-  bool have = false;
+  std::filesystem::path first;  // the file f was read from
   if (kind != "spheres" && exists(cells)) {
     f = read_xyz(cells);
-    have = true;
+    first = cells;
   } else if (exists(spheres)) {
     f = cell_frame_from_vtp(read_vtp(spheres), quoted(spheres));
-    have = true;
+    first = spheres;
   }
   if (exists(meshes)) {
     Frame m = mesh_frame_from_vtp(read_vtp(meshes), quoted(meshes));
-    if (have) {
-      check_same_frame(f, m, meshes);
+    if (!first.empty()) {
+      check_same_frame(f, first, m, meshes);
       f.meshes = std::move(m.meshes);
     } else {
       f = std::move(m);

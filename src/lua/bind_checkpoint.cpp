@@ -189,7 +189,7 @@ int l_load(lua_State* L) {
   const std::string path = arg_string(L, 1);
   Kwargs kw(L, 2, "load_checkpoint");
   const Parts p = read_parts(kw);
-  const auto seed = kw.maybe_integer("seed", Range::at_least(0));
+  const auto seed = kw.maybe_integer<std::uint64_t>("seed", Range::at_least(0));
   kw.finish();
   std::string extra;
   engine_call("load_checkpoint", [&] {
@@ -221,8 +221,10 @@ int l_load(lua_State* L) {
     }
     extra = r.get_string("extra");
   });
-  lua_pushlstring(L, extra.data(), extra.size());
-  return 1;
+  return push_results(L, 1, [&extra](lua_State* S) noexcept {
+    lua_pushlstring(S, extra.data(), extra.size());
+    return 1;
+  });
 }
 
 // invasim.checkpoint_run(path) -> run id, run parameters (strings; nil where not stored).
@@ -244,11 +246,14 @@ int l_checkpoint_run(lua_State* L) {
 }
 
 int l_interrupted(lua_State* L) {
-  if (const int signal = stop_requested())
-    lua_pushstring(L, stop_signal_name(signal));
-  else
-    lua_pushnil(L);
-  return 1;
+  const int signal = stop_requested();
+  return push_results(L, 1, [signal](lua_State* S) noexcept {
+    if (signal)
+      lua_pushstring(S, stop_signal_name(signal));
+    else
+      lua_pushnil(S);
+    return 1;
+  });
 }
 
 }  // namespace

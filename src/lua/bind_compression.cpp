@@ -17,14 +17,17 @@ namespace {
 
 // The compression report as a Lua table {steps, fire_steps, converged, phi, max_force, box}.
 void push_compression_report(lua_State* L, const CompressionReport& r) {
-  lua_createtable(L, 0, 6);
-  set_integer(L, "steps", static_cast<long long>(r.steps));
-  set_integer(L, "fire_steps", static_cast<long long>(r.fire_steps));
-  set_boolean(L, "converged", r.converged);
-  set_number(L, "phi", r.phi);
-  set_number(L, "max_force", r.max_force);
-  push_vec3(L, r.box_lengths);
-  lua_setfield(L, -2, "box");
+  protected_call(L, 0, 1, [&r](lua_State* S) noexcept {
+    lua_createtable(S, 0, 6);
+    set_integer(S, "steps", static_cast<long long>(r.steps));
+    set_integer(S, "fire_steps", static_cast<long long>(r.fire_steps));
+    set_boolean(S, "converged", r.converged);
+    set_number(S, "phi", r.phi);
+    set_number(S, "max_force", r.max_force);
+    push_vec3(S, r.box_lengths);
+    lua_setfield(S, -2, "box");
+    return 1;
+  });
 }
 
 int l_compress(lua_State* L) {
@@ -34,8 +37,7 @@ int l_compress(lua_State* L) {
   p.target_phi = kw.number("to_phi", Range::between(0, 1));
   p.step = kw.number("step", p.step, Range::between(0, 1));
   p.fire = kw_fire(kw);
-  p.max_steps = static_cast<std::size_t>(
-      kw.integer("max_compressions", static_cast<long long>(p.max_steps), Range::at_least(1)));
+  p.max_steps = kw.integer<std::size_t>("max_compressions", p.max_steps, Range::at_least(1));
   Progress* progress = nullptr;
   if (kw.push("progress") != LUA_TNIL) {
     progress = test_progress(L, -1);

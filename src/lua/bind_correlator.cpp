@@ -41,8 +41,8 @@ int l_new(lua_State* L) {
   auto group = kw_group(kw, "group");
   TimeCorrelatorParams p;
   p.sample_interval = kw.number("interval", Range::greater_than(0));
-  p.lags = int(kw.integer("lags", p.lags, Range::at_least(1)));
-  p.origin_every = int(kw.integer("origin_every", p.origin_every, Range::at_least(1)));
+  p.lags = kw.integer<int>("lags", p.lags, Range::at_least(1));
+  p.origin_every = kw.integer<int>("origin_every", p.origin_every, Range::at_least(1));
   p.k = kw.number("k", p.k, Range::greater_than(0));
   p.fs_average = kw.choice("fs_average", {"isotropic", "yz"}, std::string("isotropic")) == "yz"
                      ? FsAverage::kAxesYZ
@@ -70,25 +70,22 @@ int l_sample(lua_State* L) {
 
 int l_result(lua_State* L) {
   const Columns cols = check<CorrelatorHandle>(L, 1).correlator.columns();
-  lua_createtable(L, 0, 2);
-  lua_createtable(L, int(cols.names.size()), 0);
-  for (std::size_t j = 0; j < cols.names.size(); ++j) {
-    lua_pushstring(L, cols.names[j].c_str());
-    lua_rawseti(L, -2, lua_Integer(j + 1));
-  }
-  lua_setfield(L, -2, "names");
-  lua_createtable(L, 0, int(cols.names.size()));
-  for (std::size_t j = 0; j < cols.names.size(); ++j) {
-    const auto& values = cols.values[j];
-    lua_createtable(L, int(values.size()), 0);
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      lua_pushnumber(L, values[i]);
-      lua_rawseti(L, -2, lua_Integer(i + 1));
+  return push_results(L, 1, [&cols](lua_State* S) noexcept {
+    lua_createtable(S, 0, 2);
+    lua_createtable(S, int(cols.names.size()), 0);
+    for (std::size_t j = 0; j < cols.names.size(); ++j) {
+      lua_pushstring(S, cols.names[j].c_str());
+      lua_rawseti(S, -2, lua_Integer(j + 1));
     }
-    lua_setfield(L, -2, cols.names[j].c_str());
-  }
-  lua_setfield(L, -2, "columns");
-  return 1;
+    lua_setfield(S, -2, "names");
+    lua_createtable(S, 0, int(cols.names.size()));
+    for (std::size_t j = 0; j < cols.names.size(); ++j) {
+      push_number_list(S, cols.values[j].data(), cols.values[j].size());
+      lua_setfield(S, -2, cols.names[j].c_str());
+    }
+    lua_setfield(S, -2, "columns");
+    return 1;
+  });
 }
 
 void push_optional(lua_State* L, const std::optional<double>& v) {

@@ -5,9 +5,10 @@
 // run steps the engine in C++ chunks and returns to Lua only between chunks.
 #include <lua.hpp>
 
-#include "core/stop_request.hpp"
-
 #include <algorithm>
+#include <limits>
+
+#include "core/stop_request.hpp"
 
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
@@ -113,12 +114,14 @@ int l_wall_state(lua_State* L) {
     lua_pushnil(L);
     return 1;
   }
-  lua_createtable(L, 0, 4);
-  set_number(L, "P", wall->pressure);
-  set_number(L, "velocity", wall->velocity);
-  set_number(L, "force", wall->force);
-  set_number(L, "kT", wall->kT);
-  return 1;
+  return push_results(L, 1, [&wall](lua_State* S) noexcept {
+    lua_createtable(S, 0, 4);
+    set_number(S, "P", wall->pressure);
+    set_number(S, "velocity", wall->velocity);
+    set_number(S, "force", wall->force);
+    set_number(S, "kT", wall->kT);
+    return 1;
+  });
 }
 
 // dyn:set_wall_kT(kT): the temperature of the piston's bath (>= 0; 0: no noise).
@@ -145,9 +148,13 @@ int l_set_pressure(lua_State* L) {
         "set_pressure: this Dynamics has no pressure wall; add one with dyn:pressure_wall{P = "
         "...}");
   lua_settop(L, 2);
-  lua_createtable(L, 0, 1);
   lua_pushvalue(L, 2);
-  lua_setfield(L, -2, "P");
+  protected_call(L, 1, 1, [](lua_State* S) noexcept {  // {P = argument 2}
+    lua_createtable(S, 0, 1);
+    lua_pushvalue(S, 1);
+    lua_setfield(S, -2, "P");
+    return 1;
+  });
   Kwargs kw(L, 3, "set_pressure");
   const NumberOrRamp P = kw_number_or_ramp(kw, "P", Range::non_negative());
   kw.finish();
@@ -190,14 +197,13 @@ constexpr long long kProgressChunk = 100;
 int l_run(lua_State* L) {
   DynamicsHandle& d = check<DynamicsHandle>(L, 1);
   const std::shared_ptr<Simulation> sim = check_shared<Simulation>(L, 2);
-  const long long n = arg_integer(L, 3);
-  if (n < 0) fail_input("run: the number of steps must be >= 0, got ", n);
+  const long long n = arg_integer(L, 3, 0, std::numeric_limits<long long>::max());  // steps
   std::optional<long long> every;
   int callback = 0;
   Progress* progress = nullptr;
   if (!lua_isnoneornil(L, 4)) {
     Kwargs kw(L, 4, "run");
-    every = kw.maybe_integer("every", Range::at_least(1));
+    every = kw.maybe_integer<long long>("every", Range::at_least(1));
     const int type = kw.push("callback");
     if (type == LUA_TFUNCTION)
       callback = lua_gettop(L);

@@ -24,12 +24,17 @@ namespace invasim::lua {
 
 namespace {
 
-void push_numbers(lua_State* L, const std::vector<double>& values) {
-  lua_createtable(L, int(values.size()), 0);
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    lua_pushnumber(L, values[i]);
-    lua_rawseti(L, -2, lua_Integer(i + 1));
-  }
+// Inside a protected_call block: pushes {values[1], ...}.
+void push_numbers(lua_State* L, const std::vector<double>& values) noexcept {
+  push_number_list(L, values.data(), values.size());
+}
+
+// Pushes {values[1], ...} (protected: a Lua error comes back as a C++ exception).
+int push_number_result(lua_State* L, const std::vector<double>& values) {
+  return push_results(L, 1, [&values](lua_State* S) noexcept {
+    push_numbers(S, values);
+    return 1;
+  });
 }
 
 // A Lua array of numbers at `index` (every entry a number).
@@ -61,28 +66,29 @@ int l_voronoi(lua_State* L) {
       engine_call("voronoi", [&] { return measure_voronoi(sim.system, options); });
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  lua_createtable(L, 0, 12);
-  set_number(L, "A_t", m.interface_area);
-  set_number(L, "A_t_max", m.max_interface_area);
-  set_number(L, "A_ratio", m.interface_ratio);
-  set_number(L, "cancer_adipocyte", m.cancer_adipocyte_area);
-  set_number(L, "cancer_wall", m.cancer_wall_area);
-  set_number(L, "adipocyte_wall", m.adipocyte_wall_total);
-  set_number(L, "phi_a_local_mean", m.mean_local_phi_a);
-  set_number(L, "phi_a_local_std", m.std_local_phi_a);
-  set_number(L, "seconds", seconds);
-  push_numbers(L, m.adipocyte_surface);
-  lua_setfield(L, -2, "adipocyte_surface");
-  push_numbers(L, m.adipocyte_wall_area);
-  lua_setfield(L, -2, "adipocyte_wall_area");
-  push_numbers(L, m.local_phi_a);
-  lua_setfield(L, -2, "local_phi_a");
-  return 1;
+  return push_results(L, 1, [&m, seconds](lua_State* S) noexcept {
+    lua_createtable(S, 0, 12);
+    set_number(S, "A_t", m.interface_area);
+    set_number(S, "A_t_max", m.max_interface_area);
+    set_number(S, "A_ratio", m.interface_ratio);
+    set_number(S, "cancer_adipocyte", m.cancer_adipocyte_area);
+    set_number(S, "cancer_wall", m.cancer_wall_area);
+    set_number(S, "adipocyte_wall", m.adipocyte_wall_total);
+    set_number(S, "phi_a_local_mean", m.mean_local_phi_a);
+    set_number(S, "phi_a_local_std", m.std_local_phi_a);
+    set_number(S, "seconds", seconds);
+    push_numbers(S, m.adipocyte_surface);
+    lua_setfield(S, -2, "adipocyte_surface");
+    push_numbers(S, m.adipocyte_wall_area);
+    lua_setfield(S, -2, "adipocyte_wall_area");
+    push_numbers(S, m.local_phi_a);
+    lua_setfield(S, -2, "local_phi_a");
+    return 1;
+  });
 }
 
 int l_shape_parameters(lua_State* L) {
-  push_numbers(L, body_shape_parameters(check<Simulation>(L, 1).system));
-  return 1;
+  return push_number_result(L, body_shape_parameters(check<Simulation>(L, 1).system));
 }
 
 int l_slices(lua_State* L) {
@@ -91,18 +97,17 @@ int l_slices(lua_State* L) {
   options.seed = sim.system.seed();
   if (!lua_isnoneornil(L, 2)) {
     Kwargs kw(L, 2, "slices");
-    options.per_body = int(kw.integer("per_body", options.per_body, Range::at_least(1)));
+    options.per_body = kw.integer<int>("per_body", options.per_body, Range::at_least(1));
     options.offset_fraction =
         kw.number("offset_fraction", options.offset_fraction, Range::between(0, 1));
-    options.seed = std::uint64_t(kw.integer("seed", (long long)options.seed, Range::at_least(0)));
+    options.seed = kw.integer<std::uint64_t>("seed", options.seed, Range::at_least(0));
     kw.finish();
   }
   const auto slices = engine_call("slices", [&] { return random_slices(sim.system, options); });
   std::vector<double> shapes;
   shapes.reserve(slices.size());
   for (const BodySlice& s : slices) shapes.push_back(s.shape);
-  push_numbers(L, shapes);
-  return 1;
+  return push_number_result(L, shapes);
 }
 
 int l_histogram(lua_State* L) {
@@ -110,20 +115,23 @@ int l_histogram(lua_State* L) {
   Kwargs kw(L, 2, "histogram");
   const double lo = kw.number("lo");
   const double hi = kw.number("hi");
-  const int bins = int(kw.integer("bins", 20, Range::at_least(1)));
+  const int bins = kw.integer<int>("bins", 20, Range::at_least(1));
   kw.finish();
   if (!(hi > lo)) fail_input("histogram: hi = ", hi, " must be greater than lo = ", lo);
   const Histogram h = histogram(values, lo, hi, bins);
-  lua_createtable(L, 0, 5);
-  push_numbers(L, h.edges);
-  lua_setfield(L, -2, "edges");
-  push_numbers(L, std::vector<double>(h.counts.begin(), h.counts.end()));
-  lua_setfield(L, -2, "counts");
-  push_numbers(L, h.density);
-  lua_setfield(L, -2, "density");
-  set_integer(L, "below", (long long)h.below);
-  set_integer(L, "above", (long long)h.above);
-  return 1;
+  const std::vector<double> counts(h.counts.begin(), h.counts.end());
+  return push_results(L, 1, [&h, &counts](lua_State* S) noexcept {
+    lua_createtable(S, 0, 5);
+    push_numbers(S, h.edges);
+    lua_setfield(S, -2, "edges");
+    push_numbers(S, counts);
+    lua_setfield(S, -2, "counts");
+    push_numbers(S, h.density);
+    lua_setfield(S, -2, "density");
+    set_integer(S, "below", (long long)h.below);
+    set_integer(S, "above", (long long)h.above);
+    return 1;
+  });
 }
 
 int l_block_average(lua_State* L) {
@@ -134,20 +142,22 @@ int l_block_average(lua_State* L) {
     Kwargs kw(L, 2, "block_average");
     fraction = kw.number("fraction", fraction, Range::between(0, 1));
     options.min_blocks =
-        std::size_t(kw.integer("min_blocks", (long long)options.min_blocks, Range::at_least(2)));
+        kw.integer<std::size_t>("min_blocks", options.min_blocks, Range::at_least(2));
     kw.finish();
   }
   const BlockAverage b =
       engine_call("block_average", [&] { return block_average_tail(values, fraction, options); });
-  lua_createtable(L, 0, 7);
-  set_number(L, "mean", b.mean);
-  set_number(L, "error", b.error);
-  set_number(L, "naive_error", b.naive_error);
-  set_integer(L, "n", (long long)b.n);
-  set_integer(L, "block_size", (long long)b.block_size);
-  set_integer(L, "n_blocks", (long long)b.n_blocks);
-  set_boolean(L, "plateau", b.plateau);
-  return 1;
+  return push_results(L, 1, [&b](lua_State* S) noexcept {
+    lua_createtable(S, 0, 7);
+    set_number(S, "mean", b.mean);
+    set_number(S, "error", b.error);
+    set_number(S, "naive_error", b.naive_error);
+    set_integer(S, "n", (long long)b.n);
+    set_integer(S, "block_size", (long long)b.block_size);
+    set_integer(S, "n_blocks", (long long)b.n_blocks);
+    set_boolean(S, "plateau", b.plateau);
+    return 1;
+  });
 }
 
 }  // namespace

@@ -134,7 +134,8 @@ Param read_param(lua_State* L, const std::string& name) {
   return p;
 }
 
-void push_value(lua_State* L, const ParamValue& value) {
+// Inside a protected_call block.
+void push_value(lua_State* L, const ParamValue& value) noexcept {
   if (const auto* d = std::get_if<double>(&value))
     lua_pushnumber(L, *d);
   else if (const auto* i = std::get_if<long long>(&value))
@@ -200,8 +201,9 @@ int l_param_pairs(lua_State* L) {
   return 3;
 }
 
-// Pushes the read-only proxy of the values table on top of the stack (replacing it).
-void push_proxy(lua_State* L) {
+// Pushes the read-only proxy of the values table on top of the stack (replacing it); inside a
+// protected_call block.
+void push_proxy(lua_State* L) noexcept {
   const int values = lua_gettop(L);
   lua_newtable(L);  // proxy
   lua_newtable(L);  // metatable
@@ -251,13 +253,15 @@ int l_params(lua_State* L) {
   context.params = params;
   if (context.options.list_params) throw StopScript();
 
-  lua_createtable(L, 0, static_cast<int>(params.size()));
-  for (const auto& p : params) {
-    push_value(L, p.value);
-    lua_setfield(L, -2, p.name.c_str());
-  }
-  push_proxy(L);
-  return 1;
+  return push_results(L, 1, [&params](lua_State* S) noexcept {
+    lua_createtable(S, 0, static_cast<int>(params.size()));
+    for (const auto& p : params) {
+      push_value(S, p.value);
+      lua_setfield(S, -2, p.name.c_str());
+    }
+    push_proxy(S);
+    return 1;
+  });
 }
 
 }  // namespace

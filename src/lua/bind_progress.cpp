@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <iostream>
+#include <limits>
 
 #include "lua/binding.hpp"
 #include "lua/kwargs.hpp"
@@ -29,8 +30,8 @@ namespace {
 int l_new(lua_State* L) {
   Kwargs kw(L, 1, "Progress");
   ProgressOptions options;
-  options.total = kw.integer("total", 0, Range::non_negative());
-  options.start_step = kw.integer("start", 0, Range::non_negative());
+  options.total = kw.integer<long long>("total", 0, Range::non_negative());
+  options.start_step = kw.integer<long long>("start", 0, Range::non_negative());
   options.every_seconds = kw.number("every_seconds", 10.0, Range::non_negative());
   options.label = kw.string("label", "");
   const bool live = kw.boolean("live", isatty(STDERR_FILENO) != 0);
@@ -41,7 +42,7 @@ int l_new(lua_State* L) {
 
 int l_update(lua_State* L) {
   Progress& progress = check<Progress>(L, 1);
-  const long long step = arg_integer(L, 2);
+  const long long step = arg_integer(L, 2, 0, std::numeric_limits<long long>::max());
   progress.update(step, opt_number(L, 3));
   return 0;
 }

@@ -5,6 +5,8 @@
 // starts at the first step it is used in; after `steps` steps it stays at `to`.
 #include <lua.hpp>
 
+#include <limits>
+
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"
@@ -45,7 +47,7 @@ int l_ramp(lua_State* L) {
   Ramp r;
   r.from = kw.number("from");
   r.to = kw.number("to");
-  r.steps = static_cast<std::uint64_t>(kw.integer("steps", Range::at_least(1)));
+  r.steps = kw.integer<std::uint64_t>("steps", Range::at_least(1));
   kw.finish();
   push(L, std::make_shared<Ramp>(r));
   return 1;
@@ -55,8 +57,7 @@ int l_ramp(lua_State* L) {
 int l_value(lua_State* L) {
   Ramp r = check<Ramp>(L, 1);
   r.start = 0;
-  const long long k = arg_integer(L, 2);
-  if (k < 0) fail_input("value: step ", k, " must be >= 0");
+  const long long k = arg_integer(L, 2, 0, std::numeric_limits<long long>::max());
   lua_pushnumber(L, r.value(static_cast<std::uint64_t>(k)));
   return 1;
 }

@@ -27,7 +27,7 @@ int l_new(lua_State* L) {
   const auto lengths = kw.number_list("box", 3, Range::positive());
   const auto periodic =
       kw.maybe_boolean_list("periodic", 3).value_or(std::vector<bool>{false, true, true});
-  const auto seed = kw.integer("seed", 1, Range::non_negative());
+  const auto seed = kw.integer<std::uint64_t>("seed", 1, Range::non_negative());
   kw.finish();
   auto sim = engine_call("System", [&] {
     const Box box(Vec3::Zero(), Vec3(lengths[0], lengths[1], lengths[2]),
@@ -83,7 +83,7 @@ int l_place(lua_State* L) {
   SpherePlacement cells;
   MeshPlacement meshes;
   if (auto c = kw.maybe_table("cells")) {
-    cells.n = static_cast<int>(c->integer("n", Range::non_negative()));
+    cells.n = c->integer<int>("n", Range::non_negative());
     cells.diameters = read_diameters(*c, cells.diameters);
     cells.x = read_x(*c);
     cells.max_attempts_per_cell =
@@ -91,13 +91,13 @@ int l_place(lua_State* L) {
     c->finish();
   }
   if (auto a = kw.maybe_table("adipocytes")) {
-    meshes.n = static_cast<int>(a->integer("n", Range::non_negative()));
+    meshes.n = a->integer<int>("n", Range::non_negative());
     meshes.diameter = a->number("diameter", meshes.diameter, Range::positive());
     meshes.vertex_diameter =
         a->number("vertex_diameter", meshes.vertex_diameter, Range::positive());
     meshes.shape_param = a->number("shape_param", meshes.shape_param, Range::at_least(1));
     meshes.subdivisions =
-        static_cast<int>(a->integer("subdivisions", meshes.subdivisions, Range::between(0, 4)));
+        a->integer<int>("subdivisions", meshes.subdivisions, Range::between(0, 4));
     meshes.random_rotation = a->boolean("random_rotation", meshes.random_rotation);
     meshes.volume_grid = a->number("volume_grid", meshes.volume_grid, Range::positive());
     meshes.x = read_x(*a);
@@ -115,12 +115,18 @@ int l_place(lua_State* L) {
     const MeshBody& body = sim->system.bodies()[b];
     for (int v = 0; v < body.n_vertices(); ++v) vertices.push_back(body.first_site + v);
   }
-  lua_createtable(L, 0, 3);
   push_group(L, sim, "placed cells", placed.cells);
-  lua_setfield(L, -2, "cells");
   push_group(L, sim, "placed vertices", std::move(vertices));
-  lua_setfield(L, -2, "vertices");
-  set_integer(L, "adipocytes", static_cast<long long>(placed.bodies.size()));
+  const auto n_bodies = static_cast<long long>(placed.bodies.size());
+  protected_call(L, 2, 1, [n_bodies](lua_State* S) noexcept {
+    lua_createtable(S, 0, 3);
+    lua_pushvalue(S, 1);
+    lua_setfield(S, -2, "cells");
+    lua_pushvalue(S, 2);
+    lua_setfield(S, -2, "vertices");
+    set_integer(S, "adipocytes", n_bodies);
+    return 1;
+  });
   return 1;
 }
 
@@ -220,12 +226,15 @@ int l_temperature(lua_State* L) {
 int l_positions(lua_State* L) {
   const Simulation& sim = check<Simulation>(L, 1);
   const std::vector<int> sites = group_arg(L, 2, sim, "positions");
-  lua_createtable(L, int(sites.size()), 0);
-  for (std::size_t k = 0; k < sites.size(); ++k) {
-    push_vec3(L, sim.system.sites().pos[sites[k]]);
-    lua_rawseti(L, -2, lua_Integer(k + 1));
-  }
-  return 1;
+  const auto& pos = sim.system.sites().pos;
+  return push_results(L, 1, [&sites, &pos](lua_State* S) noexcept {
+    lua_createtable(S, int(sites.size()), 0);
+    for (std::size_t k = 0; k < sites.size(); ++k) {
+      push_vec3(S, pos[sites[k]]);
+      lua_rawseti(S, -2, lua_Integer(k + 1));
+    }
+    return 1;
+  });
 }
 
 // sys:adipocytes() -> {{volume =, ref_volume =, area =, shape_parameter =,
@@ -236,27 +245,41 @@ int l_positions(lua_State* L) {
 int l_adipocytes(lua_State* L) {
   const Simulation& sim = check<Simulation>(L, 1);
   const auto& bodies = sim.system.bodies();
-  lua_createtable(L, int(bodies.size()), 0);
+  struct Row {
+    double volume, ref_volume, area, shape, ref_shape;
+    Vec3 centre;
+  };
+  std::vector<Row> rows(bodies.size());
   std::vector<Vec3> x;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const MeshBody& body = bodies[b];
     x.resize(body.n_vertices());
     sim.system.body_vertices(int(b), x.data());
-    const double volume = mesh_volume(*body.topology, x.data());
-    const double area = mesh_area(*body.topology, x.data());
+    Row& r = rows[b];
+    r.volume = mesh_volume(*body.topology, x.data());
+    r.area = mesh_area(*body.topology, x.data());
+    r.ref_volume = body.ref_volume;
+    r.shape = shape_parameter(r.area, r.volume);
+    r.centre = vertex_centroid(body.n_vertices(), x.data());
     double ref_area = 0.0;
     for (double a : body.ref_area) ref_area += a;
-    lua_createtable(L, 0, 6);
-    set_number(L, "volume", volume);
-    set_number(L, "ref_volume", body.ref_volume);
-    set_number(L, "area", area);
-    set_number(L, "shape_parameter", shape_parameter(area, volume));
-    set_number(L, "ref_shape_parameter", shape_parameter(ref_area, body.ref_volume));
-    push_vec3(L, vertex_centroid(body.n_vertices(), x.data()));
-    lua_setfield(L, -2, "centre");
-    lua_rawseti(L, -2, lua_Integer(b + 1));
+    r.ref_shape = shape_parameter(ref_area, body.ref_volume);
   }
-  return 1;
+  return push_results(L, 1, [&rows](lua_State* S) noexcept {
+    lua_createtable(S, int(rows.size()), 0);
+    for (std::size_t b = 0; b < rows.size(); ++b) {
+      lua_createtable(S, 0, 6);
+      set_number(S, "volume", rows[b].volume);
+      set_number(S, "ref_volume", rows[b].ref_volume);
+      set_number(S, "area", rows[b].area);
+      set_number(S, "shape_parameter", rows[b].shape);
+      set_number(S, "ref_shape_parameter", rows[b].ref_shape);
+      push_vec3(S, rows[b].centre);
+      lua_setfield(S, -2, "centre");
+      lua_rawseti(S, -2, lua_Integer(b + 1));
+    }
+    return 1;
+  });
 }
 
 // sys:set_velocities{group = g, kT = x}: Maxwell-Boltzmann velocities (stream kVelocity,
@@ -343,20 +366,23 @@ int l_compute(lua_State* L) {
     throw;
   }
   sim.system.sites().force.swap(saved);
-  lua_createtable(L, 0, static_cast<int>(per_term.size()) + 2);
-  set_number(L, "total", total.energy);
-  push_vec3(L, total.virial);
-  lua_setfield(L, -2, "virial");
   const auto& terms = sim.forces.terms();
-  std::vector<std::string> used;
+  std::vector<std::string> keys;
   for (std::size_t k = 0; k < terms.size(); ++k) {
     std::string key = terms[k]->name();
-    for (int n = 2; std::find(used.begin(), used.end(), key) != used.end(); ++n)
+    for (int n = 2; std::find(keys.begin(), keys.end(), key) != keys.end(); ++n)
       key = terms[k]->name() + std::to_string(n);
-    used.push_back(key);
-    set_number(L, key.c_str(), per_term[k].energy);
+    keys.push_back(key);
   }
-  return 1;
+  return push_results(L, 1, [&](lua_State* S) noexcept {
+    lua_createtable(S, 0, static_cast<int>(per_term.size()) + 2);
+    set_number(S, "total", total.energy);
+    push_vec3(S, total.virial);
+    lua_setfield(S, -2, "virial");
+    for (std::size_t k = 0; k < keys.size(); ++k)
+      set_number(S, keys[k].c_str(), per_term[k].energy);
+    return 1;
+  });
 }
 
 const luaL_Reg kMethods[] = {
@@ -386,9 +412,13 @@ void open_system(lua_State* L) {
   for (const luaL_Reg* r = kMethods; r->name; ++r) methods.push_back(*r);
   for (const luaL_Reg* r = kSystemMeasureMethods; r->name; ++r) methods.push_back(*r);
   methods.push_back({nullptr, nullptr});
-  define_type<Simulation>(L, methods.data());
-  lua_pushcfunction(L, &lua_wrap<&l_new>);
-  lua_setfield(L, -2, "System");
+  lua_pushvalue(L, -1);  // the module table
+  protected_call(L, 1, 0, [&methods](lua_State* S) noexcept {
+    define_type<Simulation>(S, methods.data());
+    lua_pushcfunction(S, &lua_wrap<&l_new>);
+    lua_setfield(S, 1, "System");
+    return 0;
+  });
 }
 
 }  // namespace invasim::lua

@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "lua/kwargs.hpp"
 #include "lua/names.hpp"
 
 namespace invasim::lua {
@@ -32,16 +33,28 @@ std::string type_name_at(lua_State* L, int index) {
   return luaL_typename(L, index);
 }
 
-std::string bad_argument(lua_State* L, int arg, const std::string& expected) {
-  const std::string got = type_name_at(L, arg);
+namespace {
+
+// The name of the running C function and whether it was called as a method (obj:f()).
+std::string running_function(lua_State* L, bool& method) {
   std::string function = "?";
-  bool method = false;
+  method = false;
   lua_Debug ar;
   if (lua_getstack(L, 0, &ar)) {
     lua_getinfo(L, "n", &ar);
     if (ar.name) function = ar.name;
     method = ar.namewhat && std::strcmp(ar.namewhat, "method") == 0;
   }
+  return function;
+}
+
+}  // namespace
+
+std::string bad_argument(lua_State* L, int arg, const std::string& expected,
+                         const std::string& got_text) {
+  const std::string got = got_text.empty() ? type_name_at(L, arg) : got_text;
+  bool method = false;
+  const std::string function = running_function(L, method);
   if (method && --arg == 0)
     return "bad self for '" + function + "' (" + expected + " expected, got " + got +
            "; call methods with ':', as in obj:" + function + "(...))";
@@ -66,12 +79,21 @@ double arg_number(lua_State* L, int index) {
   return lua_tonumber(L, index);
 }
 
-long long arg_integer(lua_State* L, int index) {
-  int exact = 0;
-  const lua_Integer value =
-      lua_type(L, index) == LUA_TNUMBER ? lua_tointegerx(L, index, &exact) : 0;
-  if (!exact) throw InputError(bad_argument(L, index, "integer"));
-  return value;
+long long arg_integer(lua_State* L, int index, long long lo, long long hi) {
+  const IntegerBounds bounds{lo, hi};
+  long long value = 0;
+  std::string got;
+  switch (check_integer(L, index, bounds, value, got)) {
+    case IntegerCheck::kOk:
+      return value;
+    case IntegerCheck::kNotNumber:
+      throw InputError(bad_argument(L, index, "integer"));
+    case IntegerCheck::kNotIntegral:
+      throw InputError(bad_argument(L, index, "integer " + bounds.describe(), got));
+    case IntegerCheck::kOutOfRange:
+      break;
+  }
+  throw InputError(bad_argument(L, index, "integer " + bounds.describe(), got));
 }
 
 std::string arg_string(lua_State* L, int index) {
@@ -85,6 +107,19 @@ std::optional<double> opt_number(lua_State* L, int index) {
   if (lua_isnoneornil(L, index)) return std::nullopt;
   return arg_number(L, index);
 }
+
+namespace detail {
+
+void throw_protected_error(lua_State* L, int status) {
+  std::string message = lua_type(L, -1) == LUA_TSTRING
+                            ? lua_tostring(L, -1)
+                            : std::string("(error object is a ") + luaL_typename(L, -1) + " value)";
+  lua_pop(L, 1);
+  if (status == LUA_ERRRUN) throw LuaRaised(message);
+  throw LuaApiError(message);  // LUA_ERRMEM: "not enough memory"
+}
+
+}  // namespace detail
 
 void call_lua(lua_State* L, int nargs, int nresults) {
   if (lua_pcall(L, nargs, nresults, 0) == LUA_OK) return;

@@ -13,10 +13,20 @@
 //
 // Error discipline. Debian's Lua is built as C, so lua_error/luaL_error longjmp: a Lua error
 // raised while a C++ object with a destructor is alive in the frames it unwinds skips that
-// destructor. Hence: code inside an l_ function never calls luaL_check*, luaL_error or
-// lua_error; it throws C++ exceptions (InputError), and lua_wrap turns them into a Lua error
-// "file:line: message" after every C++ object is gone. Lua callbacks from C++ go through
-// call_lua(), which uses lua_pcall and rethrows as a C++ exception.
+// destructor (and leaks what it owns). Hence:
+// - code inside an l_ function never calls luaL_check*, luaL_error or lua_error; it throws
+//   C++ exceptions (InputError), and lua_wrap turns them into a Lua error "file:line: message"
+//   after every C++ object is gone;
+// - every Lua API call that can raise (anything that allocates: lua_pushstring, lua_createtable,
+//   lua_setfield, lua_rawseti, lua_newuserdatauv, ...; a memory error is a Lua error) runs
+//   inside protected_call(): a noexcept lambda run under lua_pcall, whose frame owns nothing,
+//   and whose failure comes back as a C++ exception that unwinds the C++ frames normally. Calls
+//   that never raise (lua_pushnumber, lua_pushinteger, lua_pushvalue, lua_rawget, lua_type,
+//   lua_to* on the right type, lua_pop) may be made anywhere; a raising call outside
+//   protected_call() is allowed only in a frame (and its callers up to lua_wrap) that owns no C++
+//   object with a destructor (references into userdata and plain values only);
+// - Lua callbacks from C++ go through call_lua(), which uses lua_pcall and rethrows as a C++
+//   exception.
 #include <lua.hpp>
 
 #include <cstring>
@@ -25,6 +35,8 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
 
 #include "core/errors.hpp"
 
@@ -59,17 +71,72 @@ bool is_stop_sentinel(lua_State* L, int index);
 void push_where(lua_State* L);
 
 // "bad argument #2 to 'update' (number expected, got string)"-style text for argument `arg`
-// of the running C function; `expected` names the wanted type.
-std::string bad_argument(lua_State* L, int arg, const std::string& expected);
+// of the running C function; `expected` names the wanted type, `got` the value (default: its
+// type).
+std::string bad_argument(lua_State* L, int arg, const std::string& expected,
+                         const std::string& got = "");
 
 // Calls the function below `nargs` arguments on the stack with lua_pcall; a Lua error comes
 // back as LuaRaised (message kept as is), so it unwinds C++ frames cleanly.
 void call_lua(lua_State* L, int nargs, int nresults);
 
+// Thrown when a protected_call() block failed with a Lua error other than a runtime error (e.g.
+// LUA_ERRMEM "not enough memory"): lua_wrap adds the script location.
+class LuaApiError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+namespace detail {
+
+// lua_pcall'd by protected_call(): runs the lambda whose address is argument 1 on the arguments
+// after it. The lambda is noexcept and its frame owns no C++ object, so a Lua error raised in
+// it (a longjmp to the lua_pcall) skips no destructor.
+template <typename Fn>
+int run_protected(lua_State* L) {
+  Fn& fn = *static_cast<Fn*>(lua_touserdata(L, 1));
+  lua_remove(L, 1);
+  return fn(L);
+}
+
+// Pops the error object of a failed protected call and throws it as a C++ exception
+// (LuaRaised for a runtime error with its location, LuaApiError otherwise).
+[[noreturn]] void throw_protected_error(lua_State* L, int status);
+
+}  // namespace detail
+
+// Runs fn(L) under lua_pcall with the `nargs` values on top of the stack as its arguments
+// (indices 1..nargs inside fn) and leaves `nresults` of the values fn returns (`return n`, as
+// a lua_CFunction) on the stack. fn must be a noexcept lambda that makes Lua API calls only
+// (reading captured C++ data by reference is fine; creating C++ objects is not). A Lua error in
+// it (out of memory) becomes a C++ exception here, after the pcall, so C++ frames unwind.
+template <typename Fn>
+void protected_call(lua_State* L, int nargs, int nresults, Fn&& fn) {
+  using F = std::remove_reference_t<Fn>;
+  static_assert(std::is_nothrow_invocable_r_v<int, F&, lua_State*>,
+                "protected_call needs a noexcept lambda (lua_State*) -> int");
+  if (!lua_checkstack(L, 2 + (nresults > 0 ? nresults : 0)))  // never raises
+    throw LuaApiError("Lua stack overflow");
+  lua_pushcfunction(L, &detail::run_protected<F>);  // a light C function: no allocation
+  lua_pushlightuserdata(L, static_cast<void*>(&fn));
+  lua_rotate(L, -(nargs + 2), 2);
+  const int status = lua_pcall(L, nargs + 1, nresults, 0);
+  if (status != LUA_OK) detail::throw_protected_error(L, status);
+}
+
+// The usual case: fn pushes the binding's results; returns their number for `return`.
+template <typename Fn>
+int push_results(lua_State* L, int nresults, Fn&& fn) {
+  protected_call(L, 0, nresults, std::forward<Fn>(fn));
+  return nresults;
+}
+
 // Positional arguments of methods, checked without luaL_check* (which would longjmp): they
 // throw InputError("bad argument #2 to 'update' (number expected, got string)").
 double arg_number(lua_State* L, int index);
-long long arg_integer(lua_State* L, int index);
+// An integer argument in [lo, hi], checked before any narrowing: "bad argument #2 to 'run'
+// (integer >= 0 expected, got -1)".
+long long arg_integer(lua_State* L, int index, long long lo, long long hi);
 std::string arg_string(lua_State* L, int index);
 std::optional<double> opt_number(lua_State* L, int index);  // nil or absent -> nullopt
 
@@ -131,12 +198,18 @@ T& check(lua_State* L, int index) {
 }
 
 // Pushes a new userdata holding `object` (placement new of the shared_ptr) with T's metatable.
+// The object moves into the userdata only once its memory exists: if the allocation fails, it
+// is still owned by `object`, which C++ unwinding destroys.
 template <typename T>
 void push(lua_State* L, std::shared_ptr<T> object) {
   if (!object) throw std::logic_error(std::string("push of a null ") + LuaType<T>::name);
-  void* memory = lua_newuserdatauv(L, sizeof(std::shared_ptr<T>), 0);
-  new (memory) std::shared_ptr<T>(std::move(object));
-  luaL_setmetatable(L, LuaType<T>::metatable);
+  std::shared_ptr<T>* source = &object;
+  protected_call(L, 0, 1, [source](lua_State* S) noexcept {
+    void* memory = lua_newuserdatauv(S, sizeof(std::shared_ptr<T>), 0);
+    new (memory) std::shared_ptr<T>(std::move(*source));
+    luaL_setmetatable(S, LuaType<T>::metatable);  // the registered name: no allocation
+    return 1;
+  });
 }
 
 namespace detail {
@@ -158,8 +231,10 @@ int tostring(lua_State* L) {
   auto* slot = static_cast<std::shared_ptr<T>*>(luaL_testudata(L, 1, LuaType<T>::metatable));
   const std::string text = slot && *slot ? LuaType<T>::describe(**slot)
                                          : std::string(LuaType<T>::name) + " (no longer valid)";
-  lua_pushlstring(L, text.data(), text.size());
-  return 1;
+  return push_results(L, 1, [&text](lua_State* S) noexcept {
+    lua_pushlstring(S, text.data(), text.size());
+    return 1;
+  });
 }
 
 // Builds the metatable `name` with the methods table (upvalue of __index); `type_name` is used

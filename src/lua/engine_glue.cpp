@@ -34,8 +34,7 @@ FireParams kw_fire(Kwargs& kw) {
   p.ftol = kw.number("ftol", p.ftol, Range::positive());
   p.dt = kw.number("dt", p.dt, Range::positive());
   p.dt_max = kw.number("dt_max", p.dt_max, Range::positive());
-  p.max_steps = static_cast<std::uint64_t>(
-      kw.integer("max_steps", static_cast<long long>(p.max_steps), Range::non_negative()));
+  p.max_steps = kw.integer<std::uint64_t>("max_steps", p.max_steps, Range::non_negative());
   return p;
 }
 
@@ -53,7 +52,7 @@ void require_same_system(const Group& group, const Simulation& sim, const std::s
     fail_input(what, ": group '", group.name, "' belongs to another System");
 }
 
-void push_vec3(lua_State* L, const Vec3& v) {
+void push_vec3(lua_State* L, const Vec3& v) noexcept {
   lua_createtable(L, 3, 0);
   for (int a = 0; a < 3; ++a) {
     lua_pushnumber(L, v[a]);
@@ -61,19 +60,35 @@ void push_vec3(lua_State* L, const Vec3& v) {
   }
 }
 
-void set_number(lua_State* L, const char* key, double value) {
+void set_number(lua_State* L, const char* key, double value) noexcept {
   lua_pushnumber(L, value);
   lua_setfield(L, -2, key);
 }
 
-void set_integer(lua_State* L, const char* key, long long value) {
+void set_integer(lua_State* L, const char* key, long long value) noexcept {
   lua_pushinteger(L, value);
   lua_setfield(L, -2, key);
 }
 
-void set_boolean(lua_State* L, const char* key, bool value) {
+void set_boolean(lua_State* L, const char* key, bool value) noexcept {
   lua_pushboolean(L, value);
   lua_setfield(L, -2, key);
+}
+
+void push_number_list(lua_State* L, const double* values, std::size_t n) noexcept {
+  lua_createtable(L, n < 0x7fffffff ? int(n) : 0, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    lua_pushnumber(L, values[i]);
+    lua_rawseti(L, -2, lua_Integer(i + 1));
+  }
+}
+
+void push_integer_list(lua_State* L, const int* values, std::size_t n) noexcept {
+  lua_createtable(L, n < 0x7fffffff ? int(n) : 0, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    lua_pushinteger(L, values[i]);
+    lua_rawseti(L, -2, lua_Integer(i + 1));
+  }
 }
 
 void push_force(lua_State* L, const ForceHandle& handle) {
@@ -90,11 +105,14 @@ Progress* test_progress(lua_State* L, int index) {
 }
 
 void push_fire_result(lua_State* L, const FireResult& r) {
-  lua_createtable(L, 0, 4);
-  set_boolean(L, "converged", r.converged);
-  set_integer(L, "steps", static_cast<long long>(r.steps));
-  set_number(L, "max_force", r.max_force);
-  set_number(L, "energy", r.energy);
+  protected_call(L, 0, 1, [&r](lua_State* S) noexcept {
+    lua_createtable(S, 0, 4);
+    set_boolean(S, "converged", r.converged);
+    set_integer(S, "steps", static_cast<long long>(r.steps));
+    set_number(S, "max_force", r.max_force);
+    set_number(S, "energy", r.energy);
+    return 1;
+  });
 }
 
 }  // namespace invasim::lua

@@ -144,11 +144,15 @@ Simulation& owner_of(const std::weak_ptr<Simulation>& owner, const std::string& 
 // Throws unless `group` belongs to `sim`: "<what>: group 'cancer' belongs to another System".
 void require_same_system(const Group& group, const Simulation& sim, const std::string& what);
 
-// Lua table helpers (the table is on top of the stack).
-void push_vec3(lua_State* L, const Vec3& v);  // pushes {x, y, z}
-void set_number(lua_State* L, const char* key, double value);
-void set_integer(lua_State* L, const char* key, long long value);
-void set_boolean(lua_State* L, const char* key, bool value);
+// Lua table helpers (the table is on top of the stack). They allocate, so they may raise a
+// Lua error: call them only inside a protected_call block (binding.hpp).
+void push_vec3(lua_State* L, const Vec3& v) noexcept;  // pushes {x, y, z}
+void set_number(lua_State* L, const char* key, double value) noexcept;
+void set_integer(lua_State* L, const char* key, long long value) noexcept;
+void set_boolean(lua_State* L, const char* key, bool value) noexcept;
+// Pushes a list {v1, ..., vn} of numbers or integers (inside a protected_call block).
+void push_number_list(lua_State* L, const double* values, std::size_t n) noexcept;
+void push_integer_list(lua_State* L, const int* values, std::size_t n) noexcept;
 
 // Pushes the Lua object of a force handle (a new userdata sharing the handle).
 void push_force(lua_State* L, const ForceHandle& handle);
@@ -167,7 +171,8 @@ PressureWall* prepare_dynamics(DynamicsHandle& d, const std::shared_ptr<Simulati
 // System methods defined in bind_measure.cpp (voronoi, shape_parameters, slices).
 extern const luaL_Reg kSystemMeasureMethods[];
 
-// Pushes a FIRE result table {converged, steps, max_force, energy}.
+// Pushes a FIRE result table {converged, steps, max_force, energy} (protected: may be called
+// anywhere; a Lua error comes back as a C++ exception).
 void push_fire_result(lua_State* L, const FireResult& r);
 
 }  // namespace invasim::lua

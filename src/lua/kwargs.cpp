@@ -54,9 +54,16 @@ Kwargs::Kwargs(lua_State* L, int index, std::string owner)
 
 int Kwargs::fetch(std::string_view key) {
   if (std::find(known_.begin(), known_.end(), key) == known_.end()) known_.emplace_back(key);
-  lua_checkstack(L_, 2);
-  lua_pushlstring(L_, key.data(), key.size());
-  return lua_rawget(L_, index_);
+  // Creating the key string allocates (a Lua error when memory runs out): protected, since
+  // this Kwargs owns C++ strings.
+  if (!lua_checkstack(L_, 4)) throw LuaApiError("Lua stack overflow");
+  lua_pushvalue(L_, index_);
+  protected_call(L_, 1, 1, [key](lua_State* S) noexcept {
+    lua_pushlstring(S, key.data(), key.size());
+    lua_rawget(S, 1);
+    return 1;
+  });
+  return lua_type(L_, -1);
 }
 
 void Kwargs::type_error(std::string_view key, const char* expected) const {
@@ -79,15 +86,73 @@ double Kwargs::to_number(std::string_view key, Range range) {
   return value;
 }
 
-// Value on top of the stack -> integer (integral floats such as 2e5 accepted); pops it.
-long long Kwargs::to_integer(std::string_view key, Range range) {
-  if (lua_type(L_, -1) != LUA_TNUMBER) type_error(key, "an integer");
-  int exact = 0;
-  const lua_Integer value = lua_tointegerx(L_, -1, &exact);
-  if (!exact) type_error(key, "an integer");
-  check_range(key, static_cast<double>(value), range);
+// Value on top of the stack -> integer within bounds (integral floats such as 2e5 accepted);
+// pops it.
+long long Kwargs::to_integer(std::string_view key, const IntegerBounds& bounds) {
+  long long value = 0;
+  std::string text;
+  switch (check_integer(L_, -1, bounds, value, text)) {
+    case IntegerCheck::kOk:
+      break;
+    case IntegerCheck::kNotNumber:
+    case IntegerCheck::kNotIntegral:
+      fail_input(owner_, ": key '", key, "' must be an integer, got ", text,
+                 " (allowed: ", bounds.describe(), ")");
+    case IntegerCheck::kOutOfRange:
+      fail_input(owner_, ": key '", key, "' = ", text, " is out of range (must be ",
+                 bounds.describe(), ")");
+  }
   lua_pop(L_, 1);
   return value;
+}
+
+IntegerBounds IntegerBounds::of(const Range& range, long long type_lo, long long type_hi) {
+  // 2^63 as a double: every bound at or beyond it is outside long long anyway.
+  constexpr double kTwo63 = 9223372036854775808.0;
+  IntegerBounds b{type_lo, type_hi};
+  if (range.lo >= kTwo63) {
+    b.lo = std::numeric_limits<long long>::max();
+  } else if (range.lo > -kTwo63) {
+    double lo = std::ceil(range.lo);
+    if (range.lo_open && lo == range.lo) lo += 1.0;
+    if (lo < kTwo63) b.lo = std::max(b.lo, static_cast<long long>(lo));
+  }
+  if (range.hi <= -kTwo63) {
+    b.hi = std::numeric_limits<long long>::min();
+  } else if (range.hi < kTwo63) {
+    double hi = std::floor(range.hi);
+    if (range.hi_open && hi == range.hi) hi -= 1.0;
+    if (hi >= -kTwo63) b.hi = std::min(b.hi, static_cast<long long>(hi));
+  }
+  return b;
+}
+
+std::string IntegerBounds::describe() const {
+  const bool has_lo = lo > std::numeric_limits<long long>::min();
+  const bool has_hi = hi < std::numeric_limits<long long>::max();
+  if (has_lo && has_hi) return "in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  if (has_lo) return ">= " + std::to_string(lo);
+  if (has_hi) return "<= " + std::to_string(hi);
+  return "any integer";
+}
+
+IntegerCheck check_integer(lua_State* L, int index, const IntegerBounds& bounds, long long& value,
+                           std::string& text) {
+  text = got(L, index);
+  if (lua_type(L, index) != LUA_TNUMBER) return IntegerCheck::kNotNumber;
+  if (lua_isinteger(L, index)) {
+    value = lua_tointeger(L, index);
+    return bounds.contains(value) ? IntegerCheck::kOk : IntegerCheck::kOutOfRange;
+  }
+  const double x = lua_tonumber(L, index);
+  if (!std::isfinite(x) || x != std::floor(x)) return IntegerCheck::kNotIntegral;
+  // Compared as doubles first: a float such as 1e12 or 1e300 may not fit the target type or
+  // even a long long; the conversion happens only inside the bounds.
+  if (x < static_cast<double>(bounds.lo) || x > static_cast<double>(bounds.hi))
+    return IntegerCheck::kOutOfRange;
+  if (x >= 9223372036854775808.0) return IntegerCheck::kOutOfRange;  // 2^63 (bound rounded up)
+  value = static_cast<long long>(x);
+  return bounds.contains(value) ? IntegerCheck::kOk : IntegerCheck::kOutOfRange;
 }
 
 void Kwargs::missing(std::string_view key, const char* expected) const {
@@ -116,9 +181,9 @@ double Kwargs::number(std::string_view key, Range range) {
   return to_number(key, range);
 }
 
-long long Kwargs::integer(std::string_view key, Range range) {
-  if (fetch(key) == LUA_TNIL) missing(key, "an integer");
-  return to_integer(key, range);
+long long Kwargs::required_integer(std::string_view key, const IntegerBounds& bounds) {
+  if (fetch(key) == LUA_TNIL) missing(key, ("an integer " + bounds.describe()).c_str());
+  return to_integer(key, bounds);
 }
 
 bool Kwargs::boolean(std::string_view key) {
@@ -137,10 +202,6 @@ double Kwargs::number(std::string_view key, double fallback, Range range) {
   return maybe_number(key, range).value_or(fallback);
 }
 
-long long Kwargs::integer(std::string_view key, long long fallback, Range range) {
-  return maybe_integer(key, range).value_or(fallback);
-}
-
 bool Kwargs::boolean(std::string_view key, bool fallback) {
   return maybe_boolean(key).value_or(fallback);
 }
@@ -157,12 +218,13 @@ std::optional<double> Kwargs::maybe_number(std::string_view key, Range range) {
   return to_number(key, range);
 }
 
-std::optional<long long> Kwargs::maybe_integer(std::string_view key, Range range) {
+std::optional<long long> Kwargs::optional_integer(std::string_view key,
+                                                  const IntegerBounds& bounds) {
   if (fetch(key) == LUA_TNIL) {
     lua_pop(L_, 1);
     return std::nullopt;
   }
-  return to_integer(key, range);
+  return to_integer(key, bounds);
 }
 
 std::optional<bool> Kwargs::maybe_boolean(std::string_view key) {

@@ -4,10 +4,12 @@
 // then rejects any other key, listing the valid ones. Every failure is an InputError whose
 // message names the owner and the key ("System: key 'seed' must be an integer, got string");
 // lua_wrap adds the script location. Values are read with raw access (no metamethods run).
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 struct lua_State;
@@ -34,6 +36,42 @@ struct Range {
   static double hi_inf() { return std::numeric_limits<double>::infinity(); }
 };
 
+// The integers of type T as a closed interval of long long (lua_Integer): unsigned types above
+// LLONG_MAX are capped there.
+template <typename T>
+constexpr long long integer_type_min() {
+  static_assert(std::is_integral_v<T> && sizeof(T) <= sizeof(long long));
+  return std::is_signed_v<T> ? static_cast<long long>(std::numeric_limits<T>::min()) : 0;
+}
+template <typename T>
+constexpr long long integer_type_max() {
+  static_assert(std::is_integral_v<T> && sizeof(T) <= sizeof(long long));
+  if constexpr (sizeof(T) < sizeof(long long) || std::is_signed_v<T>)
+    return static_cast<long long>(std::numeric_limits<T>::max());
+  else
+    return std::numeric_limits<long long>::max();
+}
+
+// The integers in `range` that a T can hold, as a closed interval [lo, hi] of long long.
+struct IntegerBounds {
+  long long lo, hi;
+  static IntegerBounds of(const Range& range, long long type_lo, long long type_hi);
+  template <typename T>
+  static IntegerBounds of(const Range& range) {
+    return of(range, integer_type_min<T>(), integer_type_max<T>());
+  }
+  bool contains(long long x) const { return x >= lo && x <= hi; }
+  // ">= 0", "in [0, 2147483647]" (a side at the long long limit is left out).
+  std::string describe() const;
+};
+
+// The value at `index` as an integer within bounds, checked before any narrowing: an
+// integral float (2e5) is accepted; `got` receives the text of a refused value ("2.5",
+// "4294967301", "string"). Never raises a Lua error.
+enum class IntegerCheck { kOk, kNotNumber, kNotIntegral, kOutOfRange };
+IntegerCheck check_integer(lua_State* L, int index, const IntegerBounds& bounds, long long& value,
+                           std::string& got);
+
 class Kwargs {
  public:
   // Reads the table at `index`; `owner` names what is being built ("System"). Throws if the
@@ -42,19 +80,35 @@ class Kwargs {
 
   // Required keys: absent (or nil) is an error.
   double number(std::string_view key, Range range = {});
-  long long integer(std::string_view key, Range range = {});
   bool boolean(std::string_view key);
   std::string string(std::string_view key);
 
   // Keys with a default.
   double number(std::string_view key, double fallback, Range range = {});
-  long long integer(std::string_view key, long long fallback, Range range = {});
   bool boolean(std::string_view key, bool fallback);
   std::string string(std::string_view key, const std::string& fallback);
 
   // Optional keys: nullopt when absent.
   std::optional<double> maybe_number(std::string_view key, Range range = {});
-  std::optional<long long> maybe_integer(std::string_view key, Range range = {});
+
+  // Integer keys read as the C++ type T they are stored in (int, std::size_t, ...): the range
+  // is required, and the Lua value is checked against range ∩ T before it is converted, so
+  // that 2^32 + 5 is refused instead of becoming 5 in an int.
+  template <typename T>
+  T integer(std::string_view key, Range range) {
+    return static_cast<T>(required_integer(key, IntegerBounds::of<T>(range)));
+  }
+  template <typename T>
+  T integer(std::string_view key, T fallback, Range range) {
+    const auto value = maybe_integer<T>(key, range);
+    return value ? *value : fallback;
+  }
+  template <typename T>
+  std::optional<T> maybe_integer(std::string_view key, Range range) {
+    const auto value = optional_integer(key, IntegerBounds::of<T>(range));
+    if (!value) return std::nullopt;
+    return static_cast<T>(*value);
+  }
   std::optional<bool> maybe_boolean(std::string_view key);
   std::optional<std::string> maybe_string(std::string_view key);
 
@@ -98,7 +152,9 @@ class Kwargs {
   // Throws "missing required key", naming a misspelt key of the table if there is one.
   [[noreturn]] void missing(std::string_view key, const char* expected) const;
   double to_number(std::string_view key, Range range);
-  long long to_integer(std::string_view key, Range range);
+  long long to_integer(std::string_view key, const IntegerBounds& bounds);
+  long long required_integer(std::string_view key, const IntegerBounds& bounds);
+  std::optional<long long> optional_integer(std::string_view key, const IntegerBounds& bounds);
   void check_range(std::string_view key, double value, const Range& range) const;
 
   lua_State* L_;

@@ -2,12 +2,16 @@
 
 #include <lua.hpp>
 
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <new>
+#include <string_view>
 
 #include "core/errors.hpp"
 #include "lua/binding.hpp"
 #include "lua/module.hpp"
+#include "lua/text_chunks.hpp"
 
 namespace invasim::lua {
 
@@ -34,6 +38,14 @@ int message_handler(lua_State* L) {
   return 1;
 }
 
+// As lauxlib's panic function: an error outside any protected call ends the process.
+int panic(lua_State* L) {
+  const char* message = lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "error object";
+  std::fprintf(stderr, "invasim: unprotected error in Lua: %s\n", message);
+  std::fflush(stderr);
+  return 0;  // Lua then aborts
+}
+
 }  // namespace
 
 ScriptContext& script_context(lua_State* L) {
@@ -44,11 +56,39 @@ ScriptContext& script_context(lua_State* L) {
   return *context;
 }
 
+// lua_Alloc (the contract of lauxlib's l_alloc) that counts the bytes it holds and refuses to
+// grow beyond the limit; freeing and shrinking always succeed.
+void* LuaState::allocate(void* ud, void* block, std::size_t old_size, std::size_t new_size) {
+  auto& memory = *static_cast<Memory*>(ud);
+  const std::size_t held = block ? old_size : 0;
+  if (new_size == 0) {
+    std::free(block);
+    memory.used -= held;
+    return nullptr;
+  }
+  if (new_size > held && memory.limit != 0 && memory.used - held + new_size > memory.limit)
+    return nullptr;
+  void* result = std::realloc(block, new_size);
+  if (result != nullptr) memory.used = memory.used - held + new_size;
+  return result;
+}
+
+std::size_t LuaState::memory_used() const {
+  return memory_->used;
+}
+
+void LuaState::set_memory_limit(std::size_t bytes) {
+  memory_->limit = bytes;
+}
+
 LuaState::LuaState(RunOptions options)
-    : context_(std::make_unique<ScriptContext>(ScriptContext{std::move(options), {}})) {
-  L_ = luaL_newstate();
+    : context_(std::make_unique<ScriptContext>(ScriptContext{std::move(options), {}})),
+      memory_(std::make_unique<Memory>()) {
+  L_ = lua_newstate(&LuaState::allocate, memory_.get());
   if (L_ == nullptr) throw std::bad_alloc();
+  lua_atpanic(L_, &panic);
   luaL_openlibs(L_);
+  restrict_to_text_chunks(L_);
   lua_pushlightuserdata(L_, context_.get());
   lua_setfield(L_, LUA_REGISTRYINDEX, kContextKey);
   luaL_getsubtable(L_, LUA_REGISTRYINDEX, LUA_PRELOAD_TABLE);
@@ -109,17 +149,25 @@ LuaState::Outcome LuaState::run_file(const std::string& path) {
     lua_settop(L_, 0);
     throw std::runtime_error("cannot set package.path");
   }
-  const int status = luaL_loadfile(L_, path.c_str());
+  // Text only: Lua does not verify precompiled chunks, and a corrupted one crashes.
+  const int status = luaL_loadfilex(L_, path.c_str(), "t");
   if (status == LUA_ERRFILE) {
     const std::string message = lua_tostring(L_, -1);
     lua_settop(L_, 0);
     fail_input(message);
   }
+  if (status == LUA_ERRSYNTAX &&
+      std::string_view(lua_tostring(L_, -1)).find("binary chunk") != std::string_view::npos) {
+    const std::string message = lua_tostring(L_, -1);
+    lua_settop(L_, 0);
+    fail_input("cannot load protocol file '", path, "': ", message,
+               ": invasim runs Lua source files only (precompiled chunks are refused)");
+  }
   return call_loaded(status);
 }
 
 LuaState::Outcome LuaState::run_string(const std::string& code, const std::string& chunkname) {
-  return call_loaded(luaL_loadbuffer(L_, code.data(), code.size(), chunkname.c_str()));
+  return call_loaded(luaL_loadbufferx(L_, code.data(), code.size(), chunkname.c_str(), "t"));
 }
 
 }  // namespace invasim::lua

@@ -3,6 +3,7 @@
 // through require("invasim") (package.preload), and the ScriptContext (command-line options in,
 // declared parameters out). Scripts run under a traceback message handler; a Lua error comes
 // back as a ScriptError whose what() is "file:line: message".
+#include <cstddef>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -37,6 +38,12 @@ class LuaState {
   lua_State* get() const { return L_; }
   ScriptContext& context() { return *context_; }
 
+  // Bytes the Lua allocator holds now, and a cap on them (0: none, the default): an allocation
+  // that would exceed it fails, which Lua raises as a memory error ("not enough memory"). For
+  // tests of the bindings' behaviour when memory runs out midway.
+  std::size_t memory_used() const;
+  void set_memory_limit(std::size_t bytes);
+
   // Runs a script file; its directory is prepended to package.path so that it can require
   // its neighbours. A missing file is an InputError, a Lua error a ScriptError.
   Outcome run_file(const std::string& path);
@@ -46,7 +53,15 @@ class LuaState {
  private:
   Outcome call_loaded(int load_status);
 
+  // The allocator's bookkeeping (lua_Alloc user data).
+  struct Memory {
+    std::size_t used = 0;
+    std::size_t limit = 0;
+  };
+  static void* allocate(void* ud, void* block, std::size_t old_size, std::size_t new_size);
+
   std::unique_ptr<ScriptContext> context_;
+  std::unique_ptr<Memory> memory_;
   lua_State* L_ = nullptr;
 };
 

@@ -44,7 +44,7 @@ check(placed.cells:sites()[1] == 84 and placed.vertices:sites()[1] == 0, "site i
 expect_error("place.cells: unknown key 'diamters' %(did you mean 'diameters'%?%)", sys.place, sys,
              { cells = { n = 1, x = {1, 2}, diamters = {1} } })
 expect_error("place.cells: missing required key 'x'", sys.place, sys, { cells = { n = 1 } })
-expect_error("place.cells: key 'n' = %-1 is out of range %(must be >= 0%)", sys.place, sys,
+expect_error("place.cells: key 'n' = %-1 is out of range %(must be in %[0, 2147483647%]%)", sys.place, sys,
              { cells = { n = -1, x = {1, 2} } })
 expect_error("place.cells: key 'diameters%[2%]' must be a number > 0, got %-1", sys.place, sys,
              { cells = { n = 1, x = {1, 2}, diameters = {1, -1} } })
@@ -191,7 +191,7 @@ check(sys:voronoi{ radical = true }.A_t_max > 0)
 expect_error("voronoi: unknown key 'radial' %(did you mean 'radical'%?%)", sys.voronoi, sys, { radial = true })
 check(#sys:shape_parameters() == sys:n_adipocytes())
 check(#sys:slices{ per_body = 3 } >= 3 * sys:n_adipocytes())
-expect_error("slices: key 'per_body' = 0 is out of range %(must be >= 1%)", sys.slices, sys, { per_body = 0 })
+expect_error("slices: key 'per_body' = 0 is out of range %(must be in %[1, 2147483647%]%)", sys.slices, sys, { per_body = 0 })
 local h = iv.histogram({ 1, 2, 2, 3, 9 }, { lo = 0, hi = 4, bins = 4 })
 check(h.counts[3] == 2 and h.above == 1 and #h.edges == 5)
 expect_error("histogram: hi = 0 must be greater than lo = 1", iv.histogram, { 1 }, { lo = 1, hi = 0 })

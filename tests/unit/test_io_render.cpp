@@ -192,3 +192,44 @@ TEST_CASE("render from snapshot files: the same counts and the documented SVG el
   CHECK_THROWS_WITH(render_snapshot(vtp, parse_slice_plane("z=5"), dir / "c.svg"),
                     Contains("cannot read snapshot '" + vtp.string() + "'"));
 }
+
+// Issue 16: the XYZ stores Origin and the Lattice length, the VTP box_lo and box_hi; with this
+// box (from a pressure-wall run) lo + (hi - lo) != hi, so an exact comparison refused the frame.
+TEST_CASE("render: the files of one frame agree on a box whose hi does not round-trip") {
+  const double lo = -2.2306418519172917, length = 13.360457861364385;
+  const double hi = 11.129816009447092;  // hi - lo == length, but lo + length != hi
+  REQUIRE(hi - lo == length);
+  REQUIRE(lo + length != hi);
+  TempDir dir("render_box");
+  System sys(Box(Vec3(lo, 0.0, 0.0), Vec3(hi, 10.0, 10.0), {false, true, true}), 1);
+  sys.add_sphere(Vec3(1.0, 5.0, 5.0), 1.0);
+  sys.add_mesh_scaled(icosphere(1), Vec3(6.0, 5.0, 5.0), 2.0, 2.0, 1.1);
+  sys.step = 20000;
+  SnapshotWriter(dir / "snaps").write(sys);
+  for (const char* name :
+       {"cells_000020000.xyz", "adipocytes_000020000.vtp", "spheres_000020000.vtp"}) {
+    INFO(name);
+    const RenderCounts c =
+        render_snapshot(dir / "snaps" / name, parse_slice_plane("z=5"), dir / "s.svg");
+    CHECK(c.discs == 1);
+    CHECK(c.polygons == 1);
+  }
+  CHECK(same_box(sys.box(),
+                 Box(Vec3(lo, 0.0, 0.0), Vec3(lo + length, 10.0, 10.0), {false, true, true})));
+
+  // A real difference (1e-9 in hi.x) is still refused, naming both files and both boxes.
+  System moved(Box(Vec3(lo, 0.0, 0.0), Vec3(hi + 1e-9, 10.0, 10.0), {false, true, true}), 1);
+  moved.add_mesh_scaled(icosphere(1), Vec3(6.0, 5.0, 5.0), 2.0, 2.0, 1.1);
+  moved.step = 20000;
+  SnapshotWriter(dir / "moved").write(moved);
+  std::filesystem::copy_file(dir / "snaps" / "cells_000020000.xyz",
+                             dir / "moved" / "cells_000020000.xyz",
+                             std::filesystem::copy_options::overwrite_existing);
+  CHECK_THROWS_WITH(render_snapshot(dir / "moved" / "cells_000020000.xyz", parse_slice_plane("z=5"),
+                                    dir / "m.svg"),
+                    Contains("adipocytes_000020000.vtp': its box lo (-2.2306418519172917, 0, 0) hi "
+                             "(11.129816010447092, 10, 10) differs from the box") &&
+                        Contains("cells_000020000.xyz' beyond round-off"));
+  CHECK_FALSE(same_box(sys.box(), moved.box()));
+  CHECK_FALSE(same_box(sys.box(), Box(sys.box().lo(), sys.box().hi(), {true, true, true})));
+}

@@ -54,9 +54,9 @@ namespace {
 
 int l_widget(lua_State* L) {
   Kwargs kw(L, 1, "Widget");
-  const long long size = kw.integer("size", Range::positive());
+  const int size = kw.integer<int>("size", Range::positive());
   kw.finish();
-  push(L, std::make_shared<Widget>(static_cast<int>(size)));
+  push(L, std::make_shared<Widget>(size));
   return 1;
 }
 
@@ -122,13 +122,13 @@ TEST_CASE("Kwargs reads typed keys with defaults", "[lua][kwargs]") {
   Kwargs kw(L, -1, "System");
   CHECK(kw.number_list("box", 3) == std::vector<double>{70, 60, 50});
   CHECK(*kw.maybe_boolean_list("periodic", 3) == std::vector<bool>{false, true, true});
-  CHECK(kw.integer("seed") == 200000);  // integral floats are integers
+  CHECK(kw.integer<long long>("seed", Range{}) == 200000);  // integral floats are integers
   CHECK(kw.number("dt", Range::positive()) == 0.5);
   CHECK(kw.string("name") == "x");
   CHECK(kw.boolean("on"));
   CHECK(kw.choice("mode", {"fast", "slow"}) == "fast");
   CHECK(kw.number("absent", 3.0) == 3.0);
-  CHECK(kw.integer("absent_int", 4) == 4);
+  CHECK(kw.integer<int>("absent_int", 4, Range{}) == 4);
   CHECK_FALSE(kw.maybe_string("nothing"));
   CHECK_NOTHROW(kw.finish());
   CHECK(lua_gettop(L) == 1);  // getters leave the stack as they found it
@@ -143,7 +143,7 @@ TEST_CASE("Kwargs errors name the owner, the key and the valid keys", "[lua][kwa
     Kwargs kw(L, -1, "System");
     kw.maybe_number_list("box", 3);
     kw.maybe_boolean_list("periodic", 3);
-    kw.integer("seed");
+    kw.integer<long long>("seed", Range{});
     CHECK_THROWS_WITH(kw.finish(),
                       "System: unknown key 'bxo' (did you mean 'box'?); valid "
                       "keys: box, periodic, seed");
@@ -151,18 +151,20 @@ TEST_CASE("Kwargs errors name the owner, the key and the valid keys", "[lua][kwa
   SECTION("several unknown keys") {
     eval(L, "{zz = 1, aa = 2}");
     Kwargs kw(L, -1, "System");
-    kw.maybe_integer("seed");
+    kw.maybe_integer<long long>("seed", Range{});
     CHECK_THROWS_WITH(kw.finish(), "System: unknown keys 'aa', 'zz'; valid keys: seed");
   }
   SECTION("wrong type") {
     eval(L, "{seed = 'x'}");
     Kwargs kw(L, -1, "System");
-    CHECK_THROWS_WITH(kw.integer("seed"), "System: key 'seed' must be an integer, got string");
+    CHECK_THROWS_WITH(kw.integer<long long>("seed", Range{}),
+                      "System: key 'seed' must be an integer, got string (allowed: any integer)");
   }
   SECTION("fractional integer") {
     eval(L, "{n = 1.5}");
     Kwargs kw(L, -1, "Spheres");
-    CHECK_THROWS_WITH(kw.integer("n"), "Spheres: key 'n' must be an integer, got 1.5");
+    CHECK_THROWS_WITH(kw.integer<int>("n", Range::non_negative()),
+                      "Spheres: key 'n' must be an integer, got 1.5 (allowed: in [0, 2147483647])");
   }
   SECTION("out of range") {
     eval(L, "{dt = -1, phi = 2}");
@@ -186,7 +188,7 @@ TEST_CASE("Kwargs errors name the owner, the key and the valid keys", "[lua][kwa
   SECTION("positional value") {
     eval(L, "{3, seed = 1}");
     Kwargs kw(L, -1, "System");
-    kw.integer("seed");
+    kw.integer<long long>("seed", Range{});
     CHECK_THROWS_WITH(kw.finish(),
                       "System: unexpected positional value [1]; write key = value "
                       "(valid keys: seed)");
@@ -223,6 +225,43 @@ TEST_CASE("Kwargs errors name the owner, the key and the valid keys", "[lua][kwa
     Kwargs kw(L, -1, "System");
     CHECK_THROWS_WITH(kw.number("x"), "System: key 'x' must be a finite number, got inf");
   }
+}
+
+// Issue 17 item 5: integers are checked on the lua_Integer (or the float) before they are
+// narrowed to the C++ type: 2^32 + 5 used to become 5 in an int, 1e12 a negative int.
+TEST_CASE("Kwargs integers are range-checked before narrowing", "[lua][kwargs]") {
+  LuaState state;
+  lua_State* L = state.get();
+  eval(L,
+       "{big = 2^32 + 5, bigi = 4294967301, tera = 1e12, huge = 1e300, neg = -3, half = 2.5, "
+       "inf = 1/0, ok = 7.0, max_int = 2147483647}");
+  Kwargs kw(L, -1, "place.cells");
+  CHECK_THROWS_WITH(kw.integer<int>("big", Range::non_negative()),
+                    "place.cells: key 'big' = 4294967301 is out of range (must be in [0, "
+                    "2147483647])");
+  CHECK_THROWS_WITH(kw.integer<int>("bigi", Range::non_negative()),
+                    "place.cells: key 'bigi' = 4294967301 is out of range (must be in [0, "
+                    "2147483647])");
+  CHECK_THROWS_WITH(kw.integer<int>("tera", Range::non_negative()),
+                    "place.cells: key 'tera' = 1e+12 is out of range (must be in [0, "
+                    "2147483647])");
+  CHECK(kw.integer<long long>("tera", Range::non_negative()) == 1000000000000LL);
+  CHECK_THROWS_WITH(kw.integer<std::size_t>("huge", Range::at_least(1)),
+                    "place.cells: key 'huge' = 1e+300 is out of range (must be >= 1)");
+  CHECK_THROWS_WITH(kw.integer<std::size_t>("neg", Range{}),
+                    "place.cells: key 'neg' = -3 is out of range (must be >= 0)");
+  CHECK_THROWS_WITH(kw.integer<std::uint64_t>("half", Range::at_least(1)),
+                    "place.cells: key 'half' must be an integer, got 2.5 (allowed: >= 1)");
+  CHECK_THROWS_WITH(kw.integer<int>("inf", Range::at_least(1)),
+                    Catch::Matchers::StartsWith("place.cells: key 'inf' must be an integer, got "));
+  CHECK(kw.integer<int>("ok", Range::at_least(1)) == 7);
+  CHECK(kw.integer<int>("max_int", Range::non_negative()) == 2147483647);
+  CHECK(kw.maybe_integer<int>("absent", Range::non_negative()) == std::nullopt);
+  // Open and fractional bounds of a Range become the integers inside them.
+  CHECK(IntegerBounds::of<int>(Range::positive()).lo == 1);
+  CHECK(IntegerBounds::of<int>(Range::between(0.5, 4.5)).describe() == "in [1, 4]");
+  CHECK(IntegerBounds::of<std::uint64_t>(Range{}).describe() == ">= 0");
+  CHECK(IntegerBounds::of<long long>(Range{}).describe() == "any integer");
 }
 
 TEST_CASE("parse_value converts override text to the declared type", "[lua][params]") {
@@ -617,7 +656,7 @@ TEST_CASE("Bound types: constructor, methods, type errors and __gc", "[lua][bind
     ok, err = pcall(function() return w:sise() end)
     assert(err == "t.lua:8: Widget has no method or field 'sise' (did you mean 'size'?); methods: size", err)
     ok, err = pcall(function() return Widget{size = 0} end)
-    assert(err == "t.lua:10: Widget: key 'size' = 0 is out of range (must be > 0)", err)
+    assert(err == "t.lua:10: Widget: key 'size' = 0 is out of range (must be in [1, 2147483647])", err)
     kept = Widget{size = 4}
   )lua",
                    "@t.lua");
