@@ -426,6 +426,11 @@ def configs():
                  (0.2, [0.25, 5.0, 5.0]),  # out of reach of both
                  (1.0, [1.0, 6.0, 6.0])]  # on the right wall
     out.append(c)
+    c = Config("wall_right_only", "wall", "only the right wall (left = 0): sites within reach "
+               "of the absent left wall feel nothing", wbox)
+    c.params = {"eps": 0.9, "left": 0, "right": 1}
+    c.spheres = [(1.1, [0.25, 1.0, 1.0]), (0.9, [-0.4, 2.0, 2.0]), (1.1, [0.6, 3.0, 3.0])]
+    out.append(c)
 
     # Shape: two deformed adipocytes, one straddling the periodic boundary in y and z.
     c = Config("shape", "shape", "adipocyte volume and face-area energies, two randomly "

@@ -1,5 +1,6 @@
 #include "regression_file.hpp"
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <set>
@@ -38,7 +39,8 @@ struct Line {
   }
   int integer(std::size_t k) const {
     const double v = num(k);
-    if (v != double(int(v))) fail("'" + words[k] + "' is not an integer (in '" + words[0] + "')");
+    if (!(std::abs(v) < 1e9) || v != std::floor(v))
+      fail("'" + words[k] + "' is not an integer in (-1e9, 1e9) (in '" + words[0] + "')");
     return int(v);
   }
   Vec3 vec(std::size_t k) const { return Vec3(num(k), num(k + 1), num(k + 2)); }
@@ -102,6 +104,9 @@ RegressionCase read_regression_file(const std::string& path) {
       line.expect(4);
       c.bodies.emplace_back();
       body = &c.bodies.back();
+      if (line.integer(1) < 4 || line.integer(2) < 4)
+        line.fail("a body needs at least 4 vertices and 4 faces, got " + line.words[1] + " and " +
+                  line.words[2]);
       want_vertices = std::size_t(line.integer(1));
       want_faces = std::size_t(line.integer(2));
       body->vertex_diameter = line.num(3);
@@ -157,17 +162,10 @@ RegressionCase read_regression_file(const std::string& path) {
   return c;
 }
 
-System build_system(const RegressionCase& c) {
-  System sys(Box(c.lo, c.hi, c.periodic), 1);
-  for (const SphereSpec& s : c.spheres) sys.add_sphere(s.pos, s.diameter);
-  for (const BodySpec& b : c.bodies) {
-    auto topo = std::make_shared<const MeshTopology>(int(b.vertices.size()), b.faces);
-    sys.add_mesh(topo, b.vertices, b.vertex_diameter, b.ref_area, b.ref_volume);
-  }
-  return sys;
-}
+namespace {
 
-std::shared_ptr<Force> build_force(const RegressionCase& c, const System& sys) {
+// The force term of a case (build_force adds the file name to its errors).
+std::shared_ptr<Force> make_force(const RegressionCase& c, const System& sys) {
   const auto& p = c.params;
   if (c.term == "contact") {
     ContactParams cp;
@@ -179,12 +177,40 @@ std::shared_ptr<Force> build_force(const RegressionCase& c, const System& sys) {
     cp.skin = p.at("skin");
     return std::make_shared<ContactForce>(cp);
   }
-  if (c.term == "wall")
+  if (c.term == "wall") {
+    for (const char* side : {"left", "right"})
+      if (p.at(side) != 0.0 && p.at(side) != 1.0)
+        fail_input("param ", side, " = ", p.at(side), " must be 0 (no wall) or 1");
     return std::make_shared<WallForce>(p.at("eps"), p.at("left") != 0.0, p.at("right") != 0.0);
+  }
   if (c.term == "shape") return std::make_shared<ShapeForce>(p.at("eps_v"), p.at("eps_a"));
   auto tether = std::make_shared<TetherForce>(p.at("K"));
   for (const TetherSpec& t : c.tethers) tether->add(sys, t.a, t.b, t.rest_length);
   return tether;
+}
+
+}  // namespace
+
+System build_system(const RegressionCase& c) {
+  try {
+    System sys(Box(c.lo, c.hi, c.periodic), 1);
+    for (const SphereSpec& s : c.spheres) sys.add_sphere(s.pos, s.diameter);
+    for (const BodySpec& b : c.bodies) {
+      auto topo = std::make_shared<const MeshTopology>(int(b.vertices.size()), b.faces);
+      sys.add_mesh(topo, b.vertices, b.vertex_diameter, b.ref_area, b.ref_volume);
+    }
+    return sys;
+  } catch (const InputError& e) {
+    fail_input(c.path, ": ", e.what());
+  }
+}
+
+std::shared_ptr<Force> build_force(const RegressionCase& c, const System& sys) {
+  try {
+    return make_force(c, sys);
+  } catch (const InputError& e) {
+    fail_input(c.path, ": ", e.what());
+  }
 }
 
 }  // namespace invasim::regression

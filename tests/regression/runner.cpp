@@ -128,6 +128,32 @@ TEST_CASE("regression files: bad input is named with file and line", "[regressio
   CHECK_THAT(attempt("term shape\nbox_lo 0 0 0\nbox_hi 1 1 1\nperiodic 0 1 1\nparam eps_v 1\n"
                      "sphere 1 0.5 0.5 0.5\nenergy 0\nvirial 0 0 0\n"),
              Contains("0 force lines for 1 sites"));
+  const std::string wall =
+      "term wall\nbox_lo 0 0 0\nbox_hi 1 4 4\nperiodic 0 1 1\nparam eps 1\n"
+      "param left 1\nparam right RIGHT\nsphere 1 X 2 2\nenergy 0\n"
+      "virial 0 0 0\nforce 0 0 0 0\n";
+  auto wall_with = [&](const std::string& right, const std::string& x) {
+    std::string t = wall;
+    t.replace(t.find("RIGHT"), 5, right);
+    t.replace(t.find(" X "), 3, " " + x + " ");
+    {
+      std::ofstream out(path);
+      out << t;
+    }
+    std::string result = "no error";
+    try {
+      const RegressionCase c = read_regression_file(path);
+      const System sys = build_system(c);
+      build_force(c, sys);
+    } catch (const std::exception& e) {
+      result = e.what();
+    }
+    std::filesystem::remove(path);
+    return result;
+  };
+  CHECK(wall_with("1", "0.5") == "no error");
+  CHECK_THAT(wall_with("1", "1.5"), Contains(path + ": site 0: x = 1.5 is outside the walls"));
+  CHECK_THAT(wall_with("2", "0.5"), Contains(path + ": param right = 2 must be 0 (no wall) or 1"));
 }
 
 int main(int argc, char* argv[]) {
