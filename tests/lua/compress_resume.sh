@@ -5,7 +5,8 @@
 # tissue as a run never interrupted (byte-identical compressed.ckpt), then runs quench and
 # production to the same end (identical series.csv, state.ckpt). The kill waits for an event
 # (the third compression step in log.txt), never for a time. The partial checkpoint carries
-# the run's identity: --resume refuses it once resume.txt describes another run.
+# the run's identity: --resume refuses it once resume.txt describes another run. A signal
+# during the final FIRE stops the run after it, and --resume goes on to the same end too.
 # Usage: compress_resume.sh INVASIM WORKDIR
 set -euo pipefail
 invasim=$1
@@ -61,4 +62,27 @@ cmp "$work/straight.compress" "$work/resumed.compress" ||
 for f in checkpoint/compressed.ckpt series.csv checkpoint/state.ckpt; do
   cmp "$work/straight/$f" "$work/killed/$f" || fail "$f differs from the uninterrupted run"
 done
-echo "compress_resume: stopped by SIGTERM after compression step $stopped of $total; --resume gave the uninterrupted run's compressed.ckpt, series.csv and state.ckpt"
+
+# A signal during the final FIRE (after the line of the last compression step): the run stops
+# once that FIRE is done, saving the compressed tissue and its report; --resume goes on from
+# there to the same end.
+"$invasim" "${args[@]}" --out "$work/final" > "$work/final.log" 2>&1 &
+pid=$!
+wait_for "$pid" "the last compression step (its 'compress: step $total:' line in log.txt)" \
+  grep -qs "^compress: step $total: " "$work/final/log.txt" || { cat "$work/final.log"; exit 1; }
+kill -TERM "$pid"
+status=0
+wait "$pid" || status=$?
+[ "$status" -eq 1 ] || fail "the run killed in its final FIRE exited with $status (expected 1)" "$work/final.log"
+grep -qF "stopped by SIGTERM after the compression (phi = 0.7200); checkpoint saved to $work/final/checkpoint/compressing.ckpt" "$work/final.log" ||
+  fail "the signal during the final FIRE did not stop the run after it" "$work/final.log"
+"$invasim" run --resume "$work/final" > "$work/final_resumed.log" 2>&1 || fail "--resume after the final FIRE" "$work/final_resumed.log"
+grep -q "^compress: resumed after $total compression steps and the final FIRE" "$work/final_resumed.log" ||
+  fail "did not resume after the final FIRE" "$work/final_resumed.log"
+[ "$(grep -c "^compress: step " "$work/final/log.txt")" -eq "$total" ] ||
+  fail "the resumed run compressed again" "$work/final/log.txt"
+[ ! -e "$work/final/checkpoint/compressing.ckpt" ] || fail "compressing.ckpt left after the final FIRE"
+for f in checkpoint/compressed.ckpt series.csv checkpoint/state.ckpt; do
+  cmp "$work/straight/$f" "$work/final/$f" || fail "$f differs after a stop in the final FIRE"
+done
+echo "compress_resume: stopped by SIGTERM after compression step $stopped of $total, and after the final FIRE; --resume gave the uninterrupted run's compressed.ckpt, series.csv and state.ckpt"
