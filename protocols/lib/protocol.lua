@@ -128,6 +128,7 @@ function M.compressed(p, out)
       to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.final_ftol,
       beta = p.cohesive_compression and p.beta or 0.0,
       save = out and resume.compressed_path(out) or nil,
+      checkpoint = out and resume.compressing_path(out) or nil,
     })
   end
   return tissue

@@ -84,8 +84,8 @@ return function(tissue, opts)
   local signal = iv.interrupted()
   if signal then
     local dir = require("lib.resume").run_dir()
-    error(string.format("stopped by %s during %s at step %d; checkpoints are written during production " ..
-                        "only: %s", signal, o.label, sys:step(),
+    error(string.format("stopped by %s during %s at step %d; no checkpoint is written during a quench " ..
+                        "(only during compression and production): %s", signal, o.label, sys:step(),
                         dir and "invasim run --resume " .. dir .. " starts the run again from the beginning"
                         or "run the protocol again from the start"), 0)
   end

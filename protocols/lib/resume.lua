@@ -3,8 +3,10 @@
 -- build their objects (init places, tether connects, quench makes the Dynamics) and skip
 -- their work (compression, minimisation, steps), then the production stage loads
 -- DIR/checkpoint/state.ckpt into those objects and continues from the saved step, bit for
--- bit. A run killed before its first checkpoint starts again from the beginning (from the
--- same --from tissue, which resume.txt records). The checkpoint must be this run's: its
+-- bit. A run stopped by a signal during its compression saved the partly compressed tissue
+-- (compressing_path); lib.compress then continues the compression from it. A run killed in
+-- its quench starts again from the beginning (from the same --from tissue, which resume.txt
+-- records). The checkpoint must be this run's: its
 -- identity (lib.run_identity) is compared with the run's before anything runs.
 local iv = require("invasim")
 local run_identity = require("lib.run_identity")
@@ -16,6 +18,10 @@ local identity = nil  -- this run's identity, set by lib.run_dir
 function M.checkpoint_path(out) return out .. "/checkpoint/state.ckpt" end
 -- The compressed tissue a run saves for others (invasim run --from DIR).
 function M.compressed_path(out) return out .. "/checkpoint/compressed.ckpt" end
+-- The partly compressed tissue a run stopped by a signal during compression saves (deleted
+-- once the compression is complete).
+function M.compressing_path(out) return out .. "/checkpoint/compressing.ckpt" end
+local compression_pending = false
 
 local run_dir = nil   -- this run's directory, set with the identity
 
@@ -52,16 +58,29 @@ function M.check(out, path)
 end
 
 -- Called by lib.run_dir: a resume is pending if --resume was given and a checkpoint of this
--- run exists (a checkpoint of another run is an error).
+-- run exists (a checkpoint of another run is an error): the production checkpoint, or else
+-- the checkpoint of a compression stopped by a signal (lib.compress continues it). Returns
+-- whether either is pending.
 function M.start(out)
   if not iv.resume then return false end
   local path = M.checkpoint_path(out)
   if iv.exists(path) then
     M.check(out, path)
     pending = true
+    return true
   end
-  return pending
+  local partial = M.compressing_path(out)
+  if iv.exists(partial) then
+    M.check(out, partial)
+    compression_pending = true
+  end
+  return compression_pending
 end
+
+-- Whether the compression stage should continue from compressing_path (then it calls
+-- compression_done once it has loaded it).
+function M.compression_pending() return compression_pending end
+function M.compression_done() compression_pending = false end
 
 -- Whether stages should skip their work (the checkpoint will replace their result).
 function M.pending() return pending end
@@ -69,8 +88,21 @@ function M.pending() return pending end
 -- Called by the production stage once the checkpoint is loaded.
 function M.done() pending = false end
 
+-- The order of a table's keys in a checkpoint: numbers (ascending) before strings
+-- (byte order) before booleans (false first), so that equal data always gives the same bytes
+-- (pairs() order depends on the table's history and on string hashing).
+local rank = { number = 1, string = 2, boolean = 3 }
+local function key_order(a, b)
+  local ta, tb = type(a), type(b)
+  if ta ~= tb then return (rank[ta] or 4) < (rank[tb] or 4) end
+  if ta == "boolean" then return (not a) and b end
+  if ta == "number" or ta == "string" then return a < b end
+  return false
+end
+
 -- Serialises plain Lua data (tables, numbers, strings, booleans) to a chunk that load()
--- turns back into equal data; floats in hexadecimal, so they come back bit for bit.
+-- turns back into equal data; floats in hexadecimal, so they come back bit for bit. Keys are
+-- written in a fixed order (key_order): equal data gives identical text.
 function M.serialize(v)
   local t = type(v)
   if t == "number" then
@@ -81,12 +113,13 @@ function M.serialize(v)
   elseif t == "string" then return string.format("%q", v)
   elseif t == "boolean" or t == "nil" then return tostring(v)
   elseif t == "table" then
-    local parts = {}
+    local keys = {}
     for k, x in pairs(v) do
-      if type(x) ~= "function" and type(x) ~= "userdata" then
-        parts[#parts + 1] = "[" .. M.serialize(k) .. "]=" .. M.serialize(x)
-      end
+      if type(x) ~= "function" and type(x) ~= "userdata" then keys[#keys + 1] = k end
     end
+    table.sort(keys, key_order)
+    local parts = {}
+    for i, k in ipairs(keys) do parts[i] = "[" .. M.serialize(k) .. "]=" .. M.serialize(v[k]) end
     return "{" .. table.concat(parts, ",") .. "}"
   end
   error("resume: cannot save a " .. t)

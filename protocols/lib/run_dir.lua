@@ -18,7 +18,8 @@ local M = {}
 -- that a directory holds a run.
 M.RUN_FILES = { "params.json", "resume.txt", "log.txt", "series.csv", "summary.json",
                 "correlations.csv", "shapes.csv", "checkpoint", "snapshots", "plots" }
-local MARKS = { "params.json", "resume.txt", "checkpoint/state.ckpt", "checkpoint/compressed.ckpt" }
+local MARKS = { "params.json", "resume.txt", "checkpoint/state.ckpt", "checkpoint/compressed.ckpt",
+                "checkpoint/compressing.ckpt" }
 
 -- The run id recorded in dir/resume.txt, or nil.
 local function recorded_id(dir)

@@ -1,11 +1,16 @@
 // The setup stages that reshape the box (setup/compression.hpp):
 //   invasim.compress(sys, {to_phi =, step = 0.03, ftol =, dt =, dt_max =, max_steps =,
-//                          max_compressions = 1e5, progress = p, callback = f}) -> report
-//   (f(report) is called after every compression step with the report so far)
+//                          max_compressions = 1e5, progress = p, callback = f,
+//                          continue_from = {steps =, fire_steps =, converged =, max_force =}})
+//   -> report {steps, fire_steps, converged, phi, max_force, box, stopped}
+//   (f(report) is called after every compression step with the report so far; after it, a
+//   stop signal (SIGINT/SIGTERM, invasim.interrupted()) stops the compression at that step
+//   boundary with stopped = true; continue_from resumes the counters of such a report)
 //   invasim.rescale(sys, {phi_a =, ftol =, dt =, dt_max =, max_steps =}) -> FIRE result
 // ftol, dt, dt_max and max_steps set the FIRE minimisation after each box change.
 #include <lua.hpp>
 
+#include "core/stop_request.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
 #include "lua/progress.hpp"
@@ -18,7 +23,8 @@ namespace {
 // The compression report as a Lua table {steps, fire_steps, converged, phi, max_force, box}.
 void push_compression_report(lua_State* L, const CompressionReport& r) {
   protected_call(L, 0, 1, [&r](lua_State* S) noexcept {
-    lua_createtable(S, 0, 6);
+    lua_createtable(S, 0, 7);
+    set_boolean(S, "stopped", r.stopped);
     set_integer(S, "steps", static_cast<long long>(r.steps));
     set_integer(S, "fire_steps", static_cast<long long>(r.fire_steps));
     set_boolean(S, "converged", r.converged);
@@ -52,6 +58,19 @@ int l_compress(lua_State* L) {
   } else {
     lua_pop(L, 1);
   }
+  CompressionReport so_far;
+  if (kw.push("continue_from") != LUA_TNIL) {
+    if (!lua_istable(L, -1))
+      fail_input("compress: key 'continue_from' must be a table, got ", type_name_at(L, -1));
+    Kwargs from(L, lua_gettop(L), "compress: continue_from");
+    so_far.steps = from.integer<std::size_t>("steps", Range::at_least(0));
+    so_far.fire_steps = from.integer<std::uint64_t>("fire_steps", Range::at_least(0));
+    so_far.converged = from.boolean("converged");
+    so_far.max_force = from.number("max_force", Range::at_least(0));
+    from.finish();
+  } else {
+    lua_pop(L, 1);
+  }
   kw.finish();
   CompressionCallback on_step = [&](const CompressionReport& r) {
     if (progress) progress->update(static_cast<long long>(r.steps));
@@ -60,10 +79,11 @@ int l_compress(lua_State* L) {
       push_compression_report(L, r);
       call_lua(L, 1, 0);
     }
+    return stop_requested() == 0;  // the caller checks invasim.interrupted()
   };
   sim->changed();
   const CompressionReport r = engine_call(
-      "compress", [&] { return compress_to_phi(sim->system, sim->forces, p, on_step); });
+      "compress", [&] { return compress_to_phi(sim->system, sim->forces, p, on_step, so_far); });
   push_compression_report(L, r);
   return 1;
 }

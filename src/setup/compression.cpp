@@ -14,10 +14,12 @@ void CompressionParams::validate() const {
 }
 
 CompressionReport compress_to_phi(System& sys, ForceField& ff, const CompressionParams& params,
-                                  const CompressionCallback& on_step) {
+                                  const CompressionCallback& on_step,
+                                  const CompressionReport& so_far) {
   params.validate();
   const Fire fire(params.fire);
-  CompressionReport report;
+  CompressionReport report = so_far;
+  report.stopped = false;
   double phi = packing_fractions(sys).total;
   if (phi > params.target_phi)
     fail_input("compress: the packing fraction is already ", phi, ", above the target ",
@@ -36,7 +38,10 @@ CompressionReport compress_to_phi(System& sys, ForceField& ff, const Compression
     phi = packing_fractions(sys).total;
     report.phi = phi;
     report.box_lengths = sys.box().lengths();
-    if (on_step) on_step(report);
+    if (on_step && !on_step(report) && phi < params.target_phi * (1.0 - 1e-12)) {
+      report.stopped = true;
+      break;
+    }
   }
   report.phi = phi;
   report.box_lengths = sys.box().lengths();

@@ -26,13 +26,19 @@ struct CompressionReport {
   double phi = 0.0;              // final total packing fraction
   Vec3 box_lengths = Vec3::Zero();
   double max_force = 0.0;  // after the last minimisation
+  bool stopped = false;    // the callback asked to stop before the target was reached
 };
 
-// Called after each compression step with the report so far (progress display).
-using CompressionCallback = std::function<void(const CompressionReport&)>;
+// Called after each compression step with the report so far (progress display); returns
+// false to stop there (a stop signal: the tissue is then a converged state of a compression
+// step, from which compress_to_phi continues bit for bit).
+using CompressionCallback = std::function<bool(const CompressionReport&)>;
 
+// Compresses to params.target_phi. `so_far` is the report of an earlier, stopped call on
+// this system (its counters continue; default: a fresh compression).
 CompressionReport compress_to_phi(System& sys, ForceField& ff, const CompressionParams& params,
-                                  const CompressionCallback& on_step = {});
+                                  const CompressionCallback& on_step = {},
+                                  const CompressionReport& so_far = {});
 
 // Affine rescale of the box, the cancer cells and the adipocyte centres (adipocytes move
 // rigidly, keeping their shape and V_i) so that the adipocyte

@@ -220,6 +220,12 @@ expect_error("compress: missing required key 'to_phi' %(a number%)", iv.compress
 expect_error("compress: key 'to_phi' = 2 is out of range %(must be in %[0, 1%]%)", iv.compress, sys, { to_phi = 2 })
 expect_error("compress: the packing fraction is already", iv.compress, sys, { to_phi = 0.01 })
 expect_error("compress: key 'progress' must be a Progress, got table", iv.compress, sys, { to_phi = 0.5, progress = {} })
+expect_error("compress: key 'continue_from' must be a table, got number", iv.compress, sys,
+             { to_phi = 0.5, continue_from = 3 })
+expect_error("compress: continue_from: missing required key 'fire_steps'", iv.compress, sys,
+             { to_phi = 0.5, continue_from = { steps = 1 } })
+expect_error("compress: continue_from: unknown key 'phi'", iv.compress, sys,
+             { to_phi = 0.5, continue_from = { steps = 1, fire_steps = 0, converged = true, max_force = 0, phi = 0.1 } })
 expect_error("rescale: missing required key 'phi_a'", iv.rescale, sys, {})
 expect_error("set_velocities: missing required key 'kT'", sys.set_velocities, sys, {})
 expect_error("temperature: group 'cancer' belongs to another System", other.temperature, other, cancer)
