@@ -24,7 +24,8 @@ while IFS= read -r line; do
   file=${line%%:*}
   from=${file#"$src"/}
   from=${from%%/*}
-  target=$(sed -E 's/.*#include "([^"]*)".*/\1/' <<<"${line#*:*:}")
+  [[ ${line#*:*:} =~ \#include\ \"([^\"]*)\" ]] || continue
+  target=${BASH_REMATCH[1]}
   [[ $target == */* ]] || continue  # generated headers (invasim_version.hpp)
   to=${target%%/*}
   [[ $to == "$from" ]] && continue

@@ -32,7 +32,8 @@ TEST_CASE("Range: one interval type for kwargs, params and placement x ranges") 
   CHECK(x.notation() == "[1, 2.5]");
   // A keyword's range, in words and in the parameters' interval notation.
   CHECK(Range::positive().describe() == "> 0");
-  CHECK(Range::positive().notation() == "(0, inf)");
+  CHECK(lua::parse_range("dt", "(0, inf)").notation() == "(0, inf)");  // brackets as declared
+  CHECK(lua::parse_range("dt", "(0, inf)").describe() == "> 0");
   CHECK_FALSE(Range::positive().contains(0.0));
   CHECK(Range::at_least(1).describe() == ">= 1");
   CHECK(Range{}.describe() == "finite");
