@@ -1,4 +1,4 @@
--- The main job: cancer cells invading adipose tissue (MODEL.md protocols 1, 2, 3, 7).
+-- The main job: cancer cells invading adipose tissue (docs/model.md, protocol steps 1, 2, 3, 7).
 -- init (dilute, de-mixed) -> compress to phi -> quench (left wall to pressure P, cells
 -- active or thermal) -> production with measurements (A_t from the Voronoi tessellation,
 -- temperatures, wall pressures, correlators, shapes), then a summary. Results go to the run

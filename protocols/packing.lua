@@ -1,4 +1,4 @@
--- One point of the adipocyte packing-fraction scan (MODEL.md protocol 6, the paper's
+-- One point of the adipocyte packing-fraction scan (docs/model.md, protocol step 6, the paper's
 -- Fig. "variance"): compress, rescale the box affinely to the adipocyte packing fraction
 -- phi_a and minimise, tether the adipocytes (K_ecm = 0.04, lambda; rest lengths from the
 -- rescaled, minimised tissue), then run under the pressure wall at P as the paper does (its

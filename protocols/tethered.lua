@@ -1,4 +1,4 @@
--- Invasion into tethered adipose tissue (MODEL.md protocols 1-5, 7): the main job's chain
+-- Invasion into tethered adipose tissue (docs/model.md, protocol steps 1-5, 7): the main job's chain
 -- with ECM springs between neighbouring adipocytes (stiffness K_ecm, a mean of 6 per
 -- adipocyte) inserted right after compression, so that their rest lengths are the
 -- separations of the compressed tissue (the paper's "initial configuration"), their

@@ -1,7 +1,7 @@
--- Stage "compress" (MODEL.md protocol 2): athermal isotropic compression in steps of
+-- Stage "compress" (docs/model.md, protocol step 2): athermal isotropic compression in steps of
 -- Delta phi / phi = `step` (adipocytes move rigidly), each followed by FIRE to `ftol`, until
 -- the total packing fraction reaches `to_phi`; then one last FIRE to `final_ftol`. Reports the
--- final box (the paper's L_f; MODEL.md: stop at phi, never at a hard-coded L_f).
+-- final box (the paper's L_f; docs/model.md: stop at phi, never at a hard-coded L_f).
 --
 -- A stop signal (SIGINT/SIGTERM) stops the compression at the next compression-step boundary
 -- (after the FIRE of the current step has converged); with `checkpoint`, the partly

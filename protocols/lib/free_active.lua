@@ -1,4 +1,4 @@
--- The free active particle without thermal noise (MODEL.md, "Measurements"; Caprini & Marconi
+-- The free active particle without thermal noise (docs/measurements_dynamics.md, "Time correlators"; Caprini & Marconi
 -- 2021): its standard-normalised velocity autocorrelation is exactly
 --   C(t) = (tau_g e^{-t/tau_g} - tau_p e^{-t/tau_p}) / (tau_g - tau_p),   tau_g = m / gamma
 -- (limit tau_g = tau_p: (1 + t/tau) e^{-t/tau}), and tau_d is where C = 1/e, solved here by

@@ -1,4 +1,4 @@
--- Stage "heterogeneity" (MODEL.md protocol 5): tethers in the lower half of the box in z
+-- Stage "heterogeneity" (docs/model.md, protocol step 5): tethers in the lower half of the box in z
 -- (by their midpoint) get rest length (1 - lambda) R_ij, the others (1 + lambda) R_ij.
 --
 --   require("lib.heterogeneity")(tissue, { lambda = 0.3 })

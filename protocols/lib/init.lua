@@ -1,4 +1,4 @@
--- Stage "init" (MODEL.md protocol 1): a dilute, de-mixed tissue in a cubic box of side L0,
+-- Stage "init" (docs/model.md, protocol step 1): a dilute, de-mixed tissue in a cubic box of side L0,
 -- walls in x, periodic in y and z. Cancer-cell centres are placed at random with
 -- 2 < x < 12 and adipocyte centres with 16 < X < 68 (both scaled by L0 / 70), no overlaps.
 -- Decision: the adipocyte range is clipped to X <= L0 - R_out (R_out = diameter / 2, the

@@ -1,4 +1,4 @@
--- What the production stage measures while it runs (MODEL.md, "Measurements"). Each
+-- What the production stage measures while it runs (docs/measurements.md, docs/measurements_dynamics.md). Each
 -- observer has `columns` (names), `units`, and `sample(row)` that adds its values to the
 -- row of the current step; the production stage calls them every `every` steps.
 local thermo = require("lib.thermo")

@@ -1,4 +1,4 @@
--- The packing-fraction scan's check (MODEL.md protocol 6): the adipocyte packing fraction
+-- The packing-fraction scan's check (docs/model.md, protocol step 6): the adipocyte packing fraction
 -- measured during production beside the scan's target. Under the pressure wall the tissue
 -- settles where its wall pressure balances P, which can be far from the target phi_a; a run
 -- whose production mean is more than `drift` (absolute, default 0.05: half the 0.1 spacing

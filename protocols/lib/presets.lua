@@ -1,4 +1,4 @@
--- System sizes. "paper" is the paper's standard system (MODEL.md, protocol 1); "large" its
+-- System sizes. "paper" is the paper's standard system (docs/model.md, protocol step 1); "large" its
 -- larger one; "reduced" keeps the paper's initial packing fraction (~0.01) with fewer bodies,
 -- for quick runs and the default main job. L0 is the initial cubic box side; the initial x
 -- ranges of the bodies scale with it (init.lua).

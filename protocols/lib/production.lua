@@ -1,4 +1,4 @@
--- Stage "production" (MODEL.md protocol 7): runs the tissue's Dynamics (made by quench) for
+-- Stage "production" (docs/model.md, protocol step 7): runs the tissue's Dynamics (made by quench) for
 -- `steps` steps with observers attached and returns the series and a summary: time averages
 -- over the last `average_fraction` of the run with block-averaging error bars, the
 -- correlation times and shape statistics.

@@ -143,7 +143,7 @@ function M.quench(tissue, p)
 end
 
 -- init + compress (or --from) + quench with the common parameters; returns the tissue.
--- (Protocols with tethers call compressed(), insert them, then quench(): MODEL.md protocol 4.)
+-- (Protocols with tethers call compressed(), insert them, then quench(): docs/model.md, protocol step 4.)
 function M.prepare(p, out)
   local tissue = M.compressed(p, out)
   return M.quench(tissue, p)

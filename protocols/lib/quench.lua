@@ -1,4 +1,4 @@
--- Stage "quench" / "equilibrate" (MODEL.md protocol 3): the left wall becomes a piston under
+-- Stage "quench" / "equilibrate" (docs/model.md, protocol step 3): the left wall becomes a piston under
 -- pressure P, the cells get their thermostat or activity, the vertices their bath (vertex_bath:
 -- "langevin" at the background kT, with the piston, or "damped" with vertex_gamma), and the
 -- system runs for `steps` steps of dt. It creates tissue.dyn (the Dynamics every later stage

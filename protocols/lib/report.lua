@@ -1,7 +1,7 @@
 -- The final summary of an invasion run, printed and (with a run directory) written to
 -- summary.json: the tissue, the averages of the production run with their error bars, the
 -- correlation times, shape statistics and the derived dimensionless temperature
--- k_B T_c / (P sigma^3) (MODEL.md: results are plotted against the measured T_c), also in
+-- k_B T_c / (P sigma^3) (the paper plots its results against the measured T_c), also in
 -- the paper's convention (kT_c_paper = 2 T_c), and T_c/T_a.
 local log = require("lib.log")
 local summary_lines = require("lib.summary")

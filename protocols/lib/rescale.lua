@@ -1,4 +1,4 @@
--- Stage "rescale" (MODEL.md protocol 6): affine change of the box and of all positions
+-- Stage "rescale" (docs/model.md, protocol step 6): affine change of the box and of all positions
 -- (adipocytes rigidly) to the adipocyte packing fraction phi_a, then FIRE. With a Dynamics
 -- that has a pressure wall, the wall is minimised too (mechanical equilibrium at its P);
 -- `with_wall = false` keeps the walls fixed.

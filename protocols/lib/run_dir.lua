@@ -1,9 +1,9 @@
--- The run directory (issue 5): created at the start of a protocol, it receives params.json
+-- The run directory: created at the start of a protocol, it receives params.json
 -- (every resolved parameter, the seed, the run's identity, the program version and git
 -- revision), resume.txt (what --resume needs), log.txt (a copy of the stage messages), the
 -- observers' series.csv, summary.json, correlations.csv, shapes.csv, snapshots/ and
 -- checkpoint/. A new run refuses a directory that holds another run unless --overwrite is
--- given, which deletes that run's files first (issue 17): no stale file of an earlier run can
+-- given, which deletes that run's files first: no stale file of an earlier run can
 -- be picked up.
 local iv = require("invasim")
 local files = require("lib.files")

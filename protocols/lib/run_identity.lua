@@ -1,4 +1,4 @@
--- A run's identity (issue 17): the FNV-1a 64 hash (invasim.hash) of the text
+-- A run's identity: the FNV-1a 64 hash (invasim.hash) of the text
 --   protocol <resolved path of the protocol>
 --   from <resolved path of the --from run directory>      (only with --from)
 --   key=value                                             (every resolved parameter, sorted)

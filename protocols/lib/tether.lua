@@ -1,4 +1,4 @@
--- Stage "tether" (MODEL.md protocol 4): ECM springs U = K/2 (R_ij - l_ij0)^2 between
+-- Stage "tether" (docs/model.md, protocol step 4): ECM springs U = K/2 (R_ij - l_ij0)^2 between
 -- adipocyte centres, the closest pairs so that each adipocyte has `mean_degree` tethers on
 -- average (cutoff d_c reported), rest lengths = the current separations. The protocols call
 -- it right after compression (packing.lua: after the rescale), before the quench. While a

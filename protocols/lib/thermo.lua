@@ -1,4 +1,4 @@
--- Thermodynamic columns of a tissue, measured from the engine (MODEL.md, "Measurements"):
+-- Thermodynamic columns of a tissue, measured from the engine (docs/measurements_dynamics.md, "Thermo columns"):
 -- temperatures of the cells and the vertices (equipartition kT = m <v^2> / 3), their ratio
 -- T_c/T_a, the cells' temperature in the paper's convention (kT_c_paper = (2m/3N) sum v^2 =
 -- 2 T_c, the axis of its figures), the pressure

@@ -1,5 +1,5 @@
 #pragma once
-// Linear-spring contacts between all sites (MODEL.md, "Pair forces"):
+// Linear-spring contacts between all sites (docs/model.md, "Forces"):
 //   vertex-vertex of different adipocytes and vertex-cancer: F = (eps/s)(1 - r/s) for r <= s;
 //   cancer-cancer: the same repulsion plus cohesion, attractive from s to r_b = (1+beta)s and
 //   falling linearly to zero at r_a = (1+alpha)s.

@@ -1,5 +1,5 @@
 #pragma once
-// Deformable-polyhedron shape energy of every adipocyte (MODEL.md, "Bodies"):
+// Deformable-polyhedron shape energy of every adipocyte (docs/model.md, "Bodies"):
 //   U_i = eps_v/2 (1 - v_i/v_i0)^2 + eps_a/2 sum_k (1 - a_ik/a_ik0)^2
 // with the analytic gradient. Bodies are independent, so they are processed in parallel and
 // each writes only its own vertices.

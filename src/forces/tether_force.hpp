@@ -1,7 +1,7 @@
 #pragma once
-// ECM tethers (MODEL.md, "ECM tethers"): linear springs between adipocyte centres of mass,
-// U = K/2 (R_ij - l_ij0)^2 (sigma = 1), minimum image in y and z. The force on a centre is
-// shared equally by the body's vertices.
+// ECM tethers (docs/model.md, "Forces" and protocol step 4): linear springs between adipocyte
+// centres of mass, U = K/2 (R_ij - l_ij0)^2 (sigma = 1), minimum image in y and z. The force on a
+// centre is shared equally by the body's vertices.
 #include "forces/force.hpp"
 
 namespace invasim {

@@ -1,5 +1,5 @@
 #pragma once
-// Flat walls normal to x at the box's lower and upper x bounds (MODEL.md, "Walls"). A site at
+// Flat walls normal to x at the box's lower and upper x bounds (docs/model.md, "Forces"). A site at
 // distance d from a wall feels F = (eps/s)(1 - d/s) into the box for d <= s, where s is the
 // site's own diameter. The reaction force on each wall is kept for the barostat and the
 // pressure measurement.

@@ -1,5 +1,5 @@
 #pragma once
-// Time stepping (MODEL.md, "Equations of motion"): the paper's modified velocity Verlet, in
+// Time stepping (docs/model.md, "Equations of motion"): the paper's modified velocity Verlet, in
 // which damping -gamma v and the random / active drive enter with the half-step velocity:
 //   v_h = v + dt/2 F/m;  x += v_h dt;  F = F_cons(x) - gamma v_h + F_drive;  v = v_h + dt/2 F/m.
 // A Dynamics owns one time step dt and a list of methods, each moving one group of sites:

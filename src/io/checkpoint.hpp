@@ -9,7 +9,7 @@
 // refuses a file with a wrong magic, another format version, a length that does not match
 // (truncated or extended) or a checksum mismatch, each with a message naming the file.
 // What goes into the sections (System, forces, integrator, observers) is up to the callers:
-// see state_checkpoint.hpp for the System and force sections.
+// see checkpoint/state_checkpoint.hpp for the System and force sections.
 #include <cstdint>
 #include <filesystem>
 #include <map>

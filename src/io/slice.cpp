@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <unordered_map>
 
 #include "core/errors.hpp"
 #include "io/text_format.hpp"
+#include "mesh/plane_cut.hpp"
 
 namespace invasim {
 
@@ -41,65 +41,14 @@ std::vector<SlicePolygon> cut_mesh(const std::vector<Vec3>& points,
                                    const std::vector<std::array<int, 3>>& triangles, int axis,
                                    double value) {
   const auto [u, w] = in_plane_axes(axis);
-  auto above = [&](int p) { return points[p][axis] - value >= 0.0; };
-  auto key = [](int p, int q) {
-    return (std::uint64_t(std::min(p, q)) << 32) | std::uint32_t(std::max(p, q));
-  };
-  // One segment per crossing triangle, between the two mesh edges it crosses.
-  struct Segment {
-    std::uint64_t e[2];
-  };
-  std::vector<Segment> segments;
-  std::unordered_map<std::uint64_t, std::array<int, 2>> at_edge;  // edge -> its segments
-  for (const auto& t : triangles) {
-    Segment s{};
-    int n = 0;
-    for (int k = 0; k < 3; ++k) {
-      const int p = t[k], q = t[(k + 1) % 3];
-      if (above(p) != above(q) && n < 2) s.e[n++] = key(p, q);
-    }
-    if (n != 2) continue;
-    for (std::uint64_t e : s.e) {
-      auto& slots = at_edge.try_emplace(e, std::array<int, 2>{-1, -1}).first->second;
-      slots[slots[0] < 0 ? 0 : 1] = int(segments.size());
-    }
-    segments.push_back(s);
-  }
-  auto crossing = [&](std::uint64_t e) -> Point2 {
-    const int p = int(e >> 32), q = int(e & 0xFFFFFFFFu);
-    const double dp = points[p][axis] - value, dq = points[q][axis] - value;
-    const double t = dp / (dp - dq);  // dp, dq on opposite sides: dp - dq != 0
-    const Vec3 x = points[p] + t * (points[q] - points[p]);
-    return {x[u], x[w]};
-  };
-  // Chain segments through shared edges into polygons.
+  Vec3 normal = Vec3::Zero();
+  normal[axis] = 1.0;
   std::vector<SlicePolygon> out;
-  std::vector<bool> used(segments.size(), false);
-  for (std::size_t s0 = 0; s0 < segments.size(); ++s0) {
-    if (used[s0]) continue;
-    used[s0] = true;
-    SlicePolygon poly{-1, {crossing(segments[s0].e[0])}, false};
-    const std::uint64_t start = segments[s0].e[0];
-    std::uint64_t edge = segments[s0].e[1];
-    int prev = int(s0);
-    while (true) {
-      if (edge == start) {
-        poly.closed = true;
-        break;
-      }
-      poly.points.push_back(crossing(edge));
-      const auto& pair = at_edge[edge];
-      const int next = pair[0] == prev ? pair[1] : pair[0];
-      if (next < 0 || used[next]) break;  // an open chain: the mesh is not closed
-      used[next] = true;
-      edge = segments[next].e[0] == edge ? segments[next].e[1] : segments[next].e[0];
-      prev = next;
-    }
-    // Drop repeated points (a vertex on the plane is reached through two edges).
-    auto& pts = poly.points;
-    pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
-    while (pts.size() > 1 && pts.front() == pts.back()) pts.pop_back();
-    if (pts.size() >= 3) out.push_back(std::move(poly));
+  for (const CutLoop& loop :
+       cut_by_plane(points.data(), triangles, Plane{value * normal, normal})) {
+    SlicePolygon poly{-1, {}, loop.closed};
+    for (const Vec3& x : loop.points) poly.points.push_back({x[u], x[w]});
+    out.push_back(std::move(poly));
   }
   return out;
 }

@@ -51,10 +51,12 @@ struct Slice {
 // Cuts a frame. A plane outside the walls of a non-periodic axis is an InputError.
 Slice cut_frame(const Frame& frame, const SlicePlane& plane);
 
-// The cross-section(s) of one closed triangle mesh with the plane points[.][axis] = value:
-// closed polygons in the coordinates of the two other axes. Vertices exactly on the plane
-// count as above it (a symbolic perturbation), so every crossing is well defined; polygons
-// with fewer than 3 distinct points (a plane touching a vertex) are dropped.
+// The cross-section(s) of one triangle mesh with the plane points[.][axis] = value, by
+// cut_by_plane (mesh/plane_cut.hpp): polygons in the coordinates of the two other axes. A
+// vertex exactly on the plane counts as above it (value <= coordinate), so every crossing is
+// well defined; polygons with fewer than 3 distinct points (a plane touching a vertex) are
+// dropped. Open chains (closed = false) only for a mesh that is not closed; triangles that
+// are not consistently oriented are a SimulationError.
 std::vector<SlicePolygon> cut_mesh(const std::vector<Vec3>& points,
                                    const std::vector<std::array<int, 3>>& triangles, int axis,
                                    double value);

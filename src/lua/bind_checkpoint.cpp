@@ -17,8 +17,8 @@
 
 #include <optional>
 
+#include "checkpoint/state_checkpoint.hpp"
 #include "core/stop_request.hpp"
-#include "io/state_checkpoint.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"

@@ -14,10 +14,6 @@ namespace invasim::lua {
 
 namespace {
 
-std::string format_number(double x) {
-  return format_value(ParamValue(x));
-}
-
 // Shown after "got": the value for numbers (1.5), the type name otherwise.
 std::string got(lua_State* L, int index) {
   if (lua_type(L, index) == LUA_TNUMBER) {
@@ -28,22 +24,6 @@ std::string got(lua_State* L, int index) {
 }
 
 }  // namespace
-
-bool Range::contains(double x) const {
-  const bool above = lo_open ? x > lo : x >= lo;
-  const bool below = hi_open ? x < hi : x <= hi;
-  return above && below;
-}
-
-std::string Range::describe() const {
-  const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
-  if (has_lo && has_hi)
-    return std::string("in ") + (lo_open ? "(" : "[") + format_number(lo) + ", " +
-           format_number(hi) + (hi_open ? ")" : "]");
-  if (has_lo) return (lo_open ? "> " : ">= ") + format_number(lo);
-  if (has_hi) return (hi_open ? "< " : "<= ") + format_number(hi);
-  return "finite";
-}
 
 Kwargs::Kwargs(lua_State* L, int index, std::string owner)
     : L_(L), index_(lua_absindex(L, index)), owner_(std::move(owner)) {

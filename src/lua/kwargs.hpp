@@ -12,29 +12,11 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/range.hpp"
+
 struct lua_State;
 
 namespace invasim::lua {
-
-// Allowed interval of a numeric keyword; the default allows every finite value.
-struct Range {
-  double lo = -std::numeric_limits<double>::infinity();
-  double hi = std::numeric_limits<double>::infinity();
-  bool lo_open = false;
-  bool hi_open = false;
-
-  static Range positive() { return {0.0, hi_inf(), true, false}; }       // > 0
-  static Range non_negative() { return {0.0, hi_inf(), false, false}; }  // >= 0
-  static Range at_least(double lo) { return {lo, hi_inf(), false, false}; }
-  static Range greater_than(double lo) { return {lo, hi_inf(), true, false}; }
-  static Range between(double lo, double hi) { return {lo, hi, false, false}; }  // [lo, hi]
-
-  bool contains(double x) const;
-  std::string describe() const;  // "> 0", ">= 1", "in [0, 1]"
-
- private:
-  static double hi_inf() { return std::numeric_limits<double>::infinity(); }
-};
 
 // The integers of type T as a closed interval of long long (lua_Integer): unsigned types above
 // LLONG_MAX are capped there.

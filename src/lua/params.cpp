@@ -28,9 +28,7 @@ const char* type_name(ParamType type) {
 
 std::string format_value(const ParamValue& value) {
   if (const auto* d = std::get_if<double>(&value)) {
-    char buffer[64];
-    const auto result = std::to_chars(buffer, buffer + sizeof buffer, *d);  // shortest round trip
-    return std::string(buffer, result.ptr);
+    return format_number(*d);
   }
   if (const auto* i = std::get_if<long long>(&value)) return std::to_string(*i);
   if (const auto* b = std::get_if<bool>(&value)) return *b ? "true" : "false";
@@ -108,22 +106,9 @@ ParamValue parse_value(ParamType type, const std::string& key, const std::string
   return raw;
 }
 
-bool ParamRange::contains(double x) const {
-  const bool above = lo_open ? x > lo : x >= lo;
-  const bool below = hi_open ? x < hi : x <= hi;
-  return above && below;
-}
-
-std::string ParamRange::text() const {
-  const auto bound = [](double b) {
-    return std::isinf(b) ? std::string(b < 0 ? "-inf" : "inf") : format_value(ParamValue(b));
-  };
-  return cat(lo_open ? "(" : "[", bound(lo), ", ", bound(hi), hi_open ? ")" : "]");
-}
-
-ParamRange parse_range(const std::string& key, const std::string& raw) {
+Range parse_range(const std::string& key, const std::string& raw) {
   const std::string text = trim(raw);
-  const auto fail = [&](const std::string& why) -> ParamRange {
+  const auto fail = [&](const std::string& why) -> Range {
     fail_input("params: parameter '", key, "': range '", raw, "' ", why);
   };
   const std::string form =
@@ -138,7 +123,7 @@ ParamRange parse_range(const std::string& key, const std::string& raw) {
   const auto lo = parse_double(trim(text.substr(1, comma - 1)));
   const auto hi = parse_double(trim(text.substr(comma + 1, text.size() - comma - 2)));
   if (!lo || !hi || std::isnan(*lo) || std::isnan(*hi)) return fail(form);
-  ParamRange range{*lo, *hi, open == '(', close == ')'};
+  Range range{*lo, *hi, open == '(', close == ')'};
   const bool empty =
       range.lo > range.hi ||
       (range.lo == range.hi && (range.lo_open || range.hi_open || std::isinf(range.lo)));
@@ -162,7 +147,7 @@ bool allowed(const Param& p, const ParamValue& value) {
 
 // "in (0, inf)" or "one of a, b".
 std::string allowed_text(const Param& p) {
-  return p.range ? "in " + p.range->text() : "one of " + join_names(p.choices);
+  return p.range ? "in " + p.range->notation() : "one of " + join_names(p.choices);
 }
 
 // A value as a message quotes it: strings in single quotes.
@@ -254,7 +239,7 @@ std::string format_param_table(const std::vector<Param>& params) {
   };
   // "(0, inf)" for a range, "{a, b}" for choices, "-" for neither.
   const auto allowed_cell = [](const Param& p) {
-    if (p.range) return p.range->text();
+    if (p.range) return p.range->notation();
     if (!p.choices.empty()) return cat("{", join_names(p.choices), "}");
     return std::string("-");
   };

@@ -10,23 +10,13 @@
 #include <variant>
 #include <vector>
 
+#include "core/range.hpp"
+
 namespace invasim::lua {
 
 enum class ParamType { kNumber, kInteger, kBoolean, kString };
 
 using ParamValue = std::variant<double, long long, bool, std::string>;
-
-// The allowed interval of a number or integer parameter, written in interval notation:
-// "[0, 1)", "(0, inf)", "[1, inf)" ('[' ']' inclusive, '(' ')' exclusive).
-struct ParamRange {
-  double lo = -std::numeric_limits<double>::infinity();
-  double hi = std::numeric_limits<double>::infinity();
-  bool lo_open = true;
-  bool hi_open = true;
-
-  bool contains(double x) const;
-  std::string text() const;  // the canonical notation: "(0, inf)"
-};
 
 // One declared parameter; `value` is the default unless an override replaced it. `range`
 // (numbers, integers) and `choices` (strings) restrict the values, defaults included.
@@ -38,7 +28,7 @@ struct Param {
   std::string unit;
   std::string help;
   bool overridden = false;
-  std::optional<ParamRange> range;
+  std::optional<Range> range;  // written in interval notation: "[0, 1)", "(0, inf)"
   std::vector<std::string> choices;
 };
 
@@ -61,7 +51,7 @@ ParamValue parse_value(ParamType type, const std::string& key, const std::string
 // Parses the `range = "..."` of parameter `key`'s declaration: two bounds (numbers, inf or
 // -inf) between '[' or '(' and ']' or ')'. Throws InputError naming the parameter and the text
 // if it is malformed, has a NaN bound or is empty.
-ParamRange parse_range(const std::string& key, const std::string& text);
+Range parse_range(const std::string& key, const std::string& text);
 
 // Why `value` is not allowed for `p` ("must be in (0, inf); got 0", "must be one of a, b; got
 // 'c'"), or "" if it is allowed (or p has no range or choices).

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
-#include <unordered_map>
 
 #include "core/errors.hpp"
 #include "core/rng.hpp"
 #include "mesh/geometry.hpp"
+#include "mesh/plane_cut.hpp"
 
 namespace invasim {
 
@@ -80,60 +80,11 @@ std::vector<SliceProfile> profiles_from_loops(const std::vector<Loop>& loops, co
 
 }  // namespace
 
-std::optional<std::vector<SliceProfile>> slice_mesh(const MeshTopology& topo, const Vec3* x,
-                                                    const Plane& plane) {
-  const int nv = topo.n_vertices();
-  std::vector<double> d(static_cast<std::size_t>(nv));
-  bool pos = false, neg = false;
-  for (int i = 0; i < nv; ++i) {
-    d[i] = (x[i] - plane.point).dot(plane.normal);
-    if (d[i] == 0.0) return std::nullopt;
-    (d[i] > 0.0 ? pos : neg) = true;
-  }
-  if (!(pos && neg)) return std::vector<SliceProfile>{};
-
-  // One cut point per crossed edge, shared by the edge's two faces.
-  std::unordered_map<std::uint64_t, int> point_of_edge;
-  std::vector<Vec3> points;
-  auto cut = [&](int a, int b) {
-    if (a > b) std::swap(a, b);
-    const std::uint64_t key = std::uint64_t(a) * std::uint64_t(nv) + std::uint64_t(b);
-    auto [it, fresh] = point_of_edge.try_emplace(key, int(points.size()));
-    if (fresh) points.push_back(x[a] + d[a] / (d[a] - d[b]) * (x[b] - x[a]));
-    return it->second;
-  };
-  // In an outward-oriented face the cut runs from the edge whose direction (in face order)
-  // goes from + to - towards the edge going from - to +; then the outer boundary of the
-  // cross-section turns counter-clockwise about the normal and holes clockwise. Each cut
-  // point starts one segment and ends one (its edge's two faces see it in opposite
-  // directions), so following the segments closes every loop.
-  std::vector<int> next;
-  int segments = 0;
-  for (const auto& f : topo.faces()) {
-    int from = -1, to = -1;
-    for (int e = 0; e < 3; ++e) {
-      const int a = f[e], b = f[(e + 1) % 3];
-      if (d[a] > 0.0 && d[b] < 0.0) from = cut(a, b);
-      if (d[a] < 0.0 && d[b] > 0.0) to = cut(a, b);
-    }
-    if (from < 0) continue;
-    next.resize(points.size(), -1);
-    if (next[from] >= 0) fail_simulation("slice: mesh is not closed and consistently oriented");
-    next[from] = to;
-    ++segments;
-  }
-  if (segments != int(points.size()))
-    fail_simulation("slice: ", segments, " segments for ", points.size(), " cut points");
-
+std::vector<SliceProfile> slice_mesh(const MeshTopology& topo, const Vec3* x, const Plane& plane) {
   std::vector<Loop> loops;
-  std::vector<char> used(points.size(), 0);
-  for (std::size_t start = 0; start < points.size(); ++start) {
-    if (used[start]) continue;
-    Loop loop;
-    for (int p = int(start); !used[p]; p = next[p]) {
-      used[p] = 1;
-      loop.points.push_back(points[p]);
-    }
+  for (CutLoop& cut : cut_by_plane(x, topo.faces(), plane)) {
+    if (!cut.closed) fail_simulation("slice: mesh is not closed");
+    Loop loop{std::move(cut.points)};
     const std::size_t n = loop.points.size();
     const Vec3& o = loop.points[0];
     for (std::size_t i = 0; i < n; ++i) {
@@ -144,6 +95,7 @@ std::optional<std::vector<SliceProfile>> slice_mesh(const MeshTopology& topo, co
     }
     loops.push_back(std::move(loop));
   }
+  if (loops.empty()) return {};
   return profiles_from_loops(loops, plane.normal);
 }
 
@@ -157,7 +109,7 @@ void SliceOptions::validate() const {
 namespace {
 // Counter-based stream of the slice planes (the first user stream).
 constexpr RngStream kSliceStream = RngStream(std::uint32_t(RngStream::kUser) + 1);
-constexpr int kAttempts = 8;  // redraws of a degenerate plane (one through a vertex)
+constexpr int kAttempts = 8;  // random keys reserved per slice (one used)
 }  // namespace
 
 std::vector<BodySlice> random_slices(const MeshTopology& topo, const Vec3* x,
@@ -167,28 +119,23 @@ std::vector<BodySlice> random_slices(const MeshTopology& topo, const Vec3* x,
   const Vec3 c = vertex_centroid(nv, x);
   std::vector<BodySlice> out;
   for (int m = 0; m < options.per_body; ++m) {
-    std::optional<std::vector<SliceProfile>> cut;
-    Plane plane;
-    for (int attempt = 0; attempt < kAttempts && !cut; ++attempt) {
-      const auto u = RandomKey(options.seed, step, std::uint32_t(body), kSliceStream,
-                               std::uint32_t(m * kAttempts + attempt))
-                         .uniform4();
-      const double z = 2.0 * u[0] - 1.0, rho = std::sqrt(std::max(0.0, 1.0 - z * z));
-      const Vec3 n(rho * std::cos(2.0 * M_PI * u[1]), rho * std::sin(2.0 * M_PI * u[1]), z);
-      double lo = 0.0, hi = 0.0;
-      for (int i = 0; i < nv; ++i) {
-        const double h = (x[i] - c).dot(n);
-        lo = std::min(lo, h);
-        hi = std::max(hi, h);
-      }
-      const double offset = options.offset_fraction * (lo + u[2] * (hi - lo));
-      plane = Plane{c + offset * n, n};
-      cut = slice_mesh(topo, x, plane);
+    // The plane of slice m uses the first of the kAttempts keys reserved for it (planes
+    // through a vertex were redrawn before the on-plane rule of cut_by_plane existed).
+    const auto u = RandomKey(options.seed, step, std::uint32_t(body), kSliceStream,
+                             std::uint32_t(m * kAttempts))
+                       .uniform4();
+    const double z = 2.0 * u[0] - 1.0, rho = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const Vec3 n(rho * std::cos(2.0 * M_PI * u[1]), rho * std::sin(2.0 * M_PI * u[1]), z);
+    double lo = 0.0, hi = 0.0;
+    for (int i = 0; i < nv; ++i) {
+      const double h = (x[i] - c).dot(n);
+      lo = std::min(lo, h);
+      hi = std::max(hi, h);
     }
-    if (!cut)
-      fail_simulation("slices: ", kAttempts, " random planes through body ", body,
-                      " all hit a vertex exactly");
-    for (const SliceProfile& p : *cut) out.push_back({body, m, plane, p, p.shape()});
+    const double offset = options.offset_fraction * (lo + u[2] * (hi - lo));
+    const Plane plane{c + offset * n, n};
+    for (const SliceProfile& p : slice_mesh(topo, x, plane))
+      out.push_back({body, m, plane, p, p.shape()});
   }
   return out;
 }

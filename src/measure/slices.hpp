@@ -1,26 +1,22 @@
 #pragma once
-// Shape of adipocytes (MODEL.md, "Measurements"; the paper's Appendix A): the 3D shape
-// parameter of every body, and random planar cross-sections ("slices", as in a histology
-// section) with their 2D shape parameter A_2D = p^2 / (4 pi s) (p perimeter, s area; 1 for
-// a disc, n tan(pi/n) / pi for a regular n-gon), plus a histogram helper for its
-// distribution. Slices cut the triangle mesh through the vertex centres (the surface whose
-// area and volume define the 3D shape parameter), not the vertex spheres.
+// Shape of adipocytes (docs/measurements_dynamics.md, "Shape of adipocytes"; the paper's
+// Appendix A): the 3D shape parameter of every body, and random planar cross-sections
+// ("slices", as in a histology section) with their 2D shape parameter A_2D = p^2 / (4 pi s)
+// (p perimeter, s area; 1 for a disc, n tan(pi/n) / pi for a regular n-gon), plus a
+// histogram helper for its distribution. Slices cut the triangle mesh through the vertex
+// centres (the surface whose area and volume define the 3D shape parameter), not the vertex
+// spheres, with the one mesh-plane slicer (mesh/plane_cut.hpp).
 #include <cstdint>
-#include <optional>
 #include <span>
 #include <vector>
 
+#include "mesh/plane_cut.hpp"
 #include "state/system.hpp"
 
 namespace invasim {
 
 // 3D shape parameter S^(3/2) / (6 sqrt(pi) V) of every body, in body order.
 std::vector<double> body_shape_parameters(const System& sys);
-
-struct Plane {
-  Vec3 point;   // any point of the plane
-  Vec3 normal;  // unit normal
-};
 
 // One connected region of a cross-section: an outer boundary loop and the hole loops inside
 // it (a region with a hole arises from a cup-shaped body).
@@ -33,10 +29,10 @@ struct SliceProfile {
 };
 
 // Cross-section of a closed, outward-oriented mesh (vertex positions x, unwrapped) by a
-// plane: one profile per connected region (empty if the plane misses the mesh). nullopt if
-// the plane contains a vertex exactly (a degenerate cut: draw another plane).
-std::optional<std::vector<SliceProfile>> slice_mesh(const MeshTopology& topo, const Vec3* x,
-                                                    const Plane& plane);
+// plane with a unit normal: one profile per connected region (empty if the plane misses the
+// mesh). Cut by cut_by_plane, so a vertex exactly on the plane counts as on the normal's
+// positive side (mesh/plane_cut.hpp).
+std::vector<SliceProfile> slice_mesh(const MeshTopology& topo, const Vec3* x, const Plane& plane);
 
 struct SliceOptions {
   int per_body = 10;  // random planes per body
@@ -61,8 +57,8 @@ struct BodySlice {
 
 // per_body random slices of one mesh: unit normals uniform on the sphere, plane through the
 // centroid shifted along the normal uniformly within offset_fraction of the extent of the
-// vertices on each side. Planes are pure functions of (seed, step, body, slice index);
-// degenerate planes are redrawn. Profiles come in slice order.
+// vertices on each side. Planes are pure functions of (seed, step, body, slice index).
+// Profiles come in slice order.
 std::vector<BodySlice> random_slices(const MeshTopology& topo, const Vec3* x,
                                      const SliceOptions& options, std::uint64_t step, int body);
 // Random slices of every body of a system (step = sys.step), in body order; parallel over

@@ -1,7 +1,7 @@
 #pragma once
-// Time correlation functions of a fixed group of sites (MODEL.md, "Measurements"), with many
-// time origins and bounded memory: velocity autocorrelation C_vv(t) (the paper's
-// per-particle normalisation and the standard one), orientation autocorrelation
+// Time correlation functions of a fixed group of sites (docs/measurements_dynamics.md, "Time
+// correlators"), with many time origins and bounded memory: velocity autocorrelation C_vv(t) (the
+// paper's per-particle normalisation and the standard one), orientation autocorrelation
 // <n(0).n(t)>, mean-square displacement of the unwrapped positions, the non-Gaussian
 // parameter and the self-intermediate scattering function F_s(k, t). Decorrelation times
 // tau_d (C_vv = 1/e) and tau_r (F_s = 1/e) by linear interpolation between lags.

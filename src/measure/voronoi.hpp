@@ -1,11 +1,11 @@
 #pragma once
-// Voronoi measurements (MODEL.md "Measurements"): the tessellation of all sites (cancer-cell
-// centres and adipocyte vertices) in the box with walls in x and periodic y, z; from it the
-// interfacial area A_t, the adipocyte surfaces S_i, A_t^max, the Voronoi cell volumes and the
-// local adipocyte packing fraction. Definitions and decisions: docs/measurements.md.
+// Voronoi measurements (docs/measurements.md, "Voronoi tessellation"): the tessellation of all
+// sites (cancer-cell centres and adipocyte vertices) in the box with walls in x and periodic y, z;
+// from it the interfacial area A_t, the adipocyte surfaces S_i, A_t^max, the Voronoi cell volumes
+// and the local adipocyte packing fraction. Definitions and decisions: docs/measurements.md.
 //
-// Method (ARCHITECTURE.md): CGAL's 3D Delaunay triangulation of the sites plus their periodic
-// images in y, z and their mirror images across the walls within a margin around the box.
+// Method (docs/measurements.md, "Method"): CGAL's 3D Delaunay triangulation of the sites plus their
+// periodic images in y, z and their mirror images across the walls within a margin around the box.
 // Every tetrahedron touching a real site is then verified against the infinite unfolded point
 // set (no image anywhere inside its circumsphere; missing images found there are inserted), so
 // every real cell is exact. Only voronoi.cpp includes CGAL.
@@ -62,7 +62,7 @@ VoronoiTessellation tessellate(const Box& box, const std::vector<Vec3>& points,
                                const VoronoiOptions& opt = {},
                                const std::vector<double>& weights = {});
 
-// The Voronoi measurements of one configuration (MODEL.md "Measurements").
+// The Voronoi measurements of one configuration (docs/measurements.md, "Voronoi tessellation").
 struct VoronoiMeasurement {
   double interface_area = 0.0;         // A_t = cancer_adipocyte_area + cancer_wall_area
   double cancer_adipocyte_area = 0.0;  // faces between cancer-cell and vertex cells

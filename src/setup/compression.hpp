@@ -1,5 +1,5 @@
 #pragma once
-// Athermal isotropic compression (MODEL.md, protocol step 2): scale the box and the body
+// Athermal isotropic compression (docs/model.md, protocol step 2): scale the box and the body
 // centres so that phi grows by a fixed fraction per step (adipocytes move rigidly), then
 // minimise with FIRE; repeat until the total packing fraction reaches the target. The last
 // step lands exactly on the target. Also the affine rescale to an adipocyte packing fraction

@@ -1,5 +1,5 @@
 #pragma once
-// Dilute random placement without overlaps (MODEL.md, protocol step 1): cancer cells and
+// Dilute random placement without overlaps (docs/model.md, protocol step 1): cancer cells and
 // adipocytes at random positions inside given x ranges (all of y and z), each body treated
 // as a ball (a cell: its diameter; an adipocyte: mesh radius + vertex radius) that must not
 // overlap any ball already placed. With walls in x the balls stay between the walls; in a box
@@ -7,13 +7,10 @@
 // numbers come from the system seed (stream kPlacement), so a placement is reproducible.
 #include <vector>
 
+#include "core/range.hpp"
 #include "state/system.hpp"
 
 namespace invasim {
-
-struct Range {
-  double lo, hi;
-};
 
 struct SpherePlacement {
   int n = 0;

@@ -63,7 +63,7 @@ class System {
                double vertex_diameter, std::vector<double> ref_area, double ref_volume,
                double mass = 1.0);
   // Adds `shape` scaled by `radius` at `center`, with reference areas scaled by one common
-  // factor so that the reference shape parameter is `shape_param` (the MODEL.md decision)
+  // factor so that the reference shape parameter is `shape_param` (docs/model.md, "Bodies")
   // and reference volume the initial one.
   int add_mesh_scaled(const MeshShape& shape, const Vec3& center, double radius,
                       double vertex_diameter, double shape_param, double mass = 1.0);

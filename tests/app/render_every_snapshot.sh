@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 16 test: `invasim render` accepts every snapshot of a run whose box moves. A short
+# Test: `invasim render` accepts every snapshot of a run whose box moves. A short
 # invasion run (the piston moves the left wall every step) writes a frame every 50 steps;
 # each frame's cells (.xyz), adipocytes (.vtp) and spheres (.vtp) file is rendered. The XYZ
 # stores Origin and the Lattice lengths, the VTP box_lo and box_hi; for some boxes

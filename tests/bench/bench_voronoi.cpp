@@ -1,6 +1,6 @@
 // Time per evaluation of the Voronoi measurement (measure_voronoi) on the paper's two system
 // sizes: 28 adipocytes + 1500 cancer cells and 128 + 7000, each placed de-mixed and dilute
-// (MODEL.md protocol step 1) and compressed to phi = 0.72 with loose minimisations, which
+// (docs/model.md, protocol step 1) and compressed to phi = 0.72 with loose minimisations, which
 // gives a dense configuration of realistic structure (box ~ 17 and ~ 28).
 // Prints wall and CPU time per evaluation. Usage: bench_voronoi [evaluations=20]
 #include <chrono>

@@ -9,11 +9,11 @@
 #include <filesystem>
 #include <string>
 
+#include "checkpoint/state_checkpoint.hpp"
 #include "integrate/dynamics.hpp"
 #include "io/atomic_file.hpp"
 #include "io/render_slice.hpp"
 #include "io/snapshot_writer.hpp"
-#include "io/state_checkpoint.hpp"
 #include "io/text_format.hpp"
 #include "io_test_support.hpp"
 

@@ -1,9 +1,9 @@
--- Issue 10 test: with the protocols' default vertex bath, passive cancer cells and adipocyte
+-- Test: with the protocols' default vertex bath, passive cancer cells and adipocyte
 -- vertices equilibrate: T_c/T_a = 1 within 2 % on the reduced system (8 adipocytes, 400
 -- cells) at k_B T = 0.3 P sigma^3 (the paper: "for the passive model, T_c and T_a
 -- equilibrate"). The mean of T_c/T_a over the production has a block-averaging error well
 -- below 2 % (asserted < 0.5 %). With --set vertex_bath=damped --set vertex_gamma=0.2 (the
--- bath before issue 10) it fails: T_c/T_a is about 20.
+-- protocols' earlier default bath) it fails: T_c/T_a is about 20.
 package.path = "../../protocols/?.lua;" .. package.path
 local iv = require("invasim")
 local decl = require("lib.protocol").declarations()

@@ -1,4 +1,4 @@
--- Issue 5 test: stage A + checkpoint + stage B equals one continuous run, bit for bit.
+-- Test: stage A + checkpoint + stage B equals one continuous run, bit for bit.
 -- A tissue (cells active with thermal noise, damped vertices, tethers with heterogeneity, a
 -- pressure wall with a pressure ramp, a correlator) runs 2N steps straight; the same
 -- preparation run N steps, saved, then a freshly built copy loads the checkpoint and runs N
@@ -54,7 +54,7 @@ local second = build()
 local extra = iv.load_checkpoint(path, { system = second.sys, dynamics = second.dyn,
                                          tethers = second.tethers, correlator = second.correlator })
 assert(extra == "stage B next", "extra: " .. extra)
--- The run identity sections (issue 17): absent outside a run, stored and read back when given.
+-- The run identity sections: absent outside a run, stored and read back when given.
 local id, text = iv.checkpoint_run(path)
 assert(id == nil and text == nil, "a checkpoint saved without run_id has no run identity")
 local stamped = iv.out_dir .. "/stamped.ckpt"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 17, item 2: a run started with --from RUN_DIR and killed before its first checkpoint
+# A run started with --from RUN_DIR and killed before its first checkpoint
 # (here: during its quench) starts again, on --resume, from the same compressed tissue
 # (resume.txt records --from), and ends exactly like the same run never interrupted.
 # Usage: from_resume.sh INVASIM WORKDIR

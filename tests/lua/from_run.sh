@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 5 test: `invasim run --from RUN_DIR` starts from the compressed tissue that RUN_DIR
+# Test: `invasim run --from RUN_DIR` starts from the compressed tissue that RUN_DIR
 # saved (no compression of its own), with its own seed and parameters.
 set -euo pipefail
 invasim=$1

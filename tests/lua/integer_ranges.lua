@@ -1,4 +1,4 @@
--- Issue 17 item 5: every integer argument is range-checked before it reaches C++ (no silent
+-- Every integer argument is range-checked before it reaches C++ (no silent
 -- truncation to int or size_t); a fractional number is refused. Each refusal names the
 -- function, the key (or argument), the value, the allowed range and this file's line.
 local iv = require("invasim")

@@ -1,4 +1,4 @@
--- Issue 10 item 4 test: lib.packing_drift, the packing-fraction scan's report of the measured
+-- Test: lib.packing_drift, the packing-fraction scan's report of the measured
 -- phi_a beside the target, on synthetic production series: the mean over all samples, the
 -- first and final values, the warning when the mean is further than `drift` from the target,
 -- and its input errors.

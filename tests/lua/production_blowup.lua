@@ -1,4 +1,4 @@
--- Issue 5 test: a production run that blows up (here: a time step far beyond stability)
+-- Test: a production run that blows up (here: a time step far beyond stability)
 -- stops with the engine's diagnostic (step, site, value) and names the last good checkpoint,
 -- which stays intact and loadable.
 package.path = "../../protocols/?.lua;" .. package.path

@@ -1,4 +1,4 @@
--- Issue 4/5 test: the production stage's observers write the run directory: series.csv
+-- Test: the production stage's observers write the run directory: series.csv
 -- (header with units, one row per `every` steps, A_t within [0, A_t^max]), correlations.csv
 -- (C_vv(0) = F_s(0) = 1), shapes.csv, summary.json, params.json, log.txt and snapshots;
 -- series.csv and the summary report T_c/T_a and kT_c_paper (= 2 T_c, the paper's convention).

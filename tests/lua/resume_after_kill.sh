@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# Issue 5 test: a run killed by SIGTERM during production and continued with
+# Test: a run killed by SIGTERM during production and continued with
 # `invasim run --resume DIR` ends exactly like a run that was never interrupted: the last
 # snapshot (positions, velocities, orientations in shortest round-trip form), series.csv and
 # correlations.csv are identical. The kill waits for the first checkpoint of production (an
-# event, not a time: issue 17, item 8). Usage: resume_after_kill.sh INVASIM WORKDIR
+# event, not a time). Usage: resume_after_kill.sh INVASIM WORKDIR
 set -euo pipefail
 invasim=$1
 work=$2

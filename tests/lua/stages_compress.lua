@@ -1,4 +1,4 @@
--- Issue 3 test: the init + compress stages on a small tissue (8 adipocytes, 400 cancer cells)
+-- Test: the init + compress stages on a small tissue (8 adipocytes, 400 cancer cells)
 -- reach the target packing fraction within 1e-3, leave every site force below the final
 -- tolerance, keep each adipocyte's volume within 1 % of its reference, and keep the two
 -- populations de-mixed with a planar interface. De-mixed here means: the cancer cells as a

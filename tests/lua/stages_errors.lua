@@ -1,4 +1,4 @@
--- Issue 3 test: the stage library's keyword checking. Every stage rejects an unknown key
+-- Test: the stage library's keyword checking. Every stage rejects an unknown key
 -- (naming it, suggesting the nearest and listing the valid ones), a wrong type, a missing
 -- required key and a wrong order of stages, with the caller's file and line.
 package.path = "../../protocols/?.lua;" .. package.path
@@ -32,7 +32,7 @@ expect_error("heterogeneity: the tissue has no tethers; run the tether stage fir
 expect_error("production: run the quench stage first", require("lib.production"), tissue, { steps = 10 })
 expect_error("quench: key 'P' must be a number or an invasim.ramp{}, got string",
              require("lib.quench"), tissue, { P = "high" })
--- Values out of range, for stages called directly (issue 17: f0 = -1 ran as athermal cells,
+-- Values out of range, for stages called directly (before ranges were checked, f0 = -1 ran as athermal cells,
 -- every = 0 failed with a raw "attempt to perform 'n%%0'").
 expect_error("^stages_errors.lua:%d+: quench: key 'f0' = %-1 must be >= 0", require("lib.quench"), tissue, { f0 = -1 })
 expect_error("^stages_errors.lua:%d+: quench: key 'kT' = %-0.5 must be >= 0", require("lib.quench"), tissue, { kT = -0.5 })

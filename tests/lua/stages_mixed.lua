@@ -1,4 +1,4 @@
--- Issue 10 item 5 test: the protocols' `start` and `A_0` parameters reach the engine through
+-- Test: the protocols' `start` and `A_0` parameters reach the engine through
 -- lib/protocol.lua. Run with --set start=mixed --set A_0=1.3 (and a small system): every
 -- adipocyte's reference shape parameter is A_0, the compression of the mixed start reaches
 -- phi, and the packing is genuinely mixed: it fails both de-mixing criteria of

@@ -1,4 +1,4 @@
--- Issue 3 test: a short passive run under the pressure wall. After a quench, the time average
+-- Test: a short passive run under the pressure wall. After a quench, the time average
 -- of the pressure the sites exert on the fixed right wall equals the piston's target P within
 -- its block-averaging error bar (3 standard errors, so that the test checks the physics and
 -- not the luck of one seed: by momentum balance <F_right> = P L_y L_z exactly in steady state).

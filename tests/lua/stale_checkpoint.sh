@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 17, item 1: a run directory belongs to one run.
+# A run directory belongs to one run.
 #  a) a new run into a directory that holds another run is refused before any work, naming
 #     the directory and the ways out (--resume, another --out, --overwrite); nothing changes;
 #  b) --resume refuses a checkpoint written by another run (a run with another P), naming

@@ -1,4 +1,4 @@
--- Issue 10 item 3 check, run by tethers_at_compression.sh on a tethered.lua run directory:
+-- Check run by tethers_at_compression.sh on a tethered.lua run directory:
 -- the tethers saved in its checkpoint (state.ckpt, during production) have rest lengths equal
 -- to (1 -+ lambda) x the adipocyte separations of the compressed tissue the run started from
 -- (`compressed`, a compressed.ckpt), i.e. they were inserted right after compression, before

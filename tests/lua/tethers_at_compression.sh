@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Issue 10 item 3 test: protocols/tethered.lua inserts the tethers right after compression
-# (rest lengths = the separations of the compressed tissue, MODEL.md protocol 4), with and
+# Test: protocols/tethered.lua inserts the tethers right after compression
+# (rest lengths = the separations of the compressed tissue, docs/model.md, protocol step 4), with and
 # without heterogeneity, and a run killed during production and resumed with --resume
 # restores those tethers (same series.csv as the uninterrupted run).
 # Usage: tethers_at_compression.sh INVASIM WORKDIR

@@ -1,4 +1,4 @@
--- Issue 17 item 6: Lua chunks are loaded as text only. Lua does not verify precompiled
+-- Lua chunks are loaded as text only. Lua does not verify precompiled
 -- (binary) chunks, and a corrupted one crashes or hangs the process, so load, loadfile,
 -- dofile and require refuse them with a message naming the file. With TEXT_CHUNKS_OUT set,
 -- writes a corrupted binary chunk there (text_chunks.sh runs it as a protocol).

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 17 item 6: runs text_chunks.lua (load, loadfile, dofile and require refuse binary
+# Runs text_chunks.lua (load, loadfile, dofile and require refuse binary
 # chunks), then a corrupted precompiled chunk as the protocol: invasim must refuse it with
 # exit status 1 and a message naming the file (it used to crash or hang).
 set -euo pipefail

@@ -1,4 +1,4 @@
-# Sourced by the kill-and-resume tests (issue 17, item 8): wait for an event, not for a time.
+# Sourced by the kill-and-resume tests: wait for an event, not for a time.
 # wait_for PID DESCRIPTION COMMAND...: polls COMMAND every 0.1 s until it succeeds. Fails
 # (naming the event that never came) if process PID ends first, or after WAIT_LIMIT seconds
 # (default 1200: a guard against hangs only, never a timing assumption).

@@ -1,4 +1,5 @@
-// Time stepping against exact results (MODEL.md, "Equations of motion" and "Measurements"):
+// Time stepping against exact results (docs/model.md, "Equations of motion";
+// docs/measurements_dynamics.md):
 // Langevin temperature of free particles, rotational diffusion of active orientations, the
 // velocity autocorrelation of free active particles, energy and momentum conservation of
 // the undamped integrator, and the pressure-controlled wall.
@@ -649,7 +650,7 @@ TEST_CASE(
       "[dynamics] pressure wall at rest after %d000 steps: P = %g, left wall %.8g, right "
       "wall %.8g, virial pressure %.8g, L_x = %.4f\n",
       chunks, P, p_left, p_right, p_virial, sys.box().length(0));
-  // MODEL.md asks for 1%; at rest the balance is exact to the residual motion (~1e-7).
+  // 1 % would do for a moving wall; at rest the balance is exact to the residual motion (~1e-7).
   CHECK(p_left == Approx(P).epsilon(1e-4));
   CHECK(p_right == Approx(P).epsilon(1e-4));
   CHECK(p_virial == Approx(P).epsilon(1e-4));

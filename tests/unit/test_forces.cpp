@@ -27,7 +27,7 @@ void report(const char* what, double value) {
   if (std::getenv("INVASIM_TEST_VERBOSE")) std::printf("  %-58s %.3e\n", what, value);
 }
 
-// MODEL.md pair forms, written independently of the engine.
+// The pair forms of docs/model.md ("Forces"), written independently of the engine.
 double model_linear_energy(double r, double s, double eps) {
   return r >= s ? 0.0 : 0.5 * eps * (1.0 - r / s) * (1.0 - r / s);
 }
@@ -80,7 +80,7 @@ double brute_contact_energy(const System& sys, const ContactParams& p, std::arra
   return e;
 }
 
-// Brute-force contact forces from MODEL.md's pair forms (all pairs, minimum image).
+// Brute-force contact forces from the pair forms of docs/model.md (all pairs, minimum image).
 std::vector<Vec3> brute_contact_forces(const System& sys, const ContactParams& p) {
   const Sites& s = sys.sites();
   std::vector<Vec3> f(s.size(), Vec3::Zero());
@@ -284,7 +284,7 @@ ContactParams cohesive_params() {
 // Pair forms
 
 TEST_CASE(
-    "linear_spring matches MODEL.md: F = (eps/s)(1 - r/s), U = eps/2 (1 - r/s)^2, 0 beyond s") {
+    "linear_spring matches the model: F = (eps/s)(1 - r/s), U = eps/2 (1 - r/s)^2, 0 beyond s") {
   const double s = 1.1, eps = 0.7;
   CHECK(linear_spring(0.0, s, eps).force == Approx(eps / s).epsilon(1e-15));
   CHECK(linear_spring(0.0, s, eps).energy == Approx(eps / 2).epsilon(1e-15));
@@ -301,7 +301,7 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "cohesive_spring matches MODEL.md: continuous, -eps beta/s at r_b, zero at r_a and beyond") {
+    "cohesive_spring matches the model: continuous, -eps beta/s at r_b, zero at r_a and beyond") {
   const double eps = 1.0, alpha = 0.2;
   for (double beta : {1e-4, 1e-3, 1e-2}) {
     for (double s : {0.9, 1.0, 1.1}) {
@@ -340,7 +340,7 @@ TEST_CASE(
         CHECK(lo.force == Approx(hi.force).margin(1e-10));
         CHECK(lo.energy == Approx(hi.energy).margin(1e-10));
       }
-      // Force and energy equal MODEL.md's piecewise force and its integral everywhere.
+      // Force and energy equal the model's piecewise force and its integral everywhere.
       for (double r = 0.0; r < 1.4 * s; r += 0.00731) {
         const PairEval pe = cohesive_spring(r, s, eps, alpha, beta);
         CHECK(pe.force == Approx(model_cohesive_force(r, s, eps, alpha, beta)).margin(1e-13));
@@ -357,7 +357,7 @@ TEST_CASE(
 // Contact forces
 
 TEST_CASE(
-    "contact energy and forces equal the all-pairs MODEL.md sums; same-adipocyte vertices "
+    "contact energy and forces equal the all-pairs model sums; same-adipocyte vertices "
     "excluded") {
   for (double skin : {0.0, 0.3}) {
     CAPTURE(skin);
@@ -497,7 +497,7 @@ TEST_CASE("coincident and nearly coincident sites: finite, equal and opposite, m
 // Walls, shape, tethers
 
 TEST_CASE(
-    "wall energy, forces and reactions equal MODEL.md's: (eps/s)(1 - d/s) into the box, s = own "
+    "wall energy, forces and reactions equal the model's: (eps/s)(1 - d/s) into the box, s = own "
     "diameter") {
   System sys = near_walls(120, 33);
   sys.sites().pos[0][0] = -3.05;
@@ -582,7 +582,7 @@ TEST_CASE("shape forces are minus the gradient of the shape energy (finite diffe
   }
 }
 
-TEST_CASE("tethers: zero energy at insertion, MODEL.md energy with minimum image after moves") {
+TEST_CASE("tethers: zero energy at insertion, model energy with minimum image after moves") {
   System sys = tether_system(52);
   TetherForce tf(2.5);
   const double dc = tf.connect_by_mean_degree(sys, 6.0);

@@ -6,12 +6,12 @@
 #include <fstream>
 
 #include "../io/io_test_support.hpp"
+#include "checkpoint/state_checkpoint.hpp"
 #include "core/fnv1a.hpp"
 #include "integrate/dynamics.hpp"
 #include "io/atomic_file.hpp"
 #include "io/checkpoint.hpp"
 #include "io/crc32.hpp"
-#include "io/state_checkpoint.hpp"
 #include "test_support.hpp"
 
 using namespace invasim;

@@ -193,7 +193,7 @@ TEST_CASE("render from snapshot files: the same counts and the documented SVG el
                     Contains("cannot read snapshot '" + vtp.string() + "'"));
 }
 
-// Issue 16: the XYZ stores Origin and the Lattice length, the VTP box_lo and box_hi; with this
+// The XYZ stores Origin and the Lattice length, the VTP box_lo and box_hi; with this
 // box (from a pressure-wall run) lo + (hi - lo) != hi, so an exact comparison refused the frame.
 TEST_CASE("render: the files of one frame agree on a box whose hi does not round-trip") {
   const double lo = -2.2306418519172917, length = 13.360457861364385;

@@ -227,7 +227,7 @@ TEST_CASE("Kwargs errors name the owner, the key and the valid keys", "[lua][kwa
   }
 }
 
-// Issue 17 item 5: integers are checked on the lua_Integer (or the float) before they are
+// Integers are checked on the lua_Integer (or the float) before they are
 // narrowed to the C++ type: 2^32 + 5 used to become 5 in an int, 1e12 a negative int.
 TEST_CASE("Kwargs integers are range-checked before narrowing", "[lua][kwargs]") {
   LuaState state;
@@ -360,18 +360,18 @@ TEST_CASE("invasim.params errors", "[lua][params]") {
 }
 
 TEST_CASE("parse_range reads interval notation", "[lua][params]") {
-  const ParamRange half_open = parse_range("x", "[0, 1)");
+  const Range half_open = parse_range("x", "[0, 1)");
   CHECK(half_open.contains(0.0));
   CHECK(half_open.contains(0.999));
   CHECK_FALSE(half_open.contains(1.0));
   CHECK_FALSE(half_open.contains(-1e-12));
-  CHECK(half_open.text() == "[0, 1)");
-  const ParamRange positive = parse_range("dt", " ( 0 ,inf ) ");
+  CHECK(half_open.notation() == "[0, 1)");
+  const Range positive = parse_range("dt", " ( 0 ,inf ) ");
   CHECK_FALSE(positive.contains(0.0));
   CHECK(positive.contains(1e-300));
   CHECK(positive.contains(1e300));
-  CHECK(positive.text() == "(0, inf)");
-  CHECK(parse_range("x", "(-inf, 2.5e-3]").text() == "(-inf, 0.0025]");
+  CHECK(positive.notation() == "(0, inf)");
+  CHECK(parse_range("x", "(-inf, 2.5e-3]").notation() == "(-inf, 0.0025]");
   CHECK(parse_range("x", "(-inf, +inf)").contains(-1e300));
   CHECK(parse_range("n", "[1, 1]").contains(1.0));
   const std::string form =
@@ -523,7 +523,7 @@ TEST_CASE("invasim.params reads range and choices and checks them first", "[lua]
     REQUIRE(params.size() == 2);
     CHECK(params[0].choices == std::vector<std::string>{"a", "b"});
     REQUIRE(params[1].range);
-    CHECK(params[1].range->text() == "[0, 10]");
+    CHECK(params[1].range->notation() == "[0, 10]");
   }
 }
 

@@ -1,4 +1,4 @@
-// Issue 17 item 7: no C++ memory is lost when Lua runs out of memory inside a binding. Lua
+// No C++ memory is lost when Lua runs out of memory inside a binding. Lua
 // (Debian's, built as C) raises errors with longjmp, which skips the destructors of C++
 // objects in the frames it leaves; the bindings therefore make every allocating Lua call in a
 // protected block (binding.hpp). These tests run scripts under a Lua memory limit placed at

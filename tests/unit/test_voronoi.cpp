@@ -1,4 +1,4 @@
-// Voronoi tessellation and measurements (issue 4): exact lattice cells, the two-species
+// Voronoi tessellation and measurements: exact lattice cells, the two-species
 // interface, closure of every random cell, invariances of A_t, the adaptive image margin,
 // local adipocyte packing fractions and the radical variant.
 #include <catch2/catch.hpp>

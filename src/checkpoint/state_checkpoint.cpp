@@ -1,4 +1,4 @@
-#include "io/state_checkpoint.hpp"
+#include "checkpoint/state_checkpoint.hpp"
 
 #include <algorithm>
 

@@ -3,7 +3,8 @@
 // sections"): the whole System, exactly (every double bit-for-bit), and the state of the
 // tether force and of the barostat wall. Each function writes or reads sections named
 // "<prefix>.<field>", so a full checkpoint is composed of several of them (system, forces,
-// integrator, observers) in one CheckpointWriter.
+// integrator, observers) in one CheckpointWriter. It sits above integrate, forces and io
+// (it needs the tether force and the pressure wall), so that io includes neither.
 #include <string>
 
 #include "forces/tether_force.hpp"
