@@ -2,8 +2,8 @@
 """Generates the force regression files tests/regression/*.force.
 
 The references are computed here, independently of the engine's C++ code, straight from the
-formulas of MODEL.md ("Bodies", "Pair forces", "Walls and boundaries", "ECM tethers") and
-docs/model.md (coincident sites): pair sums over all pairs with the minimum image, wall terms,
+formulas of the model (docs/model.md: bodies, pair forces, walls, ECM tethers), including
+its rule for coincident sites: pair sums over all pairs with the minimum image, wall terms,
 mesh volume/area energies with their analytic gradient (checked here against central finite
 differences), tethers between vertex centroids. Sums use math.fsum (correctly rounded).
 Plain python3, no numpy.
@@ -114,7 +114,7 @@ class Body:
         x0 = [add(center, mul(radius, v)) for v in unit]
         self.ref_volume = mesh_volume(x0, self.faces)
         areas = [face_area(x0, f) for f in self.faces]
-        # MODEL.md decision: one common factor so that A_0 = shape_param exactly.
+        # docs/model.md, reference state: one common factor so that A_0 = shape_param exactly.
         total = shape_param * 6.0 * math.sqrt(math.pi) * self.ref_volume
         k = total ** (2.0 / 3.0) / math.fsum(areas)
         self.ref_area = [k * a for a in areas]
@@ -203,7 +203,7 @@ def branch(ki, kj, r, s, alpha, beta):
 
 
 def contact_forces(cfg):
-    """All pairs (i < j), minimum image, of wrapped positions; MODEL.md pair forms."""
+    """All pairs (i < j), minimum image, of wrapped positions; the pair forms of docs/model.md."""
     p, box = cfg.params, cfg.box
     COVERAGE[cfg.name] = __import__("collections").Counter()
     sites = cfg.sites()

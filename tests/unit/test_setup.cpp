@@ -221,7 +221,7 @@ TEST_CASE("compression of the paper's system reaches phi = 0.72, volumes kept, d
   check_compression(28, 1500, 1e-3, 1e-6);
 }
 
-// Issue 11: a compression stopped by its callback (a stop signal) after step k and continued
+// A compression stopped by its callback (a stop signal) after step k and continued
 // with the report so far (as --resume does from compressing.ckpt, with fresh forces) ends
 // bit for bit like one never stopped.
 TEST_CASE("a compression stopped at a step boundary continues bit for bit") {
