@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 11, item 2: a run stopped by SIGTERM during its compression writes a checkpoint of the
+# A run stopped by SIGTERM during its compression writes a checkpoint of the
 # partly compressed tissue (checkpoint/compressing.ckpt, at the boundary of a compression
 # step), and `invasim run --resume DIR` continues the compression to the same compressed
 # tissue as a run never interrupted (byte-identical compressed.ckpt), then runs quench and
@@ -14,7 +14,6 @@ work=$2
 cd "$(dirname "$0")"
 . ./wait_for.sh
 rm -rf "$work" && mkdir -p "$work"
-fail() { echo "FAILED: $1"; [ -n "${2:-}" ] && cat "$2"; exit 1; }
 args=(run ../../protocols/invasion.lua --set N_a=4 --set N_c=60 --set L0=32.0 --set quench_steps=500
       --set steps=1000 --set every=200 --set checkpoint_every=1000 --set snapshot_every=0)
 "$invasim" "${args[@]}" --out "$work/straight" > "$work/straight.log" 2>&1 || fail "straight run" "$work/straight.log"
@@ -23,10 +22,7 @@ args=(run ../../protocols/invasion.lua --set N_a=4 --set N_c=60 --set L0=32.0 --
 pid=$!
 wait_for "$pid" "the third compression step (its 'compress: step 3:' line in log.txt)" \
   grep -qs "^compress: step 3: " "$work/killed/log.txt" || { cat "$work/killed.log"; exit 1; }
-kill -TERM "$pid"
-status=0
-wait "$pid" || status=$?
-[ "$status" -eq 1 ] || fail "the killed run exited with $status (expected 1)" "$work/killed.log"
+stop_with_sigterm "$pid" "$work/killed.log" "the killed run"
 grep -qF "checkpoint saved to $work/killed/checkpoint/compressing.ckpt; continue with: invasim run --resume $work/killed" "$work/killed.log" ||
   fail "no stop message naming the checkpoint and --resume" "$work/killed.log"
 grep -q "stopped by SIGTERM during compression after step [0-9]* (phi = " "$work/killed.log" ||
@@ -70,10 +66,7 @@ done
 pid=$!
 wait_for "$pid" "the last compression step (its 'compress: step $total:' line in log.txt)" \
   grep -qs "^compress: step $total: " "$work/final/log.txt" || { cat "$work/final.log"; exit 1; }
-kill -TERM "$pid"
-status=0
-wait "$pid" || status=$?
-[ "$status" -eq 1 ] || fail "the run killed in its final FIRE exited with $status (expected 1)" "$work/final.log"
+stop_with_sigterm "$pid" "$work/final.log" "the run killed in its final FIRE"
 grep -qF "stopped by SIGTERM after the compression (phi = 0.7200); checkpoint saved to $work/final/checkpoint/compressing.ckpt" "$work/final.log" ||
   fail "the signal during the final FIRE did not stop the run after it" "$work/final.log"
 "$invasim" run --resume "$work/final" > "$work/final_resumed.log" 2>&1 || fail "--resume after the final FIRE" "$work/final_resumed.log"

@@ -9,7 +9,6 @@ work=$2
 cd "$(dirname "$0")"
 . ./wait_for.sh
 rm -rf "$work" && mkdir -p "$work"
-fail() { echo "FAILED: $1"; [ -n "${2:-}" ] && cat "$2"; exit 1; }
 base=(run ../../protocols/invasion.lua --set N_a=4 --set N_c=60 --set L0=32.0 --set every=200
       --set snapshot_every=0 --set correlate_every=0)
 "$invasim" "${base[@]}" --set quench_steps=200 --set steps=200 --out "$work/first" > "$work/first.log" 2>&1 ||
@@ -23,10 +22,7 @@ pid=$!
 # The quench's first line is logged before its steps: the signal lands in the quench.
 wait_for "$pid" "the start of the quench (its 'quench: P =' line in log.txt)" \
   grep -qs "^quench: P = " "$work/killed/log.txt" || { cat "$work/killed.log"; exit 1; }
-kill -TERM "$pid"
-status=0
-wait "$pid" || status=$?
-[ "$status" -eq 1 ] || fail "the killed run exited with $status" "$work/killed.log"
+stop_with_sigterm "$pid" "$work/killed.log" "the killed run"
 grep -q "stopped by SIGTERM during quench at step" "$work/killed.log" ||
   fail "the signal did not land in the quench" "$work/killed.log"
 grep -qF "invasim run --resume $work/killed starts the run again from the beginning" "$work/killed.log" ||

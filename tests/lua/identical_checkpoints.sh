@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
-# Issue 11, item 2: two identical runs write byte-identical checkpoints (state.ckpt and
+# Two identical runs write byte-identical checkpoints (state.ckpt and
 # compressed.ckpt): the protocol's Lua state is written with its keys in a fixed order, and no
 # wall-clock time goes into a checkpoint. Usage: identical_checkpoints.sh INVASIM WORKDIR
 set -euo pipefail
 invasim=$1
 work=$2
 cd "$(dirname "$0")"
+. ./wait_for.sh
 rm -rf "$work" && mkdir -p "$work"
-fail() { echo "FAILED: $1"; [ -n "${2:-}" ] && cat "$2"; exit 1; }
 args=(run ../../protocols/invasion.lua --set N_a=4 --set N_c=60 --set L0=32.0 --set quench_steps=500
       --set steps=2000 --set every=200 --set checkpoint_every=1000)
 for run in a b; do

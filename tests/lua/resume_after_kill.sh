@@ -28,12 +28,7 @@ checkpoint_written() {
 wait_for "$pid" "the first production checkpoint (checkpoint/state.ckpt and its line in log.txt)" \
   checkpoint_written || { cat "$work/killed.log"; exit 1; }
 first=$(grep -o "^production: checkpoint of step [0-9]*" "$work/killed/log.txt" | head -1 | grep -o "[0-9]*$")
-kill -TERM "$pid"
-status=0
-wait "$pid" || status=$?
-if [ "$status" -ne 1 ]; then
-  echo "FAILED: the killed run exited with $status (expected 1)"; cat "$work/killed.log"; exit 1
-fi
+stop_with_sigterm "$pid" "$work/killed.log" "the killed run"
 grep -q "stopped by SIGTERM at step [0-9]*.*checkpoint saved to .*continue with: invasim run --resume" "$work/killed.log" ||
   { echo "FAILED: no stop message from production"; cat "$work/killed.log"; exit 1; }
 # The signal landed in production, after the checkpoint we waited for.

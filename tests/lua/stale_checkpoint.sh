@@ -14,7 +14,6 @@ work=$2
 cd "$(dirname "$0")"
 . ./wait_for.sh
 rm -rf "$work" && mkdir -p "$work"
-fail() { echo "FAILED: $1"; [ -n "${2:-}" ] && cat "$2"; exit 1; }
 small=(run ../../protocols/invasion.lua --set N_a=4 --set N_c=60 --set L0=32.0 --set steps=400 --set every=200 --set snapshot_every=200 --set checkpoint_every=200
        --set correlate_every=0)
 run_id() { grep -o '^# run_id=[0-9a-f]*' "$1/resume.txt" | cut -d= -f2; }
@@ -67,10 +66,7 @@ compressing() {
 }
 wait_for "$pid" "the compression of the new run (its 'compress:' line in log.txt)" compressing ||
   { cat "$work/killed.log"; exit 1; }
-kill -TERM "$pid"
-status=0
-wait "$pid" || status=$?
-[ "$status" -eq 1 ] || fail "c) the killed run exited with $status" "$work/killed.log"
+stop_with_sigterm "$pid" "$work/killed.log" "c) the killed run"
 grep -qE "stopped by SIGTERM (during compression after step|after the compression|during quench at step)" "$work/killed.log" ||
   fail "c) the signal did not land before production" "$work/killed.log"
 grep -qF "run: --overwrite: deleted the previous run's params.json, resume.txt, log.txt, series.csv, summary.json, shapes.csv, checkpoint, snapshots in $work/run" "$work/killed.log" ||

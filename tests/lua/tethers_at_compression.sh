@@ -8,6 +8,7 @@ set -euo pipefail
 invasim=$1
 work=$2
 cd "$(dirname "$0")"
+. ./wait_for.sh
 rm -rf "$work" && mkdir -p "$work"
 size=(--set N_a=8 --set N_c=60 --set L0=40.0)
 args=(run ../../protocols/tethered.lua "${size[@]}" --set quench_steps=300 --set equilibrate_steps=100
@@ -39,14 +40,10 @@ long=("${args[@]}" --from "$work/run_0" --set steps=8000 --set lambda=0.3)
 "$invasim" "${long[@]}" --out "$work/straight" > "$work/straight.log" 2>&1
 "$invasim" "${long[@]}" --out "$work/killed" > "$work/killed.log" 2>&1 &
 pid=$!
-for _ in $(seq 1 1200); do
-  [ -f "$work/killed/checkpoint/state.ckpt" ] && break
-  sleep 0.05
-done
-kill -TERM "$pid"
-status=0
-wait "$pid" || status=$?
-[ "$status" -eq 1 ] || { echo "FAILED: the killed run exited with $status (expected 1)"; cat "$work/killed.log"; exit 1; }
+# Wait for the first production checkpoint (an event, not a time), then stop the run.
+wait_for "$pid" "the first production checkpoint (its line in log.txt)" \
+  grep -qs "^production: checkpoint of step " "$work/killed/log.txt" || { cat "$work/killed.log"; exit 1; }
+stop_with_sigterm "$pid" "$work/killed.log" "the killed run"
 "$invasim" run --resume "$work/killed" > "$work/resumed.log" 2>&1 ||
   { echo "FAILED: resume"; cat "$work/resumed.log"; exit 1; }
 grep -q "resumed at step" "$work/resumed.log" || { echo "FAILED: did not resume"; cat "$work/resumed.log"; exit 1; }

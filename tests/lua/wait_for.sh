@@ -1,4 +1,5 @@
-# Sourced by the kill-and-resume tests: wait for an event, not for a time.
+# Sourced by the kill-and-resume tests: wait for an event, not for a time; stop a run as a
+# batch system would; report a failure.
 # wait_for PID DESCRIPTION COMMAND...: polls COMMAND every 0.1 s until it succeeds. Fails
 # (naming the event that never came) if process PID ends first, or after WAIT_LIMIT seconds
 # (default 1200: a guard against hangs only, never a timing assumption).
@@ -18,4 +19,20 @@ wait_for() {
     fi
     sleep 0.1
   done
+}
+
+# fail MESSAGE [LOG]: prints the failure (and the log, if given) and exits 1.
+fail() {
+  echo "FAILED: $1"
+  [ -n "${2:-}" ] && cat "$2"
+  exit 1
+}
+
+# stop_with_sigterm PID LOG WHAT: sends SIGTERM to the run PID and waits for it; a run stopped
+# by a signal exits with status 1, anything else fails naming WHAT and showing LOG.
+stop_with_sigterm() {
+  local pid=$1 log=$2 what=$3 status=0
+  kill -TERM "$pid"
+  wait "$pid" || status=$?
+  [ "$status" -eq 1 ] || fail "$what exited with $status (expected 1)" "$log"
 }

@@ -10,20 +10,11 @@
 #include "measure/slices.hpp"
 #include "mesh/geometry.hpp"
 #include "mesh/plane_cut.hpp"
+#include "test_support.hpp"
 
 using namespace invasim;
 
 namespace {
-
-// The unit cube [0, 1]^3 as an outward-oriented triangle mesh; vertex i = (i&1, i>>1&1, i>>2&1).
-MeshShape cube() {
-  std::vector<Vec3> v;
-  for (int i = 0; i < 8; ++i) v.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-  std::vector<MeshTopology::Face> f = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6},
-                                       {0, 1, 5}, {0, 5, 4}, {2, 6, 7}, {2, 7, 3},
-                                       {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
-  return {std::make_shared<const MeshTopology>(8, std::move(f)), std::move(v)};
-}
 
 double polygon_area(const std::vector<Point2>& p) {
   double a = 0.0;
@@ -46,7 +37,7 @@ double polygon_perimeter(const std::vector<Point2>& p) {
 }  // namespace
 
 TEST_CASE("slicer: a vertex on the plane counts as on the normal's positive side", "[slices]") {
-  const MeshShape c = cube();
+  const MeshShape c = test::unit_cube_mesh();
   const std::span<const std::array<int, 3>> tris = c.topology->faces();
   // x + y = 1 contains the vertical edges at (1, 0) and (0, 1): the sqrt(2) x 1 rectangle
   // through them (with collinear corners where face diagonals cross), for either normal.

@@ -19,16 +19,6 @@ using namespace invasim;
 
 namespace {
 
-// Unit cube [0,1]^3, vertex x + 2y + 4z, two outward triangles per side.
-MeshShape cube() {
-  std::vector<Vec3> v;
-  for (int i = 0; i < 8; ++i) v.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-  std::vector<MeshTopology::Face> f = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6},
-                                       {0, 1, 5}, {0, 5, 4}, {2, 6, 7}, {2, 7, 3},
-                                       {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
-  return {std::make_shared<const MeshTopology>(8, std::move(f)), std::move(v)};
-}
-
 // A unit-sphere mesh whose cap theta < 60 deg is pushed in to a parabolic dimple reaching
 // down to z = 0.1: a cup. The plane z = 0.3 cuts it in an annulus of radii
 // sqrt(1 - 0.09) and sin(60 deg) sqrt(1/2).
@@ -137,7 +127,7 @@ std::vector<BodySlice> slices_of(const MeshShape& m, int n, double offset_fracti
 }  // namespace
 
 TEST_CASE("slices of a unit cube are the exact polygons", "[slices]") {
-  const MeshShape c = cube();
+  const MeshShape c = test::unit_cube_mesh();
   // Horizontal: the unit square (with collinear corners where side diagonals cross).
   auto p = cut(c, Vec3(0.2, 0.9, 0.3), Vec3(0, 0, 1));
   REQUIRE(p.size() == 1);

@@ -17,6 +17,17 @@ inline double uniform(std::uint64_t seed, std::uint32_t i, std::uint32_t k) {
   return RandomKey(seed, k / 4, i, RngStream::kPlacement).uniform4()[k % 4];
 }
 
+// The unit cube [0, 1]^3 as an outward-oriented triangle mesh (two triangles per side);
+// vertex i = (i&1, i>>1&1, i>>2&1): a mesh whose plane cuts are known by hand.
+inline MeshShape unit_cube_mesh() {
+  std::vector<Vec3> v;
+  for (int i = 0; i < 8; ++i) v.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+  std::vector<MeshTopology::Face> f = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6},
+                                       {0, 1, 5}, {0, 5, 4}, {2, 6, 7}, {2, 7, 3},
+                                       {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  return {std::make_shared<const MeshTopology>(8, std::move(f)), std::move(v)};
+}
+
 // A box [0,L)^3 periodic in y,z (and x too when !walls).
 inline Box cube(double L, bool walls) {
   return Box(Vec3::Zero(), Vec3::Constant(L), {!walls, true, true});
