@@ -1,7 +1,8 @@
 -- Stage "compress" (docs/model.md, protocol step 2): athermal isotropic compression in steps of
 -- Delta phi / phi = `step` (adipocytes move rigidly), each followed by FIRE to `ftol`, until
 -- the total packing fraction reaches `to_phi`; then one last FIRE to `final_ftol`. Reports the
--- final box (the paper's L_f; docs/model.md: stop at phi, never at a hard-coded L_f).
+-- box it reached (the paper's L_f): the target is phi, not the paper's stated L_f = 34, which
+-- its own numbers contradict (docs/model.md).
 --
 -- A stop signal (SIGINT/SIGTERM) stops the compression at the next compression-step boundary
 -- (after the FIRE of the current step has converged); with `checkpoint`, the partly
