@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages invasim needs, only those missing. Run as root.
 set -euo pipefail
-# python3-numpy and python3-matplotlib: scripts/plot_run.py; librsvg2-bin: invasim render -o X.png.
+# python3-numpy and python3-matplotlib: scripts/plot_run.py; with python3-scipy also
+# scripts/master_curve.py (the sweep analysis); librsvg2-bin: invasim render -o X.png.
 packages=(g++ cmake make libeigen3-dev liblua5.4-dev lua5.4 libcgal-dev libgmp-dev catch2
-          python3 python3-numpy python3-matplotlib librsvg2-bin)
+          python3 python3-numpy python3-scipy python3-matplotlib librsvg2-bin)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

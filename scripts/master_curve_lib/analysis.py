@@ -1,0 +1,204 @@
+"""The analysis from a results table to fitted curves: per-row temperatures and A_n, state
+points (replicate means), curves and their fits, the fit of the scale a across curves."""
+
+import math
+
+import numpy as np
+
+from .normalise import normalise
+from .selection import Keys, group_indices, matches
+from .table import InputError
+
+# --temperature: column read per row, and the axis label (the convention said plainly).
+TEMPERATURES = {
+    "kT": ("kT", r"$k_B T/(P\sigma^3)$, $k_B T$ = the set background temperature (state point kT)"),
+    "T_c": ("T_c", r"$k_B T_c/(P\sigma^3)$, measured, equipartition $k_BT_c = (m/3N)\sum v^2$"),
+    "kT_c_paper": ("kT_c_paper",
+                   r"$k_B T_c/(P\sigma^3)$, measured, paper's convention $2\times$ equipartition"),
+}
+DEFAULT_GAMMA = 0.2  # MODEL.md: gamma = 0.2 sqrt(m eps_c)/sigma, tau_g = m/gamma = 5 (m = 1)
+
+
+def _sem(values):
+    """Standard error of the mean (nan for a single value)."""
+    v = np.asarray(values, float)
+    return float(np.std(v, ddof=1) / math.sqrt(len(v))) if len(v) > 1 else math.nan
+
+
+def _constant(keys, rows, key, why):
+    """The value of `key` if it is the same on every row (None if not, or if it is absent)."""
+    if not keys.known(key):
+        return None
+    values = {keys.number(r, key, why) for r in rows}
+    return values.pop() if len(values) == 1 else None
+
+
+def row_values(table, keys, rows, temperature):
+    """Per-row arrays: x = T/P in the chosen convention, A_t, A_t^max and their errors."""
+    column = TEMPERATURES[temperature][0]
+    why_t = "for the temperature axis (--temperature %s)" % temperature
+    x, a_t, a_max = [], [], []
+    for r in rows:
+        t = (keys.number(r, column, why_t) if column in keys.state_keys or column in keys.fixed
+             else table.number(r, column, why_t))
+        p = keys.number(r, "P", "to scale the temperature, k_B T/(P sigma^3)")
+        if not (t > 0 and p > 0):
+            raise InputError("%s: %s = %g and P = %g: k_B T/(P sigma^3) must be > 0 for the "
+                             "logarithmic fit (--temperature %s)"
+                             % (table.where(r), column, t, p, temperature))
+        x.append(t / p)
+        a_t.append(table.number(r, "A_t", "for A_n"))
+        a_max.append(table.number(r, "A_t_max", "for A_n"))
+    errors = [None, None]
+    for k, name in enumerate(("A_t_error", "A_t_max_error")):
+        if table.has(name):
+            errors[k] = np.array([table.number(r, name, "", allow_missing=True) for r in rows])
+    return np.array(x), np.array(a_t), np.array(a_max), errors[0], errors[1]
+
+
+def normalise_rows(keys, rows, opts, a_t, a_max, err_t, err_max, point_of):
+    """A_n per row, normalised separately in each --normalise-within partition."""
+    n = len(rows)
+    r_a, a_n, run_err = np.empty(n), np.empty(n), np.empty(n)
+    norm_err = np.empty((n, 2))
+    info = []
+    parts = group_indices([keys.label(r, opts.within) for r in rows])
+    for part, idx in parts.items():
+        where = ", ".join("%s=%s" % kv for kv in zip(opts.within, part)) or "the whole sweep"
+        sel = [matches(keys, rows[i], opts.selector) for i in idx]
+        res = normalise(a_t[idx], a_max[idx], [point_of[i] for i in idx], sel,
+                        None if err_t is None else err_t[idx],
+                        None if err_max is None else err_max[idx], where)
+        r_a[idx], a_n[idx], run_err[idx] = res["rA_t"], res["A_n"], res["A_n_run_error"]
+        norm_err[idx] = (res["error_lo"], res["error_hi"])
+        info.append({"partition": dict(zip(opts.within, part)), "min_A_t_max": res["min_A_t_max"],
+                     "min_rA_t": res["min_rA_t"], "max_rA_t": res["max_rA_t"],
+                     "group_state_points": res["group_points"], "group_jobs": res["group_rows"],
+                     "A_n_error_of_min": res["error_lo"], "A_n_error_of_max": res["error_hi"]})
+    return r_a, a_n, run_err, norm_err, info
+
+
+def build_points(idx, x, a_n, run_err, norm_err, min_error, window=1):
+    """State points of one curve: mean x and A_n over replicates. The error of A_n is the
+    standard error over replicates, with the replicate variance pooled over the state point
+    and its `window` neighbours on each side along x (dof-weighted), so that 2-4 replicates
+    give usable weights; a state point without replicates anywhere in its window takes its
+    run's own propagated error. The errors of the two state points that set the
+    normalisation (norm_err: per row, of the min and of the max) are added in quadrature,
+    weighted (1 - A_n) and A_n. Floored at min_error."""
+    out = []
+    for i_rows in idx:
+        y = a_n[i_rows]
+        n = len(i_rows)
+        out.append({"rows": i_rows, "x": float(np.mean(x[i_rows])), "x_error": _sem(x[i_rows]),
+                    "A_n": float(np.mean(y)), "replicates": n,
+                    "var": float(np.var(y, ddof=1)) if n > 1 else 0.0, "dof": n - 1})
+    out.sort(key=lambda p: p["x"])
+    for k, p in enumerate(out):
+        near = out[max(0, k - window):k + window + 1]
+        dof = sum(q["dof"] for q in near)
+        if dof > 0:
+            err = math.sqrt(sum(q["dof"] * q["var"] for q in near) / dof / p["replicates"])
+        else:
+            err = float(np.mean(run_err[p["rows"]])) / math.sqrt(p["replicates"])
+        lo, hi = norm_err[p["rows"][0]]
+        a = p["A_n"]
+        if math.isfinite(lo) and math.isfinite(hi):
+            err = math.sqrt(err ** 2 + ((1 - a) * lo) ** 2 + (a * hi) ** 2)
+        p["A_n_error_raw"] = err
+        p["A_n_error"] = max(err, min_error) if math.isfinite(err) else min_error
+    for p in out:
+        del p["var"], p["dof"]
+    return out
+
+
+def curve_scale_inputs(keys, table, rows, tau_g_opt):
+    """beta, P, tau_g, mean tau_d and its standard error for one curve (None where absent or
+    not constant over the curve), with the reason a curve cannot enter the fit of a."""
+    beta = _constant(keys, rows, "beta", "for the fit of a")
+    p = _constant(keys, rows, "P", "for the fit of a")
+    if tau_g_opt is not None:
+        tau_g = tau_g_opt
+    elif keys.known("gamma"):
+        g = _constant(keys, rows, "gamma", "for tau_g = m/gamma")
+        tau_g = None if g is None else 1.0 / g
+    else:
+        tau_g = 1.0 / DEFAULT_GAMMA
+    tau_d = np.array([table.number(r, "tau_d", "for the fit of a", allow_missing=True)
+                      for r in rows]) if table.has("tau_d") else np.array([])
+    tau_d = tau_d[np.isfinite(tau_d)]
+    reason = None
+    if not keys.known("beta"):
+        reason = "no beta column (give it with --fixed beta=VALUE)"
+    elif beta is None:
+        reason = "beta varies within the curve (add beta to --group)"
+    elif p is None:
+        reason = "P varies within the curve (add P to --group)"
+    elif tau_g is None:
+        reason = "gamma varies within the curve (add gamma to --group)"
+    elif not table.has("tau_d"):
+        reason = "no tau_d column"
+    elif tau_d.size == 0:
+        reason = "no finite tau_d in the curve"
+    return {"beta": beta, "P": p, "tau_g": tau_g,
+            "tau_d": float(np.mean(tau_d)) if tau_d.size else None,
+            "tau_d_error": _sem(tau_d) if tau_d.size > 1 else None,
+            "tau_d_jobs": int(tau_d.size), "excluded_from_scale_fit": reason}
+
+
+def analyse(table, opts):
+    """Runs the whole analysis; returns {rows, points, curves, scale_fit, normalisation}."""
+    from . import fits  # scipy: imported only once the input has been read and checked
+
+    rows = table.done_rows()
+    keys = Keys(table, table.state_keys(), opts.fixed)
+    keys.check(opts.group, "--group")
+    keys.check(opts.within, "--normalise-within")
+    keys.check([k for k, _ in opts.selector], "--normalise-by")
+    point_keys = [k for k in keys.state_keys if k != opts.replicate_key]
+    point_of = [keys.label(r, point_keys) for r in rows]
+    x, a_t, a_max, err_t, err_max = row_values(table, keys, rows, opts.temperature)
+    r_a, a_n, run_err, norm_err, norm_info = normalise_rows(keys, rows, opts, a_t, a_max, err_t,
+                                                  err_max, point_of)
+    curves = []
+    for label, idx in group_indices([keys.label(r, opts.group) for r in rows]).items():
+        name = ", ".join("%s=%s" % kv for kv in zip(opts.group, label)) or "all"
+        by_point = group_indices([point_of[i] for i in idx])
+        points = build_points([np.array([idx[j] for j in js]) for js in by_point.values()],
+                              x, a_n, run_err, norm_err, opts.min_error, opts.window)
+        fit = fits.fit_sigmoid([p["x"] for p in points], [p["A_n"] for p in points],
+                               [p["A_n_error"] for p in points], name)
+        varying = [k for k in point_keys if k not in opts.group
+                   and len({keys.label(rows[i], [k]) for i in idx}) > 1]
+        curve = {"name": name, "group": dict(zip(opts.group, label)), "points": points,
+                 "jobs": len(idx), "varying": varying, **fit}
+        curve.update(curve_scale_inputs(keys, table, [rows[i] for i in idx], opts.tau_g))
+        curves.append(curve)
+    scale = scale_fit(curves, fits)
+    return {"rows": rows, "x": x, "rA_t": r_a, "A_n": a_n, "curves": curves,
+            "scale_fit": scale, "normalisation": norm_info, "state_keys": keys.state_keys}
+
+
+def scale_fit(curves, fits):
+    """The fit of a = c1 (1 + c2 beta/P) tau_g/tau_d over the usable curves, or a dict with
+    the reason it was not done."""
+    use = [c for c in curves if c["excluded_from_scale_fit"] is None]
+    for c in use:
+        c["tau_g_over_tau_d"] = c["tau_g"] / c["tau_d"]
+        c["q"] = c["beta"] / c["P"]
+    if len(use) < 2:
+        return {"done": False, "reason": "%d usable curve%s (needs at least 2): %s"
+                % (len(use), "" if len(use) == 1 else "s",
+                   "; ".join("%s: %s" % (c["name"], c["excluded_from_scale_fit"])
+                             for c in curves if c["excluded_from_scale_fit"]) or "group the "
+                   "sweep into curves with --group")}
+    rel = [(c["tau_d_error"] or 0.0) / c["tau_d"] for c in use]
+    res = fits.fit_scale([c["a"] for c in use], [c["a_error"] for c in use],
+                         [c["q"] for c in use], [c["tau_g_over_tau_d"] for c in use], rel)
+    for c, s in zip(use, res.pop("sigma")):
+        c["a_sigma_in_scale_fit"] = s
+    res["done"] = True
+    res["curves"] = [c["name"] for c in use]
+    if res["c2"] is None:
+        res["note"] = "beta/P is the same on every curve: only c1 is fitted"
+    return res

@@ -1,0 +1,106 @@
+"""The figures of the master-curve analysis (PNG, matplotlib's Agg backend): A_n against
+k_B T/(P sigma^3) per curve with its fit, the collapse on E_c^b, a against tau_g/tau_d."""
+
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from .fits import sigmoid  # noqa: E402
+
+MARKERS = "osD^vP*Xph<>"
+
+
+def _style(k):
+    return {"color": plt.cm.tab10(k % 10), "marker": MARKERS[(k // 10 + k) % len(MARKERS)]}
+
+
+def _points(c):
+    ps = sorted(c["points"], key=lambda p: p["x"])
+    return (np.array([p["x"] for p in ps]), np.array([p["A_n"] for p in ps]),
+            np.array([p["A_n_error"] for p in ps]))
+
+
+def curves_figure(path, curves, x_label):
+    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    for k, c in enumerate(curves):
+        st = _style(k)
+        x, y, e = _points(c)
+        ax.errorbar(x, y, yerr=e, ls="none", capsize=2, ms=5, color=st["color"],
+                    marker=st["marker"], label="%s: a=%.3g, b=%.2f" % (c["name"], c["a"], c["b"]))
+        xs = np.logspace(np.log10(x.min()) - 0.2, np.log10(x.max()) + 0.2, 200)
+        ax.plot(xs, sigmoid(xs, c["a"], c["b"]), color=st["color"], lw=1.2)
+    ax.set_xscale("log")
+    ax.set_xlabel(x_label)
+    ax.set_ylabel(r"$A_n$")
+    ax.legend(fontsize=7, loc="best")
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def collapse_figure(path, curves):
+    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    lo, hi = np.inf, -np.inf
+    for k, c in enumerate(curves):
+        st = _style(k)
+        x, y, e = _points(c)
+        ecb = (x / c["a"]) ** c["b"]
+        lo, hi = min(lo, ecb.min()), max(hi, ecb.max())
+        ax.errorbar(ecb, y, yerr=e, ls="none", capsize=2, ms=5, label=c["name"], **st)
+    xs = np.logspace(np.log10(lo) - 0.2, np.log10(hi) + 0.2, 200)
+    ax.plot(xs, 0.5 * (np.tanh(np.log10(xs)) + 1.0), color="k", lw=1.2,
+            label=r"$(\tanh[\log_{10} E_c^b] + 1)/2$")
+    ax.set_xscale("log")
+    ax.set_xlabel(r"$E_c^b$, $E_c = k_B T/(a P \sigma^3)$ (a, b fitted per curve)")
+    ax.set_ylabel(r"$A_n$")
+    ax.legend(fontsize=7, loc="best")
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def scale_figure(path, curves, scale):
+    used = [c for c in curves if c["name"] in scale["curves"]]
+    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    for k, c in enumerate(curves):
+        if c not in used:
+            continue
+        st = _style(k)
+        ax.errorbar(c["tau_g_over_tau_d"], c["a"], yerr=c["a_sigma_in_scale_fit"], ls="none",
+                    capsize=2, ms=6, label=c["name"], **st)
+    r = np.array([c["tau_g_over_tau_d"] for c in used])
+    rs = np.logspace(np.log10(r.min()) - 0.3, np.log10(r.max()) + 0.3, 50)
+    c2 = scale["c2"] or 0.0
+    for q in sorted({c["q"] for c in used}):
+        ax.plot(rs, scale["c1"] * (1 + c2 * q) * rs, color="k", lw=1,
+                ls="-" if q == max(c["q"] for c in used) else "--",
+                label=r"fit, $\beta/(P\sigma^3)$ = %.3g" % q)
+    title = r"$a = c_1(1 + c_2\beta\epsilon_c/(P\sigma^3))\,\tau_\gamma/\tau_d$: $c_1$ = %.3g $\pm$ %.2g" % (
+        scale["c1"], scale["c1_error"])
+    if scale["c2"] is not None:
+        title += r", $c_2$ = %.3g $\pm$ %.2g" % (scale["c2"], scale["c2_error"])
+    ax.set_title(title, fontsize=8)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel(r"$\tau_\gamma/\tau_d$ ($\tau_\gamma = m/\gamma$)")
+    ax.set_ylabel(r"$a$")
+    ax.legend(fontsize=7, loc="best")
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def write_figures(out_dir, result, x_label):
+    """Writes An_vs_T.png, collapse.png and (if the fit of a was done) a_vs_tau.png."""
+    paths = {"An_vs_T.png": os.path.join(out_dir, "An_vs_T.png"),
+             "collapse.png": os.path.join(out_dir, "collapse.png")}
+    curves_figure(paths["An_vs_T.png"], result["curves"], x_label)
+    collapse_figure(paths["collapse.png"], result["curves"])
+    if result["scale_fit"]["done"]:
+        paths["a_vs_tau.png"] = os.path.join(out_dir, "a_vs_tau.png")
+        scale_figure(paths["a_vs_tau.png"], result["curves"], result["scale_fit"])
+    return paths

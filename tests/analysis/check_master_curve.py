@@ -1,0 +1,327 @@
+"""Tests of scripts/master_curve.py (the master-curve analysis of a sweep).
+
+Usage: check_master_curve.py CASE MASTER_CURVE_PY SCRATCH_DIR, CASE one of
+  synthetic      tables made from known a, b per curve and c1, c2 plus noise: the fits
+                 recover them within their stated errors, and the errors match the scatter;
+  normalisation  a tiny table whose rA_t and A_n are computed by hand (also --normalise-by,
+                 the temperature conventions and the outputs);
+  errors         bad input: each case exits with status 1 (2: command line) and names the
+                 problem.
+Exits 77 (CTest SKIP_RETURN_CODE) when this interpreter lacks numpy, scipy or matplotlib.
+"""
+
+import csv
+import importlib.util
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+SKIP = 77
+failures = []
+
+
+def check(condition, what):
+    print(("ok: " if condition else "FAILED: ") + what)
+    if not condition:
+        failures.append(what)
+
+
+def run(script, args):
+    p = subprocess.run([sys.executable, script] + args, capture_output=True, text=True)
+    print("$ master_curve.py %s -> exit %d\n%s%s" % (" ".join(args), p.returncode, p.stdout,
+                                                    p.stderr))
+    return p
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def pull(value, truth, error):
+    return (value - truth) / error
+
+
+# --- (a) synthetic tables ----------------------------------------------------------------
+def case_synthetic(script, scratch):
+    import numpy as np
+
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import synthetic
+
+    truth = synthetic.make_truth(c1=0.06, c2=0.1)
+    table = os.path.join(scratch, "results.csv")
+    synthetic.write_table(table, np.random.default_rng(20261202), truth, replicates=8)
+    out = os.path.join(scratch, "out")
+    p = run(script, [table, "-o", out, "--group", "beta,tau_p"])
+    check(p.returncode == 0, "the analysis of the synthetic table succeeds")
+    if p.returncode != 0:
+        return
+    with open(os.path.join(out, "fits.json")) as f:
+        fits = json.load(f)
+    curves = fits["curves"]
+    check(len(curves) == 6, "six curves (beta x tau_p)")
+    pulls = []
+    for c, t in zip(curves, truth["curves"]):
+        check(c["beta"] == t["beta"] and c["group"]["tau_p"] in ("25", "2500"),
+              "curve %s is beta=%g, tau_p=%g" % (c["curve"], t["beta"], t["tau_p"]))
+        check(c["state_points"] == 13 and c["jobs"] == 13 * 8,
+              "curve %s: 13 state points of 8 replicates (the failed job left out)" % c["curve"])
+        pa, pb = pull(c["a"], t["a"], c["a_error"]), pull(c["b"], t["b"], c["b_error"])
+        pulls += [pa, pb]
+        # 4 sigma for the 12 per-curve parameters: b carries the extreme-value bias of the
+        # min-max normalisation (~ -0.4 sigma here; docs/sweeps_analysis.md).
+        check(abs(pa) < 4 and abs(pb) < 4,
+              "curve %s: a = %.5g +- %.2g (true %.5g, %+.2f sigma), b = %.4g +- %.2g "
+              "(true %.3g, %+.2f sigma)" % (c["curve"], c["a"], c["a_error"], t["a"], pa,
+                                           c["b"], c["b_error"], t["b"], pb))
+        check(c["a_error"] < 0.1 * c["a"] and c["b_error"] < 0.1 * c["b"],
+              "curve %s: the errors are a few per cent, not absurdly large" % c["curve"])
+        check(abs(c["tau_d"] / t["tau_d"] - 1) < 0.02 and c["tau_g"] == 5.0,
+              "curve %s: tau_d = %.4g (true %g), tau_g = 5" % (c["curve"], c["tau_d"],
+                                                              t["tau_d"]))
+    rms = math.sqrt(sum(x * x for x in pulls) / len(pulls))
+    check(0.4 < rms < 2.0, "rms pull of a and b over the curves = %.2f (errors match the "
+          "scatter)" % rms)
+    s = fits["scale_fit"]
+    check(s["done"] and s["n_curves"] == 6 and s["dof"] == 4, "the fit of a over 6 curves")
+    p1, p2 = pull(s["c1"], truth["c1"], s["c1_error"]), pull(s["c2"], truth["c2"], s["c2_error"])
+    check(abs(p1) < 3 and abs(p2) < 3,
+          "c1 = %.4g +- %.2g (true %g, %+.2f sigma), c2 = %.4g +- %.2g (true %g, %+.2f sigma)"
+          % (s["c1"], s["c1_error"], truth["c1"], p1, s["c2"], s["c2_error"], truth["c2"], p2))
+    check(s["c1_error"] < 0.1 * s["c1"] and s["c2_error"] < 0.5 * s["c2"],
+          "c1, c2 errors are not absurdly large")
+    rows = read_csv(os.path.join(out, "fits.csv"))
+    check(len(rows) == 6 and abs(float(rows[0]["a"]) - curves[0]["a"]) < 1e-12 * curves[0]["a"]
+          and "beta" in rows[0] and "tau_p" in rows[0], "fits.csv has the same fits")
+    for name in ("An_vs_T.png", "collapse.png", "a_vs_tau.png"):
+        path = os.path.join(out, name)
+        with open(path, "rb") as f:
+            head = f.read(8)
+        check(head == b"\x89PNG\r\n\x1a\n" and os.path.getsize(path) > 10000,
+              "%s is a PNG figure" % name)
+    calibration(np, synthetic, truth, scratch)
+
+
+def calibration(np, synthetic, truth, scratch):
+    """Five more tables through the library: the pulls of a, b, c1, c2 are distributed with
+    an rms near 1, i.e. the stated errors are right, not merely large."""
+    import argparse
+
+    sys.path.insert(0, os.path.dirname(os.path.abspath(SCRIPT)))
+    from master_curve_lib import analysis
+    from master_curve_lib.table import Table
+
+    opts = argparse.Namespace(group=["beta", "tau_p"], within=[], selector=[], fixed={},
+                              temperature="kT_c_paper", replicate_key="seed", tau_g=None,
+                              min_error=1e-3, window=1)
+    per_curve, scale = [], []
+    for seed in range(5):
+        path = os.path.join(scratch, "calibration.csv")
+        synthetic.write_table(path, np.random.default_rng(seed), truth, replicates=8)
+        r = analysis.analyse(Table(path), opts)
+        for c, t in zip(r["curves"], truth["curves"]):
+            per_curve += [pull(c["a"], t["a"], c["a_error"]), pull(c["b"], t["b"], c["b_error"])]
+        s = r["scale_fit"]
+        scale += [pull(s["c1"], truth["c1"], s["c1_error"]),
+                  pull(s["c2"], truth["c2"], s["c2_error"])]
+    rms = math.sqrt(sum(x * x for x in per_curve) / len(per_curve))
+    rms_s = math.sqrt(sum(x * x for x in scale) / len(scale))
+    check(0.6 < rms < 1.6, "5 more tables: rms pull of the 60 per-curve a, b = %.2f" % rms)
+    check(0.4 < rms_s < 1.8 and max(abs(x) for x in scale) < 3,
+          "5 more tables: rms pull of c1, c2 = %.2f, max %.2f" % (rms_s, max(map(abs, scale))))
+
+
+# --- (b) the normalisation by hand -------------------------------------------------------
+HEADER = ("job_id,status,wall_seconds [s],P,K_ecm,kT,seed,A_t [sigma^2],A_t_error [sigma^2],"
+          "A_t_max [sigma^2],A_t_max_error [sigma^2],T_c [eps_c],T_c_error [eps_c],"
+          "kT_c_paper [eps_c],kT_c_paper_error [eps_c],tau_d [tau],tau_r [tau]")
+
+
+def hand_row(job, k_ecm, kt, seed, a_t, a_max, kt_paper, status="done"):
+    return ",".join([job, status, "1.0", "0.001", k_ecm, kt, seed, a_t, "2", a_max, "1",
+                     repr(kt_paper / 2), "0", repr(kt_paper), "0", "7.5", ""])
+
+
+# Untethered (K_ecm = 0): state points x = kT_c_paper/P = 0.01 (two seeds), 0.1, 1, 10, with
+# the non-invaded area D = A_t^max - A_t = 600 and 590, 350, 100, 50.
+# Tethered (K_ecm = 0.04): D = 700, 500, 300 at x = 0.01, 0.1, 1.
+HAND_ROWS = [
+    hand_row("u1", "0", "3e-6", "1", "400", "1000", 1e-5),
+    hand_row("u2", "0", "3e-6", "2", "420", "1010", 1e-5),
+    hand_row("u3", "0", "3e-5", "1", "700", "1050", 1e-4),
+    hand_row("u4", "0", "3e-4", "1", "1000", "1100", 1e-3),
+    hand_row("u5", "0", "3e-3", "1", "1150", "1200", 1e-2),
+    hand_row("t1", "0.04", "3e-6", "1", "290", "990", 1e-5),
+    hand_row("t2", "0.04", "3e-5", "1", "550", "1050", 1e-4),
+    hand_row("t3", "0.04", "3e-4", "1", "800", "1100", 1e-3),
+    hand_row("f1", "0.04", "3e-3", "1", "", "", 0, status="failed"),
+]
+
+
+def case_normalisation(script, scratch):
+    table = os.path.join(scratch, "hand.csv")
+    with open(table, "w") as f:
+        f.write(HEADER + "\n" + "\n".join(HAND_ROWS) + "\n")
+    # By hand, normalised by K_ecm = 0: the state-point means of A_t^max are 1005 (u1, u2),
+    # 1050, 1100, 1200, so min A_t^max = 1005 and rA_t = 1 - D/1005 per job. The state-point
+    # means of rA_t: min 1 - 595/1005 (u1, u2), max 1 - 50/1005 (u5), so
+    # A_n = (595 - D)/545.
+    expect_ra = {"u1": 1 - 600 / 1005, "u2": 1 - 590 / 1005, "u3": 1 - 350 / 1005,
+                 "u4": 1 - 100 / 1005, "u5": 1 - 50 / 1005, "t1": 1 - 700 / 1005,
+                 "t2": 1 - 500 / 1005, "t3": 1 - 300 / 1005}
+    expect_an = {"u1": -5 / 545, "u2": 5 / 545, "u3": 245 / 545, "u4": 495 / 545, "u5": 1.0,
+                 "t1": -105 / 545, "t2": 95 / 545, "t3": 295 / 545}
+    expect_x = {"u1": 0.01, "u2": 0.01, "u3": 0.1, "u4": 1, "u5": 10, "t1": 0.01, "t2": 0.1,
+                "t3": 1}
+    out = os.path.join(scratch, "by_kecm0")
+    p = run(script, [table, "-o", out, "--group", "K_ecm", "--normalise-by", "K_ecm=0",
+                       "--no-figures"])
+    check(p.returncode == 0, "the hand table is analysed")
+    if p.returncode != 0:
+        return
+    rows = {r["job_id"]: r for r in read_csv(os.path.join(out, "rows.csv"))}
+    check(sorted(rows) == sorted(expect_an), "rows.csv lists the 8 finished jobs, not f1")
+    for job in sorted(expect_an):
+        r = rows.get(job, {"rA_t": "nan", "A_n": "nan", "x": "nan"})
+        check(abs(float(r["rA_t"]) - expect_ra[job]) < 1e-12
+              and abs(float(r["A_n"]) - expect_an[job]) < 1e-12
+              and abs(float(r["x"]) / expect_x[job] - 1) < 1e-12,
+              "%s: rA_t = %s (hand: %.15g), A_n = %s (hand: %.15g), x = %s (%g)"
+              % (job, r["rA_t"], expect_ra[job], r["A_n"], expect_an[job], r["x"],
+                 expect_x[job]))
+    points = [r for r in read_csv(os.path.join(out, "points.csv")) if r["curve"] == "K_ecm=0"]
+    first = min(points, key=lambda r: float(r["x"]))
+    # Its error: A_n = -5/545 and 5/545, standard error d = 5/545 (the neighbour x = 0.1
+    # has no replicates to pool), plus the error of the state point that sets min rA_t
+    # (itself, d) weighted 1 - A_n = 1: sqrt(2) d.
+    check(abs(float(first["A_n"])) < 1e-12 and first["replicates"] == "2"
+          and abs(float(first["A_n_error"]) - math.sqrt(2) * 5 / 545) < 1e-12,
+          "state point x = 0.01: mean A_n 0 of 2 replicates, error %s (hand: %.15g)"
+          % (first["A_n_error"], math.sqrt(2) * 5 / 545))
+    with open(os.path.join(out, "fits.json")) as f:
+        fits = json.load(f)
+    norm = fits["normalisation"][0]
+    check(norm["min_A_t_max"] == 1005 and abs(norm["max_rA_t"] - (1 - 50 / 1005)) < 1e-12
+          and norm["group_state_points"] == 4 and norm["group_jobs"] == 5,
+          "fits.json: min A_t^max = 1005 over the 4 untethered state points")
+    check([c["curve"] for c in fits["curves"]] == ["K_ecm=0", "K_ecm=0.04"],
+          "two curves, K_ecm = 0 and 0.04")
+    check(not fits["scale_fit"]["done"] and "beta" in fits["scale_fit"]["reason"],
+          "no fit of a without beta: %s" % fits["scale_fit"]["reason"])
+    # Default normalisation group: the whole sweep. The extremes become t1 (D = 700) and
+    # u5 (D = 50): A_n = (700 - D)/650; min A_t^max = 990 (t1).
+    out2 = os.path.join(scratch, "whole")
+    p = run(script, [table, "-o", out2, "--group", "K_ecm", "--temperature", "T_c",
+                       "--no-figures"])
+    rows = {r["job_id"]: r for r in read_csv(os.path.join(out2, "rows.csv"))}
+    check(p.returncode == 0 and all(abs(float(rows[j]["A_n"]) - (700 - d) / 650) < 1e-12
+                                    for j, d in (("u3", 350), ("t1", 700), ("u5", 50))),
+          "whole-sweep normalisation: A_n = (700 - D)/650")
+    check(abs(float(rows["u3"]["rA_t"]) - (1 - 350 / 990)) < 1e-12,
+          "whole-sweep normalisation: rA_t = 1 - D/990")
+    check(abs(float(rows["u3"]["x"]) - 0.05) < 1e-12, "--temperature T_c: x = T_c/P = 0.05")
+    out3 = os.path.join(scratch, "kT")
+    p = run(script, [table, "-o", out3, "--group", "K_ecm", "--temperature", "kT",
+                       "--no-figures"])
+    rows = {r["job_id"]: r for r in read_csv(os.path.join(out3, "rows.csv"))}
+    check(p.returncode == 0 and abs(float(rows["u3"]["x"]) - 0.03) < 1e-12,
+          "--temperature kT: x = kT/P = 0.03 (the state point)")
+    # Separately within each K_ecm: the tethered curve spans 0..1 on its own.
+    out4 = os.path.join(scratch, "within")
+    p = run(script, [table, "-o", out4, "--group", "K_ecm", "--normalise-within", "K_ecm",
+                       "--no-figures"])
+    rows = {r["job_id"]: r for r in read_csv(os.path.join(out4, "rows.csv"))}
+    check(p.returncode == 0 and abs(float(rows["t1"]["A_n"])) < 1e-12
+          and abs(float(rows["t3"]["A_n"]) - 1) < 1e-12
+          and abs(float(rows["t2"]["A_n"]) - 0.5) < 1e-12,
+          "--normalise-within K_ecm: tethered A_n = 0, 0.5, 1")
+
+
+# --- (c) bad input -----------------------------------------------------------------------
+def write(scratch, name, lines):
+    path = os.path.join(scratch, name)
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    return path
+
+
+def case_errors(script, scratch):
+    good = [HEADER] + HAND_ROWS
+    no_amax = [",".join(f for f in l.split(",") if "A_t_max" not in f) for l in good[:1]]
+    cases = [
+        ("missing column", [write(scratch, "no_amax.csv", [HEADER.replace(
+            "A_t_max [sigma^2]", "A_tmax [sigma^2]")] + HAND_ROWS)], 1,
+         "no column 'A_t_max' \\(needed for A_n\\)"),
+        ("no finished job", [write(scratch, "none.csv", [HEADER] + [
+            r.replace(",done,", ",failed,") for r in HAND_ROWS])], 1,
+         "no job has status 'done' \\(9 failed\\)"),
+        ("too few points in a curve",
+         [write(scratch, "few.csv", good), "--group", "K_ecm,kT"], 1,
+         "curve K_ecm=0, kT=3e-06: 1 state point at distinct temperatures, the sigmoid fit "
+         "\\(2 parameters\\) needs at least 3"),
+        ("unknown --group key", [write(scratch, "g.csv", good), "--group", "tau_p"], 1,
+         "--group: 'tau_p' is not a column of .*g.csv; the state-point keys are: P, K_ecm, kT, "
+         "seed"),
+        ("--group on a measurement", [write(scratch, "g2.csv", good), "--group", "A_t"], 1,
+         "--group: 'A_t' is a measured column, not a state-point key"),
+        ("malformed --normalise-by", [write(scratch, "n.csv", good), "--normalise-by",
+                                      "K_ecm"], 1, "--normalise-by: 'K_ecm' is not KEY=VALUE"),
+        ("empty normalisation group", [write(scratch, "n2.csv", good), "--normalise-by",
+                                       "K_ecm=7"], 1,
+         "the normalisation group of the whole sweep has no finished job"),
+        ("not a number", [write(scratch, "nan.csv", good[:4] + [
+            good[4].replace(",1100,", ",11OO,")] + good[5:])], 1,
+         "nan.csv line 5 \\(job u4\\): column 'A_t_max' = '11OO' is not a finite number"),
+        ("P missing", [write(scratch, "nop.csv", [l.replace(",P,", ",P_set,") for l in good])],
+         1, "has no state-point column 'P' .*give it with --fixed P=VALUE"),
+        ("--fixed on a column", [write(scratch, "fx.csv", good), "--fixed", "P=1"], 1,
+         "--fixed P: 'P' is a column of"),
+        ("zero temperature", [write(scratch, "zero.csv", good[:2] + [
+            good[2].replace(",3e-6,", ",0,")] + good[3:]), "--temperature", "kT"], 1,
+         "zero.csv line 3 \\(job u2\\): kT = 0 and P = 0.001: k_B T/\\(P sigma\\^3\\) must be > 0"),
+        ("short row", [write(scratch, "short.csv", good[:3] + ["u9,done,1"])], 1,
+         "short.csv: line 4 has 3 fields, the header has 17"),
+        ("missing file", [os.path.join(scratch, "absent.csv")], 1, "cannot read .*absent.csv"),
+        ("bad --temperature", [write(scratch, "t.csv", good), "--temperature", "T"], 2,
+         "argument --temperature: invalid choice: 'T'"),
+        ("bad --min-error", [write(scratch, "m.csv", good), "--min-error", "0"], 2,
+         "--min-error 0: must be > 0"),
+    ]
+    del no_amax
+    import re
+
+    for name, args, status, pattern in cases:
+        p = run(script, args + ["-o", os.path.join(scratch, "out")])
+        check(p.returncode == status and re.search(pattern, p.stderr) is not None,
+              "%s: exit %d and a message matching /%s/" % (name, status, pattern))
+        check(not os.path.exists(os.path.join(scratch, "out")),
+              "%s: no output directory is created" % name)
+
+
+SCRIPT = None
+
+
+def main():
+    global SCRIPT
+    case, SCRIPT, scratch = sys.argv[1], sys.argv[2], sys.argv[3]
+    missing = [m for m in ("numpy", "scipy", "matplotlib") if importlib.util.find_spec(m) is None]
+    if missing:
+        print("SKIP: %s lacks %s (Debian: python3-numpy python3-scipy python3-matplotlib)"
+              % (sys.executable, ", ".join(missing)))
+        sys.exit(SKIP)
+    shutil.rmtree(scratch, ignore_errors=True)
+    os.makedirs(scratch)
+    {"synthetic": case_synthetic, "normalisation": case_normalisation,
+     "errors": case_errors}[case](SCRIPT, scratch)
+    if failures:
+        print("%d check(s) FAILED" % len(failures))
+        sys.exit(1)
+    print("all checks passed")
+
+
+if __name__ == "__main__":
+    main()
