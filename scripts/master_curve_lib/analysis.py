@@ -12,9 +12,9 @@ from .table import InputError
 # --temperature: column read per row, and the axis label (the convention said plainly).
 TEMPERATURES = {
     "kT": ("kT", r"$k_B T/(P\sigma^3)$, $k_B T$ = the set background temperature (state point kT)"),
-    "T_c": ("T_c", r"$k_B T_c/(P\sigma^3)$, measured, equipartition $k_BT_c = (m/3N)\sum v^2$"),
-    "kT_c_paper": ("kT_c_paper",
-                   r"$k_B T_c/(P\sigma^3)$, measured, paper's convention $2\times$ equipartition"),
+    "T_c": ("T_c", r"$k_B T_c/(P\sigma^3)$, measured, equipartition $k_B T_c = (m/3N)\sum v^2$"),
+    "kT_c_paper": ("kT_c_paper", r"$k_B T/(P\sigma^3)$, measured, the paper's "
+                   r"$k_B T = (2m/3N)\sum v^2 = 2\,k_B T_c$"),
 }
 DEFAULT_GAMMA = 0.2  # MODEL.md: gamma = 0.2 sqrt(m eps_c)/sigma, tau_g = m/gamma = 5 (m = 1)
 

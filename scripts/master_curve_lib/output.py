@@ -35,7 +35,8 @@ def curve_record(c):
 def write_tables(out_dir, result, settings):
     """Writes fits.csv, fits.json, points.csv, rows.csv into out_dir; returns their paths."""
     curves = result["curves"]
-    group_keys = list(curves[0]["group"].keys()) if curves else []
+    # Group keys as columns of fits.csv, unless fits.csv has them already (beta, P).
+    group_keys = [k for k in (curves[0]["group"] if curves else []) if k not in CURVE_COLUMNS]
     paths = {n: os.path.join(out_dir, n) for n in ("fits.csv", "fits.json", "points.csv",
                                                    "rows.csv")}
     with open(paths["fits.csv"], "w", newline="") as f:

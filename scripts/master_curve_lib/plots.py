@@ -64,31 +64,37 @@ def collapse_figure(path, curves):
 
 
 def scale_figure(path, curves, scale):
-    used = [c for c in curves if c["name"] in scale["curves"]]
-    fig, ax = plt.subplots(figsize=(6.4, 4.6))
-    for k, c in enumerate(curves):
-        if c not in used:
-            continue
-        st = _style(k)
-        ax.errorbar(c["tau_g_over_tau_d"], c["a"], yerr=c["a_sigma_in_scale_fit"], ls="none",
-                    capsize=2, ms=6, label=c["name"], **st)
-    r = np.array([c["tau_g_over_tau_d"] for c in used])
-    rs = np.logspace(np.log10(r.min()) - 0.3, np.log10(r.max()) + 0.3, 50)
+    """Left: a against tau_g/tau_d with the fitted line of each beta/P. Right: a against the
+    fitted c1 (1 + c2 beta/P) tau_g/tau_d with the line a = that (the paper's Fig. 6b inset)."""
+    used = [(k, c) for k, c in enumerate(curves) if c["name"] in scale["curves"]]
     c2 = scale["c2"] or 0.0
-    for q in sorted({c["q"] for c in used}):
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(10.5, 4.6))
+    for k, c in used:
+        st = _style(k)
+        model = scale["c1"] * (1 + c2 * c["q"]) * c["tau_g_over_tau_d"]
+        for axis, x in ((ax, c["tau_g_over_tau_d"]), (bx, model)):
+            axis.errorbar(x, c["a"], yerr=c["a_sigma_in_scale_fit"], ls="none", capsize=2,
+                          ms=6, label=c["name"], **st)
+    r = np.array([c["tau_g_over_tau_d"] for _, c in used])
+    rs = np.logspace(np.log10(r.min()) - 0.3, np.log10(r.max()) + 0.3, 50)
+    for n, q in enumerate(sorted({c["q"] for _, c in used})):
         ax.plot(rs, scale["c1"] * (1 + c2 * q) * rs, color="k", lw=1,
-                ls="-" if q == max(c["q"] for c in used) else "--",
-                label=r"fit, $\beta/(P\sigma^3)$ = %.3g" % q)
+                ls=("-", "--", ":", "-.")[n % 4], label=r"fit, $\beta/(P\sigma^3)$ = %.3g" % q)
+    lim = scale["c1"] * (1 + c2 * max(c["q"] for _, c in used)) * rs[[0, -1]]
+    lim[0] = scale["c1"] * rs[0]
+    bx.plot(lim, lim, color="k", lw=1, label="$a$ = fit")
     title = r"$a = c_1(1 + c_2\beta\epsilon_c/(P\sigma^3))\,\tau_\gamma/\tau_d$: $c_1$ = %.3g $\pm$ %.2g" % (
         scale["c1"], scale["c1_error"])
     if scale["c2"] is not None:
         title += r", $c_2$ = %.3g $\pm$ %.2g" % (scale["c2"], scale["c2_error"])
-    ax.set_title(title, fontsize=8)
-    ax.set_xscale("log")
-    ax.set_yscale("log")
+    fig.suptitle(title, fontsize=9)
+    for axis in (ax, bx):
+        axis.set_xscale("log")
+        axis.set_yscale("log")
+        axis.set_ylabel(r"$a$")
+        axis.legend(fontsize=7, loc="best")
     ax.set_xlabel(r"$\tau_\gamma/\tau_d$ ($\tau_\gamma = m/\gamma$)")
-    ax.set_ylabel(r"$a$")
-    ax.legend(fontsize=7, loc="best")
+    bx.set_xlabel(r"$c_1(1 + c_2\beta\epsilon_c/(P\sigma^3))\,\tau_\gamma/\tau_d$ (fitted)")
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
