@@ -52,7 +52,9 @@ class Table:
                 raise InputError("%s: line 1, column %d: bad header entry '%s' (expected "
                                  "'name [unit]' or 'name')" % (path, k + 1, entry))
             if parsed[0] in self.units:
-                raise InputError("%s: line 1: column '%s' appears twice" % (path, parsed[0]))
+                raise InputError("%s: line 1: column '%s' appears twice (a state-point key "
+                                 "and a measurement of the same name cannot be told apart)"
+                                 % (path, parsed[0]))
             self.names.append(parsed[0])
             self.units[parsed[0]] = parsed[1]
         self.require("status", "to select the finished jobs")
