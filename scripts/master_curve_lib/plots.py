@@ -83,8 +83,8 @@ def scale_figure(path, curves, scale):
     lim = scale["c1"] * (1 + c2 * max(c["q"] for _, c in used)) * rs[[0, -1]]
     lim[0] = scale["c1"] * rs[0]
     bx.plot(lim, lim, color="k", lw=1, label="$a$ = fit")
-    title = r"$a = c_1(1 + c_2\beta\epsilon_c/(P\sigma^3))\,\tau_\gamma/\tau_d$: $c_1$ = %.3g $\pm$ %.2g" % (
-        scale["c1"], scale["c1_error"])
+    title = (r"$a = c_1(1 + c_2\beta\epsilon_c/(P\sigma^3))\,\tau_\gamma/\tau_d$: "
+             r"$c_1$ = %.3g $\pm$ %.2g" % (scale["c1"], scale["c1_error"]))
     if scale["c2"] is not None:
         title += r", $c_2$ = %.3g $\pm$ %.2g" % (scale["c2"], scale["c2_error"])
     fig.suptitle(title, fontsize=9)
