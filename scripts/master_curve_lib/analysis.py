@@ -121,12 +121,12 @@ def curve_scale_inputs(keys, table, rows, tau_g_opt):
         tau_g = tau_g_opt
     elif keys.known("gamma"):
         g = _constant(keys, rows, "gamma", "for tau_g = m/gamma")
-        tau_g = None if g is None else 1.0 / g
+        tau_g = None if g is None or g <= 0 else 1.0 / g
     else:
         tau_g = 1.0 / DEFAULT_GAMMA
     tau_d = np.array([table.number(r, "tau_d", "for the fit of a", allow_missing=True)
                       for r in rows]) if table.has("tau_d") else np.array([])
-    tau_d = tau_d[np.isfinite(tau_d)]
+    tau_d = tau_d[np.isfinite(tau_d) & (tau_d > 0)]
     reason = None
     if not keys.known("beta"):
         reason = "no beta column (give it with --fixed beta=VALUE)"
@@ -135,11 +135,11 @@ def curve_scale_inputs(keys, table, rows, tau_g_opt):
     elif p is None:
         reason = "P varies within the curve (add P to --group)"
     elif tau_g is None:
-        reason = "gamma varies within the curve (add gamma to --group)"
+        reason = "gamma is not > 0 or varies within the curve (add gamma to --group)"
     elif not table.has("tau_d"):
         reason = "no tau_d column"
     elif tau_d.size == 0:
-        reason = "no finite tau_d in the curve"
+        reason = "no finite, positive tau_d in the curve"
     return {"beta": beta, "P": p, "tau_g": tau_g,
             "tau_d": float(np.mean(tau_d)) if tau_d.size else None,
             "tau_d_error": _sem(tau_d) if tau_d.size > 1 else None,
