@@ -148,8 +148,6 @@ def curve_scale_inputs(keys, table, rows, tau_g_opt):
 
 def analyse(table, opts):
     """Runs the whole analysis; returns {rows, points, curves, scale_fit, normalisation}."""
-    from . import fits  # scipy: imported only once the input has been read and checked
-
     rows = table.done_rows()
     keys = Keys(table, table.state_keys(), opts.fixed)
     keys.check(opts.group, "--group")
@@ -160,6 +158,8 @@ def analyse(table, opts):
     x, a_t, a_max, err_t, err_max = row_values(table, keys, rows, opts.temperature)
     r_a, a_n, run_err, norm_err, norm_info = normalise_rows(keys, rows, opts, a_t, a_max, err_t,
                                                   err_max, point_of)
+    from . import fits  # scipy: imported only once the input has been read and checked
+
     curves = []
     for label, idx in group_indices([keys.label(r, opts.group) for r in rows]).items():
         name = ", ".join("%s=%s" % kv for kv in zip(opts.group, label)) or "all"
