@@ -6,17 +6,29 @@
 --   invasim run protocols/bath_cell.lua --from out/bath_base --set kT=1.3e-3 --set f0=0 \
 --     --set vertex_bath=damped --set vertex_gamma=0.02 --out out/bath_cell
 local iv = require("invasim")
-local protocol = require("lib.protocol")
+local parameters = require("lib.parameters")
+local stage = require("lib.stages")
 local log = require("lib.log")
 
-local p = iv.params(protocol.declarations())
-protocol.validate(p)
+local p = iv.params(parameters.declarations())
+parameters.validate(p)
+local N_a, N_c, L0 = parameters.size(p)
 local out = require("lib.run_dir").open(p)
-local tissue = protocol.prepare(p, out)
-local result = require("lib.production")(tissue, {
+
+-- The main job's chain up to the production (invasion.lua), from the --from tissue.
+local tissue = stage.init{ N_a = N_a, N_c = N_c, L0 = L0, seed = p.seed, start = p.start,
+                           shape_param = p.A_0, eps_v = p.eps_v, eps_a = p.eps_a,
+                           alpha = p.alpha, beta = p.beta }
+stage.compress(tissue, { to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.final_ftol,
+                         cohesion = p.cohesive_compression, out = out, from = iv.from })
+stage.quench(tissue, { P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p, gamma = p.gamma,
+                       vertex_bath = p.vertex_bath, vertex_gamma = p.vertex_gamma, dt = p.dt,
+                       steps = p.quench_steps })
+
+-- Production: thermo columns only, averaged over the whole run (the quench equilibrates).
+local result = stage.production(tissue, {
   steps = p.steps, every = p.every, correlate_every = 0, interface = false, slices_per_body = 0,
-  average_fraction = 1.0,   -- the whole production (the quench is the equilibration)
-  checkpoint_every = p.checkpoint_every, out = out,
+  average_fraction = 1.0, checkpoint_every = p.checkpoint_every, out = out,
 })
 local s = result.summary
 require("lib.summary").print("bath", s, { "T_c", "T_a", "T_c_over_T_a", "kT_c_paper" },

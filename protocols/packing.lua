@@ -8,25 +8,45 @@
 -- more than 0.05 (lib/packing_drift.lua; docs/model.md gives the numbers).
 --   invasim run protocols/packing.lua --set phi_a=0.6
 local iv = require("invasim")
-local protocol = require("lib.protocol")
+local parameters = require("lib.parameters")
+local stage = require("lib.stages")
 
-local p = iv.params(protocol.merge{
+-- Parameters: the shared ones (lib/parameters.lua) and this protocol's own.
+local p = iv.params(parameters.merge{
   phi_a = { 0.6, range = "(0, 1)", help = "adipocyte packing fraction of this scan point (0.4-0.9)" },
   K_ecm = { 0.04, range = "[0, inf)", unit = "eps_c/sigma^2", help = "ECM tether stiffness (0: no tethers)" },
   lambda = { 0.0, range = "[0, 1]", help = "tether heterogeneity" },
   f0 = { 0.012, range = "[0, inf)", unit = "eps_c/sigma", help = "self-propulsion force (0.012: k_B T_c/(P sigma^3) ~ 0.37 in the paper's convention, docs/model.md)" },
 })
-
-protocol.validate(p)
+parameters.validate(p)
+local N_a, N_c, L0 = parameters.size(p)
 local clock = iv.clock()
+
 local out = require("lib.run_dir").open(p)
-local tissue = protocol.compressed(p, out)
-require("lib.rescale")(tissue, { phi_a = p.phi_a, ftol = p.final_ftol })
+
+-- Initial configuration and compression to phi, as in invasion.lua.
+local tissue = stage.init{ N_a = N_a, N_c = N_c, L0 = L0, seed = p.seed, start = p.start,
+                           shape_param = p.A_0, eps_v = p.eps_v, eps_a = p.eps_a,
+                           alpha = p.alpha, beta = p.beta }
+stage.compress(tissue, { to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.final_ftol,
+                         cohesion = p.cohesive_compression, out = out, from = iv.from })
+
+-- The box and all positions scaled affinely to the adipocyte packing fraction phi_a, then FIRE.
+stage.rescale(tissue, { phi_a = p.phi_a, ftol = p.final_ftol })
+
+-- ECM tethers (rest lengths from the rescaled tissue) and their heterogeneity; K_ecm = 0: none.
 if p.K_ecm > 0 then
-  require("lib.tether")(tissue, { K = p.K_ecm })
-  if p.lambda > 0 then require("lib.heterogeneity")(tissue, { lambda = p.lambda }) end
+  stage.tether(tissue, { K = p.K_ecm })
+  stage.heterogeneity(tissue, { lambda = p.lambda })
 end
-protocol.quench(tissue, p)
-local result = protocol.produce(tissue, p, out)
+
+-- Quench, production and report, as in invasion.lua; then the measured phi_a beside the target.
+stage.quench(tissue, { P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p, gamma = p.gamma,
+                       vertex_bath = p.vertex_bath, vertex_gamma = p.vertex_gamma, dt = p.dt,
+                       steps = p.quench_steps })
+local result = stage.production(tissue, { steps = p.steps, every = p.every,
+                                          correlate_every = p.correlate_every,
+                                          snapshot_every = p.snapshot_every,
+                                          checkpoint_every = p.checkpoint_every, out = out })
 local packing = require("lib.packing_drift")(p.phi_a, result, { P = p.P })
 require("lib.report").final(tissue, p, result, iv.clock() - clock, out, { packing_scan = packing })

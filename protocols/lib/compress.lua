@@ -1,35 +1,46 @@
 -- Stage "compress" (docs/model.md, protocol step 2): athermal isotropic compression in steps of
 -- Delta phi / phi = `step` (adipocytes move rigidly), each followed by FIRE to `ftol`, until
--- the total packing fraction reaches `to_phi`; then one last FIRE to `final_ftol`. Reports the
--- box it reached (the paper's L_f): the target is phi, not the paper's stated L_f = 34, which
--- its own numbers contradict (docs/model.md).
+-- the total packing fraction reaches `to_phi`; then one last FIRE to `final_ftol`. Sets and
+-- returns tissue.compression, the report with the box it reached (the paper's L_f): the
+-- target is phi, not the paper's stated L_f = 34, which its own numbers contradict
+-- (docs/model.md).
 --
--- A stop signal (SIGINT/SIGTERM) stops the compression at the next compression-step boundary
--- (after the FIRE of the current step has converged); with `checkpoint`, the partly
--- compressed tissue and the counters so far are saved there, and a --resume run continues
--- from it to the same compressed tissue, bit for bit (each step starts from a converged state
--- at rest, so nothing of the minimiser's own state is needed). The final FIRE is not
--- interrupted: a signal during it stops the run after it, with the compressed tissue saved.
+-- Cohesion is off during compression unless `cohesion = true` (athermal packing of repulsive
+-- bodies, as in the DPM literature): the stage hands `contacts = {beta = 0}` to the engine's
+-- compression and final FIRE, which apply it for their own duration only and give the
+-- contacts their own beta back on every exit (return, stop signal, error).
+--
+-- In a run directory (`out`), the compressed tissue is saved to out/checkpoint/compressed.ckpt
+-- for runs started with --from this run. A stop signal (SIGINT/SIGTERM) stops the compression
+-- at the next compression-step boundary (after the FIRE of the current step has converged);
+-- the partly compressed tissue and the counters so far are saved to
+-- out/checkpoint/compressing.ckpt, and a --resume run continues from it to the same
+-- compressed tissue, bit for bit (each step starts from a converged state at rest, so nothing
+-- of the minimiser's own state is needed). The final FIRE is not interrupted: a signal during
+-- it stops the run after it, with the compressed tissue saved.
+--
+-- The stage knows when not to compress: with `from` (a run directory, e.g. invasim.from), the
+-- compressed tissue that run saved replaces the compression (same system size, this run's
+-- seed); while a --resume from a production checkpoint is pending it only logs that it is
+-- skipped (the checkpoint replaces the tissue).
 --
 -- Decisions (docs/model.md): the minimisations between steps stop at ftol = 1e-3 and only the
 -- final state is minimised tightly (final_ftol = 1e-6): the intermediate states are not
 -- measured, and near jamming each 3 % step costs 1e4-1e5 FIRE iterations at ftol = 1e-4.
--- Cohesion is off during compression by default (`beta = 0`: athermal packing of repulsive
--- bodies, as in the DPM literature); the contacts get back their own beta afterwards.
 --
---   local report = require("lib.compress")(tissue, { to_phi = 0.72 })
+--   require("lib.compress")(tissue, { to_phi = 0.72, out = out, from = invasim.from })
 local iv = require("invasim")
 local options = require("lib.options")
 local log = require("lib.log")
 
 local defaults = {
   to_phi = 0.72, step = 0.03, ftol = 1e-3, final_ftol = 1e-6,
-  beta = 0.0,                 -- cohesion depth during compression
+  cohesion = false,           -- keep the cancer cells' cohesion (beta) on while compressing
   max_steps = 1000000,        -- FIRE iterations per minimisation
   progress = true,
-  save = options.OPTIONAL,    -- path: save the compressed tissue there (a checkpoint)
-  checkpoint = options.OPTIONAL,  -- path: on SIGINT/SIGTERM, save the partly compressed
-                                  -- tissue there (--resume continues from it)
+  out = options.OPTIONAL,     -- the run directory: compressed.ckpt (for --from) and, on
+                              -- SIGINT/SIGTERM, compressing.ckpt (for --resume)
+  from = options.OPTIONAL,    -- a run directory whose compressed tissue replaces the compression
 }
 
 local resume = require("lib.resume")
@@ -50,17 +61,25 @@ local function stop(sys, o, state, where)
                       resume.run_dir() or "DIR"), 0)
 end
 
-return function(tissue, opts)
-  local o = options.check("compress", opts, defaults, { save = "string", checkpoint = "string" })
-  if resume.pending() then
-    log.say("compress", "skipped: resuming from a checkpoint")
-    return { skipped = true }
-  end
-  local sys, contacts = tissue.sys, tissue.contacts
-  local beta = contacts:params().beta
-  contacts:set{ beta = o.beta }
+-- The compressed tissue that the run in directory `from` saved, loaded into tissue.sys.
+local function load_compressed(tissue, from)
+  local path = resume.compressed_path(from)
+  local saved = resume.deserialize(iv.load_checkpoint(path, { system = tissue.sys, seed = tissue.params.seed }))
+  saved.from = path
+  log.say("compress", "skipped: the compressed tissue of %s (box %.4g, phi = %.4f)", from, saved.box[1], saved.phi)
+  return saved
+end
+
+-- Compresses (or continues a compression stopped by a signal); returns the report.
+local function compress(tissue, o)
+  local sys = tissue.sys
+  local save = o.out and resume.compressed_path(o.out) or nil
+  o.checkpoint = o.out and resume.compressing_path(o.out) or nil
+  -- Cohesion off: the engine applies this for the compression and the final FIRE only.
+  local during = (not o.cohesion and tissue.contacts) and { contacts = { beta = 0.0 } } or nil
+  local beta = tissue.contacts and (during and 0.0 or tissue.contacts:params().beta) or 0.0
   log.say("compress", "to phi = %g in steps of %g, FIRE to %g (final %g), cohesion beta = %g during compression",
-          o.to_phi, o.step, o.ftol, o.final_ftol, contacts:params().beta)
+          o.to_phi, o.step, o.ftol, o.final_ftol, beta)
   local saved  -- the state of a compression stopped by a signal, when resuming it
   if o.checkpoint and resume.compression_pending() then
     saved = resume.deserialize(iv.load_checkpoint(o.checkpoint, { system = sys }))
@@ -75,7 +94,7 @@ return function(tissue, opts)
     local progress = o.progress and iv.Progress{ total = 0, label = "compress", every_seconds = 10 } or nil
     report = iv.compress(sys, {
       to_phi = o.to_phi, step = o.step, ftol = o.ftol, max_steps = o.max_steps,
-      continue_from = saved and saved.compress,
+      continue_from = saved and saved.compress, contacts = during and during.contacts,
       callback = function(r)  -- each step in log.txt (the course of the compression)
         log.note("compress", "step %d: phi = %.4f, %d FIRE iterations so far", r.steps, r.phi, r.fire_steps)
         if progress then progress:update(r.steps) end
@@ -88,19 +107,18 @@ return function(tissue, opts)
            string.format("during compression after step %d", report.steps))
     end
     report.stopped = nil
-    local final = iv.Fire{ ftol = o.final_ftol, max_steps = o.max_steps }:minimize(sys)
+    local final = iv.Fire{ ftol = o.final_ftol, max_steps = o.max_steps }:minimize(sys, during)
     report.final = final
     report.max_force = final.max_force
     report.converged = final.converged
     -- A signal during the final FIRE: the compressed tissue and this report are saved.
     if iv.interrupted() then stop(sys, o, { report = report }, "after the compression") end
   end
-  contacts:set{ beta = beta }
   -- (No wall-clock time in the report: it goes into the production checkpoint, which must be
   -- the same bytes for the same run; the log line says how long this took.)
   local seconds = iv.clock() - clock
-  if o.save then  -- the compressed tissue, for runs started with --from this run's directory
-    iv.save_checkpoint(o.save, resume.stamp{ system = sys, extra = resume.serialize{
+  if save then  -- the compressed tissue, for runs started with --from this run's directory
+    iv.save_checkpoint(save, resume.stamp{ system = sys, extra = resume.serialize{
       box = report.box, phi = report.phi, steps = report.steps } })
   end
   if o.checkpoint and iv.exists(o.checkpoint) then iv.remove_path(o.checkpoint) end
@@ -110,4 +128,17 @@ return function(tissue, opts)
           report.max_force, report.converged and "converged" or "NOT converged to " .. o.final_ftol,
           seconds)
   return report
+end
+
+return function(tissue, opts)
+  local o = options.check("compress", opts, defaults, { out = "string", from = "string" })
+  if resume.pending() then
+    log.say("compress", "skipped: resuming from a checkpoint")
+    tissue.compression = { skipped = true }
+  elseif o.from then
+    tissue.compression = load_compressed(tissue, o.from)
+  else
+    tissue.compression = compress(tissue, o)
+  end
+  return tissue.compression
 end

@@ -1,5 +1,6 @@
 -- Stage "heterogeneity" (docs/model.md, protocol step 5): tethers in the lower half of the box in z
 -- (by their midpoint) get rest length (1 - lambda) R_ij, the others (1 + lambda) R_ij.
+-- lambda = 0 (uniform tissue) leaves the rest lengths as the tether stage set them.
 --
 --   require("lib.heterogeneity")(tissue, { lambda = 0.3 })
 local options = require("lib.options")
@@ -11,6 +12,10 @@ return function(tissue, opts)
   local o = options.check("heterogeneity", opts, defaults, { lambda = "number" })
   if not tissue.tethers then
     options.fail("heterogeneity", "the tissue has no tethers; run the tether stage first")
+  end
+  if o.lambda == 0 then
+    log.say("heterogeneity", "lambda = 0: uniform rest lengths on %d tethers", tissue.tethers:count())
+    return
   end
   tissue.tethers:heterogeneity{ lambda = o.lambda }
   log.say("heterogeneity", "lambda = %g on %d tethers", o.lambda, tissue.tethers:count())

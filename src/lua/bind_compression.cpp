@@ -1,11 +1,13 @@
 // The setup stages that reshape the box (setup/compression.hpp):
 //   invasim.compress(sys, {to_phi =, step = 0.03, ftol =, dt =, dt_max =, max_steps =,
 //                          max_compressions = 1e5, progress = p, callback = f,
-//                          continue_from = {steps =, fire_steps =, converged =, max_force =}})
+//                          continue_from = {steps =, fire_steps =, converged =, max_force =},
+//                          contacts = {beta = 0, ...}})
 //   -> report {steps, fire_steps, converged, phi, max_force, box, stopped}
 //   (f(report) is called after every compression step with the report so far; after it, a
 //   stop signal (SIGINT/SIGTERM, invasim.interrupted()) stops the compression at that step
-//   boundary with stopped = true; continue_from resumes the counters of such a report)
+//   boundary with stopped = true; continue_from resumes the counters of such a report;
+//   contacts changes the System's Contacts parameters for this call only: TemporaryContacts)
 //   invasim.rescale(sys, {phi_a =, ftol =, dt =, dt_max =, max_steps =}) -> FIRE result
 // ftol, dt, dt_max and max_steps set the FIRE minimisation after each box change.
 #include <lua.hpp>
@@ -14,6 +16,7 @@
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
 #include "lua/progress.hpp"
+#include "lua/temporary_contacts.hpp"
 #include "setup/compression.hpp"
 
 namespace invasim::lua {
@@ -71,6 +74,7 @@ int l_compress(lua_State* L) {
   } else {
     lua_pop(L, 1);
   }
+  const TemporaryContacts contacts(kw, *sim, "compress");  // undone on every exit path
   kw.finish();
   CompressionCallback on_step = [&](const CompressionReport& r) {
     if (progress) progress->update(static_cast<long long>(r.steps));

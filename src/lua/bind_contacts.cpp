@@ -14,9 +14,6 @@ std::string LuaType<Contacts>::describe(const Contacts& c) {
              ", eps_cv=", p.eps_cv, ", eps_vv=", p.eps_vv, ", skin=", p.skin, ")");
 }
 
-namespace {
-
-// Reads the contact keys into p (defaults: p's values).
 void read_contact_params(Kwargs& kw, ContactParams& p) {
   p.alpha = kw.number("alpha", p.alpha, Range::non_negative());
   p.beta = kw.number("beta", p.beta, Range::non_negative());
@@ -25,6 +22,8 @@ void read_contact_params(Kwargs& kw, ContactParams& p) {
   p.eps_vv = kw.number("eps_vv", p.eps_vv, Range::positive());
   p.skin = kw.number("skin", p.skin, Range::non_negative());
 }
+
+namespace {
 
 int l_new(lua_State* L) {
   Kwargs kw(L, 1, "Contacts");

@@ -1,11 +1,14 @@
 // invasim.Fire{ftol = 1e-8, dt = 0.05, dt_max = 0.5, max_steps = 1e6}: the FIRE minimiser.
-// fire:minimize(sys [, dyn]) -> {converged, steps, max_force, energy}; with a Dynamics that
-// has a pressure wall, the left wall is minimised too (mechanical equilibrium at its P).
+// fire:minimize(sys [, dyn] [, {contacts = {beta = 0, ...}}]) -> {converged, steps, max_force,
+// energy}; with a Dynamics that has a pressure wall, the left wall is minimised too
+// (mechanical equilibrium at its P); `contacts` changes the System's Contacts parameters for
+// this minimisation only (TemporaryContacts).
 #include <lua.hpp>
 
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"
+#include "lua/temporary_contacts.hpp"
 
 namespace invasim::lua {
 
@@ -29,13 +32,26 @@ int l_minimize(lua_State* L) {
   const Fire& fire = check<Fire>(L, 1);
   const std::shared_ptr<Simulation> sim = check_shared<Simulation>(L, 2);
   PressureWall* wall = nullptr;
-  if (!lua_isnoneornil(L, 3)) {
+  int options = 3;  // index of the options table: after the Dynamics, if any
+  if (lua_type(L, 3) == LUA_TUSERDATA) {
+    options = 4;
     DynamicsHandle& d = check<DynamicsHandle>(L, 3);
     if (!d.dynamics.pressure_wall())
       fail_input(
           "minimize: the Dynamics has no pressure wall (set one with "
           "dyn:pressure_wall{P = ...})");
     wall = prepare_dynamics(d, sim, "minimize");
+  } else if (lua_isnil(L, 3)) {
+    options = 4;
+  } else if (!lua_isnone(L, 3) && !lua_istable(L, 3)) {
+    check<DynamicsHandle>(L, 3);  // the error names the expected Dynamics
+  }
+  std::optional<Kwargs> kw;
+  std::optional<TemporaryContacts> contacts;  // undone on every exit path
+  if (!lua_isnoneornil(L, options)) {
+    kw.emplace(L, options, "minimize");
+    contacts.emplace(*kw, *sim, "minimize");
+    kw->finish();
   }
   sim->changed();
   const FireResult r =

@@ -136,6 +136,10 @@ NumberOrRamp kw_number_or_ramp(Kwargs& kw, std::string_view key, Range range,
 // FIRE settings from keys ftol, dt, dt_max, max_steps (defaults of FireParams).
 FireParams kw_fire(Kwargs& kw);
 
+// Contact keys alpha, beta, eps_cc, eps_cv, eps_vv, skin into p (defaults: p's values);
+// defined in bind_contacts.cpp.
+void read_contact_params(Kwargs& kw, ContactParams& p);
+
 // The Simulation a weak owner points to; throws "<what>: its System no longer exists" when it
 // expired, or "<what>: not in a System; <hint>" when it was never set.
 Simulation& owner_of(const std::weak_ptr<Simulation>& owner, const std::string& what,

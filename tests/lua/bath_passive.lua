@@ -6,7 +6,7 @@
 -- protocols' earlier default bath) it fails: T_c/T_a is about 20.
 package.path = "../../protocols/?.lua;" .. package.path
 local iv = require("invasim")
-local decl = require("lib.protocol").declarations()
+local decl = require("lib.parameters").declarations()
 local preset = require("lib.presets").reduced
 local p = iv.params{
   vertex_bath = decl.vertex_bath[1], vertex_gamma = decl.vertex_gamma[1], seed = 3,

@@ -4,11 +4,22 @@
 -- series.csv and the summary report T_c/T_a and kT_c_paper (= 2 T_c, the paper's convention).
 package.path = "../../protocols/?.lua;" .. package.path
 local iv = require("invasim")
-local protocol = require("lib.protocol")
-local p = iv.params(protocol.merge{})
+local parameters = require("lib.parameters")
+local stage = require("lib.stages")
+local p = iv.params(parameters.merge{})
+local N_a, N_c, L0 = parameters.size(p)
 local out = require("lib.run_dir").open(p)
-local tissue = protocol.prepare(p)
-local result = protocol.produce(tissue, p, out)
+local tissue = stage.init{ N_a = N_a, N_c = N_c, L0 = L0, seed = p.seed, start = p.start,
+                           shape_param = p.A_0, eps_v = p.eps_v, eps_a = p.eps_a,
+                           alpha = p.alpha, beta = p.beta }
+stage.compress(tissue, { to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.final_ftol })
+stage.quench(tissue, { P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p, gamma = p.gamma,
+                       vertex_bath = p.vertex_bath, vertex_gamma = p.vertex_gamma, dt = p.dt,
+                       steps = p.quench_steps })
+local result = stage.production(tissue, { steps = p.steps, every = p.every,
+                                          correlate_every = p.correlate_every,
+                                          snapshot_every = p.snapshot_every,
+                                          checkpoint_every = p.checkpoint_every, out = out })
 require("lib.report").final(tissue, p, result, 0, out)
 
 local function lines(path)

@@ -1,15 +1,20 @@
 -- Test: the protocols' `start` and `A_0` parameters reach the engine through
--- lib/protocol.lua. Run with --set start=mixed --set A_0=1.3 (and a small system): every
+-- lib/parameters.lua and the init and compress stages. Run with --set start=mixed --set A_0=1.3 (and a small system): every
 -- adipocyte's reference shape parameter is A_0, the compression of the mixed start reaches
 -- phi, and the packing is genuinely mixed: it fails both de-mixing criteria of
 -- stages_compress.lua (the cells' mean x is right of the leftmost adipocyte centre, and
 -- cells lie behind adipocytes, within 1.5 sigma of a centre left of them in y-z).
 package.path = "../../protocols/?.lua;" .. package.path
 local iv = require("invasim")
-local protocol = require("lib.protocol")
-local p = iv.params(protocol.merge{})
-protocol.validate(p)
-local tissue = protocol.compressed(p)
+local parameters = require("lib.parameters")
+local stage = require("lib.stages")
+local p = iv.params(parameters.merge{})
+parameters.validate(p)
+local N_a, N_c, L0 = parameters.size(p)
+local tissue = stage.init{ N_a = N_a, N_c = N_c, L0 = L0, seed = p.seed, start = p.start,
+                           shape_param = p.A_0, eps_v = p.eps_v, eps_a = p.eps_a,
+                           alpha = p.alpha, beta = p.beta }
+stage.compress(tissue, { to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.final_ftol })
 local sys = tissue.sys
 
 local function check(ok, fmt, ...)

@@ -1,8 +1,9 @@
--- Pieces shared by the protocols in this directory: the parameters every invasion protocol
--- declares (one place, so invasion.lua, tethered.lua and packing.lua agree), and the chain
--- init -> compress -> quench with those parameters.
+-- The parameters of the tissue protocols (invasion.lua, tethered.lua, packing.lua,
+-- bath_cell.lua), declared in this one place so that the protocols agree: each with its
+-- default, range, unit and meaning (`invasim params protocols/invasion.lua` lists them). A
+-- protocol adds its own with merge{...}; size(p) resolves the system preset; validate(p)
+-- checks the combinations of parameters before anything runs.
 local presets = require("lib.presets")
-local options = require("lib.options")
 
 local M = {}
 
@@ -70,24 +71,6 @@ function M.size(p)
          (p.L0 > 0 and p.L0 or preset.L0)
 end
 
--- The production stage with the common parameters, writing into the run directory `out`,
--- with snapshots at the steps that are multiples of snapshot_every (and one at the start).
-function M.produce(tissue, p, out)
-  local iv = require("invasim")
-  local snapshots
-  if p.snapshot_every > 0 and out then
-    snapshots = iv.Snapshots{ dir = out .. "/snapshots" }
-    if not require("lib.resume").pending() then snapshots:write(tissue.sys) end
-  end
-  return require("lib.production")(tissue, {
-    steps = p.steps, every = p.every, correlate_every = p.correlate_every, out = out,
-    checkpoint_every = p.checkpoint_every,
-    on_sample = snapshots and function(row)
-      if row.step % p.snapshot_every == 0 then snapshots:write(tissue.sys) end
-    end or nil,
-  })
-end
-
 -- Checks the parameters' combinations before anything runs or any file is written (each
 -- parameter's own range is checked by iv.params).
 function M.validate(p)
@@ -102,51 +85,6 @@ function M.validate(p)
   if p.checkpoint_every > 0 and p.checkpoint_every % p.every ~= 0 then
     error(string.format("--set checkpoint_every=%d must be a multiple of every = %d", p.checkpoint_every, p.every), 0)
   end
-end
-
--- init + compress with the common parameters; returns the tissue. With --from RUN_DIR, the
--- compressed tissue that run saved (RUN_DIR/checkpoint/compressed.ckpt) replaces the
--- compression (the paper's sweeps share one compressed tissue): same system size, this
--- run's seed.
-function M.compressed(p, out)
-  local iv = require("invasim")
-  local resume = require("lib.resume")
-  local N_a, N_c, L0 = M.size(p)
-  local tissue = require("lib.init"){
-    N_a = N_a, N_c = N_c, L0 = L0, seed = p.seed, eps_v = p.eps_v, eps_a = p.eps_a,
-    alpha = p.alpha, beta = p.beta, shape_param = p.A_0, start = p.start,
-  }
-  if iv.from and not resume.pending() then
-    local path = resume.compressed_path(iv.from)
-    local saved = resume.deserialize(iv.load_checkpoint(path, { system = tissue.sys, seed = p.seed }))
-    saved.from = path
-    tissue.compression = saved
-    require("lib.log").say("compress", "skipped: the compressed tissue of %s (box %.4g, phi = %.4f)",
-                           iv.from, saved.box[1], saved.phi)
-  else
-    tissue.compression = require("lib.compress")(tissue, {
-      to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.final_ftol,
-      beta = p.cohesive_compression and p.beta or 0.0,
-      save = out and resume.compressed_path(out) or nil,
-      checkpoint = out and resume.compressing_path(out) or nil,
-    })
-  end
-  return tissue
-end
-
--- The quench with the common parameters (pressure wall at P, the cells' motion).
-function M.quench(tissue, p)
-  return require("lib.quench")(tissue, { P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p,
-                                         gamma = p.gamma, vertex_bath = p.vertex_bath,
-                                         vertex_gamma = p.vertex_gamma, dt = p.dt,
-                                         steps = p.quench_steps })
-end
-
--- init + compress (or --from) + quench with the common parameters; returns the tissue.
--- (Protocols with tethers call compressed(), insert them, then quench(): docs/model.md, protocol step 4.)
-function M.prepare(p, out)
-  local tissue = M.compressed(p, out)
-  return M.quench(tissue, p)
 end
 
 return M

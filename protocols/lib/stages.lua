@@ -1,0 +1,58 @@
+-- The stages a protocol chains, by name (docs/protocols.md). Each stage is one file
+-- lib/<name>.lua holding a function (tissue, {keywords}) whose keywords are checked like the
+-- engine's constructors; `init` takes only the keywords and returns the tissue the others
+-- work on. Stages know how to skip or restore their own work, so protocols read as a plain
+-- chain: while a --resume from a production checkpoint is pending (lib.resume), compress and
+-- rescale skip their work and quench its steps (init, tether and quench still build their
+-- objects, into which production loads the checkpoint); compress continues a compression
+-- stopped by a signal, and takes the compressed tissue of another run with `from`.
+--
+--   local stage = require("lib.stages")
+--   local tissue = stage.init{ N_a = 8, N_c = 400, L0 = 46 }
+--   stage.compress(tissue, { to_phi = 0.72 })
+local iv = require("invasim")
+local options = require("lib.options")
+local resume = require("lib.resume")
+
+local production = require("lib.production")
+
+local M = {
+  init = require("lib.init"),                     -- dilute tissue (docs/model.md, step 1)
+  compress = require("lib.compress"),             -- to phi, cohesion off (step 2)
+  rescale = require("lib.rescale"),               -- affinely to phi_a, then FIRE (step 6)
+  tether = require("lib.tether"),                 -- ECM springs between adipocytes (step 4)
+  heterogeneity = require("lib.heterogeneity"),   -- rest lengths (1 -+ lambda) R_ij (step 5)
+  quench = require("lib.quench"),                 -- pressure wall at P, cells' motion (step 3)
+}
+
+-- Stage "production" (step 7, lib/production.lua) with snapshots: `snapshot_every` (steps,
+-- a multiple of the given `every`; 0: none) writes out/snapshots/ at the start and at the
+-- steps that are multiples of it. The other keywords are lib/production.lua's.
+function M.production(tissue, opts)
+  opts = opts or {}
+  local every = opts.snapshot_every or 0
+  if math.type(every) ~= "integer" or every < 0 then
+    options.fail("production", "key 'snapshot_every' must be an integer >= 0, got " .. tostring(every))
+  end
+  local own = {}
+  for k, v in pairs(opts) do
+    if k ~= "snapshot_every" then own[k] = v end
+  end
+  if every > 0 and opts.out then
+    if math.type(opts.every) ~= "integer" or every % opts.every ~= 0 then
+      options.fail("production", string.format("snapshot_every = %d must be a multiple of every " ..
+                                               "(snapshots are taken with the samples), got every = %s",
+                                               every, tostring(opts.every)))
+    end
+    local snapshots = iv.Snapshots{ dir = opts.out .. "/snapshots" }
+    if not resume.pending() then snapshots:write(tissue.sys) end
+    local on_sample = opts.on_sample
+    own.on_sample = function(row, t)
+      if row.step % every == 0 then snapshots:write(tissue.sys) end
+      if on_sample then on_sample(row, t) end
+    end
+  end
+  return production(tissue, own)
+end
+
+return M
