@@ -30,15 +30,29 @@ std::string python_float_repr(double value) {
   std::string out = negative ? "-" : "";
   if (decpt <= -4 || decpt > 16) {
     out += digits[0];
-    if (n > 1) out += "." + digits.substr(1);
+    if (n > 1) {
+      out += '.';
+      out.append(digits, 1);
+    }
     char exp_text[16];
     std::snprintf(exp_text, sizeof exp_text, "e%c%02d", exponent < 0 ? '-' : '+',
                   std::abs(exponent));
     return out + exp_text;
   }
-  if (decpt <= 0) return out + "0." + std::string(-decpt, '0') + digits;
-  if (decpt < n) return out + digits.substr(0, decpt) + "." + digits.substr(decpt);
-  return out + digits + std::string(decpt - n, '0') + ".0";
+  if (decpt <= 0) {
+    out += "0.";
+    out.append(static_cast<std::size_t>(-decpt), '0');
+    out += digits;
+  } else if (decpt < n) {
+    out.append(digits, 0, decpt);
+    out += '.';
+    out.append(digits, decpt);
+  } else {
+    out += digits;
+    out.append(static_cast<std::size_t>(decpt - n), '0');
+    out += ".0";
+  }
+  return out;
 }
 
 namespace {

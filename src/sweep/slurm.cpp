@@ -34,9 +34,11 @@ std::string header(const SlurmOptions& o, const std::string& name, const std::st
 
 // Runs `sbatch --parsable [dependency] SCRIPT`; returns the job id.
 std::string sbatch(const fs::path& script, const std::string& dependency) {
-  std::string command = "sbatch --parsable";
-  if (!dependency.empty()) command += " --dependency=afterok:" + dependency;
-  command += " " + quoted(script.string()) + " 2>&1";
+  std::ostringstream text_of_command;
+  text_of_command << "sbatch --parsable";
+  if (!dependency.empty()) text_of_command << " --dependency=afterok:" << dependency;
+  text_of_command << ' ' << quoted(script.string()) << " 2>&1";
+  const std::string command = text_of_command.str();
   FILE* pipe = ::popen(command.c_str(), "r");
   if (!pipe) fail_input("sweep submit: cannot run sbatch");
   std::string text;
@@ -89,20 +91,22 @@ int submit_slurm(const Workspace& ws, const SlurmOptions& o, std::ostream& out) 
   const bool need_prep =
       prep_status != "done" && prep_status != "queued" && prep_status != "running";
   if (need_prep) {
-    write_file(dir / "prep.sbatch",
-               header(o, "invasim-prep", (dir / "slurm-%j.out").string()) +
-                   "# the shared preparation every point starts from (--from " +
-                   ws.job_dir(kPrepId).string() + ")\nexec " + exe + " sweep job " + root + " " +
-                   kPrepId + " " + threads + "\n");
+    std::ostringstream script;
+    script << header(o, "invasim-prep", (dir / "slurm-%j.out").string())
+           << "# the shared preparation every point starts from (--from "
+           << ws.job_dir(kPrepId).string() << ")\nexec " << exe << " sweep job " << root << ' '
+           << kPrepId << ' ' << threads << '\n';
+    write_file(dir / "prep.sbatch", script.str());
   }
-  std::string array = "#SBATCH --array=0-" + std::to_string(ids.size() - 1);
-  if (o.array_limit > 0) array += "%" + std::to_string(o.array_limit);
-  write_file(dir / "array.sbatch",
-             header(o, "invasim-sweep", (dir / "slurm-%A_%a.out").string()) + array + "\n" +
-                 "# array task i runs the state point on line i + 1 of points.txt\n"
-                 "id=$(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" " +
-                 quoted((dir / "points.txt").string()) + ")\n" + "exec " + exe + " sweep job " +
-                 root + " \"$id\" " + threads + "\n");
+  std::ostringstream script;
+  script << header(o, "invasim-sweep", (dir / "slurm-%A_%a.out").string()) << "#SBATCH --array=0-"
+         << ids.size() - 1;
+  if (o.array_limit > 0) script << '%' << o.array_limit;
+  script << "\n# array task i runs the state point on line i + 1 of points.txt\n"
+         << "id=$(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" "
+         << quoted((dir / "points.txt").string()) << ")\nexec " << exe << " sweep job " << root
+         << " \"$id\" " << threads << '\n';
+  write_file(dir / "array.sbatch", script.str());
   if (o.dry_run) {
     out << "sweep submit: wrote " << (need_prep ? (dir / "prep.sbatch").string() + " and " : "")
         << (dir / "array.sbatch").string() << " (" << ids.size()
