@@ -163,7 +163,7 @@ class Runner {
         const std::string result = it->record->finish(code, stop_signal_ != 0 || signalled);
         const std::string entry = label(it->id) + ": " + it->record->log_path().string();
         if (result == "done")
-          ++done;
+          done += it->id == kPrepId ? 0 : 1;
         else if (result == "interrupted")
           interrupted.push_back(entry);
         else
@@ -187,8 +187,8 @@ class Runner {
 
 int run_local(const Workspace& ws, const LocalRunSettings& settings, std::ostream& out) {
   Runner runner(ws, settings, out);
-  if (ws.has_prep()) {
-    runner.run({kPrepId}, 1, settings.jobs * settings.threads);
+  if (ws.has_prep() && job_status(ws.job_dir(kPrepId)) != "done") {
+    runner.run({kPrepId}, 1, settings.threads);
     if (job_status(ws.job_dir(kPrepId)) != "done") {
       out << "sweep run: the shared preparation is not done (" << job_status(ws.job_dir(kPrepId))
           << ", log " << (ws.job_dir(kPrepId) / "run.log").string()
