@@ -4,8 +4,7 @@
 // (or `invasim run --resume JOBDIR` when it has started before) with --threads `threads`; the
 // shared preparation first, alone, with the same --threads (a local run and a Slurm run with
 // --cpus-per-task `threads` give the same numbers). Finished jobs are skipped, so are jobs
-// another runner holds
-// (their lock). SIGINT / SIGTERM are forwarded once to every child, which checkpoints and
+// another runner holds (their lock). SIGINT / SIGTERM are forwarded once to every child, which checkpoints and
 // stops; no new job starts; the jobs are recorded as interrupted. A failed job does not stop
 // the others; failures are listed with their logs at the end.
 #include <ostream>

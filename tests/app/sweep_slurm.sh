@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# `invasim sweep submit --slurm` against a real Slurm: starts a private single-node Slurm as
-# /work/shared/SLURM.md describes (munge, slurmctld and slurmd with private state directories
-# and free ports; only the processes this script started are stopped, by their pids, also on
+# `invasim sweep submit --slurm` against a real Slurm: starts a private single-node Slurm
+# (Debian 12's Slurm 22.05: munge, slurmctld and slurmd with private state directories and
+# free ports; only the processes this script started are stopped, by their pids, also on
 # failure), submits tests/app/sweeps/tiny.lua (shared preparation chained before the array
 # with --dependency=afterok), stops the array with SIGTERM once a point has written a
 # checkpoint (as a time limit does), submits again (the stopped points continue from their
