@@ -8,8 +8,8 @@
 return {
   protocol = "../invasion.lua",
   set = { system = "reduced", f0 = 0.0, beta = 0.0, P = 1.3e-3,
-          quench_steps = 5000, steps = 20000, every = 500,
-          snapshot_every = 0, checkpoint_every = 5000 },
+          quench_steps = 20000, steps = 250000, every = 1000,
+          snapshot_every = 0, checkpoint_every = 10000 },
   -- kT/(P sigma^3) = 0.003, 0.01, 0.03, 0.1, 0.3, 1, 3
   product = { kT = { 3.9e-6, 1.3e-5, 3.9e-5, 1.3e-4, 3.9e-4, 1.3e-3, 3.9e-3 } },
   seeds = { 1, 2 },

@@ -9,8 +9,8 @@
 return {
   protocol = "../invasion.lua",
   set = { system = "reduced", P = 1.3e-3, kT = 0.0,
-          quench_steps = 5000, steps = 20000, every = 500,
-          snapshot_every = 0, checkpoint_every = 5000 },
+          quench_steps = 20000, steps = 250000, every = 1000,
+          snapshot_every = 0, checkpoint_every = 10000 },
   product = { beta = { 1e-3, 1e-2 }, tau_p = { 25.0, 250.0 },
               f0 = { 0.0025, 0.005, 0.01, 0.02 } },
   seeds = { 1 },
