@@ -88,6 +88,8 @@ scancel --signal=TERM --full "$array" 2> /dev/null || true
 until ! queue_holds "$array"; do sleep 0.1; done
 "$invasim" sweep status ws > status1.log
 cat status1.log
+# Points started before the preparation had saved its tissue would have failed.
+grep -q "failed: 0" status1.log || { cat ws/workspace/*/run.log; fail "points failed in the first array" status1.log; }
 "$invasim" sweep submit ws --slurm --cpus-per-task 1 > submit2.log || fail "second submit" submit2.log
 cat submit2.log
 array2=$(sed -n 's/.*Slurm job array \([0-9]*\).*/\1/p' submit2.log)
