@@ -33,6 +33,7 @@ class Runner {
     sigemptyset(&mask_);
     sigaddset(&mask_, SIGINT);
     sigaddset(&mask_, SIGTERM);
+    sigaddset(&mask_, SIGHUP);  // a closed terminal: stopped like SIGTERM
     sigaddset(&mask_, SIGCHLD);
     pthread_sigmask(SIG_BLOCK, &mask_, &old_mask_);
   }
@@ -142,13 +143,17 @@ class Runner {
       return;
     }
     const bool first = !stop_signal_;
-    stop_signal_ = info.si_signo;
-    out_ << "sweep run: " << (info.si_signo == SIGINT ? "SIGINT" : "SIGTERM")
+    const int signal = info.si_signo == SIGHUP ? SIGTERM : info.si_signo;
+    stop_signal_ = signal;
+    out_ << "sweep run: "
+         << (info.si_signo == SIGINT   ? "SIGINT"
+             : info.si_signo == SIGHUP ? "SIGHUP"
+                                       : "SIGTERM")
          << (first ? ": stopping the running jobs at their next checkpoint (no new job starts)"
                    : " again: passed on to the jobs, which stop at once")
          << '\n'
          << std::flush;
-    for (const auto& c : children_) ::kill(c.pid, info.si_signo);
+    for (const auto& c : children_) ::kill(c.pid, signal);
   }
 
   void reap() {

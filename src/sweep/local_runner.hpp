@@ -4,9 +4,10 @@
 // (or `invasim run --resume JOBDIR` when it has started before) with --threads `threads`; the
 // shared preparation first, alone, with the same --threads (a local run and a Slurm run with
 // --cpus-per-task `threads` give the same numbers). Finished jobs are skipped, so are jobs
-// another runner holds (their lock). SIGINT / SIGTERM are forwarded once to every child, which checkpoints and
-// stops; no new job starts; the jobs are recorded as interrupted. A failed job does not stop
-// the others; failures are listed with their logs at the end.
+// another runner holds (their lock). SIGINT / SIGTERM (and SIGHUP, passed on as SIGTERM) are
+// forwarded once to every child, which checkpoints and stops; no new job starts; the jobs are
+// recorded as interrupted. A failed job does not stop the others; failures are listed with
+// their logs at the end.
 #include <ostream>
 #include <string>
 
