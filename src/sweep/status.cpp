@@ -26,12 +26,15 @@ std::map<std::string, std::string> slurm_queue() {
 
 std::string effective_status(const fs::path& job_dir,
                              const std::map<std::string, std::string>& queue) {
-  const std::string status = job_status(job_dir);
-  if (status != "submitted") return status;
   const Json doc = read_document(job_dir);
+  const std::string recorded = doc.value("status", "pending");
   const auto it = queue.find(doc.value("slurm_job_id", ""));
-  if (it == queue.end()) return "pending";
-  return it->second == "RUNNING" || it->second == "COMPLETING" ? "running" : "queued";
+  // A Slurm task the queue still holds is running or queued, whatever a lock on a shared file
+  // system (where flock may not reach across nodes) says.
+  if ((recorded == "running" || recorded == "submitted") && it != queue.end())
+    return it->second == "RUNNING" || it->second == "COMPLETING" ? "running" : "queued";
+  if (recorded == "submitted") return "pending";  // it left the queue without starting
+  return job_status(job_dir);
 }
 
 int print_status(const Workspace& ws, std::ostream& out) {

@@ -14,8 +14,9 @@ namespace invasim::sweep {
 // when squeue is not installed or fails.
 std::map<std::string, std::string> slurm_queue();
 
-// A job's status, with Slurm's view of a submitted one: submitted jobs are "queued" (in the
-// queue, not started) or "running"; a submitted job the queue no longer holds is "pending".
+// A job's status, with Slurm's view: a submitted or running job the queue holds is "queued"
+// (not started) or "running"; a submitted job the queue no longer holds is "pending"; else
+// job_status (a "running" job whose lock nobody holds is "interrupted").
 std::string effective_status(const fs::path& job_dir,
                              const std::map<std::string, std::string>& queue);
 
