@@ -17,7 +17,8 @@ declare -A allowed=(
   [setup]="integrate measure forces neighbor state mesh core"
   [checkpoint]="integrate io forces neighbor state mesh core"
   [lua]="checkpoint setup integrate measure io forces neighbor state mesh core"
-  [app]="lua checkpoint setup integrate measure io forces neighbor state mesh core"
+  [sweep]="lua core"
+  [app]="sweep lua checkpoint setup integrate measure io forces neighbor state mesh core"
 )
 bad=0
 while IFS= read -r line; do

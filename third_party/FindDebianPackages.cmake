@@ -12,6 +12,8 @@ macro(invasim_require cmake_name debian_name)
 endmacro()
 
 invasim_require(Eigen3 libeigen3-dev NO_MODULE)
+# JSON of the sweep workspaces (src/sweep/).
+invasim_require(nlohmann_json nlohmann-json3-dev)
 
 find_package(OpenMP QUIET)
 if(NOT OpenMP_CXX_FOUND)

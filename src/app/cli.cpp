@@ -18,6 +18,10 @@ Usage:
                                          meaning) without running it
   invasim render SNAPSHOT --slice z=VALUE -o FILE.svg [--size PIXELS]
                                          draw a cross-section of a snapshot frame as SVG
+  invasim sweep init|run|status|collect|submit ...
+                                         parameter sweeps: a workspace of runs, run here or
+                                         on Slurm, collected into one table (invasim sweep
+                                         --help; docs/sweeps.md)
   invasim --help                         this text
   invasim --version                      version and git revision
 

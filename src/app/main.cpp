@@ -9,6 +9,7 @@
 
 #include "app/cli.hpp"
 #include "app/render_command.hpp"
+#include "app/sweep_command.hpp"
 #include "core/errors.hpp"
 #include "invasim_version.hpp"
 #include "lua/lua_state.hpp"
@@ -61,6 +62,8 @@ int run(const Command& command) {
 int main(int argc, char** argv) {
   bool traceback = false;
   try {
+    if (argc > 1 && std::string(argv[1]) == "sweep")
+      return invasim::app::run_sweep_command(std::vector<std::string>(argv + 2, argv + argc));
     const Command command =
         invasim::app::parse_command_line(std::vector<std::string>(argv + 1, argv + argc));
     traceback = command.traceback;

@@ -1,0 +1,18 @@
+-- A 2 x 2 corner of the paper's Fig. 6 at reduced scale: active cohesive cancer cells with
+-- beta in {1e-3, 1e-2} and tau_p in {25, 250}; along each curve the self-propulsion f0 sets
+-- the measured temperature k_B T_c/(P sigma^3) (the paper's knob for active runs,
+-- docs/model.md), all from one compressed tissue (the shared preparation). About 10 minutes
+-- on 2 cores (docs/sweeps.md):
+--   invasim sweep init protocols/sweeps/fig6_corner.lua
+--   invasim sweep run out/fig6_corner
+--   invasim sweep collect out/fig6_corner -o out/fig6_corner/results.csv
+return {
+  protocol = "../invasion.lua",
+  set = { system = "reduced", P = 1.3e-3, kT = 0.0,
+          quench_steps = 20000, steps = 250000, every = 1000,
+          snapshot_every = 0, checkpoint_every = 10000 },
+  product = { beta = { 1e-3, 1e-2 }, tau_p = { 25.0, 250.0 },
+              f0 = { 0.0025, 0.005, 0.01, 0.02 } },
+  seeds = { 1 },
+  prep = { set = { quench_steps = 0, steps = 0 } },
+}

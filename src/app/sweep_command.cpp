@@ -1,0 +1,279 @@
+#include "app/sweep_command.hpp"
+
+#include <fcntl.h>
+#include <omp.h>
+#include <sched.h>
+#include <unistd.h>
+
+#include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <optional>
+
+#include "app/cli.hpp"
+#include "core/errors.hpp"
+#include "core/stop_request.hpp"
+#include "lua/lua_state.hpp"
+#include "sweep/collect.hpp"
+#include "sweep/job_record.hpp"
+#include "sweep/local_runner.hpp"
+#include "sweep/slurm.hpp"
+#include "sweep/status.hpp"
+
+namespace invasim::app {
+
+namespace fs = std::filesystem;
+
+std::string sweep_help_text() {
+  return R"(invasim sweep: parameter sweeps of a protocol (docs/sweeps.md)
+
+Usage:
+  invasim sweep init SPEC.lua [--workspace DIR]
+        check the sweep spec and create (or grow) its signac-compatible workspace
+        (default DIR: out/<spec name>)
+  invasim sweep run WS [--jobs N] [--threads T]
+        run the points that are not done, N at a time with T threads each (default: fill
+        the cores, N x T <= cores); interrupted points continue from their checkpoints;
+        Ctrl-C / SIGTERM stop every run at its next checkpoint
+  invasim sweep status WS
+        pending / queued / running / done / failed / interrupted counts
+  invasim sweep collect WS [-o FILE.csv]
+        one row per point: state point, summary means and errors, tau_d, tau_r
+        (default: standard output)
+  invasim sweep submit WS --slurm [--partition P] [--time T] [--cpus-per-task C]
+                        [--array-limit L] [--sbatch-arg ARG]... [--dry-run]
+        run the points that are not done as one Slurm job array (after the shared
+        preparation, if any)
+  invasim sweep job WS ID [--threads T]
+        run one point (ID: a job id, or prep) in this process, as the Slurm tasks do
+)";
+}
+
+namespace {
+
+// The options of one sweep subcommand: positional words and --name value pairs.
+struct Parsed {
+  std::vector<std::string> positional;
+  std::map<std::string, std::vector<std::string>> values;
+  std::map<std::string, bool> flags;
+};
+
+Parsed parse(const std::string& verb, const std::vector<std::string>& args,
+             const std::vector<std::string>& with_value, const std::vector<std::string>& flags) {
+  Parsed p;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    std::string name = args[i], value;
+    bool has_value = false;
+    if (name == "-o") name = "--output";
+    if (name.rfind("--", 0) != 0) {
+      p.positional.push_back(name);
+      continue;
+    }
+    if (const auto eq = name.find('='); eq != std::string::npos) {
+      value = name.substr(eq + 1);
+      name = name.substr(0, eq);
+      has_value = true;
+    }
+    if (std::find(flags.begin(), flags.end(), name) != flags.end()) {
+      if (has_value) throw UsageError(name + " takes no value");
+      p.flags[name] = true;
+      continue;
+    }
+    if (std::find(with_value.begin(), with_value.end(), name) == with_value.end()) {
+      std::string known;
+      for (const auto& w : with_value) known += (known.empty() ? "" : ", ") + w;
+      for (const auto& f : flags) known += (known.empty() ? "" : ", ") + f;
+      throw UsageError("invasim sweep " + verb + ": unknown option '" + name + "'" +
+                       (known.empty() ? " (it takes none)" : " (it takes " + known + ")"));
+    }
+    if (!has_value) {
+      if (i + 1 >= args.size()) throw UsageError(name + " needs a value");
+      value = args[++i];
+    }
+    if (name != "--sbatch-arg" && p.values.count(name)) throw UsageError(name + " given twice");
+    p.values[name].push_back(value);
+  }
+  return p;
+}
+
+int positive(const std::string& name, const std::string& text, int max = kMaxThreads) {
+  int value = 0;
+  const auto r = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (r.ec != std::errc() || r.ptr != text.data() + text.size() || value < 1 || value > max)
+    throw UsageError(name + " expects an integer in [1, " + std::to_string(max) + "], got '" +
+                     text + "'");
+  return value;
+}
+
+std::optional<std::string> value(const Parsed& p, const std::string& name) {
+  const auto it = p.values.find(name);
+  if (it == p.values.end()) return std::nullopt;
+  return it->second.front();
+}
+
+// The workspace argument: exactly one positional word after the verb (plus `extra` more).
+std::vector<std::string> words(const std::string& verb, const Parsed& p, std::size_t count,
+                               const std::string& usage) {
+  if (p.positional.size() != count)
+    throw UsageError(
+        "invasim sweep " + verb + ": expected " + usage +
+        (p.positional.size() > count ? ", got also '" + p.positional[count] + "'" : ""));
+  return p.positional;
+}
+
+int cores() {
+  cpu_set_t set;
+  if (sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
+  return std::max(1L, sysconf(_SC_NPROCESSORS_ONLN));
+}
+
+std::string executable() {
+  return fs::read_symlink("/proc/self/exe").string();
+}
+
+int init(const std::vector<std::string>& args) {
+  const Parsed p = parse("init", args, {"--workspace"}, {});
+  const auto spec_path = words("init", p, 1, "SPEC.lua")[0];
+  const sweep::SweepSpec spec = sweep::load_spec(spec_path);
+  const std::string ws =
+      value(p, "--workspace").value_or((fs::path("out") / fs::path(spec_path).stem()).string());
+  const auto report = sweep::init_workspace(spec, ws);
+  std::cout << "sweep init: " << ws << ": " << report.added << " new points, " << report.kept
+            << " kept (" << report.added + report.kept << " in " << spec_path << ")"
+            << (spec.has_prep ? ", with a shared preparation" : "") << "\nnext: invasim sweep run "
+            << ws << "   or   invasim sweep submit " << ws << " --slurm\n";
+  return 0;
+}
+
+int run(const std::vector<std::string>& args) {
+  const Parsed p = parse("run", args, {"--jobs", "--threads"}, {});
+  const auto ws = sweep::Workspace::open(words("run", p, 1, "a workspace directory")[0]);
+  const int n = cores();
+  const auto jobs = value(p, "--jobs"), threads = value(p, "--threads");
+  sweep::LocalRunSettings settings;
+  settings.threads = threads ? positive("--threads", *threads) : 1;
+  settings.jobs = jobs ? positive("--jobs", *jobs) : std::max(1, n / settings.threads);
+  if (jobs && !threads) settings.threads = std::max(1, n / settings.jobs);
+  if (settings.jobs * settings.threads > n)
+    std::cout << "sweep run: note: " << settings.jobs << " jobs x " << settings.threads
+              << " threads exceed the " << n << " cores\n";
+  settings.executable = executable();
+  std::cout << "sweep run: " << ws.root().string() << ": " << settings.jobs << " at a time, "
+            << settings.threads << " threads each\n"
+            << std::flush;
+  return sweep::run_local(ws, settings, std::cout);
+}
+
+int collect(const std::vector<std::string>& args) {
+  const Parsed p = parse("collect", args, {"--output"}, {});
+  const auto ws = sweep::Workspace::open(words("collect", p, 1, "a workspace directory")[0]);
+  const auto output = value(p, "--output");
+  if (!output) {
+    sweep::collect(ws, std::cout);
+    return 0;
+  }
+  std::ofstream out(*output);
+  if (!out) fail_input("sweep collect: cannot write ", *output);
+  const int rows = sweep::collect(ws, out);
+  std::cerr << "sweep collect: " << rows << " rows in " << *output << '\n';
+  return 0;
+}
+
+int submit(const std::vector<std::string>& args) {
+  const Parsed p = parse(
+      "submit", args, {"--partition", "--time", "--cpus-per-task", "--array-limit", "--sbatch-arg"},
+      {"--slurm", "--dry-run"});
+  const auto ws = sweep::Workspace::open(words("submit", p, 1, "a workspace directory")[0]);
+  if (!p.flags.count("--slurm"))
+    throw UsageError("invasim sweep submit: say which batch system: --slurm (the only one so far)");
+  sweep::SlurmOptions o;
+  o.partition = value(p, "--partition").value_or("");
+  o.time = value(p, "--time").value_or("");
+  if (auto c = value(p, "--cpus-per-task")) o.cpus_per_task = positive("--cpus-per-task", *c);
+  if (auto l = value(p, "--array-limit")) o.array_limit = positive("--array-limit", *l, 1000000);
+  if (p.values.count("--sbatch-arg")) o.extra = p.values.at("--sbatch-arg");
+  o.dry_run = p.flags.count("--dry-run") > 0;
+  o.executable = executable();
+  return sweep::submit_slurm(ws, o, std::cout);
+}
+
+// One point in this process, output appended to its run.log.
+int job(const std::vector<std::string>& args) {
+  const Parsed p = parse("job", args, {"--threads"}, {});
+  const auto w = words("job", p, 2, "a workspace directory and a job id");
+  const auto ws = sweep::Workspace::open(w[0]);
+  const std::string& id = w[1];
+  if (id != sweep::kPrepId && std::find(ws.ids().begin(), ws.ids().end(), id) == ws.ids().end())
+    fail_input("sweep job: ", id, " is not a point of ", ws.root().string());
+  if (id == sweep::kPrepId && !ws.has_prep())
+    fail_input("sweep job: ", ws.root().string(), " has no shared preparation");
+  const fs::path dir = ws.job_dir(id);
+  const auto lock = sweep::JobLock::try_acquire(dir);
+  if (!lock) fail_input("sweep job: ", id, " is being run by another runner");
+  if (sweep::read_document(dir).value("status", "") == "done") {
+    std::cout << "sweep job: " << id << " is done already\n";
+    return 0;
+  }
+  std::vector<std::string> run_args = ws.run_arguments(id);
+  if (auto threads = value(p, "--threads")) {
+    run_args.push_back("--threads");
+    run_args.push_back(std::to_string(positive("--threads", *threads)));
+  }
+  std::cout << "sweep job: " << id << ": output in " << (dir / "run.log").string() << '\n'
+            << std::flush;
+  const int log = ::open((dir / "run.log").c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+  if (log >= 0) {
+    ::dup2(log, 1);
+    ::dup2(log, 2);
+    ::close(log);
+  }
+  std::cout << "== " << sweep::utc_now() << " invasim sweep job:";
+  for (const auto& a : run_args) std::cout << ' ' << a;
+  std::cout << std::endl;
+  sweep::JobRecord record(dir, ::getpid());
+  int code = 0;
+  try {
+    const Command command = parse_command_line(run_args);
+    if (command.threads) omp_set_num_threads(*command.threads);
+    lua::LuaState state(command.options);
+    state.run_file(command.options.script_path);
+  } catch (const std::exception& e) {
+    std::cerr << "invasim: error: " << e.what() << std::endl;
+    code = 1;
+  }
+  std::cout << std::flush;
+  return record.finish(code, stop_requested() != 0) == "done" ? 0 : 1;
+}
+
+}  // namespace
+
+int run_sweep_command(const std::vector<std::string>& args) {
+  if (args.empty())
+    throw UsageError("invasim sweep: missing command (init, run, status, collect, submit or job)");
+  if (args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    std::cout << sweep_help_text();
+    return 0;
+  }
+  const std::string& verb = args[0];
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+  if (std::find(rest.begin(), rest.end(), "--help") != rest.end()) {
+    std::cout << sweep_help_text();
+    return 0;
+  }
+  if (verb == "init") return init(rest);
+  if (verb == "run") return run(rest);
+  if (verb == "status") {
+    const Parsed p = parse("status", rest, {}, {});
+    return sweep::print_status(
+        sweep::Workspace::open(words("status", p, 1, "a workspace directory")[0]), std::cout);
+  }
+  if (verb == "collect") return collect(rest);
+  if (verb == "submit") return submit(rest);
+  if (verb == "job") return job(rest);
+  throw UsageError("unknown sweep command '" + verb +
+                   "' (expected init, run, status, collect, submit or job)");
+}
+
+}  // namespace invasim::app

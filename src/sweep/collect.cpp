@@ -1,0 +1,121 @@
+#include "sweep/collect.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+namespace invasim::sweep {
+
+namespace {
+
+std::string number(double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
+// A CSV cell: numbers with %.17g, booleans true/false, strings quoted if needed.
+std::string cell(const Json& value) {
+  if (value.is_null()) return "";
+  if (value.is_number_float()) return number(value.get<double>());
+  if (value.is_number()) return value.dump();
+  if (value.is_boolean()) return value.get<bool>() ? "true" : "false";
+  std::string text = value.is_string() ? value.get<std::string>() : value.dump();
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+// The units of series.csv's columns: "T_c [eps_c]" -> T_c: eps_c.
+void read_units(const fs::path& series, std::map<std::string, std::string>& units) {
+  std::ifstream in(series);
+  std::string header;
+  if (!std::getline(in, header)) return;
+  std::stringstream columns(header);
+  for (std::string column; std::getline(columns, column, ',');) {
+    const auto open = column.find(" [");
+    if (open != std::string::npos && column.back() == ']')
+      units.emplace(column.substr(0, open), column.substr(open + 2, column.size() - open - 3));
+  }
+}
+
+Json read_summary(const fs::path& dir) {
+  std::ifstream in(dir / "summary.json");
+  if (!in) return Json();
+  try {
+    return Json::parse(in);
+  } catch (const Json::exception&) {
+    return Json();
+  }
+}
+
+// tau_d / tau_r from the averages, or the top level (cells_only.lua writes them there).
+Json time_of(const Json& summary, const std::string& name) {
+  if (summary.contains("averages") && summary["averages"].contains(name) &&
+      summary["averages"][name].is_number())
+    return summary["averages"][name];
+  if (summary.contains(name) && summary[name].is_number()) return summary[name];
+  return Json();
+}
+
+std::string with_unit(const std::string& name, const std::map<std::string, std::string>& units,
+                      const std::string& base) {
+  const auto it = units.find(base);
+  return it == units.end() ? name : name + " [" + it->second + "]";
+}
+
+}  // namespace
+
+int collect(const Workspace& ws, std::ostream& out) {
+  struct Row {
+    std::string id, status;
+    Json statepoint, document, summary;
+  };
+  std::vector<Row> rows;
+  std::set<std::string> keys, averages;
+  std::map<std::string, std::string> units;
+  for (const auto& id : ws.ids()) {
+    const fs::path dir = ws.job_dir(id);
+    Row row{id, job_status(dir), ws.statepoint(id), read_document(dir), Json()};
+    for (const auto& item : row.statepoint.items()) keys.insert(item.key());
+    if (row.status == "done") {
+      row.summary = read_summary(dir);
+      read_units(dir / "series.csv", units);
+      if (row.summary.contains("averages"))
+        for (const auto& item : row.summary["averages"].items())
+          if (item.value().is_object() && item.value().contains("mean") &&
+              item.value().contains("error"))
+            averages.insert(item.key());
+    }
+    rows.push_back(std::move(row));
+  }
+  out << "job_id,status,wall_seconds [s]";
+  for (const auto& k : keys) out << ',' << k;
+  for (const auto& a : averages)
+    out << ',' << with_unit(a, units, a) << ',' << with_unit(a + "_error", units, a);
+  out << ",tau_d [tau],tau_r [tau]\n";
+  for (const auto& row : rows) {
+    const bool done = row.status == "done";
+    out << row.id << ',' << row.status << ','
+        << (done && row.document.contains("wall_seconds") ? cell(row.document["wall_seconds"])
+                                                          : "");
+    for (const auto& k : keys)
+      out << ',' << (row.statepoint.contains(k) ? cell(row.statepoint[k]) : "");
+    for (const auto& a : averages) {
+      Json entry;
+      if (done && row.summary.contains("averages") && row.summary["averages"].contains(a))
+        entry = row.summary["averages"][a];
+      const bool ok = entry.is_object();
+      out << ',' << (ok && entry.contains("mean") ? cell(entry["mean"]) : "") << ','
+          << (ok && entry.contains("error") ? cell(entry["error"]) : "");
+    }
+    out << ',' << (done ? cell(time_of(row.summary, "tau_d")) : "") << ','
+        << (done ? cell(time_of(row.summary, "tau_r")) : "") << '\n';
+  }
+  return static_cast<int>(rows.size());
+}
+
+}  // namespace invasim::sweep

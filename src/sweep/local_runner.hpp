@@ -1,0 +1,27 @@
+#pragma once
+// `invasim sweep run WS`: runs the workspace's unfinished jobs on this machine, `jobs` at a
+// time, each as a child process `invasim run PROTOCOL --out JOBDIR --set ... [--from PREP]`
+// (or `invasim run --resume JOBDIR` when it has started before) with --threads `threads`; the
+// shared preparation first, alone, with the same --threads (a local run and a Slurm run with
+// --cpus-per-task `threads` give the same numbers). Finished jobs are skipped, so are jobs
+// another runner holds (their lock). SIGINT / SIGTERM (and SIGHUP, passed on as SIGTERM) are
+// forwarded once to every child, which checkpoints and stops; no new job starts; the jobs are
+// recorded as interrupted. A failed job does not stop the others; failures are listed with
+// their logs at the end.
+#include <ostream>
+#include <string>
+
+#include "sweep/workspace.hpp"
+
+namespace invasim::sweep {
+
+struct LocalRunSettings {
+  int jobs = 1;            // children at a time
+  int threads = 1;         // --threads of each child
+  std::string executable;  // this invasim binary
+};
+
+// Returns the exit status: 0 if every job is done, 1 otherwise.
+int run_local(const Workspace& ws, const LocalRunSettings& settings, std::ostream& out);
+
+}  // namespace invasim::sweep

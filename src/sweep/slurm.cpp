@@ -1,0 +1,144 @@
+#include "sweep/slurm.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "sweep/job_record.hpp"
+#include "sweep/status.hpp"
+
+namespace invasim::sweep {
+
+namespace {
+
+// A path inside single quotes for the shell; paths holding a quote are refused.
+std::string quoted(const std::string& text) {
+  if (text.find('\'') != std::string::npos)
+    fail_input("sweep submit: the path ", text,
+               " holds a single quote, which the sbatch script cannot quote");
+  return "'" + text + "'";
+}
+
+std::string header(const SlurmOptions& o, const std::string& name, const std::string& output) {
+  std::ostringstream s;
+  s << "#!/bin/bash\n"
+    << "#SBATCH --job-name=" << name << '\n'
+    << "#SBATCH --cpus-per-task=" << o.cpus_per_task << '\n'
+    << "#SBATCH --output=" << output << '\n';
+  if (!o.partition.empty()) s << "#SBATCH --partition=" << o.partition << '\n';
+  if (!o.time.empty()) s << "#SBATCH --time=" << o.time << '\n';
+  for (const auto& e : o.extra) s << "#SBATCH " << e << '\n';
+  return s.str();
+}
+
+// Runs `sbatch --parsable [dependency] SCRIPT`; returns the job id.
+std::string sbatch(const fs::path& script, const std::string& dependency) {
+  std::ostringstream text_of_command;
+  text_of_command << "sbatch --parsable";
+  if (!dependency.empty()) text_of_command << " --dependency=afterok:" << dependency;
+  text_of_command << ' ' << quoted(script.string()) << " 2>&1";
+  const std::string command = text_of_command.str();
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) fail_input("sweep submit: cannot run sbatch");
+  std::string text;
+  char buffer[512];
+  while (std::fgets(buffer, sizeof buffer, pipe)) text += buffer;
+  const int status = ::pclose(pipe);
+  while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
+  if (status != 0) fail_input("sweep submit: ", command, " failed: ", text);
+  const std::string id = text.substr(0, text.find(';'));  // "123" or "123;cluster"
+  if (id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
+    fail_input("sweep submit: sbatch --parsable printed '", text, "', not a job id");
+  return id;
+}
+
+void mark_submitted(const fs::path& dir, const std::string& slurm_id) {
+  Json doc = read_document(dir);
+  doc["status"] = "submitted";
+  doc["slurm_job_id"] = slurm_id;
+  doc["submitted_at"] = utc_now();
+  write_document(dir, doc);
+}
+
+}  // namespace
+
+int submit_slurm(const Workspace& ws, const SlurmOptions& o, std::ostream& out) {
+  const auto queue = slurm_queue();
+  std::vector<std::string> ids;
+  for (const auto& id : ws.ids()) {
+    const std::string status = effective_status(ws.job_dir(id), queue);
+    if (status != "done" && status != "queued" && status != "running") ids.push_back(id);
+  }
+  const std::string prep_status =
+      ws.has_prep() ? effective_status(ws.job_dir(kPrepId), queue) : "done";
+  if (ids.empty()) {
+    out << "sweep submit: nothing to submit (every point is done, queued or running)\n";
+    return 0;
+  }
+  const fs::path slurm_dir = ws.root() / "slurm";
+  fs::create_directories(slurm_dir);
+  int k = 1;
+  while (fs::exists(slurm_dir / ("submit-" + std::to_string(k)))) ++k;
+  const fs::path dir = slurm_dir / ("submit-" + std::to_string(k));
+  fs::create_directories(dir);
+  {
+    std::ofstream points(dir / "points.txt");
+    for (const auto& id : ids) points << id << '\n';
+  }
+  const std::string exe = quoted(o.executable), root = quoted(ws.root().string());
+  const std::string threads = "--threads \"${SLURM_CPUS_PER_TASK:-1}\"";
+  const bool need_prep =
+      prep_status != "done" && prep_status != "queued" && prep_status != "running";
+  if (need_prep) {
+    std::ostringstream script;
+    script << header(o, "invasim-prep", (dir / "slurm-%j.out").string())
+           << "# the shared preparation every point starts from (--from "
+           << ws.job_dir(kPrepId).string() << ")\nexec " << exe << " sweep job " << root << ' '
+           << kPrepId << ' ' << threads << '\n';
+    write_file(dir / "prep.sbatch", script.str());
+  }
+  std::ostringstream script;
+  script << header(o, "invasim-sweep", (dir / "slurm-%A_%a.out").string()) << "#SBATCH --array=0-"
+         << ids.size() - 1;
+  if (o.array_limit > 0) script << '%' << o.array_limit;
+  script << "\n# array task i runs the state point on line i + 1 of points.txt\n"
+         << "id=$(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" "
+         << quoted((dir / "points.txt").string()) << ")\nexec " << exe << " sweep job " << root
+         << " \"$id\" " << threads << '\n';
+  write_file(dir / "array.sbatch", script.str());
+  if (o.dry_run) {
+    out << "sweep submit: wrote " << (need_prep ? (dir / "prep.sbatch").string() + " and " : "")
+        << (dir / "array.sbatch").string() << " (" << ids.size()
+        << " points); --dry-run: nothing submitted\n";
+    return 0;
+  }
+  std::string prep_job;
+  if (need_prep) {
+    prep_job = sbatch(dir / "prep.sbatch", "");
+    mark_submitted(ws.job_dir(kPrepId), prep_job);
+    out << "sweep submit: shared preparation: Slurm job " << prep_job << '\n';
+  } else if (prep_status == "queued" || prep_status == "running") {
+    prep_job = read_document(ws.job_dir(kPrepId)).value("slurm_job_id", "");
+  }
+  const std::string array_job = sbatch(dir / "array.sbatch", prep_job);
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    mark_submitted(ws.job_dir(ids[i]), array_job + "_" + std::to_string(i));
+  Json log = Json::array();
+  if (fs::exists(slurm_dir / "submissions.json")) {
+    std::ifstream in(slurm_dir / "submissions.json");
+    log = Json::parse(in);
+  }
+  log.push_back({{"submitted_at", utc_now()},
+                 {"directory", dir.string()},
+                 {"array_job", array_job},
+                 {"prep_job", prep_job.empty() ? Json(nullptr) : Json(prep_job)},
+                 {"points", ids}});
+  write_file(slurm_dir / "submissions.json", log.dump(2) + "\n");
+  out << "sweep submit: " << ids.size() << " points as Slurm job array " << array_job
+      << (prep_job.empty() ? "" : " (after job " + prep_job + ")") << "; scripts in "
+      << dir.string() << '\n';
+  return 0;
+}
+
+}  // namespace invasim::sweep

@@ -1,0 +1,31 @@
+#pragma once
+// `invasim sweep submit WS --slurm`: the points that are not done (nor queued or running)
+// become one Slurm job array. In WS/slurm/submit-K/ it writes points.txt (one job id per
+// line: array task i runs line i + 1), array.sbatch (each task runs
+// `invasim sweep job WS ID --threads $SLURM_CPUS_PER_TASK`) and, when the shared preparation
+// is not done, prep.sbatch, submitted first; the array then waits for it with
+// --dependency=afterok. Both are submitted with `sbatch --parsable`; the Slurm job ids go to
+// the job documents (status "submitted") and WS/slurm/submissions.json. A task killed by its
+// time limit was stopped by SIGTERM and checkpointed; submitting again continues it.
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "sweep/workspace.hpp"
+
+namespace invasim::sweep {
+
+struct SlurmOptions {
+  std::string partition;           // --partition (default: the cluster's default)
+  std::string time;                // --time (default: the partition's limit)
+  int cpus_per_task = 1;           // --cpus-per-task, also the runs' --threads
+  int array_limit = 0;             // --array-limit: tasks at a time (0: no limit)
+  std::vector<std::string> extra;  // --sbatch-arg ARG: more #SBATCH lines
+  bool dry_run = false;            // write the scripts, submit nothing
+  std::string executable;          // this invasim binary
+};
+
+// Returns 0, or 1 if sbatch failed (its message printed).
+int submit_slurm(const Workspace& ws, const SlurmOptions& options, std::ostream& out);
+
+}  // namespace invasim::sweep

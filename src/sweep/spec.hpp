@@ -1,0 +1,52 @@
+#pragma once
+// A sweep specification: a Lua file (protocols/sweeps/*.lua) that returns a table
+//   { protocol = "../invasion.lua",              -- relative to the spec file
+//     set = { key = value, ... },                -- fixed parameters
+//     product = { key = { v1, v2, ... }, ... },  -- every combination of these lists
+//     zip = { { key1 = {...}, key2 = {...} } },  -- lists that move together (equal lengths)
+//     seeds = { 1, 2, 3 },                       -- replicates (the parameter `seed`)
+//     prep = { set = { ... } } }                 -- optional shared preparation run
+// checked against the parameters the protocol declares (its invasim.params{...} table, read
+// the way `invasim params` reads it): an unknown key, an undeclared parameter, a value of the
+// wrong type or outside its range is an InputError naming "spec.lua:LINE: key", before
+// anything is written. docs/sweeps.md describes the format.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "lua/params.hpp"
+#include "sweep/python_json.hpp"
+
+namespace invasim::sweep {
+
+// One axis: a parameter and its values.
+using Axis = std::pair<std::string, std::vector<Json>>;
+
+struct SweepSpec {
+  std::string path;                  // the spec file
+  std::string protocol;              // absolute path of the protocol
+  std::vector<lua::Param> declared;  // the protocol's parameters
+  Json fixed = Json::object();       // set = {...}
+  std::vector<Axis> product;         // product = {...} (sorted by name), then seeds
+  std::vector<std::vector<Axis>> zips;
+  bool has_prep = false;
+  Json prep_set = Json::object();  // the preparation's parameters: fixed, then prep.set
+
+  // The state points: fixed parameters plus one value of every axis (the product of the
+  // product axes and zip groups), in a fixed order.
+  std::vector<Json> points() const;
+};
+
+// Loads and checks SPEC.lua; InputError naming the file, line and key on any problem.
+SweepSpec load_spec(const std::string& path);
+
+// The declared parameter `name` of a protocol's declarations, or nullptr.
+const lua::Param* find_param(const std::vector<lua::Param>& declared, const std::string& name);
+
+// The protocol's parameters, read by running it in `invasim params` mode.
+std::vector<lua::Param> protocol_params(const std::string& protocol);
+
+// A state-point value as `--set key=VALUE` text for the protocol (floats round-trip).
+std::string set_text(const Json& value);
+
+}  // namespace invasim::sweep

@@ -1,0 +1,59 @@
+#include "sweep/status.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+namespace invasim::sweep {
+
+std::map<std::string, std::string> slurm_queue() {
+  std::map<std::string, std::string> queue;
+  if (std::system("command -v squeue >/dev/null 2>&1") != 0) return queue;
+  FILE* pipe = ::popen("squeue -h -r -o '%i %T' 2>/dev/null", "r");
+  if (!pipe) return queue;
+  char line[512];
+  while (std::fgets(line, sizeof line, pipe)) {
+    std::string text(line);
+    const auto space = text.find(' ');
+    if (space == std::string::npos) continue;
+    std::string state = text.substr(space + 1);
+    while (!state.empty() && (state.back() == '\n' || state.back() == ' ')) state.pop_back();
+    queue[text.substr(0, space)] = state;
+  }
+  ::pclose(pipe);
+  return queue;
+}
+
+std::string effective_status(const fs::path& job_dir,
+                             const std::map<std::string, std::string>& queue) {
+  const Json doc = read_document(job_dir);
+  const std::string recorded = doc.value("status", "pending");
+  const auto it = queue.find(doc.value("slurm_job_id", ""));
+  // A Slurm task the queue still holds is running or queued, whatever a lock on a shared file
+  // system (where flock may not reach across nodes) says.
+  if ((recorded == "running" || recorded == "submitted") && it != queue.end())
+    return it->second == "RUNNING" || it->second == "COMPLETING" ? "running" : "queued";
+  if (recorded == "submitted") return "pending";  // it left the queue without starting
+  return job_status(job_dir);
+}
+
+int print_status(const Workspace& ws, std::ostream& out) {
+  const auto queue = slurm_queue();
+  std::map<std::string, int> counts;
+  std::vector<std::string> failed;
+  for (const auto& id : ws.ids()) {
+    const std::string status = effective_status(ws.job_dir(id), queue);
+    ++counts[status];
+    if (status == "failed")
+      failed.push_back(id + ": " + read_document(ws.job_dir(id)).value("log", ""));
+  }
+  out << ws.root().string() << ": " << ws.ids().size() << " points of " << ws.protocol() << '\n';
+  if (ws.has_prep())
+    out << "  shared preparation: " << effective_status(ws.job_dir(kPrepId), queue) << '\n';
+  for (const char* name : {"pending", "queued", "running", "done", "failed", "interrupted"})
+    out << "  " << name << ": " << counts[name] << '\n';
+  for (const auto& f : failed) out << "  failed: " << f << '\n';
+  return 0;
+}
+
+}  // namespace invasim::sweep

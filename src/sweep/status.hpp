@@ -1,0 +1,26 @@
+#pragma once
+// `invasim sweep status WS`: how many state points are pending, queued (Slurm), running,
+// done, failed or interrupted, from the job documents, the job locks and, where Slurm's
+// squeue is installed, the queue.
+#include <map>
+#include <ostream>
+#include <string>
+
+#include "sweep/workspace.hpp"
+
+namespace invasim::sweep {
+
+// Slurm job id ("123" or "123_4") -> state (PENDING, RUNNING, ...) from `squeue -h -r`; empty
+// when squeue is not installed or fails.
+std::map<std::string, std::string> slurm_queue();
+
+// A job's status, with Slurm's view: a submitted or running job the queue holds is "queued"
+// (not started) or "running"; a submitted job the queue no longer holds is "pending"; else
+// job_status (a "running" job whose lock nobody holds is "interrupted").
+std::string effective_status(const fs::path& job_dir,
+                             const std::map<std::string, std::string>& queue);
+
+// Prints the counts (and the failed jobs' logs); returns 0.
+int print_status(const Workspace& ws, std::ostream& out);
+
+}  // namespace invasim::sweep

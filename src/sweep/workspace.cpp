@@ -1,0 +1,170 @@
+#include "sweep/workspace.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+
+#include "core/errors.hpp"
+
+namespace invasim::sweep {
+
+namespace {
+
+const char* const kConfig = "invasim_sweep.json";
+
+Json read_json(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) fail_input("cannot read ", path.string());
+  try {
+    return Json::parse(in);
+  } catch (const Json::exception& e) {
+    fail_input(path.string(), ": not valid JSON (", e.what(), ")");
+  }
+}
+
+}  // namespace
+
+void write_file(const fs::path& path, const std::string& text) {
+  const fs::path tmp = path.string() + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::trunc);
+    out << text;
+    if (!out) fail_input("cannot write ", tmp.string());
+  }
+  fs::rename(tmp, path);
+}
+
+Json read_document(const fs::path& job_dir) {
+  const fs::path path = job_dir / "signac_job_document.json";
+  if (!fs::exists(path)) return Json{{"status", "pending"}};
+  return read_json(path);
+}
+
+void write_document(const fs::path& job_dir, const Json& document) {
+  write_file(job_dir / "signac_job_document.json", document.dump(2) + "\n");
+}
+
+JobLock::~JobLock() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+JobLock& JobLock::operator=(JobLock&& other) noexcept {
+  if (this != &other) {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = other.fd_;
+    other.fd_ = -1;
+  }
+  return *this;
+}
+
+std::optional<JobLock> JobLock::try_acquire(const fs::path& job_dir) {
+  const int fd = ::open((job_dir / "run.lock").c_str(), O_RDWR | O_CREAT, 0644);
+  if (fd < 0) fail_input("cannot open ", (job_dir / "run.lock").string());
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    ::close(fd);
+    return std::nullopt;
+  }
+  return JobLock(fd);
+}
+
+std::string job_status(const fs::path& job_dir) {
+  const std::string status = read_document(job_dir).value("status", "pending");
+  if (status != "running") return status;
+  return JobLock::try_acquire(job_dir) ? "interrupted" : "running";
+}
+
+Workspace Workspace::open(const fs::path& root) {
+  const fs::path config = root / kConfig;
+  if (!fs::exists(config))
+    fail_input(root.string(), " is not a sweep workspace (no ", kConfig,
+               "); create one with: invasim sweep init SPEC.lua --workspace ", root.string());
+  const Json c = read_json(config);
+  Workspace ws;
+  ws.root_ = fs::absolute(root).lexically_normal();
+  ws.protocol_ = c.at("protocol").get<std::string>();
+  ws.ids_ = c.at("points").get<std::vector<std::string>>();
+  ws.has_prep_ = c.contains("prep") && !c.at("prep").is_null();
+  if (ws.has_prep_) ws.prep_set_ = c.at("prep").at("set");
+  return ws;
+}
+
+fs::path Workspace::job_dir(const std::string& id) const {
+  return id == kPrepId ? root_ / "prep" : root_ / "workspace" / id;
+}
+
+Json Workspace::statepoint(const std::string& id) const {
+  if (id == kPrepId) return prep_set_;
+  return read_json(job_dir(id) / "signac_statepoint.json");
+}
+
+std::vector<std::string> Workspace::run_arguments(const std::string& id) const {
+  const fs::path dir = job_dir(id);
+  if (fs::exists(dir / "resume.txt")) return {"run", "--resume", dir.string()};
+  std::vector<std::string> args = {"run", protocol_, "--out", dir.string()};
+  const Json point = statepoint(id);
+  for (const auto& item : point.items()) {
+    args.push_back("--set");
+    args.push_back(item.key() + "=" + set_text(item.value()));
+  }
+  if (id != kPrepId && has_prep_) {
+    args.push_back("--from");
+    args.push_back(job_dir(kPrepId).string());
+  }
+  return args;
+}
+
+InitReport init_workspace(const SweepSpec& spec, const fs::path& root_in) {
+  const fs::path root = fs::absolute(root_in).lexically_normal();
+  const Json prep = spec.has_prep ? Json{{"set", spec.prep_set}} : Json(nullptr);
+  std::vector<std::string> ids;
+  if (fs::exists(root / kConfig)) {
+    const Json old = read_json(root / kConfig);
+    if (old.at("protocol") != spec.protocol)
+      fail_input(root.string(), " is a sweep of ", old.at("protocol").get<std::string>(),
+                 ", not of ", spec.protocol, ": choose another --workspace");
+    const Json old_prep = old.contains("prep") ? old.at("prep") : Json(nullptr);
+    if (python_dumps(old_prep) != python_dumps(prep))
+      fail_input(root.string(),
+                 ": the shared preparation differs from the one its points started "
+                 "from (",
+                 python_dumps(old_prep), " there, ", python_dumps(prep), " in ", spec.path,
+                 "): choose another --workspace");
+    ids = old.at("points").get<std::vector<std::string>>();
+  }
+  InitReport report;
+  fs::create_directories(root / ".signac");
+  fs::create_directories(root / "workspace");
+  write_file(root / ".signac" / "config", "schema_version = 2\n");
+  for (const Json& point : spec.points()) {
+    const std::string id = signac_id(point);
+    const fs::path dir = root / "workspace" / id;
+    if (std::find(ids.begin(), ids.end(), id) != ids.end() &&
+        fs::exists(dir / "signac_statepoint.json")) {
+      ++report.kept;
+      continue;
+    }
+    fs::create_directories(dir);
+    write_file(dir / "signac_statepoint.json", python_dumps(point));
+    if (!fs::exists(dir / "signac_job_document.json"))
+      write_document(dir, Json{{"status", "pending"}});
+    if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
+    ++report.added;
+  }
+  if (spec.has_prep) {
+    fs::create_directories(root / "prep");
+    if (!fs::exists(root / "prep" / "signac_job_document.json"))
+      write_document(root / "prep", Json{{"status", "pending"}});
+  }
+  Json config = {{"protocol", spec.protocol},
+                 {"spec", fs::absolute(spec.path).lexically_normal().string()},
+                 {"prep", prep},
+                 {"points", ids}};
+  write_file(root / kConfig, config.dump(2) + "\n");
+  return report;
+}
+
+}  // namespace invasim::sweep

@@ -1,0 +1,109 @@
+#!/usr/bin/env bash
+# `invasim sweep` on this machine, end to end, on tests/app/sweeps/tiny.lua (4 points and a
+# shared preparation, a few seconds each):
+#  1. init: .signac/config, one workspace/<id>/ per point, id = MD5 of Python's
+#     json.dumps(statepoint, sort_keys=True) (checked with python3);
+#  2. run, stopped with SIGINT once a point has written a checkpoint (an event, not a time):
+#     the runner forwards it, exits 1, the stopped points are "interrupted";
+#  3. a second run finishes only what is left (a stopped point continues from its
+#     checkpoint): every point ends done, none ran twice to completion (one "results in"
+#     line per log), and each series.csv equals that of an
+#     uninterrupted run of the same sweep in another workspace, byte for byte;
+#  4. init with a grown spec (a third seed) adds 2 points, keeps the 4 and their results;
+#     collect shows the 2 new ones pending with empty cells; run does only those 2;
+#  5. collect: the results.csv header of the contract (docs/sweeps.md);
+#  6. a sweep with a failing point: the other point is done, the failure is reported with its
+#     log, the exit status is 1.
+# Usage: sweep_local.sh INVASIM SPEC_DIR WORK_DIR PYTHON3
+set -euo pipefail
+invasim=$1 specs=$2 work=$3 python=$4
+source "$(dirname "$0")/../lua/wait_for.sh"
+rm -rf "$work" && mkdir -p "$work" && cd "$work"
+
+"$invasim" sweep init "$specs/tiny.lua" --workspace ws > init.log || fail "init" init.log
+grep -q "4 new points, 0 kept" init.log || fail "init did not report 4 new points" init.log
+[ "$(cat ws/.signac/config)" = "schema_version = 2" ] || fail ".signac/config is not schema 2"
+"$python" - ws <<'PY' || fail "signac ids"
+import hashlib, json, os, sys
+ws = sys.argv[1]
+ids = os.listdir(os.path.join(ws, "workspace"))
+assert len(ids) == 4, ids
+for i in ids:
+    sp = json.load(open(os.path.join(ws, "workspace", i, "signac_statepoint.json")))
+    assert hashlib.md5(json.dumps(sp, sort_keys=True).encode()).hexdigest() == i, (i, sp)
+    assert sp["N_c"] == 40 and isinstance(sp["kT"], float) and isinstance(sp["seed"], int), sp
+PY
+
+# 2. Stop the sweep once some point has written a checkpoint.
+"$invasim" sweep run ws --jobs 2 --threads 1 > run1.log 2>&1 &
+pid=$!
+wait_for $pid "a checkpoint of a point" \
+  bash -c 'ls ws/workspace/*/checkpoint/state.ckpt > /dev/null 2>&1'
+kill -INT $pid
+status=0
+wait $pid || status=$?
+[ $status -eq 1 ] || fail "the stopped sweep run exited with $status (expected 1)" run1.log
+grep -q "SIGINT: stopping the running jobs" run1.log || fail "no stop message" run1.log
+grep -q "interrupted" run1.log || fail "no point was recorded as interrupted" run1.log
+"$invasim" sweep status ws > status1.log
+grep -Eq "interrupted: [1-9]" status1.log || fail "status shows no interrupted point" status1.log
+
+# 3. The second run finishes the rest.
+"$invasim" sweep run ws --jobs 2 --threads 1 > run2.log 2>&1 || fail "second run" run2.log
+grep -q "4 of 4 points done" run2.log || fail "second run did not finish every point" run2.log
+"$invasim" sweep init "$specs/tiny.lua" --workspace clean > /dev/null
+"$invasim" sweep run clean --jobs 2 --threads 1 > clean.log 2>&1 || fail "uninterrupted run" clean.log
+for dir in ws/workspace/*; do
+  id=$(basename "$dir")
+  n=$(grep -c "results in" "$dir/run.log" || true)
+  [ "$n" -eq 1 ] || fail "point $id completed $n times" "$dir/run.log"
+  cmp "$dir/series.csv" "clean/workspace/$id/series.csv" ||
+    fail "point $id: series.csv differs from the uninterrupted run"
+done
+grep -q '"status": "done"' ws/prep/signac_job_document.json || fail "prep not done"
+grep -q "resuming the run" ws/workspace/*/run.log || fail "no point continued from its checkpoint"
+
+# 4. A grown spec: 2 new points; the old ones keep their results.
+before=$(cat ws/workspace/*/series.csv | md5sum)
+"$invasim" sweep init "$specs/tiny_grown.lua" --workspace ws > init2.log || fail "init grown" init2.log
+grep -q "2 new points, 4 kept" init2.log || fail "grown init" init2.log
+"$invasim" sweep collect ws -o pending.csv
+[ "$(grep -c ',pending,,' pending.csv)" -eq 2 ] || fail "collect: 2 pending rows with empty cells" pending.csv
+"$invasim" sweep run ws --jobs 2 --threads 1 > run3.log 2>&1 || fail "run after growing" run3.log
+grep -q "2 done now, 4 done before" run3.log || fail "run after growing ran other points" run3.log
+[ "$(cat $(ls -d ws/workspace/* | while read d; do
+        grep -q '"seed": 3' "$d/signac_statepoint.json" || echo "$d/series.csv"; done) | md5sum)" \
+  = "$before" ] || fail "the old points' results changed"
+
+# 5. collect: the contract's columns.
+"$invasim" sweep collect ws -o results.csv
+"$python" - results.csv <<'PY' || fail "results.csv" results.csv
+import csv, sys
+rows = list(csv.reader(open(sys.argv[1])))
+head = rows[0]
+assert head[:3] == ["job_id", "status", "wall_seconds [s]"], head
+keys = head[3:head.index("A_ratio")]
+assert keys == sorted(keys) and "seed" in keys and "kT" in keys, keys
+assert head[-2:] == ["tau_d [tau]", "tau_r [tau]"], head
+means = head[head.index("A_ratio"):-2]
+names = [c.split(" [")[0] for c in means[0::2]]
+assert names == sorted(names), names
+for mean, err in zip(means[0::2], means[1::2]):
+    n, _, unit = mean.partition(" [")
+    assert err == n + "_error" + (" [" + unit if unit else ""), (mean, err)
+assert "T_c [eps_c]" in head and "T_c_error [eps_c]" in head and "A_ratio_error" in head, head
+assert len(rows) == 7 and all(r[1] == "done" for r in rows[1:]), rows
+for r in rows[1:]:
+    assert all(c != "" for c in r), r
+    float(r[head.index("T_c [eps_c]")])
+PY
+
+# 6. A failing point does not stop the others.
+"$invasim" sweep init "$specs/failing.lua" --workspace failing > /dev/null
+status=0
+"$invasim" sweep run failing --jobs 1 --threads 1 > failing.log 2>&1 || status=$?
+[ $status -eq 1 ] || fail "a sweep with a failing point exited with $status" failing.log
+grep -q "1 done now, 0 done before, 1 failed" failing.log || fail "failure tally" failing.log
+grep -q "failed: .*beta=0.5.*run.log (exit status 1)" failing.log || fail "failure report" failing.log
+grep -rq "beta = 0.5 must be smaller than alpha" failing/workspace/*/run.log || fail "failure log"
+echo "sweep local: OK"

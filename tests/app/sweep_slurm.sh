@@ -1,0 +1,114 @@
+#!/usr/bin/env bash
+# `invasim sweep submit --slurm` against a real Slurm: starts a private single-node Slurm
+# (Debian 12's Slurm 22.05: munge, slurmctld and slurmd with private state directories and
+# free ports; only the processes this script started are stopped, by their pids, also on
+# failure), submits tests/app/sweeps/tiny.lua (shared preparation chained before the array
+# with --dependency=afterok), stops the array with SIGTERM once a point has written a
+# checkpoint (as a time limit does), submits again (the stopped points continue from their
+# checkpoints), waits until every point is done, and compares each point's series.csv and
+# summary.json (timings aside) with a local `sweep run` of the same sweep, byte for byte.
+# Exit 77 (skipped) where Slurm's or munge's binaries are missing or not root.
+# Usage: sweep_slurm.sh INVASIM SPEC_DIR WORK_DIR
+set -euo pipefail
+invasim=$1 specs=$2 work=$3
+for b in slurmctld slurmd sbatch squeue sinfo scancel munged munge unmunge; do
+  command -v $b > /dev/null || PATH=$PATH:/usr/sbin command -v $b > /dev/null ||
+    { echo "SKIPPED: $b is not installed (apt-get install slurm-wlm munge)"; exit 77; }
+done
+[ "$(id -u)" = 0 ] || { echo "SKIPPED: starting munged and slurmd needs root"; exit 77; }
+export PATH=$PATH:/usr/sbin
+source "$(dirname "$0")/../lua/wait_for.sh"
+rm -rf "$work" && mkdir -p "$work/state" "$work/spool" && cd "$work"
+
+munged_pid=
+cleanup() {
+  for f in slurmd.pid slurmctld.pid; do
+    [ -s "$work/$f" ] && kill "$(cat "$work/$f")" 2> /dev/null || true
+  done
+  [ -n "$munged_pid" ] && kill "$munged_pid" 2> /dev/null || true
+}
+trap cleanup EXIT
+
+# 1. munge, unless one already answers.
+if ! munge -n 2> /dev/null | unmunge > /dev/null 2>&1; then
+  install -d -o munge -g munge -m 0755 /run/munge
+  runuser -u munge -- /usr/sbin/munged
+  munged_pid=$(cat /run/munge/munged.pid)
+  munge -n | unmunge > /dev/null || fail "munge does not work"
+fi
+
+# 2. slurm.conf with two free ports.
+read -r ctld_port slurmd_port < <(python3 -c '
+import socket
+s = [socket.socket() for _ in range(2)]
+for x in s: x.bind(("127.0.0.1", 0))
+print(*[x.getsockname()[1] for x in s])')
+cat > slurm.conf <<CONF
+ClusterName=invasim-test
+SlurmctldHost=localhost
+SlurmUser=root
+AuthType=auth/munge
+ProctrackType=proctrack/linuxproc
+TaskPlugin=task/none
+SelectType=select/cons_tres
+SelectTypeParameters=CR_CPU
+StateSaveLocation=$work/state
+SlurmdSpoolDir=$work/spool
+SlurmctldPidFile=$work/slurmctld.pid
+SlurmdPidFile=$work/slurmd.pid
+SlurmctldPort=$ctld_port
+SlurmdPort=$slurmd_port
+ReturnToService=2
+NodeName=localhost NodeAddr=127.0.0.1 CPUs=2 State=UNKNOWN
+PartitionName=debug Nodes=localhost Default=YES MaxTime=INFINITE State=UP
+CONF
+export SLURM_CONF=$work/slurm.conf
+
+# 3. The daemons; wait until the node is idle.
+slurmctld -f "$SLURM_CONF" > slurmctld.log 2>&1
+slurmd -f "$SLURM_CONF" -N localhost > slurmd.log 2>&1
+for _ in $(seq 1 600); do
+  [ "$(sinfo -h -o %t 2> /dev/null)" = idle ] && break
+  sleep 0.1
+done
+[ "$(sinfo -h -o %t)" = idle ] || fail "the Slurm node did not become idle" slurmctld.log
+
+# 4. Submit; stop the array once a point has a checkpoint; submit again; wait.
+"$invasim" sweep init "$specs/tiny.lua" --workspace ws > /dev/null
+"$invasim" sweep submit ws --slurm --cpus-per-task 1 --time 10 > submit1.log || fail submit submit1.log
+grep -q "after job" submit1.log || fail "the preparation was not chained before the array" submit1.log
+grep -q "dependency\|afterok" ws/slurm/submit-1/array.sbatch && fail "dependency belongs on the command line"
+array=$(sed -n 's/.*Slurm job array \([0-9]*\).*/\1/p' submit1.log)
+queue_holds() { [ -n "$(squeue -h -j "$1" 2> /dev/null)" ]; }
+checkpoint_or_end() {
+  ls ws/workspace/*/checkpoint/state.ckpt > /dev/null 2>&1 || ! queue_holds "$array"
+}
+until checkpoint_or_end; do sleep 0.1; done
+scancel --signal=TERM --full "$array" 2> /dev/null || true
+until ! queue_holds "$array"; do sleep 0.1; done
+"$invasim" sweep status ws > status1.log
+cat status1.log
+# Points started before the preparation had saved its tissue would have failed.
+grep -q "failed: 0" status1.log || { cat ws/workspace/*/run.log; fail "points failed in the first array" status1.log; }
+"$invasim" sweep submit ws --slurm --cpus-per-task 1 > submit2.log || fail "second submit" submit2.log
+cat submit2.log
+array2=$(sed -n 's/.*Slurm job array \([0-9]*\).*/\1/p' submit2.log)
+[ -z "$array2" ] || until ! queue_holds "$array2"; do sleep 0.1; done
+"$invasim" sweep status ws > status2.log
+grep -q "done: 4" status2.log || { cat ws/slurm/submit-*/slurm-*.out; fail "not every point is done" status2.log; }
+grep -q '"slurm_job_id"' ws/workspace/*/signac_job_document.json || fail "no Slurm job id recorded"
+
+# 5. The same sweep locally (1 thread per point, as --cpus-per-task 1).
+"$invasim" sweep init "$specs/tiny.lua" --workspace local > /dev/null
+"$invasim" sweep run local --jobs 2 --threads 1 > local.log 2>&1 || fail "local run" local.log
+for dir in ws/workspace/*; do
+  id=$(basename "$dir")
+  cmp "$dir/series.csv" "local/workspace/$id/series.csv" || fail "point $id: series.csv differs"
+  diff <(grep -v '"seconds"\|wall_clock_seconds' "$dir/summary.json") \
+       <(grep -v '"seconds"\|wall_clock_seconds' "local/workspace/$id/summary.json") > /dev/null ||
+    fail "point $id: summary.json differs"
+  n=$(grep -c "results in" "$dir/run.log" || true)
+  [ "$n" -eq 1 ] || fail "point $id completed $n times" "$dir/run.log"
+done
+echo "resumed on Slurm: $(grep -l 'resuming the run' ws/workspace/*/run.log 2> /dev/null | wc -l) points"
+echo "sweep slurm: OK"

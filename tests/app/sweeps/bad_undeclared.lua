@@ -1,0 +1,7 @@
+return {
+  protocol = "../../../protocols/invasion.lua",
+  set = {
+    N_a = 2,
+    stpes = 100,
+  },
+}
