@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "app/cli.hpp"
+#include "app/sweep_analyze.hpp"
 #include "core/errors.hpp"
 #include "core/stop_request.hpp"
 #include "lua/lua_state.hpp"
@@ -46,6 +47,10 @@ Usage:
                         [--array-limit L] [--sbatch-arg ARG]... [--dry-run]
         run the points that are not done as one Slurm job array (after the shared
         preparation, if any)
+  invasim sweep analyze WS [-o DIR] [--group K1,K2] [--temperature kT|T_c|kT_c_paper] ...
+        collect into WS/results.csv and fit the master curve (scripts/master_curve.py;
+        its options pass through, see --help there): fit tables and figures in DIR
+        (default WS/analysis); P, beta, gamma default to the protocol's values
   invasim sweep job WS ID [--threads T]
         run one point (ID: a job id, or prep) in this process, as the Slurm tasks do
 )";
@@ -251,7 +256,8 @@ int job(const std::vector<std::string>& args) {
 
 int run_sweep_command(const std::vector<std::string>& args) {
   if (args.empty())
-    throw UsageError("invasim sweep: missing command (init, run, status, collect, submit or job)");
+    throw UsageError(
+        "invasim sweep: missing command (init, run, status, collect, submit, analyze or job)");
   if (args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     std::cout << sweep_help_text();
     return 0;
@@ -272,8 +278,9 @@ int run_sweep_command(const std::vector<std::string>& args) {
   if (verb == "collect") return collect(rest);
   if (verb == "submit") return submit(rest);
   if (verb == "job") return job(rest);
+  if (verb == "analyze") return sweep_analyze(rest);
   throw UsageError("unknown sweep command '" + verb +
-                   "' (expected init, run, status, collect, submit or job)");
+                   "' (expected init, run, status, collect, submit, analyze or job)");
 }
 
 }  // namespace invasim::app

@@ -6,6 +6,7 @@
 //   invasim sweep collect WS [-o results.csv]
 //   invasim sweep submit WS --slurm [--partition P] [--time T] [--cpus-per-task C]
 //                         [--array-limit L] [--sbatch-arg ARG ...] [--dry-run]
+//   invasim sweep analyze WS [-o DIR] [master_curve.py options]
 //   invasim sweep job WS ID [--threads T]    (one point in this process: the Slurm tasks)
 #include <string>
 #include <vector>
