@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages invasim needs, only those missing. Run as root.
 set -euo pipefail
+# libpugixml-dev: reading .vtp/.pvd; nlohmann-json3-dev: JSON files; zlib1g-dev: checkpoint CRC-32.
 # python3-numpy and python3-matplotlib: scripts/plot_run.py; librsvg2-bin: invasim render -o X.png.
 packages=(g++ cmake make libeigen3-dev liblua5.4-dev lua5.4 libcgal-dev libgmp-dev catch2
+          libpugixml-dev nlohmann-json3-dev zlib1g-dev
           python3 python3-numpy python3-matplotlib librsvg2-bin)
 missing=()
 for p in "${packages[@]}"; do
