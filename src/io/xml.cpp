@@ -6,11 +6,26 @@
 
 namespace invasim {
 
+namespace {
+
+// Whether a failed parse stopped inside an element (the text ended before its end tag).
+bool elements_open(const pugi::xml_parse_result& r) {
+  return r.status == pugi::status_end_element_mismatch ||
+         r.status == pugi::status_bad_start_element || r.status == pugi::status_bad_pcdata ||
+         r.status == pugi::status_bad_attribute || r.status == pugi::status_bad_end_element;
+}
+
+}  // namespace
+
 XmlDocument::XmlDocument(std::string_view text, std::string origin)
     : text_(text), origin_(std::move(origin)) {
   const pugi::xml_parse_result r = doc_.load_buffer(text_.data(), text_.size());
   auto fail = [&](std::size_t offset, const char* what) {
-    fail_io(origin_, ": line ", line_at(offset), " (offset ", offset, "): malformed XML: ", what);
+    const char* end = offset + 1 >= text_.size() && elements_open(r)
+                          ? "; the text ends inside an element (a truncated file?)"
+                          : "";
+    fail_io(origin_, ": line ", line_at(offset), " (offset ", offset, "): malformed XML: ", what,
+            end);
   };
   if (!r) fail(std::size_t(r.offset), r.description());
   // pugixml accepts fragments; an XML document has one root element and nothing else.
