@@ -36,6 +36,6 @@ require("lib.summary").print("bath", s, { "T_c", "T_a", "T_c_over_T_a", "kT_c_pa
 local derived = { kT_over_P = s.T_c.mean / p.P, kT_over_P_error = s.T_c.error / p.P }
 log.say("bath", "k_B T_c / (P sigma^3) = %.4g +- %.2g, T_c/T_a = %.4g +- %.2g", derived.kT_over_P,
         derived.kT_over_P_error, s.T_c_over_T_a.mean, s.T_c_over_T_a.error)
-require("lib.files").write(out .. "/summary.json", require("lib.json").encode{
+require("lib.files").write(out .. "/summary.json", iv.json_encode{
   averages = s, derived = derived, steps = tissue.sys:step(),
 })

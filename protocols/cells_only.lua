@@ -104,8 +104,7 @@ if s.tau_d_standard then
   log.say("summary", "tau_d_standard / tau_d_free = %.4f", s.tau_d_standard / tau_d_free)
 end
 if out then
-  local json = require("lib.json")
-  require("lib.files").write(out .. "/summary.json", json.encode{
+  require("lib.files").write(out .. "/summary.json", iv.json_encode{
     N_c = tissue.cells:size(), phi_c = sys:packing().cancer, box = sys:box().lengths,
     tau_g = tau_g, tau_p = p.tau_p, f0 = p.f0, kT = p.kT,
     tau_d = s.tau_d, tau_d_standard = s.tau_d_standard, tau_d_free = tau_d_free,

@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages invasim needs, only those missing. Run as root.
 set -euo pipefail
-# python3-numpy and python3-matplotlib: scripts/plot_run.py; with python3-scipy also
-# scripts/master_curve.py (the sweep analysis); librsvg2-bin: invasim render -o X.png.
-# nlohmann-json3-dev: the sweep workspaces' JSON; slurm-wlm munge: the Slurm sweep test
-# (tests/app/sweep_slurm.sh starts a private single-node Slurm).
+# libpugixml-dev: reading .vtp/.pvd; nlohmann-json3-dev: JSON files and the sweep workspaces;
+# zlib1g-dev: checkpoint CRC-32. python3-numpy and python3-matplotlib: scripts/plot_run.py;
+# with python3-scipy also scripts/master_curve.py (the sweep analysis); librsvg2-bin:
+# invasim render -o X.png. slurm-wlm munge: the Slurm sweep test (tests/app/sweep_slurm.sh
+# starts a private single-node Slurm).
 packages=(g++ cmake make libeigen3-dev liblua5.4-dev lua5.4 libcgal-dev libgmp-dev catch2
-          python3 python3-numpy python3-scipy python3-matplotlib librsvg2-bin nlohmann-json3-dev
+          libpugixml-dev nlohmann-json3-dev zlib1g-dev
+          python3 python3-numpy python3-scipy python3-matplotlib librsvg2-bin
           slurm-wlm munge)
 missing=()
 for p in "${packages[@]}"; do

@@ -12,8 +12,12 @@ macro(invasim_require cmake_name debian_name)
 endmacro()
 
 invasim_require(Eigen3 libeigen3-dev NO_MODULE)
-# JSON of the sweep workspaces (src/sweep/).
-invasim_require(nlohmann_json nlohmann-json3-dev)
+# Reading the VTK XML snapshots (.vtp, .pvd).
+invasim_require(pugixml libpugixml-dev CONFIG)
+# JSON values and files (params.json, summary.json, the sweep workspaces); header-only.
+invasim_require(nlohmann_json nlohmann-json3-dev CONFIG)
+# CRC-32 of checkpoint files.
+invasim_require(ZLIB zlib1g-dev)
 
 find_package(OpenMP QUIET)
 if(NOT OpenMP_CXX_FOUND)

@@ -3,6 +3,7 @@
 -- correlation times, shape statistics and the derived dimensionless temperature
 -- k_B T_c / (P sigma^3) (the paper plots its results against the measured T_c), also in
 -- the paper's convention (kT_c_paper = 2 T_c), and T_c/T_a.
+local iv = require("invasim")
 local log = require("lib.log")
 local summary_lines = require("lib.summary")
 
@@ -47,7 +48,6 @@ function M.final(tissue, p, result, seconds, out, extra)
             optional(s.shape_2d_mean, "%.4f"))
   end
   if out then
-    local json = require("lib.json")
     local doc = {
       averages = s, derived = derived, wall_clock_seconds = seconds, steps = sys:step(),
       time = sys:time(), box = box.lengths,
@@ -58,7 +58,7 @@ function M.final(tissue, p, result, seconds, out, extra)
       if doc[k] ~= nil then error("report: extra entry '" .. k .. "' would replace a summary entry", 2) end
       doc[k] = v
     end
-    require("lib.files").write(out .. "/summary.json", json.encode(doc))
+    require("lib.files").write(out .. "/summary.json", iv.json_encode(doc))
     log.say("summary", "results in %s (series.csv, summary.json, correlations.csv, shapes.csv, snapshots/)", out)
   end
 end

@@ -7,7 +7,6 @@
 -- be picked up.
 local iv = require("invasim")
 local files = require("lib.files")
-local json = require("lib.json")
 local log = require("lib.log")
 local resume = require("lib.resume")
 local run_identity = require("lib.run_identity")
@@ -84,7 +83,7 @@ function M.open(p, dir)
   files.write(dir .. "/resume.txt", table.concat(lines, "\n") .. "\n")
   local params = {}
   for k, v in pairs(p) do params[k] = v end
-  files.write(dir .. "/params.json", json.encode{
+  files.write(dir .. "/params.json", iv.json_encode{
     protocol = iv.script, parameters = params, run_id = identity.id, from = identity.from,
     invasim_version = iv.version, git_revision = iv.git_revision, threads = iv.threads(),
   })

@@ -1,7 +1,10 @@
-// Readers of the VTK XML snapshot files this layer writes (.vtp, .pvd).
+// Readers of the VTK XML snapshot files this layer writes (.vtp, .pvd), on the parsed XML of
+// io/xml.hpp (pugixml).
 #include "io/vtk_format.hpp"
 
 #include <cmath>
+#include <cstring>
+#include <optional>
 
 #include "io/atomic_file.hpp"
 #include "io/io_error.hpp"
@@ -10,21 +13,37 @@
 
 namespace invasim {
 
+namespace {
+
+// The value of attribute `key` of `node`, or nullopt.
+std::optional<std::string_view> attr(pugi::xml_node node, const char* key) {
+  const pugi::xml_attribute a = node.attribute(key);
+  if (!a) return std::nullopt;
+  return std::string_view(a.value());
+}
+
+bool named(pugi::xml_node node, const char* name) {
+  return std::strcmp(node.name(), name) == 0;
+}
+
+}  // namespace
+
 std::vector<PvdEntry> read_pvd(const std::filesystem::path& path) {
-  const std::string origin = quoted(path);
-  const XmlElement root = parse_xml(read_file(path), origin);
-  const std::string* type = root.attribute("type");
-  const XmlElement* coll = root.child("Collection");
-  if (root.name != "VTKFile" || !type || *type != "Collection" || !coll)
+  const XmlDocument xml(read_file(path), quoted(path));
+  const std::string& origin = xml.origin();
+  const pugi::xml_node root = xml.root();
+  const auto type = attr(root, "type");
+  const pugi::xml_node coll = root.child("Collection");
+  if (!named(root, "VTKFile") || type != "Collection" || !coll)
     fail_io(origin, ": not a VTK collection (.pvd) file");
   std::vector<PvdEntry> out;
-  for (const XmlElement* d : coll->children_named("DataSet")) {
-    const std::string* t = d->attribute("timestep");
-    const std::string* file = d->attribute("file");
+  for (pugi::xml_node d : coll.children("DataSet")) {
+    const auto t = attr(d, "timestep");
+    const auto file = attr(d, "file");
     const auto time = t ? text::parse<double>(*t) : std::nullopt;
     if (!time || !file)
-      fail_io(origin, ": line ", d->line, ": DataSet needs a numeric timestep and a file");
-    out.push_back({*time, *file});
+      fail_io(origin, ": line ", xml.line(d), ": DataSet needs a numeric timestep and a file");
+    out.push_back({*time, std::string(*file)});
   }
   return out;
 }
@@ -32,42 +51,43 @@ std::vector<PvdEntry> read_pvd(const std::filesystem::path& path) {
 namespace {
 
 // Parses one DataArray; checks its size against `tuples` (if >= 0).
-VtpData::Array parse_array(const XmlElement& e, long tuples, const std::string& origin) {
+VtpData::Array parse_array(const XmlDocument& xml, pugi::xml_node e, long tuples) {
+  const std::string& origin = xml.origin();
   VtpData::Array a;
-  const std::string* name = e.attribute("Name");
-  const std::string label = name ? *name : std::string("(unnamed)");
-  if (const std::string* t = e.attribute("type")) a.type = *t;
-  if (const std::string* f = e.attribute("format"); !f || *f != "ascii")
-    fail_io(origin, ": line ", e.line, ": DataArray ", label, " is not in ascii format");
-  if (const std::string* c = e.attribute("NumberOfComponents")) {
+  const std::string label(attr(e, "Name").value_or("(unnamed)"));
+  if (const auto t = attr(e, "type")) a.type = *t;
+  if (attr(e, "format") != "ascii")
+    fail_io(origin, ": line ", xml.line(e), ": DataArray ", label, " is not in ascii format");
+  if (const auto c = attr(e, "NumberOfComponents")) {
     const auto n = text::parse<int>(*c);
-    if (!n || *n < 1) fail_io(origin, ": line ", e.line, ": bad NumberOfComponents");
+    if (!n || *n < 1) fail_io(origin, ": line ", xml.line(e), ": bad NumberOfComponents");
     a.components = *n;
   }
-  if (const std::string* nt = e.attribute("NumberOfTuples"))
+  if (const auto nt = attr(e, "NumberOfTuples"))
     if (auto n = text::parse<long>(*nt)) tuples = *n;
+  const std::string data = xml_text(e);
   std::vector<std::string_view> tok;
-  text::split_whitespace(e.text, tok);
+  text::split_whitespace(data, tok);
   a.values.reserve(tok.size());
   for (auto t : tok) {
     const auto v = text::parse<double>(t);
     if (!v)
-      fail_io(origin, ": line ", e.line, ": DataArray ", label, ": '", t, "' is not a number");
+      fail_io(origin, ": line ", xml.line(e), ": DataArray ", label, ": '", t, "' is not a number");
     a.values.push_back(*v);
   }
   if (tuples >= 0 && a.values.size() != std::size_t(tuples) * a.components)
-    fail_io(origin, ": line ", e.line, ": DataArray ", label, " has ", a.values.size(),
+    fail_io(origin, ": line ", xml.line(e), ": DataArray ", label, " has ", a.values.size(),
             " values, expected ", tuples, " x ", a.components);
   return a;
 }
 
-void parse_named_arrays(const XmlElement* parent, long tuples, const std::string& origin,
+void parse_named_arrays(const XmlDocument& xml, pugi::xml_node parent, long tuples,
                         std::map<std::string, VtpData::Array>& out) {
   if (!parent) return;
-  for (const XmlElement* e : parent->children_named("DataArray")) {
-    const std::string* name = e->attribute("Name");
-    if (!name) fail_io(origin, ": line ", e->line, ": DataArray without a Name");
-    out[*name] = parse_array(*e, tuples, origin);
+  for (pugi::xml_node e : parent.children("DataArray")) {
+    const auto name = attr(e, "Name");
+    if (!name) fail_io(xml.origin(), ": line ", xml.line(e), ": DataArray without a Name");
+    out[std::string(*name)] = parse_array(xml, e, tuples);
   }
 }
 
@@ -83,16 +103,16 @@ std::vector<std::int64_t> to_indices(const VtpData::Array& a, const std::string&
 }
 
 // Connectivity and offsets of a Verts / Polys element with `count` cells.
-void parse_cells(const XmlElement* piece, const char* element, long count,
-                 const std::string& origin, std::vector<std::int64_t>& conn,
-                 std::vector<std::int64_t>& offsets) {
-  const XmlElement* e = piece->child(element);
+void parse_cells(const XmlDocument& xml, pugi::xml_node piece, const char* element, long count,
+                 std::vector<std::int64_t>& conn, std::vector<std::int64_t>& offsets) {
+  const std::string& origin = xml.origin();
+  const pugi::xml_node e = piece.child(element);
   if (!e) {
     if (count > 0) fail_io(origin, ": Piece declares ", count, " ", element, " but has none");
     return;
   }
   std::map<std::string, VtpData::Array> arrays;
-  parse_named_arrays(e, -1, origin, arrays);
+  parse_named_arrays(xml, e, -1, arrays);
   if (!arrays.count("connectivity") || !arrays.count("offsets"))
     fail_io(origin, ": ", element, " needs connectivity and offsets arrays");
   conn = to_indices(arrays["connectivity"], std::string(element) + " connectivity", origin);
@@ -109,8 +129,8 @@ void parse_cells(const XmlElement* piece, const char* element, long count,
     fail_io(origin, ": ", element, ": the last offset does not end the connectivity");
 }
 
-long count_attr(const XmlElement& piece, const char* key, const std::string& origin) {
-  const std::string* v = piece.attribute(key);
+long count_attr(pugi::xml_node piece, const char* key, const std::string& origin) {
+  const auto v = attr(piece, key);
   if (!v) return 0;
   const auto n = text::parse<long>(*v);
   if (!n || *n < 0) fail_io(origin, ": Piece ", key, "=\"", *v, "\" is not a count");
@@ -141,32 +161,32 @@ void frame_header_from_vtp(const VtpData& vtp, const std::string& origin, Frame&
 }  // namespace
 
 VtpData parse_vtp(std::string_view text, const std::string& origin) {
-  const XmlElement root = parse_xml(text, origin);
-  const std::string* type = root.attribute("type");
-  const XmlElement* poly = root.child("PolyData");
-  if (root.name != "VTKFile" || !type || *type != "PolyData" || !poly)
+  const XmlDocument xml(text, origin);
+  const pugi::xml_node root = xml.root();
+  const pugi::xml_node poly = root.child("PolyData");
+  if (!named(root, "VTKFile") || attr(root, "type") != "PolyData" || !poly)
     fail_io(origin, ": not a VTK PolyData (.vtp) file");
-  const auto pieces = poly->children_named("Piece");
-  if (pieces.size() != 1) fail_io(origin, ": expected one Piece, found ", pieces.size());
-  const XmlElement& piece = *pieces[0];
+  const auto pieces = poly.children("Piece");
+  const auto n_pieces = std::distance(pieces.begin(), pieces.end());
+  if (n_pieces != 1) fail_io(origin, ": expected one Piece, found ", n_pieces);
+  const pugi::xml_node piece = *pieces.begin();
   VtpData out;
-  parse_named_arrays(poly->child("FieldData"), -1, origin, out.field_data);
+  parse_named_arrays(xml, poly.child("FieldData"), -1, out.field_data);
   const long n_points = count_attr(piece, "NumberOfPoints", origin);
   const long n_verts = count_attr(piece, "NumberOfVerts", origin);
   const long n_polys = count_attr(piece, "NumberOfPolys", origin);
   if (count_attr(piece, "NumberOfLines", origin) || count_attr(piece, "NumberOfStrips", origin))
     fail_io(origin, ": lines and strips are not supported");
-  const XmlElement* pts = piece.child("Points");
-  const XmlElement* pts_array = pts ? pts->child("DataArray") : nullptr;
+  const pugi::xml_node pts_array = piece.child("Points").child("DataArray");
   if (!pts_array) fail_io(origin, ": Piece has no Points DataArray");
-  const VtpData::Array p = parse_array(*pts_array, n_points, origin);
+  const VtpData::Array p = parse_array(xml, pts_array, n_points);
   if (p.components != 3) fail_io(origin, ": Points must have 3 components");
   for (long i = 0; i < n_points; ++i)
     out.points.emplace_back(p.values[3 * i], p.values[3 * i + 1], p.values[3 * i + 2]);
-  parse_named_arrays(piece.child("PointData"), n_points, origin, out.point_data);
-  parse_named_arrays(piece.child("CellData"), n_verts + n_polys, origin, out.cell_data);
-  parse_cells(&piece, "Verts", n_verts, origin, out.vert_connectivity, out.vert_offsets);
-  parse_cells(&piece, "Polys", n_polys, origin, out.poly_connectivity, out.poly_offsets);
+  parse_named_arrays(xml, piece.child("PointData"), n_points, out.point_data);
+  parse_named_arrays(xml, piece.child("CellData"), n_verts + n_polys, out.cell_data);
+  parse_cells(xml, piece, "Verts", n_verts, out.vert_connectivity, out.vert_offsets);
+  parse_cells(xml, piece, "Polys", n_polys, out.poly_connectivity, out.poly_offsets);
   for (auto c : {&out.vert_connectivity, &out.poly_connectivity})
     for (std::int64_t i : *c)
       if (i >= n_points) fail_io(origin, ": connectivity refers to point ", i, " of ", n_points);

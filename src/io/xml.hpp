@@ -1,31 +1,39 @@
 #pragma once
-// A minimal XML reader and an escaping helper, enough for the VTK XML files this layer writes
-// (.vtp, .pvd): elements, attributes, character data, comments, the <?xml?> prolog and the
-// five predefined entities. No namespaces, DTDs or CDATA: a file that uses them is refused
-// with a message naming the file and line.
+// XML for the VTK files this layer writes (.vtp, .pvd): a parsed document (pugixml, Debian's
+// libpugixml-dev) whose errors name the file, the line and the byte offset, and an escaping
+// helper for the writers.
+#include <pugixml.hpp>
 #include <string>
 #include <string_view>
-#include <utility>
-#include <vector>
 
 namespace invasim {
 
-struct XmlElement {
-  std::string name;
-  std::vector<std::pair<std::string, std::string>> attributes;
-  std::vector<XmlElement> children;
-  std::string text;  // character data directly inside this element, entities decoded
-  std::size_t line = 0;
+// A parsed XML document with one root element. Keeps the text so that a reader's messages
+// can give the line of any node.
+class XmlDocument {
+ public:
+  // Parses `text`; `origin` names it in messages ("'dir/a.vtp'"). Throws IoError
+  // "<origin>: line L (offset O): malformed XML: <what>" for text that is not well-formed
+  // XML with exactly one root element.
+  XmlDocument(std::string_view text, std::string origin);
+  XmlDocument(const XmlDocument&) = delete;
+  XmlDocument& operator=(const XmlDocument&) = delete;
 
-  // The attribute's value, or nullptr.
-  const std::string* attribute(std::string_view key) const;
-  // The first child with this name, or nullptr.
-  const XmlElement* child(std::string_view child_name) const;
-  std::vector<const XmlElement*> children_named(std::string_view child_name) const;
+  pugi::xml_node root() const { return doc_.document_element(); }
+  const std::string& origin() const { return origin_; }
+  // The 1-based line of `node` in the text (for messages).
+  std::size_t line(pugi::xml_node node) const;
+
+ private:
+  std::size_t line_at(std::size_t offset) const;
+
+  std::string text_;
+  std::string origin_;
+  pugi::xml_document doc_;
 };
 
-// Parses a document; returns its root element. Throws IoError naming `origin` and the line.
-XmlElement parse_xml(std::string_view text, const std::string& origin);
+// The character data directly inside `node` (entities decoded; comments skipped).
+std::string xml_text(pugi::xml_node node);
 
 // Escapes &, <, >, " and ' for use in attribute values and character data.
 std::string xml_escape(std::string_view s);

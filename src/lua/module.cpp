@@ -80,6 +80,7 @@ int open_invasim(lua_State* L) {
   open_measure(L);
   open_correlator(L);
   open_io(L);
+  open_json(L);
   open_checkpoint(L);
   open_compression(L);
   return 1;

@@ -67,6 +67,19 @@ TEST_CASE("CRC-32 matches the standard check value") {
   CHECK(crc32("56789", crc32("1234")) == 0xCBF43926u);
 }
 
+// The checkpoint format does not depend on who computes the checksum: these 437 bytes (and
+// their trailer, Python's zlib.crc32 of the bytes before it) were written by the hand-written
+// CRC-32 that zlib replaced, and are written the same now.
+TEST_CASE("checkpoint container: a fixed checkpoint's bytes and CRC-32 trailer are unchanged") {
+  const std::string bytes = every_type().bytes();
+  REQUIRE(bytes.size() == 437);
+  std::uint32_t stored = 0;
+  for (int k = 0; k < 4; ++k) stored |= std::uint32_t(std::uint8_t(bytes[433 + k])) << (8 * k);
+  CHECK(stored == 0x2ebedb11u);
+  CHECK(crc32(std::string_view(bytes).substr(0, 433)) == 0x2ebedb11u);
+  CHECK(fnv1a64_hex(bytes) == "4fc568bbdb8208ea");
+}
+
 // The run identity's hash (core/fnv1a.hpp): the published FNV-1a 64 test vectors.
 TEST_CASE("FNV-1a 64 matches the reference values") {
   CHECK(fnv1a64("") == 0xcbf29ce484222325ULL);
