@@ -135,7 +135,12 @@ int cores() {
 }
 
 std::string executable() {
-  return fs::read_symlink("/proc/self/exe").string();
+  // After a rebuild replaced the binary, the link reads "PATH (deleted)": PATH is the new one.
+  std::string path = fs::read_symlink("/proc/self/exe").string();
+  const std::string deleted = " (deleted)";
+  if (path.size() > deleted.size() && path.ends_with(deleted))
+    path.resize(path.size() - deleted.size());
+  return path;
 }
 
 int init(const std::vector<std::string>& args) {

@@ -116,6 +116,9 @@ class Runner {
     std::vector<char*> argv;
     for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
+    // The runner's own binary, even if build/invasim was rebuilt (replaced) since the runner
+    // started: every point of one `sweep run` runs the same program.
+    ::execv("/proc/self/exe", argv.data());
     ::execv(argv[0], argv.data());
     _exit(127);
   }
