@@ -15,9 +15,10 @@ declare -A allowed=(
   [measure]="state mesh core"
   [io]="state mesh core"
   [setup]="integrate measure forces neighbor state mesh core"
-  [checkpoint]="integrate io forces neighbor state mesh core"
-  [lua]="checkpoint setup integrate measure io forces neighbor state mesh core"
-  [app]="lua checkpoint setup integrate measure io forces neighbor state mesh core"
+  [checkpoint]="integrate measure io forces neighbor state mesh core"
+  [run]="checkpoint setup integrate measure io forces neighbor state mesh core"
+  [lua]="run checkpoint setup integrate measure io forces neighbor state mesh core"
+  [app]="lua run checkpoint setup integrate measure io forces neighbor state mesh core"
 )
 bad=0
 while IFS= read -r line; do

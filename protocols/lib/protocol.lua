@@ -81,10 +81,7 @@ function M.produce(tissue, p, out)
   end
   return require("lib.production")(tissue, {
     steps = p.steps, every = p.every, correlate_every = p.correlate_every, out = out,
-    checkpoint_every = p.checkpoint_every,
-    on_sample = snapshots and function(row)
-      if row.step % p.snapshot_every == 0 then snapshots:write(tissue.sys) end
-    end or nil,
+    checkpoint_every = p.checkpoint_every, snapshots = snapshots, snapshot_every = p.snapshot_every,
   })
 end
 
@@ -95,12 +92,6 @@ function M.validate(p)
   if p.beta > 0 and p.beta >= p.alpha then
     error(string.format("cohesion: beta = %g must be smaller than alpha = %g (--set beta=... or --set alpha=...; beta = 0 switches cohesion off)",
                         p.beta, p.alpha), 0)
-  end
-  if p.snapshot_every > 0 and p.snapshot_every % p.every ~= 0 then
-    error(string.format("--set snapshot_every=%d must be a multiple of every = %d", p.snapshot_every, p.every), 0)
-  end
-  if p.checkpoint_every > 0 and p.checkpoint_every % p.every ~= 0 then
-    error(string.format("--set checkpoint_every=%d must be a multiple of every = %d", p.checkpoint_every, p.every), 0)
   end
 end
 
