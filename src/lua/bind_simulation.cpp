@@ -83,6 +83,7 @@ Trigger kw_trigger(Kwargs& kw) {
   lua_pop(L, 1);
   if (kw.boolean("at_end", false)) t |= Trigger::at_end(), any = true;
   if (kw.boolean("on_stop", false)) t |= Trigger::on_stop(), any = true;
+  if (!any) kw.finish();  // an unknown key (a misspelt schedule) is the better message
   if (!any)
     fail_input(kw.owner(),
                ": no schedule; give at least one of every = N, at = {steps}, at_end = true, "
