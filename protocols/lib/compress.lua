@@ -4,11 +4,10 @@
 -- box it reached (the paper's L_f): the target is phi, not the paper's stated L_f = 34, which
 -- its own numbers contradict (docs/model.md).
 --
--- A stop signal (SIGINT/SIGTERM) stops the compression at the next compression-step boundary
--- (after the FIRE of the current step has converged); with `checkpoint`, the partly
--- compressed tissue and the counters so far are saved there, and a --resume run continues
--- from it to the same compressed tissue, bit for bit (each step starts from a converged state
--- at rest, so nothing of the minimiser's own state is needed). The final FIRE is not
+-- A stop signal (SIGINT/SIGTERM) stops the compression at the next FIRE iteration; with
+-- `checkpoint`, the partly compressed tissue (velocities included), the counters so far and
+-- the minimiser's own state (dt, alpha, its counters) are saved there, and a --resume run
+-- continues from it to the same compressed tissue, bit for bit. The final FIRE is not
 -- interrupted: a signal during it stops the run after it, with the compressed tissue saved.
 --
 -- Decisions (docs/model.md): the minimisations between steps stop at ftol = 1e-3 and only the
@@ -83,9 +82,12 @@ return function(tissue, opts)
     })
     if progress then progress:finish() end
     if report.stopped then
+      local inside = report.fire_state and string.format(", inside the FIRE of step %d at iteration %d",
+                                                          report.steps + 1, report.fire_state.steps) or ""
       stop(sys, o, { compress = { steps = report.steps, fire_steps = report.fire_steps,
-                                  converged = report.converged, max_force = report.max_force } },
-           string.format("during compression after step %d", report.steps))
+                                  converged = report.converged, max_force = report.max_force,
+                                  fire_state = report.fire_state } },
+           string.format("during compression after step %d%s", report.steps, inside))
     end
     report.stopped = nil
     local final = iv.Fire{ ftol = o.final_ftol, max_steps = o.max_steps }:minimize(sys)
