@@ -33,9 +33,6 @@ local p = iv.params{
 
 local function fail(fmt, ...) error(string.format(fmt, ...), 0) end
 -- Each parameter's own range is checked by iv.params; these are the combinations.
-if p.checkpoint_every % p.every ~= 0 then
-  fail("--set checkpoint_every=%d must be a multiple of every = %d", p.checkpoint_every, p.every)
-end
 if p.steps == 0 then fail("--set steps=0: must be > 0 (-1: automatic)") end
 
 -- Times: tau_g, the free particle's tau_d, the correlation window and the run lengths.

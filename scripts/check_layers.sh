@@ -15,10 +15,11 @@ declare -A allowed=(
   [measure]="state mesh core"
   [io]="state mesh core"
   [setup]="integrate measure forces neighbor state mesh core"
-  [checkpoint]="integrate io forces neighbor state mesh core"
-  [lua]="checkpoint setup integrate measure io forces neighbor state mesh core"
+  [checkpoint]="integrate measure io forces neighbor state mesh core"
+  [run]="checkpoint setup integrate measure io forces neighbor state mesh core"
+  [lua]="run checkpoint setup integrate measure io forces neighbor state mesh core"
   [sweep]="lua core"
-  [app]="sweep lua checkpoint setup integrate measure io forces neighbor state mesh core"
+  [app]="sweep lua run checkpoint setup integrate measure io forces neighbor state mesh core"
 )
 bad=0
 while IFS= read -r line; do

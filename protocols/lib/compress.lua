@@ -12,12 +12,11 @@
 --
 -- In a run directory (`out`), the compressed tissue is saved to out/checkpoint/compressed.ckpt
 -- for runs started with --from this run. A stop signal (SIGINT/SIGTERM) stops the compression
--- at the next compression-step boundary (after the FIRE of the current step has converged);
--- the partly compressed tissue and the counters so far are saved to
+-- at the next FIRE iteration; the partly compressed tissue (velocities included), the counters
+-- so far and the minimiser's own state (dt, alpha, its counters) are saved to
 -- out/checkpoint/compressing.ckpt, and a --resume run continues from it to the same
--- compressed tissue, bit for bit (each step starts from a converged state at rest, so nothing
--- of the minimiser's own state is needed). The final FIRE is not interrupted: a signal during
--- it stops the run after it, with the compressed tissue saved.
+-- compressed tissue, bit for bit. The final FIRE is not interrupted: a signal during it stops
+-- the run after it, with the compressed tissue saved.
 --
 -- The stage knows when not to compress: with `from` (a run directory, e.g. invasim.from), the
 -- compressed tissue that run saved replaces the compression (same system size, this run's
@@ -102,9 +101,12 @@ local function compress(tissue, o)
     })
     if progress then progress:finish() end
     if report.stopped then
+      local inside = report.fire_state and string.format(", inside the FIRE of step %d at iteration %d",
+                                                          report.steps + 1, report.fire_state.steps) or ""
       stop(sys, o, { compress = { steps = report.steps, fire_steps = report.fire_steps,
-                                  converged = report.converged, max_force = report.max_force } },
-           string.format("during compression after step %d", report.steps))
+                                  converged = report.converged, max_force = report.max_force,
+                                  fire_state = report.fire_state } },
+           string.format("during compression after step %d%s", report.steps, inside))
     end
     report.stopped = nil
     local final = iv.Fire{ ftol = o.final_ftol, max_steps = o.max_steps }:minimize(sys, during)

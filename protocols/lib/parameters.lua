@@ -79,12 +79,6 @@ function M.validate(p)
     error(string.format("cohesion: beta = %g must be smaller than alpha = %g (--set beta=... or --set alpha=...; beta = 0 switches cohesion off)",
                         p.beta, p.alpha), 0)
   end
-  if p.snapshot_every > 0 and p.snapshot_every % p.every ~= 0 then
-    error(string.format("--set snapshot_every=%d must be a multiple of every = %d", p.snapshot_every, p.every), 0)
-  end
-  if p.checkpoint_every > 0 and p.checkpoint_every % p.every ~= 0 then
-    error(string.format("--set checkpoint_every=%d must be a multiple of every = %d", p.checkpoint_every, p.every), 0)
-  end
 end
 
 return M

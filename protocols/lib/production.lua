@@ -1,10 +1,14 @@
 -- Stage "production" (docs/model.md, protocol step 7): runs the tissue's Dynamics (made by quench) for
 -- `steps` steps with observers attached and returns the series and a summary: time averages
 -- over the last `average_fraction` of the run with block-averaging error bars, the
--- correlation times and shape statistics.
+-- correlation times and shape statistics. The run is an invasim.Simulation (src/run/) whose
+-- operations each have their own schedule, called in this order at a step where several
+-- are due:
+--   every `correlate_every` steps: the cancer cells' correlators (C_vv, <n.n>, MSD, F_s)
 --   every `every` steps:           thermo columns, A_t (Voronoi) if `interface`, energies if
 --                                  `energy`; one row of the series (series.csv in `out`)
---   every `correlate_every` steps: the cancer cells' correlators (C_vv, <n.n>, MSD, F_s)
+--   every `snapshot_every` steps:  a frame of `snapshots` (an invasim.Snapshots), if given
+--   every `checkpoint_every` steps and on SIGINT/SIGTERM: out/checkpoint/state.ckpt
 --   at the end:                    tau_d, tau_r, 3D shape parameters and random slices
 --
 --   local result = require("lib.production")(tissue, { steps = 1e5, every = 1000, out = dir })
@@ -30,15 +34,12 @@ local defaults = {
   out = options.OPTIONAL,    -- directory for series.csv, correlations.csv, shapes.csv
   checkpoint_every = 0,      -- steps between checkpoints in out/checkpoint/ (0: only on a
                              -- stop signal, if out is set)
+  snapshots = options.OPTIONAL,  -- an invasim.Snapshots writing a frame every snapshot_every steps
+  snapshot_every = 0,        -- steps between snapshots (0: none)
   progress = true,
   label = "production",
   on_sample = options.OPTIONAL,   -- function(row, tissue) called after each sample
 }
-
-local function gcd(a, b)
-  while b ~= 0 do a, b = b, a % b end
-  return a
-end
 
 local function summarise(rows, columns, fraction)
   local summary = {}
@@ -73,9 +74,10 @@ end
 
 return function(tissue, opts)
   local o = options.check(opts and opts.label or "production", opts, defaults,
-                          { on_sample = "function", out = "string", columns = "table" })
+                          { on_sample = "function", out = "string", columns = "table",
+                            snapshots = "userdata" })
   options.at_least(o.label, o, "every", 1)
-  for _, key in ipairs{ "steps", "correlate_every", "checkpoint_every", "slices_per_body" } do
+  for _, key in ipairs{ "steps", "correlate_every", "checkpoint_every", "snapshot_every", "slices_per_body" } do
     options.at_least(o.label, o, key, 0)
   end
   if not tissue.dyn then options.fail(o.label, "run the quench stage first (it makes the Dynamics)") end
@@ -115,36 +117,36 @@ return function(tissue, opts)
     log.say(o.label, "resumed at step %d (t = %g) from %s; %d steps to go", sys:step(), sys:time(),
             checkpoint, end_step - sys:step())
   end
-  -- Writes the checkpoint (stamped with the run's identity) and notes it in log.txt.
-  local function save_checkpoint()
-    iv.save_checkpoint(checkpoint, resume.stamp{ system = sys, dynamics = dyn, tethers = tissue.tethers,
-                                                 correlator = correlator, extra = resume.serialize{
-                                                   rows = rows, end_step = end_step, compression = tissue.compression } })
-    tissue.last_checkpoint = { path = checkpoint, step = sys:step() }
-    log.note(o.label, "checkpoint of step %d written to %s", sys:step(), checkpoint)
-  end
-
   local file = o.out and series_file.open(o.out .. "/series.csv", columns, units) or nil
   if file then for _, row in ipairs(rows) do file:write(row) end end
-  local tick = correlator and gcd(o.every, o.correlate_every) or o.every
+  local sim = iv.Simulation{ system = sys, dynamics = dyn }
+  if correlator then sim:sample(correlator, { every = o.correlate_every }) end
+  sim:observe(function()
+    local row = {}
+    for _, ob in ipairs(active) do ob.sample(row) end
+    rows[#rows + 1] = row
+    if file then file:write(row) end
+    if o.on_sample then o.on_sample(row, tissue) end
+  end, { every = o.every })
+  if o.snapshots and o.snapshot_every > 0 then sim:snapshots(o.snapshots, { every = o.snapshot_every }) end
+  if checkpoint then
+    -- The checkpoint (stamped with the run's identity), noted in log.txt once written.
+    sim:checkpoint(resume.stamp{
+      path = checkpoint, tethers = tissue.tethers, correlator = correlator,
+      extra = function()
+        return resume.serialize{ rows = rows, end_step = end_step, compression = tissue.compression }
+      end,
+      written = function(step)
+        tissue.last_checkpoint = { path = checkpoint, step = step }
+        log.note(o.label, "checkpoint of step %d written to %s", step, checkpoint)
+      end,
+      every = o.checkpoint_every > 0 and o.checkpoint_every or nil, on_stop = true,
+    })
+  end
   local n = end_step - sys:step()
   local progress = o.progress and iv.Progress{ total = n, label = o.label } or nil
   local clock = iv.clock()
-  local first_step = sys:step()
-  local ok, err = pcall(dyn.run, dyn, sys, n, {
-    every = tick, progress = progress,
-    callback = function(step)
-      if correlator and step % o.correlate_every == 0 then correlator:sample(sys) end
-      if step % o.every == 0 and step > first_step then
-        local row = {}
-        for _, ob in ipairs(active) do ob.sample(row) end
-        rows[#rows + 1] = row
-        if file then file:write(row) end
-        if o.on_sample then o.on_sample(row, tissue) end
-      end
-      if checkpoint and o.checkpoint_every > 0 and step % o.checkpoint_every == 0 then save_checkpoint() end
-    end,
-  })
+  local ok, err = pcall(sim.run, sim, n, { progress = progress })
   if file then file:close() end
   if not ok then
     local last = tissue.last_checkpoint
@@ -156,7 +158,6 @@ return function(tissue, opts)
   if signal then
     if progress then progress:finish() end
     if checkpoint then
-      save_checkpoint()
       error(string.format("stopped by %s at step %d (t = %g); checkpoint saved to %s; continue with: invasim run --resume %s",
                           signal, sys:step(), sys:time(), checkpoint, o.out), 0)
     end

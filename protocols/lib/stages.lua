@@ -25,9 +25,10 @@ local M = {
   quench = require("lib.quench"),                 -- pressure wall at P, cells' motion (step 3)
 }
 
--- Stage "production" (step 7, lib/production.lua) with snapshots: `snapshot_every` (steps,
--- a multiple of the given `every`; 0: none) writes out/snapshots/ at the start and at the
--- steps that are multiples of it. The other keywords are lib/production.lua's.
+-- Stage "production" (step 7, lib/production.lua) with snapshots in the run directory:
+-- `snapshot_every` (steps, 0: none) writes out/snapshots/ at the start and at the steps that
+-- are multiples of it, on its own schedule (it need not be a multiple of `every`). The other
+-- keywords are lib/production.lua's.
 function M.production(tissue, opts)
   opts = opts or {}
   local every = opts.snapshot_every or 0
@@ -35,22 +36,12 @@ function M.production(tissue, opts)
     options.fail("production", "key 'snapshot_every' must be an integer >= 0, got " .. tostring(every))
   end
   local own = {}
-  for k, v in pairs(opts) do
-    if k ~= "snapshot_every" then own[k] = v end
-  end
+  for k, v in pairs(opts) do own[k] = v end
   if every > 0 and opts.out then
-    if math.type(opts.every) ~= "integer" or every % opts.every ~= 0 then
-      options.fail("production", string.format("snapshot_every = %d must be a multiple of every " ..
-                                               "(snapshots are taken with the samples), got every = %s",
-                                               every, tostring(opts.every)))
-    end
-    local snapshots = iv.Snapshots{ dir = opts.out .. "/snapshots" }
-    if not resume.pending() then snapshots:write(tissue.sys) end
-    local on_sample = opts.on_sample
-    own.on_sample = function(row, t)
-      if row.step % every == 0 then snapshots:write(tissue.sys) end
-      if on_sample then on_sample(row, t) end
-    end
+    own.snapshots = iv.Snapshots{ dir = opts.out .. "/snapshots" }
+    if not resume.pending() then own.snapshots:write(tissue.sys) end
+  else
+    own.snapshot_every = nil
   end
   return production(tissue, own)
 end

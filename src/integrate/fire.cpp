@@ -37,7 +37,8 @@ struct Sums {
 };
 }  // namespace
 
-FireResult Fire::minimize(System& sys, ForceField& ff, PressureWall* wall) const {
+FireResult Fire::minimize(System& sys, ForceField& ff, PressureWall* wall,
+                          const FireControl* control) const {
   const FireParams& p = params_;
   Sites& s = sys.sites();
   const std::size_t n = s.size();
@@ -61,13 +62,22 @@ FireResult Fire::minimize(System& sys, ForceField& ff, PressureWall* wall) const
   auto wall_force = [&]() {
     return wall->walls->left_wall_force() + wall->pressure * sys.box().wall_area();
   };
+  const FireState* resume = control && control->resume ? &*control->resume : nullptr;
+  if (!resume) {
 #pragma omp parallel for schedule(static) if (parallel_light(n))
-  for (std::size_t i = 0; i < n; ++i) s.vel[i].setZero();
-  double dt = p.dt, alpha = p.alpha0;
-  int n_positive = 0;
+    for (std::size_t i = 0; i < n; ++i) s.vel[i].setZero();
+  }
+  double dt = resume ? resume->dt : p.dt, alpha = resume ? resume->alpha : p.alpha0;
+  int n_positive = resume ? resume->n_positive : 0;
+  if (resume && wall) wall_v = resume->wall_velocity;
   FireResult result;
   ff.compute(sys);
-  for (result.steps = 0;; ++result.steps) {
+  for (result.steps = resume ? resume->steps : 0;; ++result.steps) {
+    if (control && control->stop && control->stop()) {  // an iteration boundary
+      result.stopped = true;
+      result.state = FireState{dt, alpha, n_positive, result.steps, wall_v};
+      return result;
+    }
     Sums sum = deterministic_sum(n, Sums{}, [&](std::size_t i) {
       return Sums{s.force[i].dot(s.vel[i]), s.vel[i].squaredNorm(), s.force[i].squaredNorm(),
                   s.force[i].squaredNorm()};

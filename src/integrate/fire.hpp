@@ -6,6 +6,10 @@
 // (its inertia there is m A / d^2, one layer of mean sites, or the wall's mass if larger).
 // Converged when every site force is below ftol and the wall's net force per unit area is
 // below ftol.
+#include <cstdint>
+#include <functional>
+#include <optional>
+
 #include "integrate/dynamics.hpp"
 
 namespace invasim {
@@ -21,19 +25,42 @@ struct FireParams {
   void validate() const;
 };
 
+// The minimiser's own state between two iterations (with the System's velocities and the
+// piston's velocity): enough to continue a stopped minimisation bit for bit.
+struct FireState {
+  double dt = 0.0;             // current time step
+  double alpha = 0.0;          // current velocity mixing
+  int n_positive = 0;          // iterations with P > 0 since the last reset
+  std::uint64_t steps = 0;     // iterations done
+  double wall_velocity = 0.0;  // the piston's velocity (0 without a pressure wall)
+};
+
+// Optional control of a minimisation: a stop request polled before every iteration, and the
+// state of a stopped minimisation to continue from.
+struct FireControl {
+  std::function<bool()> stop;       // true: return before the next iteration, stopped
+  std::optional<FireState> resume;  // continue from this state (velocities as left)
+};
+
 struct FireResult {
   bool converged = false;
   std::uint64_t steps = 0;
   double max_force = 0.0;
   double energy = 0.0;
+  bool stopped = false;  // ended by control->stop; `state` continues it, velocities are kept
+  FireState state;       // the state at the stop
 };
 
 class Fire {
  public:
   explicit Fire(const FireParams& params);
   const FireParams& params() const { return params_; }
-  // Minimises; velocities are zeroed on return. `wall` may be null (walls fixed).
-  FireResult minimize(System& sys, ForceField& ff, PressureWall* wall = nullptr) const;
+  // Minimises; velocities are zeroed on return (unless stopped). `wall` may be null (walls
+  // fixed). With `control`, a stop request ends the minimisation at the next iteration
+  // boundary (result.stopped, result.state, no energy), and control->resume continues such a
+  // minimisation: stopped + resumed equals one uninterrupted minimisation bit for bit.
+  FireResult minimize(System& sys, ForceField& ff, PressureWall* wall = nullptr,
+                      const FireControl* control = nullptr) const;
 
  private:
   FireParams params_;

@@ -177,6 +177,10 @@ CheckpointReader CheckpointReader::parse(std::string bytes, std::string origin) 
   if (size < kCheckpointHeaderSize)
     r.fail("truncated: ", size, " bytes, shorter than the ", kCheckpointHeaderSize, "-byte header");
   r.version_ = std::uint32_t(get_uint(d, 11, 4));
+  if (r.version_ == 2)
+    r.fail("format version 2 is not supported (this build reads version ", kCheckpointVersion,
+           "; version 2 stored the Dynamics as positional arrays: continue it with an invasim "
+           "that reads version 2, or start that run again)");
   if (r.version_ < kCheckpointVersion)
     r.fail("format version ", r.version_, " is not supported (this build reads version ",
            kCheckpointVersion,

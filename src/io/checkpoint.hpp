@@ -25,8 +25,10 @@ namespace invasim {
 inline constexpr std::string_view kCheckpointMagic = "INVASIMCKPT";
 // Version 2: checkpoints of a protocol run carry the run's identity (sections "run.id" and
 // "run.parameters"); version 1 files, which cannot be told apart from another run's, are
-// refused.
-inline constexpr std::uint32_t kCheckpointVersion = 2;
+// refused. Version 3: each object writes its own named sections (checkpoint/*_sections.hpp:
+// "dynamics.method1.gamma", ... instead of positional arrays); version 2 files are refused
+// with the version needed to read them.
+inline constexpr std::uint32_t kCheckpointVersion = 3;
 // Bytes before the first section: magic, version, file length, section count.
 inline constexpr std::size_t kCheckpointHeaderSize = 11 + 4 + 8 + 4;
 

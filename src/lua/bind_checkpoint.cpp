@@ -17,31 +17,20 @@
 
 #include <optional>
 
+#include "checkpoint/correlator_sections.hpp"
+#include "checkpoint/dynamics_sections.hpp"
 #include "checkpoint/state_checkpoint.hpp"
 #include "core/stop_request.hpp"
+#include "lua/checkpoint_parts.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"
-#include "measure/time_correlator.hpp"
 
 namespace invasim::lua {
 
-// Defined in bind_correlator.cpp.
-TimeCorrelator* test_correlator(lua_State* L, int index);
-
-namespace {
-
-// The objects named in a save/load keyword table.
-struct Parts {
-  std::shared_ptr<Simulation> sim;
-  DynamicsHandle* dyn = nullptr;
-  std::shared_ptr<Tethers> tethers;
-  TimeCorrelator* correlator = nullptr;
-};
-
-Parts read_parts(Kwargs& kw) {
+CheckpointParts read_checkpoint_parts(Kwargs& kw, bool need_system) {
   lua_State* L = kw.state();
-  Parts p;
+  CheckpointParts p;
   auto object = [&](const char* key, const char* metatable) -> int {
     const int type = kw.push(key);
     if (type == LUA_TNIL) {
@@ -53,118 +42,41 @@ Parts read_parts(Kwargs& kw) {
                  type_name_at(L, -1));
     return lua_gettop(L);
   };
-  const int s = object("system", LuaType<Simulation>::metatable);
-  if (!s) fail_input(kw.owner(), ": missing required key 'system' (a System)");
-  p.sim = check_shared<Simulation>(L, s);
-  if (const int d = object("dynamics", LuaType<DynamicsHandle>::metatable))
-    p.dyn = &check<DynamicsHandle>(L, d);
+  if (need_system) {
+    const int s = object("system", LuaType<Simulation>::metatable);
+    if (!s) fail_input(kw.owner(), ": missing required key 'system' (a System)");
+    p.sim = check_shared<Simulation>(L, s);
+    if (const int d = object("dynamics", LuaType<DynamicsHandle>::metatable))
+      p.dyn = check_shared<DynamicsHandle>(L, d);
+  }
   if (const int t = object("tethers", LuaType<Tethers>::metatable))
     p.tethers = check_shared<Tethers>(L, t);
   if (const int c = object("correlator", nullptr)) {
-    p.correlator = test_correlator(L, c);
+    p.correlator = shared_correlator(L, c);
     if (!p.correlator)
       fail_input(kw.owner(), ": key 'correlator' must be a Correlator, got ", type_name_at(L, c));
   }
   return p;
 }
 
-void put_ramp(std::vector<double>& out, const std::optional<Ramp>& r) {
-  out.push_back(r ? 1.0 : 0.0);
-  out.push_back(r ? r->from : 0.0);
-  out.push_back(r ? r->to : 0.0);
-  out.push_back(r ? double(r->steps) : 0.0);
-  out.push_back(r && r->start ? 1.0 : 0.0);
-  out.push_back(r && r->start ? double(*r->start) : 0.0);
+void write_checkpoint_parts(CheckpointWriter& w, const CheckpointParts& p, std::string_view extra,
+                            const std::optional<std::string>& run_id,
+                            const std::optional<std::string>& run_parameters) {
+  write_system(w, p.sim->system);
+  if (p.dyn) write_dynamics(w, p.dyn->dynamics);
+  if (p.tethers) write_tethers(w, *p.tethers->force);
+  if (p.correlator) write_correlator(w, *p.correlator);
+  w.put_string("extra", extra);
+  if (run_id) w.put_string("run.id", *run_id);
+  if (run_parameters) w.put_string("run.parameters", *run_parameters);
 }
 
-std::optional<Ramp> get_ramp(const std::vector<double>& in, std::size_t at) {
-  if (in.at(at) == 0.0) return std::nullopt;
-  Ramp r;
-  r.from = in[at + 1];
-  r.to = in[at + 2];
-  r.steps = std::uint64_t(in[at + 3]);
-  if (in[at + 4] != 0.0) r.start = std::uint64_t(in[at + 5]);
-  return r;
-}
-constexpr std::size_t kRampDoubles = 6;
-
-void write_dynamics(CheckpointWriter& w, const Dynamics& d) {
-  w.put_f64("dynamics.dt", d.dt());
-  std::vector<double> params, ramps;
-  for (const auto& m : d.methods()) {
-    const MethodParams& p = m->params();
-    params.insert(params.end(), {p.gamma, p.kT, p.f0, p.tau_p, double(m->group().size())});
-    put_ramp(ramps, m->kT_ramp());
-    put_ramp(ramps, m->f0_ramp());
-  }
-  w.put_f64s("dynamics.methods", params);
-  w.put_f64s("dynamics.ramps", ramps);
-  w.put_u64("dynamics.has_wall", d.pressure_wall() ? 1 : 0);
-  if (auto wall = d.pressure_wall()) {
-    write_pressure_wall(w, *wall);
-    std::vector<double> ramp;
-    put_ramp(ramp, wall->pressure_ramp);
-    w.put_f64s("dynamics.pressure_ramp", ramp);
-  }
-}
-
-void read_dynamics(const CheckpointReader& r, Dynamics& d) {
-  const auto params = r.get_f64s("dynamics.methods");
-  const auto ramps = r.get_f64s("dynamics.ramps");
-  const auto& methods = d.methods();
-  if (params.size() != 5 * methods.size() || ramps.size() != 2 * kRampDoubles * methods.size())
-    fail_input("load_checkpoint: the checkpoint's Dynamics has ", params.size() / 5,
-               " methods, this one ", methods.size(), " (not the same protocol?)");
-  if (bool(r.get_u64("dynamics.has_wall")) != bool(d.pressure_wall()))
-    fail_input("load_checkpoint: the checkpoint's Dynamics ",
-               d.pressure_wall() ? "has no pressure wall, this one has one"
-                                 : "has a pressure wall, this one has none");
-  d.set_dt(r.get_f64("dynamics.dt"));
-  for (std::size_t k = 0; k < methods.size(); ++k) {
-    Method& m = *methods[k];
-    if (params[5 * k + 4] != double(m.group().size()))
-      fail_input("load_checkpoint: method ", k + 1, " moves ", m.group().size(), " sites here but ",
-                 params[5 * k + 4], " in the checkpoint");
-    MethodParams p{params[5 * k], params[5 * k + 1], params[5 * k + 2], params[5 * k + 3]};
-    p.validate();
-    m.params() = p;
-    m.set_kT_ramp(get_ramp(ramps, 2 * kRampDoubles * k));
-    m.set_f0_ramp(get_ramp(ramps, 2 * kRampDoubles * k + kRampDoubles));
-    m.params() = p;  // set_*_ramp resets the value to the ramp's start
-  }
-  if (auto wall = d.pressure_wall()) {
-    read_pressure_wall(r, *wall);
-    wall->pressure_ramp = get_ramp(r.get_f64s("dynamics.pressure_ramp"), 0);
-  }
-}
-
-void write_correlator(CheckpointWriter& w, const TimeCorrelator& c) {
-  const CorrelatorState& s = c.state();
-  w.put_u64("correlator.samples", s.samples);
-  w.put_f64("correlator.last_time", s.last_time);
-  w.put_f64s("correlator.velocity", s.velocity);
-  w.put_f64s("correlator.orientation", s.orientation);
-  w.put_f64s("correlator.position", s.position);
-  w.put_u64s("correlator.origins", s.origins);
-  w.put_f64s("correlator.sums", s.sums);
-}
-
-void read_correlator(const CheckpointReader& r, TimeCorrelator& c) {
-  CorrelatorState s;
-  s.samples = r.get_u64("correlator.samples");
-  s.last_time = r.get_f64("correlator.last_time");
-  s.velocity = r.get_f64s("correlator.velocity");
-  s.orientation = r.get_f64s("correlator.orientation");
-  s.position = r.get_f64s("correlator.position");
-  s.origins = r.get_u64s("correlator.origins");
-  s.sums = r.get_f64s("correlator.sums");
-  c.restore(std::move(s));
-}
+namespace {
 
 int l_save(lua_State* L) {
   const std::string path = arg_string(L, 1);
   Kwargs kw(L, 2, "save_checkpoint");
-  const Parts p = read_parts(kw);
+  const CheckpointParts p = read_checkpoint_parts(kw);
   const std::string extra = kw.string("extra", "");
   const auto run_id = kw.maybe_string("run_id");
   const auto run_parameters = kw.maybe_string("run_parameters");
@@ -173,13 +85,7 @@ int l_save(lua_State* L) {
     fail_input("save_checkpoint: run_parameters without run_id (give the run's identity too)");
   engine_call("save_checkpoint", [&] {
     CheckpointWriter w;
-    write_system(w, p.sim->system);
-    if (p.dyn) write_dynamics(w, p.dyn->dynamics);
-    if (p.tethers) write_tethers(w, *p.tethers->force);
-    if (p.correlator) write_correlator(w, *p.correlator);
-    w.put_string("extra", extra);
-    if (run_id) w.put_string("run.id", *run_id);
-    if (run_parameters) w.put_string("run.parameters", *run_parameters);
+    write_checkpoint_parts(w, p, extra, run_id, run_parameters);
     w.write(path);
   });
   return 0;
@@ -188,7 +94,7 @@ int l_save(lua_State* L) {
 int l_load(lua_State* L) {
   const std::string path = arg_string(L, 1);
   Kwargs kw(L, 2, "load_checkpoint");
-  const Parts p = read_parts(kw);
+  const CheckpointParts p = read_checkpoint_parts(kw);
   const auto seed = kw.maybe_integer<std::uint64_t>("seed", Range::at_least(0));
   kw.finish();
   std::string extra;

@@ -1,13 +1,16 @@
 // The setup stages that reshape the box (setup/compression.hpp):
 //   invasim.compress(sys, {to_phi =, step = 0.03, ftol =, dt =, dt_max =, max_steps =,
 //                          max_compressions = 1e5, progress = p, callback = f,
-//                          continue_from = {steps =, fire_steps =, converged =, max_force =},
+//                          continue_from = {steps =, fire_steps =, converged =, max_force =,
+//                                           fire_state =},
 //                          contacts = {beta = 0, ...}})
-//   -> report {steps, fire_steps, converged, phi, max_force, box, stopped}
-//   (f(report) is called after every compression step with the report so far; after it, a
-//   stop signal (SIGINT/SIGTERM, invasim.interrupted()) stops the compression at that step
-//   boundary with stopped = true; continue_from resumes the counters of such a report;
-//   contacts changes the System's Contacts parameters for this call only: TemporaryContacts)
+//   -> report {steps, fire_steps, converged, phi, max_force, box, stopped [, fire_state]}
+//   (f(report) is called after every compression step with the report so far. A stop signal
+//   (SIGINT/SIGTERM, invasim.interrupted()) stops the compression at the next FIRE iteration
+//   with stopped = true and fire_state = {dt, alpha, n_positive, steps, wall_velocity}, the
+//   minimiser's state (or at a step boundary, without fire_state); continue_from = such a
+//   report continues it on the same tissue, bit for bit; contacts changes the System's
+//   Contacts parameters for this call only: TemporaryContacts)
 //   invasim.rescale(sys, {phi_a =, ftol =, dt =, dt_max =, max_steps =}) -> FIRE result
 // ftol, dt, dt_max and max_steps set the FIRE minimisation after each box change.
 #include <lua.hpp>
@@ -35,6 +38,15 @@ void push_compression_report(lua_State* L, const CompressionReport& r) {
     set_number(S, "max_force", r.max_force);
     push_vec3(S, r.box_lengths);
     lua_setfield(S, -2, "box");
+    if (r.fire_state) {  // stopped inside a FIRE: the minimiser's state
+      lua_createtable(S, 0, 5);
+      set_number(S, "dt", r.fire_state->dt);
+      set_number(S, "alpha", r.fire_state->alpha);
+      set_integer(S, "n_positive", r.fire_state->n_positive);
+      set_integer(S, "steps", static_cast<long long>(r.fire_state->steps));
+      set_number(S, "wall_velocity", r.fire_state->wall_velocity);
+      lua_setfield(S, -2, "fire_state");
+    }
     return 1;
   });
 }
@@ -70,6 +82,16 @@ int l_compress(lua_State* L) {
     so_far.fire_steps = from.integer<std::uint64_t>("fire_steps", Range::at_least(0));
     so_far.converged = from.boolean("converged");
     so_far.max_force = from.number("max_force", Range::at_least(0));
+    if (auto f = from.maybe_table("fire_state")) {
+      FireState st;
+      st.dt = f->number("dt", Range::greater_than(0));
+      st.alpha = f->number("alpha", Range::between(0, 1));
+      st.n_positive = f->integer<int>("n_positive", Range::at_least(0));
+      st.steps = f->integer<std::uint64_t>("steps", Range::at_least(0));
+      st.wall_velocity = f->number("wall_velocity", 0.0);
+      f->finish();
+      so_far.fire_state = st;
+    }
     from.finish();
   } else {
     lua_pop(L, 1);
@@ -86,8 +108,10 @@ int l_compress(lua_State* L) {
     return stop_requested() == 0;  // the caller checks invasim.interrupted()
   };
   sim->changed();
-  const CompressionReport r = engine_call(
-      "compress", [&] { return compress_to_phi(sim->system, sim->forces, p, on_step, so_far); });
+  const CompressionReport r = engine_call("compress", [&] {
+    return compress_to_phi(sim->system, sim->forces, p, on_step, so_far,
+                           [] { return stop_requested() != 0; });
+  });
   push_compression_report(L, r);
   return 1;
 }

@@ -11,6 +11,7 @@
 
 #include <cmath>
 
+#include "lua/checkpoint_parts.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"
@@ -124,10 +125,11 @@ const luaL_Reg kMethods[] = {
 
 }  // namespace
 
-TimeCorrelator* test_correlator(lua_State* L, int index) {
+std::shared_ptr<TimeCorrelator> shared_correlator(lua_State* L, int index) {
   auto* slot = static_cast<std::shared_ptr<CorrelatorHandle>*>(
       luaL_testudata(L, index, LuaType<CorrelatorHandle>::metatable));
-  return slot && *slot ? &(*slot)->correlator : nullptr;
+  if (!slot || !*slot) return nullptr;
+  return std::shared_ptr<TimeCorrelator>(*slot, &(*slot)->correlator);
 }
 
 void open_correlator(lua_State* L) {

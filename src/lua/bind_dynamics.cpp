@@ -2,18 +2,17 @@
 // Langevin, Active), with an optional pressure-controlled left wall:
 //   dyn:add(method); dyn:pressure_wall{P =, mass = 1, gamma = 0.2, kT = 0, walls = w}
 //   dyn:run(sys, nsteps [, {every = N, callback = function(step, time) end, progress = p}])
-// run steps the engine in C++ chunks and returns to Lua only between chunks.
+// run steps the engine through a run/ Simulation and returns to Lua only between chunks.
 #include <lua.hpp>
 
 #include <algorithm>
 #include <limits>
 
-#include "core/stop_request.hpp"
-
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"
 #include "lua/progress.hpp"
+#include "lua/run_glue.hpp"
 
 namespace invasim::lua {
 
@@ -187,15 +186,13 @@ int l_methods(lua_State* L) {
   return 1;
 }
 
-// Steps without a callback between progress updates.
-constexpr long long kProgressChunk = 100;
-
 // dyn:run(sys, nsteps [, {every = N, callback = f, progress = p}]) -> steps done.
 // callback(step, time) runs after each step of the System that is a multiple of `every`
 // (required with a callback); returning false stops the run there. progress:update is called
-// after each chunk (every `every` steps, else every 100).
+// after each chunk (every `every` steps, else every 100). The run itself is a
+// run/simulation.hpp Simulation with the callback as its one operation.
 int l_run(lua_State* L) {
-  DynamicsHandle& d = check<DynamicsHandle>(L, 1);
+  const std::shared_ptr<DynamicsHandle> d = check_shared<DynamicsHandle>(L, 1);
   const std::shared_ptr<Simulation> sim = check_shared<Simulation>(L, 2);
   const long long n = arg_integer(L, 3, 0, std::numeric_limits<long long>::max());  // steps
   std::optional<long long> every;
@@ -217,35 +214,23 @@ int l_run(lua_State* L) {
     kw.finish();
     if (callback && !every) fail_input("run: a callback needs key 'every' (call it every N steps)");
   }
-  Simulation& s = *sim;
-  // Without `every`, chunks of kProgressChunk steps (bit-identical to one long run) so that
-  // a stop request (Ctrl-C, SIGTERM) is honoured within a chunk.
-  const long long chunk = every ? *every : kProgressChunk;
-  long long done = 0;
-  while (done < n) {
-    prepare_dynamics(d, sim, "run");
-    // With `every`: run up to the next multiple of it in the System's step count.
-    const long long step = static_cast<long long>(s.system.step);
-    const long long k = std::min(n - done, every ? *every - step % *every : chunk);
-    engine_call("run", [&] { d.dynamics.run(s.system, s.forces, static_cast<std::uint64_t>(k)); });
-    done += k;
-    s.changed();
-    d.last = sim;
-    d.last_revision = s.revision;
-    if (progress) progress->update(done, s.system.time);
-    if (callback && s.system.step % static_cast<std::uint64_t>(*every) == 0) {
-      lua_pushvalue(L, callback);
-      lua_pushinteger(L, static_cast<lua_Integer>(s.system.step));
-      lua_pushnumber(L, s.system.time);
-      call_lua(L, 2, 1);
-      const bool stop = lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1);
-      lua_pop(L, 1);
-      if (stop) break;
-    }
-    if (stop_requested()) break;  // the caller checks invasim.interrupted()
-  }
-  lua_pushinteger(L, done);
-  return 1;
+  invasim::Simulation run = engine_simulation(sim, d);
+  if (every) run.set_max_chunk(static_cast<std::uint64_t>(*every));
+  if (callback)
+    run.add(std::make_shared<LuaFunctionOperation>(L, callback, sim, d, "callback"),
+            Trigger::every(static_cast<std::uint64_t>(*every)));
+  if (progress)
+    run.set_progress([progress](std::uint64_t done, double time) {
+      progress->update(static_cast<long long>(done), time);
+    });
+  prepare_dynamics(*d, sim, "run");
+  const RunResult result =
+      engine_call("run", [&] { return run.run(static_cast<std::uint64_t>(n)); });
+  sim->changed();
+  d->last = sim;
+  d->last_revision = sim->revision;
+  lua_pushinteger(L, static_cast<lua_Integer>(result.steps));  // the caller checks
+  return 1;                                                    // invasim.interrupted()
 }
 
 const luaL_Reg kMethods[] = {

@@ -94,6 +94,16 @@ int l_snapshot_write(lua_State* L) {
   return 0;
 }
 
+}  // namespace
+
+std::shared_ptr<SnapshotWriter> shared_snapshots(lua_State* L, int index) {
+  auto* slot = static_cast<std::shared_ptr<SnapshotWriter>*>(
+      luaL_testudata(L, index, LuaType<SnapshotWriter>::metatable));
+  return slot ? *slot : nullptr;
+}
+
+namespace {
+
 const luaL_Reg kSnapshotMethods[] = {
     {"write", &lua_wrap<&l_snapshot_write>},
     {nullptr, nullptr},

@@ -4,13 +4,15 @@
 
 #include <cmath>
 
-#include "core/rng.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"
+#include "measure/kinetic.hpp"
 #include "measure/packing.hpp"
 #include "mesh/geometry.hpp"
+#include "run/energies.hpp"
 #include "setup/placement.hpp"
+#include "setup/velocities.hpp"
 
 namespace invasim::lua {
 
@@ -213,11 +215,7 @@ std::vector<int> group_arg(lua_State* L, int index, const Simulation& sim, const
 // sys:temperature([group]): kT = 1/(3N) sum m v^2 over the group (all sites by default).
 int l_temperature(lua_State* L) {
   const Simulation& sim = check<Simulation>(L, 1);
-  const std::vector<int> sites = group_arg(L, 2, sim, "temperature");
-  const Sites& s = sim.system.sites();
-  double sum = 0.0;
-  for (int i : sites) sum += s.mass[i] * s.vel[i].squaredNorm();
-  lua_pushnumber(L, sites.empty() ? 0.0 : sum / (3.0 * double(sites.size())));
+  lua_pushnumber(L, temperature(sim.system, group_arg(L, 2, sim, "temperature")));
   return 1;
 }
 
@@ -297,15 +295,7 @@ int l_set_velocities(lua_State* L) {
   } else {
     for (std::size_t i = 0; i < sim.system.n_sites(); ++i) sites.push_back(int(i));
   }
-  Sites& s = sim.system.sites();
-  for (int i : sites) {
-    if (i < 0 || std::size_t(i) >= s.size())
-      fail_input("set_velocities: site ", i, " is outside [0, ", s.size(), ")");
-    const Vec3 g =
-        RandomKey(sim.system.seed(), sim.system.step, std::uint32_t(i), RngStream::kVelocity)
-            .normal3();
-    s.vel[i] = std::sqrt(kT / s.mass[i]) * g;
-  }
+  engine_call("set_velocities", [&] { set_maxwell_boltzmann(sim.system, sites, kT); });
   sim.changed();
   return 0;
 }
@@ -354,33 +344,20 @@ int l_forces(lua_State* L) {
 // without disturbing the run.
 int l_compute(lua_State* L) {
   Simulation& sim = check<Simulation>(L, 1);
-  std::vector<ForceResult> per_term;
-  std::vector<Vec3> saved = sim.system.sites().force;
-  ForceResult total;
+  EnergyTerms e;
   try {
-    total = engine_call("compute", [&] {
-      return sim.forces.compute(sim.system, {true, true}, &per_term);
-    });
+    e = engine_call("compute", [&] { return observe_energies(sim.system, sim.forces); });
   } catch (...) {
     sim.changed();  // site forces left as they are: a Dynamics re-prepares
     throw;
   }
-  sim.system.sites().force.swap(saved);
-  const auto& terms = sim.forces.terms();
-  std::vector<std::string> keys;
-  for (std::size_t k = 0; k < terms.size(); ++k) {
-    std::string key = terms[k]->name();
-    for (int n = 2; std::find(keys.begin(), keys.end(), key) != keys.end(); ++n)
-      key = terms[k]->name() + std::to_string(n);
-    keys.push_back(key);
-  }
   return push_results(L, 1, [&](lua_State* S) noexcept {
-    lua_createtable(S, 0, static_cast<int>(per_term.size()) + 2);
-    set_number(S, "total", total.energy);
-    push_vec3(S, total.virial);
+    lua_createtable(S, 0, static_cast<int>(e.names.size()) + 2);
+    set_number(S, "total", e.total.energy);
+    push_vec3(S, e.total.virial);
     lua_setfield(S, -2, "virial");
-    for (std::size_t k = 0; k < keys.size(); ++k)
-      set_number(S, keys[k].c_str(), per_term[k].energy);
+    for (std::size_t k = 0; k < e.names.size(); ++k)
+      set_number(S, e.names[k].c_str(), e.energies[k]);
     return 1;
   });
 }

@@ -75,6 +75,7 @@ int open_invasim(lua_State* L) {
   open_tethers(L);
   open_method(L);
   open_dynamics(L);
+  open_simulation(L);
   open_fire(L);
   open_ramp(L);
   open_measure(L);

@@ -19,6 +19,7 @@ void open_walls(lua_State* L);       // invasim.Walls{...}         (bind_walls.c
 void open_shape(lua_State* L);       // invasim.Shape{...}         (bind_shape.cpp)
 void open_tethers(lua_State* L);     // invasim.Tethers{...}       (bind_tethers.cpp)
 void open_method(lua_State* L);      // invasim.Damped/Langevin/Active{...} (bind_method.cpp)
+void open_simulation(lua_State* L);  // invasim.Simulation{...}    (bind_simulation.cpp)
 void open_dynamics(lua_State* L);    // invasim.Dynamics{...}      (bind_dynamics.cpp)
 void open_fire(lua_State* L);        // invasim.Fire{...}          (bind_fire.cpp)
 void open_measure(lua_State* L);     // invasim.histogram, block_average (bind_measure.cpp)

@@ -15,22 +15,35 @@ void CompressionParams::validate() const {
 
 CompressionReport compress_to_phi(System& sys, ForceField& ff, const CompressionParams& params,
                                   const CompressionCallback& on_step,
-                                  const CompressionReport& so_far) {
+                                  const CompressionReport& so_far, const CompressionStop& stop) {
   params.validate();
   const Fire fire(params.fire);
   CompressionReport report = so_far;
   report.stopped = false;
+  report.fire_state.reset();
+  FireControl control;
+  control.stop = stop;
+  control.resume = so_far.fire_state;  // a step's FIRE to finish first (scaling done)
   double phi = packing_fractions(sys).total;
-  if (phi > params.target_phi)
+  if (!control.resume && phi > params.target_phi)
     fail_input("compress: the packing fraction is already ", phi, ", above the target ",
                params.target_phi, "; use rescale to expand");
-  while (phi < params.target_phi * (1.0 - 1e-12)) {
-    if (report.steps >= params.max_steps)
-      fail_simulation("compress: target phi = ", params.target_phi, " not reached after ",
-                      report.steps, " steps (phi = ", phi, ")");
-    const double next = std::min(phi * (1.0 + params.step), params.target_phi);
-    sys.scale(Vec3::Constant(std::cbrt(phi / next)), true);
-    const FireResult r = fire.minimize(sys, ff);
+  while (control.resume || phi < params.target_phi * (1.0 - 1e-12)) {
+    if (!control.resume) {
+      if (report.steps >= params.max_steps)
+        fail_simulation("compress: target phi = ", params.target_phi, " not reached after ",
+                        report.steps, " steps (phi = ", phi, ")");
+      const double next = std::min(phi * (1.0 + params.step), params.target_phi);
+      sys.scale(Vec3::Constant(std::cbrt(phi / next)), true);
+    }
+    const FireResult r = fire.minimize(sys, ff, nullptr, &control);
+    control.resume.reset();
+    if (r.stopped) {
+      report.stopped = true;
+      report.fire_state = r.state;
+      phi = packing_fractions(sys).total;
+      break;
+    }
     ++report.steps;
     report.fire_steps += r.steps;
     report.converged = report.converged && r.converged;

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # A run stopped by SIGTERM during its compression writes a checkpoint of the
-# partly compressed tissue (checkpoint/compressing.ckpt, at the boundary of a compression
-# step), and `invasim run --resume DIR` continues the compression to the same compressed
+# partly compressed tissue (checkpoint/compressing.ckpt, at the next FIRE iteration, with the
+# minimiser's own state: the signal comes while a step's FIRE runs), and `invasim run --resume DIR` continues the compression to the same compressed
 # tissue as a run never interrupted (byte-identical compressed.ckpt), then runs quench and
 # production to the same end (identical series.csv, state.ckpt). The kill waits for an event
 # (the third compression step in log.txt), never for a time. The partial checkpoint carries
@@ -25,8 +25,8 @@ wait_for "$pid" "the third compression step (its 'compress: step 3:' line in log
 stop_with_sigterm "$pid" "$work/killed.log" "the killed run"
 grep -qF "checkpoint saved to $work/killed/checkpoint/compressing.ckpt; continue with: invasim run --resume $work/killed" "$work/killed.log" ||
   fail "no stop message naming the checkpoint and --resume" "$work/killed.log"
-grep -q "stopped by SIGTERM during compression after step [0-9]* (phi = " "$work/killed.log" ||
-  fail "the signal did not stop the compression" "$work/killed.log"
+grep -q "stopped by SIGTERM during compression after step [0-9]*, inside the FIRE of step [0-9]* at iteration [0-9]* (phi = " "$work/killed.log" ||
+  fail "the signal did not stop the compression inside a FIRE minimisation" "$work/killed.log"
 stopped=$(grep -o "during compression after step [0-9]*" "$work/killed.log" | grep -o "[0-9]*$")
 total=$(grep -o "^compress: phi = .* after [0-9]* steps" "$work/straight.log" | grep -o "[0-9]* steps$" | grep -o "^[0-9]*")
 [ "$stopped" -ge 3 ] && [ "$stopped" -lt "$total" ] ||

@@ -29,8 +29,6 @@ expect_error("compress: unknown key 'to_ph' %(did you mean 'to_phi'%?%)", requir
 expect_error("compress: key 'cohesion' must be a boolean, got string", require("lib.compress"), tissue, { cohesion = "off" })
 expect_error("compress: unknown key 'beta'", require("lib.compress"), tissue, { beta = 0 })
 expect_error("compress: key 'from' must be a string, got boolean", require("lib.compress"), tissue, { from = true })
-expect_error("^stages_errors.lua:%d+: production: snapshot_every = 300 must be a multiple of every %(snapshots are taken with the samples%), got every = 200",
-             require("lib.stages").production, tissue, { steps = 10, every = 200, snapshot_every = 300, out = "unused" })
 expect_error("^stages_errors.lua:%d+: production: key 'snapshot_every' must be an integer >= 0, got %-1",
              require("lib.stages").production, tissue, { snapshot_every = -1 })
 expect_error("heterogeneity: missing required key 'lambda'", require("lib.heterogeneity"), tissue, {})

@@ -188,3 +188,44 @@ TEST_CASE("FIRE with a pressure-controlled left wall reaches mechanical equilibr
   CHECK(h1 < h0);
   sys.validate();
 }
+
+TEST_CASE("FIRE stopped at an iteration boundary and resumed equals an uninterrupted run") {
+  // With a pressure wall, so that the piston's velocity is part of the resumed state.
+  auto setup = [](System& sys, ForceField& ff, PressureWall& pw) {
+    sys = test::random_spheres(120, 0.7, true, 8);
+    std::shared_ptr<WallForce> walls;
+    ff = spheres_forces(true, &walls);
+    pw.pressure = 1e-3;
+    pw.walls = walls;
+  };
+  FireParams fp;
+  fp.ftol = 1e-6;
+  fp.max_steps = 60000;
+  System a(test::cube(1.0, true), 1), b(test::cube(1.0, true), 1);
+  ForceField fa, fb;
+  PressureWall wa, wb;
+  setup(a, fa, wa);
+  setup(b, fb, wb);
+  const FireResult whole = Fire(fp).minimize(a, fa, &wa);
+  REQUIRE(whole.steps > 100);
+  std::uint64_t polls = 0;
+  FireControl stop;
+  stop.stop = [&] { return ++polls > whole.steps / 2; };
+  const FireResult part = Fire(fp).minimize(b, fb, &wb, &stop);
+  REQUIRE(part.stopped);
+  CHECK(part.state.steps == whole.steps / 2);
+  CHECK(part.state.wall_velocity != 0.0);
+  FireControl resume;
+  resume.resume = part.state;
+  ForceField fresh;  // new neighbour lists: forces do not depend on when a list was built
+  std::shared_ptr<WallForce> walls;
+  fresh = spheres_forces(true, &walls);
+  wb.walls = walls;
+  const FireResult rest = Fire(fp).minimize(b, fresh, &wb, &resume);
+  CHECK_FALSE(rest.stopped);
+  CHECK(rest.steps == whole.steps);
+  CHECK(rest.max_force == whole.max_force);
+  CHECK(rest.energy == whole.energy);
+  CHECK(a.box().lo()[0] == b.box().lo()[0]);
+  for (std::size_t i = 0; i < a.n_sites(); ++i) REQUIRE(a.sites().pos[i] == b.sites().pos[i]);
+}

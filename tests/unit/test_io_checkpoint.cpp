@@ -178,16 +178,24 @@ TEST_CASE("checkpoint files are written atomically and refused when damaged") {
   }
   SECTION("wrong version") {
     std::string bad = good;
-    bad[11] = 3;
+    bad[11] = 4;
     write_plain(path, bad);
     CHECK_THROWS_WITH(CheckpointReader::read(path),
-                      where + "format version 3 is not supported (this build reads version 2)");
+                      where + "format version 4 is not supported (this build reads version 3)");
+    // Version 2 (the Dynamics in positional arrays) is refused with the version it needs.
+    bad[11] = 2;
+    write_plain(path, bad);
+    CHECK_THROWS_WITH(CheckpointReader::read(path),
+                      where +
+                          "format version 2 is not supported (this build reads version 3; "
+                          "version 2 stored the Dynamics as positional arrays: continue it with "
+                          "an invasim that reads version 2, or start that run again)");
     // Version 1 (before checkpoints carried their run's identity) is refused with the reason.
     bad[11] = 1;
     write_plain(path, bad);
     CHECK_THROWS_WITH(CheckpointReader::read(path),
                       where +
-                          "format version 1 is not supported (this build reads version 2; older "
+                          "format version 1 is not supported (this build reads version 3; older "
                           "checkpoints do not record the run that wrote them, so they cannot be "
                           "continued: start that run again)");
   }

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "checkpoint/state_checkpoint.hpp"
 #include "core/errors.hpp"
 #include "integrate/fire.hpp"
 #include "mesh/geometry.hpp"
@@ -256,6 +257,43 @@ TEST_CASE("a compression stopped at a step boundary continues bit for bit") {
       last, ff, cp, [&](const CompressionReport& r) { return r.steps < whole.steps; });
   CHECK_FALSE(full.stopped);
   CHECK(full.phi == whole.phi);
+}
+
+TEST_CASE("a compression stopped inside a FIRE continues bit for bit from a checkpoint") {
+  ForceField ff = test::standard_forces(0.0, 1e3, 1.0);
+  CompressionParams cp;
+  cp.target_phi = 0.6;
+  cp.fire.ftol = 1e-3;
+  System straight = dilute_start(2, 40, 5);
+  const CompressionReport whole = compress_to_phi(straight, ff, cp);
+  REQUIRE(whole.fire_steps > 200);
+  // Stop after a number of FIRE iterations that falls inside a step's minimisation.
+  for (const std::uint64_t polls : {std::uint64_t(1), whole.fire_steps / 3, whole.fire_steps - 2}) {
+    System stopped = dilute_start(2, 40, 5);
+    std::uint64_t n = 0;
+    const CompressionReport part =
+        compress_to_phi(stopped, ff, cp, {}, {}, [&] { return ++n > polls; });
+    REQUIRE(part.stopped);
+    REQUIRE(part.fire_state);
+    CHECK(part.fire_state->steps > 0);
+    CHECK(part.fire_state->dt > 0.0);
+    // Through a checkpoint of the System (velocities and all) into a fresh process's objects.
+    CheckpointWriter w;
+    write_system(w, stopped);
+    System restored = read_system(CheckpointReader::parse(w.bytes(), "test"));
+    ForceField fresh = test::standard_forces(0.0, 1e3, 1.0);
+    const CompressionReport rest = compress_to_phi(restored, fresh, cp, {}, part);
+    CHECK_FALSE(rest.stopped);
+    CHECK_FALSE(rest.fire_state);
+    CHECK(rest.steps == whole.steps);
+    CHECK(rest.fire_steps == whole.fire_steps);
+    CHECK(rest.max_force == whole.max_force);
+    CHECK(rest.phi == whole.phi);
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < straight.n_sites(); ++i)
+      differing += straight.sites().pos[i] != restored.sites().pos[i];
+    CHECK(differing == 0);
+  }
 }
 
 TEST_CASE("rescale reaches the requested adipocyte packing fraction, bodies rigid") {

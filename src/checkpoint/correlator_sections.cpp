@@ -1,0 +1,28 @@
+#include "checkpoint/correlator_sections.hpp"
+
+namespace invasim {
+
+void write_correlator(CheckpointWriter& out, const TimeCorrelator& c, const std::string& prefix) {
+  const CorrelatorState& s = c.state();
+  out.put_u64(prefix + ".samples", s.samples);
+  out.put_f64(prefix + ".last_time", s.last_time);
+  out.put_f64s(prefix + ".velocity", s.velocity);
+  out.put_f64s(prefix + ".orientation", s.orientation);
+  out.put_f64s(prefix + ".position", s.position);
+  out.put_u64s(prefix + ".origins", s.origins);
+  out.put_f64s(prefix + ".sums", s.sums);
+}
+
+void read_correlator(const CheckpointReader& in, TimeCorrelator& c, const std::string& prefix) {
+  CorrelatorState s;
+  s.samples = in.get_u64(prefix + ".samples");
+  s.last_time = in.get_f64(prefix + ".last_time");
+  s.velocity = in.get_f64s(prefix + ".velocity");
+  s.orientation = in.get_f64s(prefix + ".orientation");
+  s.position = in.get_f64s(prefix + ".position");
+  s.origins = in.get_u64s(prefix + ".origins");
+  s.sums = in.get_f64s(prefix + ".sums");
+  c.restore(std::move(s));
+}
+
+}  // namespace invasim

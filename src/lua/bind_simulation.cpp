@@ -1,0 +1,263 @@
+// invasim.Simulation{system = sys, dynamics = dyn}: a run with scheduled operations
+// (run/simulation.hpp; docs/lua.md, "Simulation"). Each operation takes a schedule
+// {every = N, phase = 0, at = {steps}, at_end = false, on_stop = false} (at least one):
+//   sim:sample(correlator, schedule)          -- correlator sampler
+//   sim:snapshots(snapshots, schedule)        -- snapshot writer (an invasim.Snapshots)
+//   sim:checkpoint{path =, tethers =, correlator =, extra = function() return "" end,
+//                  run_id =, run_parameters =, written = function(step) end, <schedule>}
+//   sim:observe(function(step, time) end, schedule)   -- an observer written in Lua
+//   sim:run(n [, {progress = p}]) -> steps done, stop signal name or nil
+//   sim:operations() -> {"correlator sampler: every 20 steps", ...}
+#include <lua.hpp>
+
+#include <limits>
+
+#include "core/stop_request.hpp"
+
+#include "lua/checkpoint_parts.hpp"
+#include "lua/engine_types.hpp"
+#include "lua/module.hpp"
+#include "lua/names.hpp"
+#include "lua/progress.hpp"
+#include "lua/run_glue.hpp"
+#include "run/operations.hpp"
+
+namespace invasim::lua {
+
+// The Lua object: the engine Simulation, the objects it runs, and its Lua operations (told
+// which Lua thread runs them).
+struct SimulationHandle {
+  SimulationHandle(std::shared_ptr<Simulation> s, std::shared_ptr<DynamicsHandle> d)
+      : system(std::move(s)), dyn(std::move(d)), run(engine_simulation(system, dyn)) {}
+  std::shared_ptr<Simulation> system;
+  std::shared_ptr<DynamicsHandle> dyn;
+  invasim::Simulation run;
+  std::vector<std::shared_ptr<LuaFunctionOperation>> lua_ops;
+};
+
+template <>
+struct LuaType<SimulationHandle> {
+  static constexpr const char* name = "Simulation";
+  static constexpr const char* metatable = "invasim.Simulation";
+  static std::string describe(const SimulationHandle& s) {
+    return cat("Simulation(", s.run.operations().size(), " operations, step ",
+               s.system->system.step, ")");
+  }
+};
+
+namespace {
+
+// The schedule keys of kw: every, phase, at, at_end, on_stop (at least one).
+Trigger kw_trigger(Kwargs& kw) {
+  lua_State* L = kw.state();
+  Trigger t;
+  bool any = false;
+  const auto every = kw.maybe_integer<std::uint64_t>("every", Range::at_least(1));
+  const auto phase = kw.maybe_integer<std::uint64_t>("phase", Range::at_least(0));
+  if (phase && !every) fail_input(kw.owner(), ": key 'phase' needs key 'every'");
+  if (every) {
+    if (phase && *phase >= *every)
+      fail_input(kw.owner(), ": phase = ", *phase, " must be in [0, ", *every,
+                 ") for every = ", *every);
+    t |= Trigger::every(*every, phase.value_or(0));
+    any = true;
+  }
+  const int type = kw.push("at");
+  if (type != LUA_TNIL) {
+    if (type != LUA_TTABLE)
+      fail_input(kw.owner(), ": key 'at' must be a list of steps, got ", type_name_at(L, -1));
+    std::vector<std::uint64_t> steps;
+    const auto n = lua_rawlen(L, -1);
+    for (lua_Unsigned i = 1; i <= n; ++i) {
+      lua_rawgeti(L, -1, static_cast<lua_Integer>(i));
+      if (!lua_isinteger(L, -1) || lua_tointeger(L, -1) < 0)
+        fail_input(kw.owner(), ": key 'at[", i, "]' must be an integer step >= 0, got ",
+                   lua_type(L, -1) == LUA_TNUMBER ? cat(lua_tonumber(L, -1))
+                                                  : std::string(type_name_at(L, -1)));
+      steps.push_back(static_cast<std::uint64_t>(lua_tointeger(L, -1)));
+      lua_pop(L, 1);
+    }
+    t |= Trigger::at(std::move(steps));
+    any = true;
+  }
+  lua_pop(L, 1);
+  if (kw.boolean("at_end", false)) t |= Trigger::at_end(), any = true;
+  if (kw.boolean("on_stop", false)) t |= Trigger::on_stop(), any = true;
+  if (!any) kw.finish();  // an unknown key (a misspelt schedule) is the better message
+  if (!any)
+    fail_input(kw.owner(),
+               ": no schedule; give at least one of every = N, at = {steps}, at_end = true, "
+               "on_stop = true");
+  return t;
+}
+
+int l_new(lua_State* L) {
+  Kwargs kw(L, 1, "Simulation");
+  if (kw.push("system") == LUA_TNIL || !luaL_testudata(L, -1, LuaType<Simulation>::metatable))
+    fail_input("Simulation: key 'system' must be a System, got ", type_name_at(L, -1));
+  auto system = check_shared<Simulation>(L, lua_gettop(L));
+  if (kw.push("dynamics") == LUA_TNIL || !luaL_testudata(L, -1, LuaType<DynamicsHandle>::metatable))
+    fail_input("Simulation: key 'dynamics' must be a Dynamics, got ", type_name_at(L, -1));
+  auto dyn = check_shared<DynamicsHandle>(L, lua_gettop(L));
+  kw.finish();
+  push(L, std::make_shared<SimulationHandle>(std::move(system), std::move(dyn)));
+  return 1;
+}
+
+// The schedule table at `index` as a trigger (`what` names the method in messages).
+Trigger schedule_arg(lua_State* L, int index, const char* what) {
+  Kwargs kw(L, index, what);
+  Trigger t = kw_trigger(kw);
+  kw.finish();
+  return t;
+}
+
+// sim:sample(correlator, schedule)
+int l_sample(lua_State* L) {
+  SimulationHandle& s = check<SimulationHandle>(L, 1);
+  auto correlator = shared_correlator(L, 2);
+  if (!correlator) throw InputError(bad_argument(L, 2, "Correlator"));
+  const Trigger t = schedule_arg(L, 3, "sample");
+  engine_call("sample", [&] { s.run.add(std::make_shared<CorrelatorSampler>(correlator), t); });
+  return 0;
+}
+
+// sim:snapshots(snapshots, schedule)
+int l_snapshots(lua_State* L) {
+  SimulationHandle& s = check<SimulationHandle>(L, 1);
+  auto writer = shared_snapshots(L, 2);
+  if (!writer) throw InputError(bad_argument(L, 2, "Snapshots"));
+  const Trigger t = schedule_arg(L, 3, "snapshots");
+  engine_call("snapshots", [&] { s.run.add(std::make_shared<SnapshotOperation>(writer), t); });
+  return 0;
+}
+
+// sim:observe(fn, schedule)
+int l_observe(lua_State* L) {
+  const auto& s = check_shared<SimulationHandle>(L, 1);
+  if (lua_type(L, 2) != LUA_TFUNCTION) throw InputError(bad_argument(L, 2, "function"));
+  const Trigger t = schedule_arg(L, 3, "observe");
+  auto op = std::make_shared<LuaFunctionOperation>(L, 2, s->system, s->dyn, "observer");
+  s->lua_ops.push_back(op);
+  engine_call("observe", [&] { s->run.add(op, t); });
+  return 0;
+}
+
+// sim:checkpoint{path =, tethers =, correlator =, extra = fn, run_id =, run_parameters =,
+// written = fn, <schedule>}: the System and the Dynamics are the Simulation's own.
+int l_checkpoint(lua_State* L) {
+  const auto& s = check_shared<SimulationHandle>(L, 1);
+  Kwargs kw(L, 2, "checkpoint");
+  const std::string path = kw.string("path");
+  CheckpointParts parts = read_checkpoint_parts(kw, false);
+  parts.sim = s->system;
+  parts.dyn = s->dyn;
+  const auto run_id = kw.maybe_string("run_id");
+  const auto run_parameters = kw.maybe_string("run_parameters");
+  if (run_parameters && !run_id)
+    fail_input("checkpoint: run_parameters without run_id (give the run's identity too)");
+  std::shared_ptr<LuaFunctionOperation> extra, written;
+  for (const char* key : {"extra", "written"}) {
+    const int type = kw.push(key);
+    if (type == LUA_TFUNCTION) {
+      auto op = std::make_shared<LuaFunctionOperation>(L, -1, s->system, s->dyn, key);
+      s->lua_ops.push_back(op);
+      (std::string(key) == "extra" ? extra : written) = op;
+    } else if (type != LUA_TNIL) {
+      fail_input("checkpoint: key '", key, "' must be a function, got ", type_name_at(L, -1));
+    }
+    lua_pop(L, 1);
+  }
+  const Trigger t = kw_trigger(kw);
+  kw.finish();
+  // extra() returns the protocol's own state as a string (called on the running thread).
+  SimulationHandle* handle = s.get();
+  auto compose = [handle, parts, extra, run_id, run_parameters](CheckpointWriter& w) {
+    std::string text;
+    if (extra) text = extra->call_for_string(handle->run);
+    write_checkpoint_parts(w, parts, text, run_id, run_parameters);
+  };
+  CheckpointOperation::WrittenFn note;
+  if (written) note = [handle, written](std::uint64_t) { written->apply(handle->run); };
+  engine_call("checkpoint",
+              [&] { s->run.add(std::make_shared<CheckpointOperation>(path, compose, note), t); });
+  return 0;
+}
+
+// sim:run(n [, {progress = p}]) -> steps done, the stop signal's name or nil.
+int l_run(lua_State* L) {
+  const auto& s = check_shared<SimulationHandle>(L, 1);
+  const long long n = arg_integer(L, 2, 0, std::numeric_limits<long long>::max());
+  Progress* progress = nullptr;
+  if (!lua_isnoneornil(L, 3)) {
+    Kwargs kw(L, 3, "run");
+    if (kw.push("progress") != LUA_TNIL) {
+      progress = test_progress(L, -1);
+      if (!progress)
+        fail_input("run: key 'progress' must be a Progress, got ", type_name_at(L, -1));
+    }
+    kw.finish();
+  }
+  s->run.set_progress(
+      progress ? invasim::Simulation::ProgressFn([progress](std::uint64_t done, double time) {
+        progress->update(static_cast<long long>(done), time);
+      })
+               : invasim::Simulation::ProgressFn());
+  for (const auto& op : s->lua_ops) op->set_thread(L);
+  prepare_dynamics(*s->dyn, s->system, "run");
+  RunResult result;
+  try {
+    result = engine_call("run", [&] { return s->run.run(static_cast<std::uint64_t>(n)); });
+  } catch (...) {
+    for (const auto& op : s->lua_ops) op->set_thread(nullptr);
+    s->run.set_progress({});
+    throw;
+  }
+  for (const auto& op : s->lua_ops) op->set_thread(nullptr);
+  s->run.set_progress({});
+  s->system->changed();
+  s->dyn->last = s->system;
+  s->dyn->last_revision = s->system->revision;
+  lua_pushinteger(L, static_cast<lua_Integer>(result.steps));
+  if (result.stop_signal)
+    lua_pushstring(L, stop_signal_name(result.stop_signal));
+  else
+    lua_pushnil(L);
+  return 2;
+}
+
+// sim:operations() -> {"<name>: <schedule>", ...} in the order they run.
+int l_operations(lua_State* L) {
+  const SimulationHandle& s = check<SimulationHandle>(L, 1);
+  std::vector<std::string> lines;
+  for (const auto& op : s.run.operations())
+    lines.push_back(op.operation->name() + ": " + op.trigger.describe());
+  return push_results(L, 1, [&lines](lua_State* S) noexcept {
+    lua_createtable(S, int(lines.size()), 0);
+    for (std::size_t k = 0; k < lines.size(); ++k) {
+      lua_pushlstring(S, lines[k].data(), lines[k].size());
+      lua_rawseti(S, -2, lua_Integer(k + 1));
+    }
+    return 1;
+  });
+}
+
+const luaL_Reg kMethods[] = {
+    {"sample", &lua_wrap<&l_sample>},
+    {"snapshots", &lua_wrap<&l_snapshots>},
+    {"observe", &lua_wrap<&l_observe>},
+    {"checkpoint", &lua_wrap<&l_checkpoint>},
+    {"run", &lua_wrap<&l_run>},
+    {"operations", &lua_wrap<&l_operations>},
+    {nullptr, nullptr},
+};
+
+}  // namespace
+
+void open_simulation(lua_State* L) {
+  define_type<SimulationHandle>(L, kMethods);
+  lua_pushcfunction(L, &lua_wrap<&l_new>);
+  lua_setfield(L, -2, "Simulation");
+}
+
+}  // namespace invasim::lua

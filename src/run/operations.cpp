@@ -1,0 +1,49 @@
+#include "run/operations.hpp"
+
+#include "core/errors.hpp"
+#include "run/simulation.hpp"
+
+namespace invasim {
+
+CorrelatorSampler::CorrelatorSampler(std::shared_ptr<TimeCorrelator> correlator)
+    : correlator_(std::move(correlator)) {
+  if (!correlator_) throw InputError("correlator sampler: no correlator given");
+}
+
+void CorrelatorSampler::apply(Simulation& sim) {
+  correlator_->sample(sim.system());
+}
+
+SnapshotOperation::SnapshotOperation(std::shared_ptr<SnapshotWriter> writer)
+    : writer_(std::move(writer)) {
+  if (!writer_) throw InputError("snapshot writer: no SnapshotWriter given");
+}
+
+void SnapshotOperation::apply(Simulation& sim) {
+  writer_->write(sim.system());
+}
+
+CheckpointOperation::CheckpointOperation(std::filesystem::path path, ComposeFn compose,
+                                         WrittenFn written)
+    : path_(std::move(path)), compose_(std::move(compose)), written_(std::move(written)) {
+  if (path_.empty()) throw InputError("checkpoint writer: empty path");
+  if (!compose_) throw InputError("checkpoint writer: nothing to write");
+}
+
+void CheckpointOperation::apply(Simulation& sim) {
+  CheckpointWriter w;
+  compose_(w);
+  w.write(path_);
+  if (written_) written_(sim.system().step);
+}
+
+FunctionOperation::FunctionOperation(std::string name, Fn fn)
+    : name_(std::move(name)), fn_(std::move(fn)) {
+  if (!fn_) throw InputError(name_ + ": no function given");
+}
+
+void FunctionOperation::apply(Simulation& sim) {
+  if (!fn_(sim)) sim.request_stop();
+}
+
+}  // namespace invasim
