@@ -219,7 +219,7 @@ def check_checkpoint(path, exp):
     data = open(path, "rb").read()
     check(data[:11] == b"INVASIMCKPT", f"{where}: magic")
     version, total, count = struct.unpack_from("<IQI", data, 11)
-    check(version == 2, f"{where}: version {version}")
+    check(version == 3, f"{where}: version {version}")
     check(total == len(data), f"{where}: length field {total} for {len(data)} bytes")
     crc, = struct.unpack_from("<I", data, len(data) - 4)
     check(crc == zlib.crc32(data[:-4]), f"{where}: CRC-32")

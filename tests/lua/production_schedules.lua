@@ -4,13 +4,25 @@
 -- steps of the System that are multiples of their own period.
 package.path = "../../protocols/?.lua;" .. package.path
 local iv = require("invasim")
-local protocol = require("lib.protocol")
-local p = iv.params(protocol.merge{})
+local parameters = require("lib.parameters")
+local stage = require("lib.stages")
+local p = iv.params(parameters.declarations())
+parameters.validate(p)
 local out = require("lib.run_dir").open(p)
-protocol.validate(p)
-local tissue = protocol.prepare(p)
+local N_a, N_c, L0 = parameters.size(p)
+local tissue = stage.init{ N_a = N_a, N_c = N_c, L0 = L0, seed = p.seed, start = p.start,
+                           shape_param = p.A_0, eps_v = p.eps_v, eps_a = p.eps_a,
+                           alpha = p.alpha, beta = p.beta }
+stage.compress(tissue, { to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.final_ftol,
+                         cohesion = p.cohesive_compression })
+stage.quench(tissue, { P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p, gamma = p.gamma,
+                       vertex_bath = p.vertex_bath, vertex_gamma = p.vertex_gamma, dt = p.dt,
+                       steps = p.quench_steps })
 local first = tissue.sys:step()
-local result = protocol.produce(tissue, p, out)
+local result = stage.production(tissue, { steps = p.steps, every = p.every,
+                                          correlate_every = p.correlate_every,
+                                          snapshot_every = p.snapshot_every,
+                                          checkpoint_every = p.checkpoint_every, out = out })
 local last = tissue.sys:step()
 assert(last == first + p.steps, "production ran " .. (last - first) .. " steps")
 
@@ -37,7 +49,7 @@ for line in assert(io.open(out .. "/snapshots/adipocytes.pvd")):lines() do
   if step then frames[#frames + 1] = tonumber(step) end
 end
 local expected_frames = multiples(p.snapshot_every, first, last)
-table.insert(expected_frames, 1, first)  -- the frame of the start (lib.protocol.produce)
+table.insert(expected_frames, 1, first)  -- the frame of the start (stage.production)
 local n_frames = same(frames, expected_frames, "snapshot frames")
 
 local checkpoints = {}

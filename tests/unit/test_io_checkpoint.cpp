@@ -75,9 +75,19 @@ TEST_CASE("checkpoint container: a fixed checkpoint's bytes and CRC-32 trailer a
   REQUIRE(bytes.size() == 437);
   std::uint32_t stored = 0;
   for (int k = 0; k < 4; ++k) stored |= std::uint32_t(std::uint8_t(bytes[433 + k])) << (8 * k);
-  CHECK(stored == 0x2ebedb11u);
-  CHECK(crc32(std::string_view(bytes).substr(0, 433)) == 0x2ebedb11u);
-  CHECK(fnv1a64_hex(bytes) == "4fc568bbdb8208ea");
+  CHECK(stored == 0x86b1928eu);
+  CHECK(crc32(std::string_view(bytes).substr(0, 433)) == stored);
+  CHECK(fnv1a64_hex(bytes) == "fc3dc9b0e1838e6c");
+  // Format version 3 changed only the version field (offset 11): set back to 2, with the
+  // trailer of then, these are the bytes version 2 wrote (CRC 0x2ebedb11 from the hand-written
+  // CRC-32 and Python's zlib.crc32 alike).
+  REQUIRE(kCheckpointVersion == 3);
+  REQUIRE(bytes[11] == 3);
+  std::string v2 = bytes;
+  v2[11] = 2;
+  CHECK(crc32(std::string_view(v2).substr(0, 433)) == 0x2ebedb11u);
+  for (int k = 0; k < 4; ++k) v2[433 + k] = char((0x2ebedb11u >> (8 * k)) & 0xff);
+  CHECK(fnv1a64_hex(v2) == "4fc568bbdb8208ea");
 }
 
 // The run identity's hash (core/fnv1a.hpp): the published FNV-1a 64 test vectors.
