@@ -4,22 +4,39 @@
 #include <lua.hpp>
 
 #include "lua/engine_types.hpp"
+#include "lua/fields.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"
 
 namespace invasim::lua {
 
+namespace {
+
+// The keys of invasim.Tethers{} (K required: TetherForce has no default).
+struct TetherKeys {
+  double K = 0.0;
+};
+
+const FieldTable<TetherKeys>& tether_fields() {
+  static const FieldTable<TetherKeys> table(
+      "Tethers", {required(number<TetherKeys>("K", &TetherKeys::K, Range::non_negative(),
+                                              "eps_c/sigma^2", "tether spring stiffness"))});
+  return table;
+}
+
+}  // namespace
+
 std::string LuaType<Tethers>::describe(const Tethers& t) {
-  return cat("Tethers(K=", t.force->stiffness(), ", ", t.force->tethers().size(), " tethers)");
+  return cat("Tethers(", tether_fields().describe_fields({t.force->stiffness()}), ", ",
+             t.force->tethers().size(), " tethers)");
 }
 
 namespace {
 
 int l_new(lua_State* L) {
   Kwargs kw(L, 1, "Tethers");
-  const double K = kw.number("K", Range::non_negative());
-  kw.finish();
-  auto force = engine_call("Tethers", [&] { return std::make_shared<TetherForce>(K); });
+  const TetherKeys k = tether_fields().make(kw);
+  auto force = engine_call("Tethers", [&] { return std::make_shared<TetherForce>(k.K); });
   push(L, std::make_shared<Tethers>(std::move(force)));
   return 1;
 }
@@ -110,8 +127,7 @@ const luaL_Reg kMethods[] = {
 
 void open_tethers(lua_State* L) {
   define_type<Tethers>(L, kMethods);
-  lua_pushcfunction(L, &lua_wrap<&l_new>);
-  lua_setfield(L, -2, "Tethers");
+  set_constructor(L, "Tethers", &lua_wrap<&l_new>, tether_fields().infos());
 }
 
 }  // namespace invasim::lua

@@ -133,9 +133,6 @@ struct NumberOrRamp {
 NumberOrRamp kw_number_or_ramp(Kwargs& kw, std::string_view key, Range range,
                                std::optional<double> fallback = std::nullopt);
 
-// FIRE settings from keys ftol, dt, dt_max, max_steps (defaults of FireParams).
-FireParams kw_fire(Kwargs& kw);
-
 // The Simulation a weak owner points to; throws "<what>: its System no longer exists" when it
 // expired, or "<what>: not in a System; <hint>" when it was never set.
 Simulation& owner_of(const std::weak_ptr<Simulation>& owner, const std::string& what,
