@@ -19,17 +19,18 @@
 --
 --   local report = require("lib.compress")(tissue, { to_phi = 0.72 })
 local iv = require("invasim")
-local options = require("lib.options")
 local log = require("lib.log")
 
-local defaults = {
-  to_phi = 0.72, step = 0.03, ftol = 1e-3, final_ftol = 1e-6,
-  beta = 0.0,                 -- cohesion depth during compression
-  max_steps = 1000000,        -- FIRE iterations per minimisation
+-- step, beta and max_steps default to the engine's (invasim.compress.defaults, the
+-- Contacts' beta = 0: no cohesion, invasim.Fire.defaults).
+local spec = {
+  to_phi = 0.72, step = iv.compress.defaults.step, ftol = 1e-3, final_ftol = 1e-6,
+  beta = iv.Contacts.defaults.beta,  -- cohesion depth during compression
+  max_steps = iv.Fire.defaults.max_steps,  -- FIRE iterations per minimisation
   progress = true,
-  save = options.OPTIONAL,    -- path: save the compressed tissue there (a checkpoint)
-  checkpoint = options.OPTIONAL,  -- path: on SIGINT/SIGTERM, save the partly compressed
-                                  -- tissue there (--resume continues from it)
+  save = { "string" },        -- path: save the compressed tissue there (a checkpoint)
+  checkpoint = { "string" },  -- path: on SIGINT/SIGTERM, save the partly compressed
+                              -- tissue there (--resume continues from it)
 }
 
 local resume = require("lib.resume")
@@ -51,7 +52,7 @@ local function stop(sys, o, state, where)
 end
 
 return function(tissue, opts)
-  local o = options.check("compress", opts, defaults, { save = "string", checkpoint = "string" })
+  local o = iv.keywords("compress", opts, spec)
   if resume.pending() then
     log.say("compress", "skipped: resuming from a checkpoint")
     return { skipped = true }

@@ -2,15 +2,15 @@
 -- (by their midpoint) get rest length (1 - lambda) R_ij, the others (1 + lambda) R_ij.
 --
 --   require("lib.heterogeneity")(tissue, { lambda = 0.3 })
-local options = require("lib.options")
+local iv = require("invasim")
 local log = require("lib.log")
 
-local defaults = { lambda = options.REQUIRED }
+local spec = { lambda = { "number", required = true, range = "[0, 1]", help = "rest-length contrast" } }
 
 return function(tissue, opts)
-  local o = options.check("heterogeneity", opts, defaults, { lambda = "number" })
+  local o = iv.keywords("heterogeneity", opts, spec)
   if not tissue.tethers then
-    options.fail("heterogeneity", "the tissue has no tethers; run the tether stage first")
+    error("heterogeneity: the tissue has no tethers; run the tether stage first", 2)
   end
   tissue.tethers:heterogeneity{ lambda = o.lambda }
   log.say("heterogeneity", "lambda = %g on %d tethers", o.lambda, tissue.tethers:count())

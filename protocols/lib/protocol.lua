@@ -2,7 +2,6 @@
 -- declares (one place, so invasion.lua, tethered.lua and packing.lua agree), and the chain
 -- init -> compress -> quench with those parameters.
 local presets = require("lib.presets")
-local options = require("lib.options")
 
 local M = {}
 

@@ -143,14 +143,10 @@ int l_samples(lua_State* L) {
 }
 
 const luaL_Reg kMethods[] = {
-    {"sample", &lua_wrap<&l_sample>},
-    {"result", &lua_wrap<&l_result>},
-    {"tau_d", &lua_wrap<&l_tau_d>},
-    {"tau_d_standard", &lua_wrap<&l_tau_d_standard>},
-    {"tau_r", &lua_wrap<&l_tau_r>},
-    {"samples", &lua_wrap<&l_samples>},
-    {"params", &lua_wrap<&l_params>},
-    {nullptr, nullptr},
+    {"sample", &lua_wrap<&l_sample>}, {"result", &lua_wrap<&l_result>},
+    {"tau_d", &lua_wrap<&l_tau_d>},   {"tau_d_standard", &lua_wrap<&l_tau_d_standard>},
+    {"tau_r", &lua_wrap<&l_tau_r>},   {"samples", &lua_wrap<&l_samples>},
+    {"params", &lua_wrap<&l_params>}, {nullptr, nullptr},
 };
 
 }  // namespace

@@ -15,7 +15,9 @@ const FieldTable<FireParams>& fire_table() {
   return table;
 }
 
-std::string LuaType<Fire>::describe(const Fire& f) { return fire_table().describe(f.params()); }
+std::string LuaType<Fire>::describe(const Fire& f) {
+  return fire_table().describe(f.params());
+}
 
 namespace {
 

@@ -99,8 +99,7 @@ int l_snapshots(lua_State* L) {
   Kwargs kw(L, 1, "Snapshots");
   const SnapshotKeys k = snapshot_fields().make(kw);
   const SnapshotOptions& o = k;
-  push(L,
-       engine_call("Snapshots", [&] { return std::make_shared<SnapshotWriter>(k.dir, o); }));
+  push(L, engine_call("Snapshots", [&] { return std::make_shared<SnapshotWriter>(k.dir, o); }));
   return 1;
 }
 

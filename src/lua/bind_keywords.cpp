@@ -34,8 +34,21 @@ struct KeySpec {
   bool required = false;
 };
 
-const std::vector<std::string> kPlainTypes = {"number",   "integer", "string", "boolean",
+const std::vector<std::string> kPlainTypes = {"number",   "integer", "string",   "boolean",
                                               "function", "table",   "userdata", "any"};
+
+// Whether t is a plain type or the name of a bound type (its metatable "invasim.<t>" exists).
+bool known_type(lua_State* L, const std::string& t) {
+  if (std::find(kPlainTypes.begin(), kPlainTypes.end(), t) != kPlainTypes.end()) return true;
+  const std::string metatable = "invasim." + t;
+  bool found = false;
+  protected_call(L, 0, 0, [&metatable, &found](lua_State* S) noexcept {
+    found = luaL_getmetatable(S, metatable.c_str()) == LUA_TTABLE;
+    lua_pop(S, 1);
+    return 0;
+  });
+  return found;
+}
 
 std::vector<std::string> split_types(const std::string& text) {
   std::vector<std::string> out;
@@ -54,6 +67,10 @@ std::string expected_text(const std::vector<std::string>& types) {
   std::string out;
   for (const auto& t : types) {
     if (!out.empty()) out += " or ";
+    if (t == "Ramp") {  // as the engine's own keys say it
+      out += "an invasim.ramp{}";
+      continue;
+    }
     const bool vowel = !t.empty() && std::string("aeiouAEIOU").find(t[0]) != std::string::npos;
     out += cat(vowel ? "an " : "a ", t);
   }
@@ -77,16 +94,20 @@ KeySpec read_key_spec(lua_State* L, const std::string& stage, const std::string&
   const int top = lua_gettop(L);
   Kwargs entry(L, top, owner);
   if (entry.push_index(1) != LUA_TSTRING)
-    fail_input(owner, ": its first entry must be the type (\"number\", \"integer\", \"string\", "
-                      "\"boolean\", \"function\", \"table\", \"userdata\", \"any\", a bound type "
-                      "name or alternatives such as \"number|Ramp\"), got ",
+    fail_input(owner,
+               ": its first entry must be the type (\"number\", \"integer\", \"string\", "
+               "\"boolean\", \"function\", \"table\", \"userdata\", \"any\", a bound type "
+               "name or alternatives such as \"number|Ramp\"), got ",
                type_name_at(L, -1));
   const std::string types = lua_tostring(L, -1);
   lua_pop(L, 1);
   k.types = split_types(types);
   if (std::find(k.types.begin(), k.types.end(), "any") != k.types.end()) k.types.clear();
   for (const auto& t : k.types)
-    if (t.empty()) fail_input(owner, ": type '", types, "' has an empty alternative");
+    if (!known_type(L, t))
+      fail_input(owner, ": unknown type '", t, "'", did_you_mean(t, kPlainTypes),
+                 "; a type is one of ", join_names(kPlainTypes),
+                 ", a bound type name (Ramp, Group, Contacts, ...) or alternatives joined by '|'");
   if (const auto range = entry.maybe_string("range")) k.range = parse_range(name, *range);
   if (entry.push("choices") != LUA_TNIL) {
     if (!lua_istable(L, -1)) fail_input(owner, ": choices must be a list of strings");
@@ -158,9 +179,17 @@ void check_value(Kwargs& kw, const KeySpec& k) {
 // "file:line: " of the function `level` levels above the running C function, or "".
 std::string where_at(lua_State* L, int level) {
   lua_Debug ar;
-  if (!lua_getstack(L, level, &ar) || !lua_getinfo(L, "Sl", &ar) || ar.currentline <= 0)
-    return "";
+  if (!lua_getstack(L, level, &ar) || !lua_getinfo(L, "Sl", &ar) || ar.currentline <= 0) return "";
   return cat(ar.short_src, ":", ar.currentline, ": ");
+}
+
+// The stack level of the stage's caller `level` levels up: the stage is level 1 above this C
+// function, unless the stage tail-called invasim.keywords (`return iv.keywords(...)`), which
+// removed its frame.
+int caller_level(lua_State* L, int level) {
+  lua_Debug ar;
+  const bool tail = lua_getstack(L, 0, &ar) && lua_getinfo(L, "t", &ar) && ar.istailcall;
+  return tail ? level : level + 1;
 }
 
 int checked(lua_State* L, const std::string& stage, int level) {
@@ -198,7 +227,7 @@ int checked(lua_State* L, const std::string& stage, int level) {
     for (const auto& k : specs) check_value(kw, k);
     kw.finish();
   } catch (const InputError& e) {
-    throw LuaRaised(where_at(L, level + 1) + e.what());
+    throw LuaRaised(where_at(L, caller_level(L, level)) + e.what());
   }
   lua_settop(L, 3);
   lua_pushvalue(L, 2);
@@ -228,11 +257,10 @@ int l_keywords(lua_State* L) {
     throw InputError(bad_argument(L, 1, "string (the stage's name)"));
   const std::string stage = lua_tostring(L, 1);
   int level = 1;
-  if (!lua_isnoneornil(L, 4))
-    level = static_cast<int>(arg_integer(L, 4, 0, 100));
+  if (!lua_isnoneornil(L, 4)) level = static_cast<int>(arg_integer(L, 4, 0, 100));
   if (lua_gettop(L) > 4) lua_settop(L, 4);
   if (!lua_isnoneornil(L, 2) && !lua_istable(L, 2))
-    throw LuaRaised(where_at(L, level + 1) + stage +
+    throw LuaRaised(where_at(L, caller_level(L, level)) + stage +
                     ": expected a keyword table, as in " + stage + "{key = value, ...}; got " +
                     type_name_at(L, 2));
   return checked(L, stage, level);

@@ -46,7 +46,8 @@ const FieldTable<K>& damped_fields() {
 }
 
 const FieldTable<K>& langevin_fields() {
-  static const FieldTable<K> table("Langevin", {group_of_method(), gamma_field(), required(kT_field())});
+  static const FieldTable<K> table("Langevin",
+                                   {group_of_method(), gamma_field(), required(kT_field())});
   return table;
 }
 

@@ -33,16 +33,15 @@ namespace {
 const FieldTable<ProgressOptions>& progress_fields() {
   using P = ProgressOptions;
   static const FieldTable<P> table(
-      "Progress",
-      {
-          integer<P>("total", &P::total, Range::non_negative(), "steps",
-                     "steps in the run (0: unknown, no percentage or ETA)"),
-          integer<P>("start", &P::start_step, Range::non_negative(), "steps",
-                     "step at construction (for the rate of a continued run)"),
-          number<P>("every_seconds", &P::every_seconds, Range::non_negative(), "s",
-                    "seconds between plain-mode lines (0: every update)"),
-          string<P>("label", &P::label, "", "prefix of each line"),
-      });
+      "Progress", {
+                      integer<P>("total", &P::total, Range::non_negative(), "steps",
+                                 "steps in the run (0: unknown, no percentage or ETA)"),
+                      integer<P>("start", &P::start_step, Range::non_negative(), "steps",
+                                 "step at construction (for the rate of a continued run)"),
+                      number<P>("every_seconds", &P::every_seconds, Range::non_negative(), "s",
+                                "seconds between plain-mode lines (0: every update)"),
+                      string<P>("label", &P::label, "", "prefix of each line"),
+                  });
   return table;
 }
 

@@ -27,7 +27,9 @@ const FieldTable<ShapeKeys>& shape_fields() {
   return table;
 }
 
-ShapeKeys keys_of(const Shape& s) { return {s.force->eps_v(), s.force->eps_a()}; }
+ShapeKeys keys_of(const Shape& s) {
+  return {s.force->eps_v(), s.force->eps_a()};
+}
 
 }  // namespace
 

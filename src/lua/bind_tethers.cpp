@@ -24,6 +24,19 @@ const FieldTable<TetherKeys>& tether_fields() {
   return table;
 }
 
+// The keys of t:connect{} (the engine's connect_by_mean_degree takes the degree without a
+// default: this is its one default).
+struct ConnectKeys {
+  double mean_degree = 6.0;
+};
+
+const FieldTable<ConnectKeys>& connect_fields() {
+  static const FieldTable<ConnectKeys> table(
+      "connect", {number<ConnectKeys>("mean_degree", &ConnectKeys::mean_degree, Range::positive(),
+                                      "tethers", "mean number of tethers per adipocyte")});
+  return table;
+}
+
 }  // namespace
 
 std::string LuaType<Tethers>::describe(const Tethers& t) {
@@ -50,8 +63,7 @@ Simulation& system_of(const Tethers& t, const char* method) {
 int l_connect(lua_State* L) {
   Tethers& t = check<Tethers>(L, 1);
   Kwargs kw(L, 2, "connect");
-  const double degree = kw.number("mean_degree", 6.0, Range::positive());
-  kw.finish();
+  const double degree = connect_fields().make(kw).mean_degree;
   Simulation& sim = system_of(t, "connect");
   const double d_c =
       engine_call("connect", [&] { return t.force->connect_by_mean_degree(sim.system, degree); });
@@ -128,6 +140,7 @@ const luaL_Reg kMethods[] = {
 void open_tethers(lua_State* L) {
   define_type<Tethers>(L, kMethods);
   set_constructor(L, "Tethers", &lua_wrap<&l_new>, tether_fields().infos());
+  set_method_keys(L, "Tethers", "connect", connect_fields().infos());
 }
 
 }  // namespace invasim::lua

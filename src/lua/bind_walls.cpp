@@ -31,7 +31,9 @@ const FieldTable<WallKeys>& wall_fields() {
   return table;
 }
 
-WallKeys keys_of(const Walls& w) { return {w.force->eps(), w.left, w.right}; }
+WallKeys keys_of(const Walls& w) {
+  return {w.force->eps(), w.left, w.right};
+}
 
 }  // namespace
 

@@ -12,8 +12,8 @@ namespace invasim::lua {
 // A number or an invasim.ramp{} (kT, f0, P): `value` receives the number or the ramp's start,
 // `ramp` the ramp (cleared by a number). Range applies to the number and to both ramp ends.
 template <typename P, typename Value, typename RampSlot>
-Field<P> number_or_ramp(std::string name, Value value, RampSlot ramp, Range range,
-                        std::string unit, std::string help) {
+Field<P> number_or_ramp(std::string name, Value value, RampSlot ramp, Range range, std::string unit,
+                        std::string help) {
   Field<P> f;
   f.info = {name, "number or Ramp", std::nullopt, range, {}, std::move(unit), std::move(help)};
   f.read = [name, value, ramp, range](Kwargs& kw, P& p, bool required) {
@@ -45,7 +45,9 @@ Field<P> group_field(std::shared_ptr<Group> P::*slot, std::string help) {
 template <typename P, typename Access>
 std::vector<Field<P>> fire_fields(Access fire) {
   const auto at = [fire](auto member) {
-    return [fire, member](P& p) -> auto& { return std::invoke(fire, p).*member; };
+    return [ fire, member ](P & p) -> auto& {
+      return std::invoke(fire, p).*member;
+    };
   };
   return {
       number<P>("ftol", at(&FireParams::ftol), Range::positive(), "eps/sigma",

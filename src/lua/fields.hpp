@@ -141,8 +141,7 @@ Field<P> number(std::string name, Access access, Range range, std::string unit, 
 
 // An integer stored as the C++ type of the member (int, std::size_t, std::uint64_t, ...).
 template <typename P, typename Access>
-Field<P> integer(std::string name, Access access, Range range, std::string unit,
-                 std::string help) {
+Field<P> integer(std::string name, Access access, Range range, std::string unit, std::string help) {
   using T = FieldRef<P, Access>;
   Field<P> f;
   f.info = {name, "integer", std::nullopt, range, {}, std::move(unit), std::move(help)};
