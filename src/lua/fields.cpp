@@ -31,6 +31,11 @@ void push_value(lua_State* S, const ParamValue& value) noexcept {
   }
 }
 
+std::map<std::string, std::vector<FieldInfo>>& registry() {
+  static std::map<std::string, std::vector<FieldInfo>> tables;
+  return tables;
+}
+
 // __newindex of a read-only table: "file:line: invasim.Contacts.defaults is read-only".
 int read_only_newindex(lua_State* L) {
   luaL_where(L, 2);
@@ -166,6 +171,7 @@ void push_defaults(lua_State* L, const std::vector<FieldInfo>& infos, const std:
 
 void set_constructor(lua_State* L, const char* name, lua_CFunction constructor,
                      const std::vector<FieldInfo>& infos) {
+  registry()[name] = infos;
   const std::string defaults_name = cat("invasim.", name, ".defaults");
   lua_checkstack(L, 4);
   protected_call(L, 0, 1, [](lua_State* S) noexcept {
@@ -189,6 +195,7 @@ void set_constructor(lua_State* L, const char* name, lua_CFunction constructor,
 
 void set_method_keys(lua_State* L, const char* type, const char* method,
                      const std::vector<FieldInfo>& infos) {
+  registry()[cat(type, ":", method)] = infos;
   const std::string defaults_name = cat("invasim.", type, ".", method, ".defaults");
   lua_checkstack(L, 4);
   lua_getfield(L, -1, type);
@@ -202,6 +209,10 @@ void set_method_keys(lua_State* L, const char* type, const char* method,
   lua_setfield(L, -2, "fields");
   lua_setfield(L, -2, method);
   lua_pop(L, 1);
+}
+
+const std::map<std::string, std::vector<FieldInfo>>& registered_field_tables() {
+  return registry();
 }
 
 std::string format_field_table(const std::vector<FieldInfo>& infos) {

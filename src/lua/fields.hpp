@@ -13,6 +13,7 @@
 
 #include <functional>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -240,6 +241,10 @@ void set_constructor(lua_State* L, const char* name, lua_CFunction constructor,
 // whose field `type` must already be a constructor table.
 void set_method_keys(lua_State* L, const char* type, const char* method,
                      const std::vector<FieldInfo>& infos);
+
+// The tables set_constructor and set_method_keys have published, by name ("Contacts",
+// "Dynamics:pressure_wall"): for `invasim keys` and the documentation.
+const std::map<std::string, std::vector<FieldInfo>>& registered_field_tables();
 
 // The listing of a type's keys for documentation and `invasim fields`: one line per key (name,
 // type, default or "required", range or choices, unit, help).
