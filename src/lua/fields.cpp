@@ -114,57 +114,90 @@ void push_values(lua_State* L, const std::vector<std::pair<std::string, ParamVal
 
 }  // namespace fields_detail
 
-void push_field_list(lua_State* L, const std::vector<FieldInfo>& infos) {
-  std::vector<std::string> allowed;
-  for (const auto& f : infos) allowed.push_back(f.range ? f.range->notation() : "");
-  protected_call(L, 0, 1, [&infos, &allowed](lua_State* S) noexcept {
-    lua_createtable(S, static_cast<int>(infos.size()), 0);
-    for (std::size_t k = 0; k < infos.size(); ++k) {
-      const FieldInfo& f = infos[k];
-      lua_createtable(S, 0, 8);
-      lua_pushstring(S, f.name.c_str());
-      lua_setfield(S, -2, "name");
-      lua_pushstring(S, f.type.c_str());
-      lua_setfield(S, -2, "type");
-      if (f.default_value) {
-        push_value(S, *f.default_value);
-        lua_setfield(S, -2, "default");
-      }
-      if (!allowed[k].empty()) {
-        lua_pushstring(S, allowed[k].c_str());
-        lua_setfield(S, -2, "range");
-      }
-      if (!f.choices.empty()) {
-        lua_createtable(S, static_cast<int>(f.choices.size()), 0);
-        for (std::size_t c = 0; c < f.choices.size(); ++c) {
-          lua_pushstring(S, f.choices[c].c_str());
-          lua_rawseti(S, -2, static_cast<lua_Integer>(c + 1));
-        }
-        lua_setfield(S, -2, "choices");
-      }
-      lua_pushstring(S, f.unit.c_str());
-      lua_setfield(S, -2, "unit");
-      lua_pushstring(S, f.help.c_str());
-      lua_setfield(S, -2, "help");
-      lua_pushboolean(S, f.required);
-      lua_setfield(S, -2, "required");
-      lua_pushboolean(S, f.state);
-      lua_setfield(S, -2, "state");
-      lua_rawseti(S, -2, static_cast<lua_Integer>(k + 1));
+namespace {
+
+// The allowed ranges in interval notation ("" for none), computed before any Lua call.
+std::vector<std::string> range_texts(const std::vector<FieldInfo>& infos) {
+  std::vector<std::string> out;
+  for (const auto& f : infos) out.push_back(f.range ? f.range->notation() : "");
+  return out;
+}
+
+// Pushes the fields list (inside a protected call).
+void push_field_list_raw(lua_State* S, const std::vector<FieldInfo>& infos,
+                         const std::vector<std::string>& allowed) noexcept {
+  lua_createtable(S, static_cast<int>(infos.size()), 0);
+  for (std::size_t k = 0; k < infos.size(); ++k) {
+    const FieldInfo& f = infos[k];
+    lua_createtable(S, 0, 8);
+    lua_pushstring(S, f.name.c_str());
+    lua_setfield(S, -2, "name");
+    lua_pushstring(S, f.type.c_str());
+    lua_setfield(S, -2, "type");
+    if (f.default_value) {
+      push_value(S, *f.default_value);
+      lua_setfield(S, -2, "default");
     }
+    if (!allowed[k].empty()) {
+      lua_pushstring(S, allowed[k].c_str());
+      lua_setfield(S, -2, "range");
+    }
+    if (!f.choices.empty()) {
+      lua_createtable(S, static_cast<int>(f.choices.size()), 0);
+      for (std::size_t c = 0; c < f.choices.size(); ++c) {
+        lua_pushstring(S, f.choices[c].c_str());
+        lua_rawseti(S, -2, static_cast<lua_Integer>(c + 1));
+      }
+      lua_setfield(S, -2, "choices");
+    }
+    lua_pushstring(S, f.unit.c_str());
+    lua_setfield(S, -2, "unit");
+    lua_pushstring(S, f.help.c_str());
+    lua_setfield(S, -2, "help");
+    lua_pushboolean(S, f.required);
+    lua_setfield(S, -2, "required");
+    lua_pushboolean(S, f.state);
+    lua_setfield(S, -2, "state");
+    lua_rawseti(S, -2, static_cast<lua_Integer>(k + 1));
+  }
+}
+
+// Pushes the read-only defaults table named `name` (inside a protected call).
+void push_defaults_raw(lua_State* S, const std::vector<FieldInfo>& infos,
+                       const std::string& name) noexcept {
+  lua_createtable(S, 0, static_cast<int>(infos.size()));
+  for (const auto& f : infos) {
+    if (!f.default_value) continue;
+    push_value(S, *f.default_value);
+    lua_setfield(S, -2, f.name.c_str());
+  }
+  make_read_only(S, name.c_str());
+}
+
+// Pushes {defaults =, fields =} (inside a protected call).
+void push_key_table_raw(lua_State* S, const std::vector<FieldInfo>& infos,
+                        const std::vector<std::string>& allowed,
+                        const std::string& defaults_name) noexcept {
+  lua_createtable(S, 0, 2);
+  push_defaults_raw(S, infos, defaults_name);
+  lua_setfield(S, -2, "defaults");
+  push_field_list_raw(S, infos, allowed);
+  lua_setfield(S, -2, "fields");
+}
+
+}  // namespace
+
+void push_field_list(lua_State* L, const std::vector<FieldInfo>& infos) {
+  const std::vector<std::string> allowed = range_texts(infos);
+  protected_call(L, 0, 1, [&infos, &allowed](lua_State* S) noexcept {
+    push_field_list_raw(S, infos, allowed);
     return 1;
   });
 }
 
 void push_defaults(lua_State* L, const std::vector<FieldInfo>& infos, const std::string& name) {
   protected_call(L, 0, 1, [&infos, &name](lua_State* S) noexcept {
-    lua_createtable(S, 0, static_cast<int>(infos.size()));
-    for (const auto& f : infos) {
-      if (!f.default_value) continue;
-      push_value(S, *f.default_value);
-      lua_setfield(S, -2, f.name.c_str());
-    }
-    make_read_only(S, name.c_str());
+    push_defaults_raw(S, infos, name);
     return 1;
   });
 }
@@ -173,42 +206,32 @@ void set_constructor(lua_State* L, const char* name, lua_CFunction constructor,
                      const std::vector<FieldInfo>& infos) {
   registry()[name] = infos;
   const std::string defaults_name = cat("invasim.", name, ".defaults");
-  lua_checkstack(L, 4);
-  protected_call(L, 0, 1, [](lua_State* S) noexcept {
-    lua_createtable(S, 0, 2);
-    return 1;
-  });
-  push_defaults(L, infos, defaults_name);
-  lua_setfield(L, -2, "defaults");  // a table with no metatable: cannot raise except on OOM
-  push_field_list(L, infos);
-  lua_setfield(L, -2, "fields");
-  protected_call(L, 1, 1, [constructor](lua_State* S) noexcept {
+  const std::vector<std::string> allowed = range_texts(infos);
+  lua_pushvalue(L, -1);  // the module table, argument 1 of the block
+  protected_call(L, 1, 0, [&](lua_State* S) noexcept {
+    push_key_table_raw(S, infos, allowed, defaults_name);
     lua_createtable(S, 0, 1);
     lua_pushcfunction(S, constructor);
     lua_pushcclosure(S, &call_constructor, 1);
     lua_setfield(S, -2, "__call");
     lua_setmetatable(S, -2);
-    return 1;
+    lua_setfield(S, 1, name);
+    return 0;
   });
-  lua_setfield(L, -2, name);
 }
 
 void set_method_keys(lua_State* L, const char* type, const char* method,
                      const std::vector<FieldInfo>& infos) {
   registry()[cat(type, ":", method)] = infos;
   const std::string defaults_name = cat("invasim.", type, ".", method, ".defaults");
-  lua_checkstack(L, 4);
-  lua_getfield(L, -1, type);
-  protected_call(L, 0, 1, [](lua_State* S) noexcept {
-    lua_createtable(S, 0, 2);
-    return 1;
+  const std::vector<std::string> allowed = range_texts(infos);
+  lua_pushvalue(L, -1);  // the module table, argument 1 of the block
+  protected_call(L, 1, 0, [&](lua_State* S) noexcept {
+    lua_getfield(S, 1, type);
+    push_key_table_raw(S, infos, allowed, defaults_name);
+    lua_setfield(S, -2, method);
+    return 0;
   });
-  push_defaults(L, infos, defaults_name);
-  lua_setfield(L, -2, "defaults");
-  push_field_list(L, infos);
-  lua_setfield(L, -2, "fields");
-  lua_setfield(L, -2, method);
-  lua_pop(L, 1);
 }
 
 const std::map<std::string, std::vector<FieldInfo>>& registered_field_tables() {

@@ -174,6 +174,7 @@ TEST_CASE("every key a constructor reads is declared in its field table", "[lua]
       { iv.Active, { group = cells, f0 = 0, tau_p = 1, randomize = false } },
       { iv.Dynamics, {} }, { iv.Fire, {} }, { iv.Correlator, { group = cells, interval = 1 } },
       { iv.Snapshots, { dir = "unused" } }, { iv.Progress, {}, { "live" } },
+      { iv.System, { box = {1, 1, 1} } }, { iv.ramp, { from = 0, to = 1, steps = 1 } },
     }
     for i, c in ipairs(cases) do
       local keys = c[2]
