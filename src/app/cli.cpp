@@ -260,7 +260,7 @@ Command parse_command_line(const std::vector<std::string>& args) {
       command.threads = parse_threads(value);
     }
   }
-  if (positional.empty()) throw UsageError("missing command (run, params or render)");
+  if (positional.empty()) throw UsageError("missing command (run, params, keys or render)");
   const std::string& verb = positional[0];
   if (verb == "run")
     command.kind = Command::Kind::kRun;
@@ -269,7 +269,7 @@ Command parse_command_line(const std::vector<std::string>& args) {
   else if (verb == "help")
     return of_kind(Command::Kind::kHelp);
   else
-    throw UsageError("unknown command '" + verb + "' (expected run, params or render)");
+    throw UsageError("unknown command '" + verb + "' (expected run, params, keys or render)");
   if (resume) {
     if (command.kind != Command::Kind::kRun) throw UsageError("--resume goes with invasim run");
     if (positional.size() > 1)
