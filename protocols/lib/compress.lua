@@ -29,17 +29,17 @@
 --
 --   require("lib.compress")(tissue, { to_phi = 0.72, out = out, from = invasim.from })
 local iv = require("invasim")
-local options = require("lib.options")
 local log = require("lib.log")
 
-local defaults = {
-  to_phi = 0.72, step = 0.03, ftol = 1e-3, final_ftol = 1e-6,
+-- step and max_steps default to the engine's (invasim.compress.defaults, invasim.Fire.defaults).
+local spec = {
+  to_phi = 0.72, step = iv.compress.defaults.step, ftol = 1e-3, final_ftol = 1e-6,
   cohesion = false,           -- keep the cancer cells' cohesion (beta) on while compressing
-  max_steps = 1000000,        -- FIRE iterations per minimisation
+  max_steps = iv.Fire.defaults.max_steps,  -- FIRE iterations per minimisation
   progress = true,
-  out = options.OPTIONAL,     -- the run directory: compressed.ckpt (for --from) and, on
+  out = { "string" },         -- the run directory: compressed.ckpt (for --from) and, on
                               -- SIGINT/SIGTERM, compressing.ckpt (for --resume)
-  from = options.OPTIONAL,    -- a run directory whose compressed tissue replaces the compression
+  from = { "string" },        -- a run directory whose compressed tissue replaces the compression
 }
 
 local resume = require("lib.resume")
@@ -133,7 +133,7 @@ local function compress(tissue, o)
 end
 
 return function(tissue, opts)
-  local o = options.check("compress", opts, defaults, { out = "string", from = "string" })
+  local o = iv.keywords("compress", opts, spec)
   if resume.pending() then
     log.say("compress", "skipped: resuming from a checkpoint")
     tissue.compression = { skipped = true }

@@ -3,15 +3,15 @@
 -- lambda = 0 (uniform tissue) leaves the rest lengths as the tether stage set them.
 --
 --   require("lib.heterogeneity")(tissue, { lambda = 0.3 })
-local options = require("lib.options")
+local iv = require("invasim")
 local log = require("lib.log")
 
-local defaults = { lambda = options.REQUIRED }
+local spec = { lambda = { "number", required = true, range = "[0, 1]", help = "rest-length contrast" } }
 
 return function(tissue, opts)
-  local o = options.check("heterogeneity", opts, defaults, { lambda = "number" })
+  local o = iv.keywords("heterogeneity", opts, spec)
   if not tissue.tethers then
-    options.fail("heterogeneity", "the tissue has no tethers; run the tether stage first")
+    error("heterogeneity: the tissue has no tethers; run the tether stage first", 2)
   end
   if o.lambda == 0 then
     log.say("heterogeneity", "lambda = 0: uniform rest lengths on %d tethers", tissue.tethers:count())

@@ -14,36 +14,35 @@
 --   tissue.sys (System), .cells and .vertices (Groups), .walls, .contacts, .shape (forces),
 --   .tethers (nil until the tether stage), .dyn (nil until quench), .params (init options).
 local iv = require("invasim")
-local options = require("lib.options")
 local log = require("lib.log")
 
-local defaults = {
+-- The contact and wall keys default to the engine's own (invasim.Contacts.defaults,
+-- invasim.Walls.defaults): no copy of them here.
+local contact = iv.Contacts.defaults
+local spec = {
   N_a = 28, N_c = 1500, L0 = 70.0, seed = 1,
-  diameters = { 0.9, 1.1 },        -- cancer-cell diameters, used in turn (bidisperse 50/50)
+  diameters = { "table", default = { 0.9, 1.1 } },  -- cancer-cell diameters, used in turn (bidisperse 50/50)
   diameter = 6.0,                  -- adipocyte outer diameter (vertex radii included)
   vertex_diameter = 2.0,
   shape_param = 1.1,               -- reference shape parameter A_0
-  start = "demixed",               -- or "mixed": cells and adipocytes over the whole box
+  start = { "string", default = "demixed", choices = { "demixed", "mixed" } },  -- or "mixed": cells and adipocytes over the whole box
   eps_v = 1e3, eps_a = 1.0,        -- shape energy (docs/model.md: defaults and why)
-  alpha = 0.2, beta = 0.0,         -- cohesion of cancer cells (the compress stage may override)
-  eps_cc = 1.0, eps_cv = 1.0, eps_vv = 1.0,
-  wall_eps = 1.0,
+  alpha = contact.alpha, beta = contact.beta,  -- cohesion of cancer cells (the compress stage may override)
+  eps_cc = contact.eps_cc, eps_cv = contact.eps_cv, eps_vv = contact.eps_vv,
+  wall_eps = iv.Walls.defaults.eps,
 }
 
 return function(opts)
-  local o = options.check("init", opts, defaults)
+  local o = iv.keywords("init", opts, spec)
   local L = o.L0
   local s = L / 70
   local sys = iv.System{ box = { L, L, L }, periodic = { false, true, true }, seed = o.seed }
-  if o.start ~= "demixed" and o.start ~= "mixed" then
-    options.fail("init", string.format("start = '%s' is not an initial placement; choose demixed or mixed", o.start))
-  end
   local mixed = o.start == "mixed"
   local R_out = o.diameter / 2
   local x_lo = mixed and math.max(2 * s, R_out) or 16 * s
   local x_hi = math.min(68 * s, L - R_out)
   if x_hi <= x_lo then
-    options.fail("init", string.format("L0 = %g is too small for adipocytes of diameter %g", L, o.diameter))
+    error(string.format("init: L0 = %g is too small for adipocytes of diameter %g", L, o.diameter), 2)
   end
   local placed = sys:place{
     adipocytes = { n = o.N_a, x = { x_lo, x_hi }, diameter = o.diameter,

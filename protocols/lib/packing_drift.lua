@@ -6,18 +6,18 @@
 --
 --   local d = require("lib.packing_drift")(0.6, result, { P = 1.3e-3 })
 --   -> { phi_a_target, phi_a_mean, phi_a_first, phi_a_final, samples, drift, drifted }
-local options = require("lib.options")
+local iv = require("invasim")
 local log = require("lib.log")
 
-local defaults = { P = options.OPTIONAL, drift = 0.05 }
+local spec = {
+  P = { "number", help = "the pressure wall's P, named in the warning" },
+  drift = { "number", default = 0.05, range = "(0, inf)", help = "tolerance of |mean phi_a - target|" },
+}
 
 return function(target, result, opts)
-  local o = options.check("packing", opts, defaults, { P = "number" })
+  local o = iv.keywords("packing", opts, spec)
   if type(target) ~= "number" then
-    options.fail("packing", "the target phi_a must be a number, got " .. type(target))
-  end
-  if not (o.drift > 0) then
-    options.fail("packing", string.format("drift = %g must be > 0", o.drift))
+    error("packing: the target phi_a must be a number, got " .. type(target), 2)
   end
   local rows = result.series.rows
   local sum, n = 0.0, 0
@@ -25,7 +25,7 @@ return function(target, result, opts)
     if row.phi_a then sum, n = sum + row.phi_a, n + 1 end
   end
   if n == 0 then
-    options.fail("packing", "production recorded no phi_a (the thermo observer is needed)")
+    error("packing: production recorded no phi_a (the thermo observer is needed)", 2)
   end
   local d = {
     phi_a_target = target, phi_a_mean = sum / n, phi_a_first = rows[1].phi_a,

@@ -13,32 +13,32 @@
 --
 --   local result = require("lib.production")(tissue, { steps = 1e5, every = 1000, out = dir })
 local iv = require("invasim")
-local options = require("lib.options")
 local log = require("lib.log")
 local observers = require("lib.observers")
 local series_file = require("lib.series")
 local resume = require("lib.resume")
 
-local defaults = {
-  steps = 100000, every = 1000,
+local spec = {
+  steps = { "number", default = 100000, range = "[0, inf)" },
+  every = { "number", default = 1000, range = "[1, inf)" },
   interface = true,          -- Voronoi interfacial area every `every` steps
   radical = false,           -- radical (power) tessellation instead of the paper's Voronoi
   energy = false,            -- energy of each force term every `every` steps
-  columns = options.OPTIONAL,  -- the series' columns, LAMMPS thermo style: {"step", "A_t", ...}
+  columns = { "table" },    -- the series' columns, LAMMPS thermo style: {"step", "A_t", ...}
                                -- (default: every column of the observers switched on)
-  correlate_every = 20,      -- 0: no correlators
+  correlate_every = { "number", default = 20, range = "[0, inf)" },  -- 0: no correlators
   lags = 250,                -- correlator window: lags * correlate_every steps
   origin_every = 5,          -- a new time origin every this many correlator samples
-  slices_per_body = 20,      -- random slices per adipocyte at the end (0: none)
+  slices_per_body = { "number", default = 20, range = "[0, inf)" },  -- random slices per adipocyte at the end (0: none)
   average_fraction = 0.5,    -- the summary averages the last half of the samples
-  out = options.OPTIONAL,    -- directory for series.csv, correlations.csv, shapes.csv
-  checkpoint_every = 0,      -- steps between checkpoints in out/checkpoint/ (0: only on a
+  out = { "string" },        -- directory for series.csv, correlations.csv, shapes.csv
+  checkpoint_every = { "number", default = 0, range = "[0, inf)" },  -- steps between checkpoints in out/checkpoint/ (0: only on a
                              -- stop signal, if out is set)
-  snapshots = options.OPTIONAL,  -- an invasim.Snapshots writing a frame every snapshot_every steps
-  snapshot_every = 0,        -- steps between snapshots (0: none)
+  snapshots = { "Snapshots" },  -- an invasim.Snapshots writing a frame every snapshot_every steps
+  snapshot_every = { "integer", default = 0, range = "[0, inf)" },  -- steps between snapshots (0: none)
   progress = true,
   label = "production",
-  on_sample = options.OPTIONAL,   -- function(row, tissue) called after each sample
+  on_sample = { "function" },   -- function(row, tissue) called after each sample
 }
 
 local function summarise(rows, columns, fraction)
@@ -73,14 +73,8 @@ local function shapes(sys, per_body)
 end
 
 return function(tissue, opts)
-  local o = options.check(opts and opts.label or "production", opts, defaults,
-                          { on_sample = "function", out = "string", columns = "table",
-                            snapshots = "userdata" })
-  options.at_least(o.label, o, "every", 1)
-  for _, key in ipairs{ "steps", "correlate_every", "checkpoint_every", "snapshot_every", "slices_per_body" } do
-    options.at_least(o.label, o, key, 0)
-  end
-  if not tissue.dyn then options.fail(o.label, "run the quench stage first (it makes the Dynamics)") end
+  local o = iv.keywords(opts and opts.label or "production", opts, spec)
+  if not tissue.dyn then error(o.label .. ": run the quench stage first (it makes the Dynamics)", 2) end
   local sys, dyn = tissue.sys, tissue.dyn
   local active = { observers.thermo(tissue) }
   if o.interface and sys:n_adipocytes() > 0 then active[#active + 1] = observers.interface(tissue, o.radical) end
@@ -95,8 +89,8 @@ return function(tissue, opts)
       if not units[c] and c ~= "step" and c ~= "time" then
         local names = {}
         for _, name in ipairs(columns) do names[#names + 1] = name end
-        options.fail(o.label, string.format("columns[%d] = '%s' is not measured; available: %s (energies with energy = true)",
-                                            i, tostring(c), table.concat(names, ", ")))
+        error(string.format("%s: columns[%d] = '%s' is not measured; available: %s (energies with energy = true)",
+                            o.label, i, tostring(c), table.concat(names, ", ")), 2)
       end
       chosen[i] = c
     end

@@ -7,31 +7,30 @@
 --
 --   require("lib.quench")(tissue, { P = 1.3e-3, f0 = 0.01, tau_p = 25, steps = 20000 })
 local iv = require("invasim")
-local options = require("lib.options")
 local log = require("lib.log")
 local motion = require("lib.motion")
 
-local defaults = {
-  P = options.ANY,      -- target pressure on the left wall (number or invasim.ramp); 1.3e-3
-  kT = 0.0, f0 = 0.0, tau_p = 25.0, gamma = 0.2,
+-- gamma, kT, dt and wall_mass default to the engine's (invasim.Active.defaults,
+-- invasim.Dynamics.defaults, invasim.Dynamics.pressure_wall.defaults).
+local method = iv.Active.defaults
+local spec = {
+  P = { "number|Ramp", default = 1.3e-3, range = "[0, inf)" },  -- target pressure on the left wall
+  kT = { "number", default = method.kT, range = "[0, inf)" },
+  f0 = { "number", default = 0.0, range = "[0, inf)" },
+  tau_p = 25.0, gamma = method.gamma,
   vertex_bath = "langevin",   -- "langevin" (noise at kT, vertices and piston) or "damped"
-  vertex_gamma = 0.2,         -- the vertices' damping coefficient
-  dt = 0.05, steps = 20000,
-  wall_mass = 1.0, wall_gamma = options.OPTIONAL,   -- default: gamma
+  vertex_gamma = method.gamma,  -- the vertices' damping coefficient
+  dt = iv.Dynamics.defaults.dt, steps = { "number", default = 20000, range = "[0, inf)" },
+  wall_mass = iv.Dynamics.pressure_wall.defaults.mass, wall_gamma = { "number" },  -- default: gamma
   barostat = true,      -- false: both walls stay fixed (the box keeps its size; P unused)
   every = 1000,         -- steps between progress updates
   progress = true,
   label = "quench",
 }
 return function(tissue, opts)
-  local o = options.check(opts and opts.label or "quench", opts, defaults)
-  for _, key in ipairs{ "kT", "f0", "steps" } do options.at_least(o.label, o, key, 0) end
-  if o.P == nil then o.P = 1.3e-3 end
-  if type(o.P) ~= "number" and type(o.P) ~= "userdata" then
-    options.fail("quench", "key 'P' must be a number or an invasim.ramp{}, got " .. type(o.P))
-  end
+  local o = iv.keywords(opts and opts.label or "quench", opts, spec)
   local bad_bath = motion.check_vertex_bath(o.vertex_bath)
-  if bad_bath then options.fail(o.label, string.format("vertex_bath = '%s': %s", o.vertex_bath, bad_bath)) end
+  if bad_bath then error(string.format("%s: vertex_bath = '%s': %s", o.label, o.vertex_bath, bad_bath), 2) end
   local sys = tissue.sys
   local dyn = tissue.dyn
   if not dyn then
@@ -47,8 +46,8 @@ return function(tissue, opts)
   else
     local vertex_kind = o.vertex_bath == "langevin" and "Langevin" or "Damped"
     if tissue.vertex_method:kind() ~= vertex_kind then
-      options.fail(o.label, "cannot change the vertex bath of an existing Dynamics (" ..
-                   tissue.vertex_method:kind() .. " vertices); run quench first with the bath you want")
+      error(o.label .. ": cannot change the vertex bath of an existing Dynamics (" ..
+            tissue.vertex_method:kind() .. " vertices); run quench first with the bath you want", 2)
     end
     dyn:set_dt(o.dt)
     if dyn:wall_state() then
@@ -59,8 +58,8 @@ return function(tissue, opts)
     if vertex_kind == "Langevin" then tissue.vertex_method:set{ kT = o.kT } end
     tissue.cell_method:set{ gamma = o.gamma }
     if tissue.cell_method:kind() ~= motion.kind(o) then
-      options.fail(o.label, "cannot change the kind of cell motion of an existing Dynamics (" ..
-                   tissue.cell_method:kind() .. "); run quench first with the motion you want")
+      error(o.label .. ": cannot change the kind of cell motion of an existing Dynamics (" ..
+            tissue.cell_method:kind() .. "); run quench first with the motion you want", 2)
     end
     local kind = tissue.cell_method:kind()
     if kind == "Active" then

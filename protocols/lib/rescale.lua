@@ -5,13 +5,16 @@
 --
 --   require("lib.rescale")(tissue, { phi_a = 0.6 })
 local iv = require("invasim")
-local options = require("lib.options")
 local log = require("lib.log")
 
-local defaults = { phi_a = options.REQUIRED, ftol = 1e-6, max_steps = 1000000 }
+local spec = {
+  phi_a = { "number", required = true, range = "[0, 1]", help = "adipocyte packing fraction to reach" },
+  ftol = { "number", default = 1e-6, range = "(0, inf)", help = "FIRE tolerance after the rescale" },
+  max_steps = { "integer", default = iv.rescale.defaults.max_steps, range = "[0, inf)" },
+}
 
 return function(tissue, opts)
-  local o = options.check("rescale", opts, defaults, { phi_a = "number" })
+  local o = iv.keywords("rescale", opts, spec)
   if require("lib.resume").pending() then
     log.say("rescale", "skipped: resuming from a checkpoint")
     return { skipped = true }

@@ -11,7 +11,6 @@
 --   local tissue = stage.init{ N_a = 8, N_c = 400, L0 = 46 }
 --   stage.compress(tissue, { to_phi = 0.72 })
 local iv = require("invasim")
-local options = require("lib.options")
 local resume = require("lib.resume")
 
 local production = require("lib.production")
@@ -33,7 +32,7 @@ function M.production(tissue, opts)
   opts = opts or {}
   local every = opts.snapshot_every or 0
   if math.type(every) ~= "integer" or every < 0 then
-    options.fail("production", "key 'snapshot_every' must be an integer >= 0, got " .. tostring(every))
+    error("production: key 'snapshot_every' must be an integer >= 0, got " .. tostring(every), 2)
   end
   local own = {}
   for k, v in pairs(opts) do own[k] = v end

@@ -6,14 +6,16 @@
 --
 --   require("lib.tether")(tissue, { K = 0.04 })
 local iv = require("invasim")
-local options = require("lib.options")
 local log = require("lib.log")
 
-local defaults = { K = 0.04, mean_degree = 6.0 }
+local spec = {
+  K = { "number", default = 0.04, range = "[0, inf)", unit = "eps_c/sigma^2", help = "tether stiffness" },
+  mean_degree = { "number", default = iv.Tethers.connect.defaults.mean_degree, range = "(0, inf)" },
+}
 
 return function(tissue, opts)
-  local o = options.check("tether", opts, defaults)
-  if tissue.tethers then options.fail("tether", "this tissue already has tethers") end
+  local o = iv.keywords("tether", opts, spec)
+  if tissue.tethers then error("tether: this tissue already has tethers", 2) end
   local tethers = tissue.sys:add(iv.Tethers{ K = o.K })
   local d_c = tethers:connect{ mean_degree = o.mean_degree }
   tissue.tethers = tethers

@@ -16,6 +16,9 @@ Usage:
   invasim run PROTOCOL.lua [options]     run a protocol
   invasim params PROTOCOL.lua [options]  list the protocol's parameters (default, unit,
                                          meaning) without running it
+  invasim keys [NAME...]                 list the keys of the engine's constructors and
+                                         methods (invasim.Contacts{...}, ...): type,
+                                         default, allowed values, unit, meaning
   invasim render SNAPSHOT --slice z=VALUE -o FILE.svg [--size PIXELS]
                                          draw a cross-section of a snapshot frame as SVG
   invasim sweep init|run|status|collect|submit ...
@@ -186,6 +189,16 @@ int parse_threads(const std::string& text) {
 
 Command parse_command_line(const std::vector<std::string>& args) {
   if (command_word(args) == "render") return parse_render(args);
+  if (command_word(args) == "keys") {  // invasim keys [NAME...]: no options
+    Command command = of_kind(Command::Kind::kKeys);
+    for (std::size_t i = 1; i < args.size(); ++i) {
+      if (args[i] == "-h" || args[i] == "--help") return of_kind(Command::Kind::kHelp);
+      if (args[i].rfind("-", 0) == 0)
+        throw UsageError("invasim keys takes type names only, not '" + args[i] + "'");
+      command.keys_of.push_back(args[i]);
+    }
+    return command;
+  }
   Command command;
   std::vector<std::string> positional;
   std::optional<std::string> out, resume;
@@ -251,7 +264,7 @@ Command parse_command_line(const std::vector<std::string>& args) {
       command.threads = parse_threads(value);
     }
   }
-  if (positional.empty()) throw UsageError("missing command (run, params or render)");
+  if (positional.empty()) throw UsageError("missing command (run, params, keys or render)");
   const std::string& verb = positional[0];
   if (verb == "run")
     command.kind = Command::Kind::kRun;
@@ -260,7 +273,7 @@ Command parse_command_line(const std::vector<std::string>& args) {
   else if (verb == "help")
     return of_kind(Command::Kind::kHelp);
   else
-    throw UsageError("unknown command '" + verb + "' (expected run, params or render)");
+    throw UsageError("unknown command '" + verb + "' (expected run, params, keys or render)");
   if (resume) {
     if (command.kind != Command::Kind::kRun) throw UsageError("--resume goes with invasim run");
     if (positional.size() > 1)

@@ -32,12 +32,13 @@ struct RenderOptions {
 constexpr int kMaxThreads = 1024;
 
 struct Command {
-  enum class Kind { kRun, kParams, kHelp, kVersion, kRender };
+  enum class Kind { kRun, kParams, kHelp, kVersion, kRender, kKeys };
   Kind kind = Kind::kHelp;
-  lua::RunOptions options;     // script path, --set, --seed, --out
-  std::optional<int> threads;  // --threads N
-  bool traceback = false;      // --traceback: print the Lua stack on errors
-  RenderOptions render;        // kRender only
+  lua::RunOptions options;           // script path, --set, --seed, --out
+  std::optional<int> threads;        // --threads N
+  bool traceback = false;            // --traceback: print the Lua stack on errors
+  RenderOptions render;              // kRender only
+  std::vector<std::string> keys_of;  // kKeys: the types to list (empty: all)
 };
 
 // Parses argv (without argv[0]); throws UsageError. --out defaults to out/<protocol stem>.

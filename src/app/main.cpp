@@ -12,7 +12,9 @@
 #include "app/sweep_command.hpp"
 #include "core/errors.hpp"
 #include "invasim_version.hpp"
+#include "lua/fields.hpp"
 #include "lua/lua_state.hpp"
+#include "lua/names.hpp"
 
 namespace {
 
@@ -49,6 +51,27 @@ int list_params(const Command& command) {
   return 0;
 }
 
+// `invasim keys [NAME...]`: the field tables of the engine's bindings (lua/fields.hpp).
+int list_keys(const Command& command) {
+  invasim::lua::LuaState state;
+  state.run_string("require('invasim')");
+  const auto& tables = invasim::lua::registered_field_tables();
+  std::vector<std::string> names = command.keys_of;
+  if (names.empty())
+    for (const auto& [name, infos] : tables) names.push_back(name);
+  std::vector<std::string> all;
+  for (const auto& [name, infos] : tables) all.push_back(name);
+  for (const auto& name : names) {
+    const auto it = tables.find(name);
+    if (it == tables.end())
+      invasim::fail_input("invasim keys: no type or method '", name, "'",
+                          invasim::lua::did_you_mean(name, all),
+                          "; known: ", invasim::lua::join_names(all));
+    std::cout << name << ":\n" << invasim::lua::format_field_table(it->second);
+  }
+  return 0;
+}
+
 int run(const Command& command) {
   if (command.threads) omp_set_num_threads(*command.threads);
   invasim::lua::LuaState state(command.options);
@@ -78,6 +101,8 @@ int main(int argc, char** argv) {
         return list_params(command);
       case Command::Kind::kRun:
         return run(command);
+      case Command::Kind::kKeys:
+        return list_keys(command);
       case Command::Kind::kRender:
         return invasim::app::run_render(command.render, std::cout);
     }

@@ -16,6 +16,8 @@ class WallForce : public Force {
   double left_wall_force() const { return left_force_; }
   double right_wall_force() const { return right_force_; }
   double eps() const { return eps_; }
+  bool left() const { return left_; }
+  bool right() const { return right_; }
 
  private:
   double eps_;

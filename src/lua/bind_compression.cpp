@@ -16,7 +16,7 @@
 #include <lua.hpp>
 
 #include "core/stop_request.hpp"
-#include "lua/engine_types.hpp"
+#include "lua/engine_fields.hpp"
 #include "lua/module.hpp"
 #include "lua/progress.hpp"
 #include "lua/temporary_contacts.hpp"
@@ -25,6 +25,42 @@
 namespace invasim::lua {
 
 namespace {
+
+// The keys of invasim.compress (to_phi required: the target is the stage's choice); defaults:
+// CompressionParams' and FireParams'.
+const FieldTable<CompressionParams>& compress_fields() {
+  using P = CompressionParams;
+  static const FieldTable<P> table("compress", [] {
+    std::vector<Field<P>> f = {
+        required(number<P>("to_phi", &P::target_phi, Range::between(0, 1), "1",
+                           "total packing fraction to reach")),
+        number<P>("step", &P::step, Range::between(0, 1), "1",
+                  "relative change of phi per compression step"),
+    };
+    for (auto& fire : fire_fields<P>(&P::fire)) f.push_back(std::move(fire));
+    f.push_back(integer<P>("max_compressions", &P::max_steps, Range::at_least(1), "1",
+                           "compression steps before giving up"));
+    return f;
+  }());
+  return table;
+}
+
+// The keys of invasim.rescale; FIRE defaults: FireParams'.
+struct RescaleKeys {
+  double phi_a = 0.0;
+  FireParams fire;
+};
+
+const FieldTable<RescaleKeys>& rescale_fields() {
+  using P = RescaleKeys;
+  static const FieldTable<P> table("rescale", [] {
+    std::vector<Field<P>> f = {required(number<P>("phi_a", &P::phi_a, Range::between(0, 1), "1",
+                                                  "adipocyte packing fraction to reach"))};
+    for (auto& fire : fire_fields<P>(&P::fire)) f.push_back(std::move(fire));
+    return f;
+  }());
+  return table;
+}
 
 // The compression report as a Lua table {steps, fire_steps, converged, phi, max_force, box}.
 void push_compression_report(lua_State* L, const CompressionReport& r) {
@@ -54,11 +90,7 @@ void push_compression_report(lua_State* L, const CompressionReport& r) {
 int l_compress(lua_State* L) {
   const std::shared_ptr<Simulation> sim = check_shared<Simulation>(L, 1);
   Kwargs kw(L, 2, "compress");
-  CompressionParams p;
-  p.target_phi = kw.number("to_phi", Range::between(0, 1));
-  p.step = kw.number("step", p.step, Range::between(0, 1));
-  p.fire = kw_fire(kw);
-  p.max_steps = kw.integer<std::size_t>("max_compressions", p.max_steps, Range::at_least(1));
+  const CompressionParams p = compress_fields().read(kw);
   Progress* progress = nullptr;
   if (kw.push("progress") != LUA_TNIL) {
     progress = test_progress(L, -1);
@@ -119,9 +151,9 @@ int l_compress(lua_State* L) {
 int l_rescale(lua_State* L) {
   const std::shared_ptr<Simulation> sim = check_shared<Simulation>(L, 1);
   Kwargs kw(L, 2, "rescale");
-  const double phi_a = kw.number("phi_a", Range::between(0, 1));
-  const FireParams fire = kw_fire(kw);
-  kw.finish();
+  const RescaleKeys k = rescale_fields().make(kw);
+  const double phi_a = k.phi_a;
+  const FireParams& fire = k.fire;
   sim->changed();
   const FireResult r = engine_call(
       "rescale", [&] { return rescale_to_phi_a(sim->system, sim->forces, phi_a, fire); });
@@ -132,10 +164,8 @@ int l_rescale(lua_State* L) {
 }  // namespace
 
 void open_compression(lua_State* L) {
-  lua_pushcfunction(L, &lua_wrap<&l_compress>);
-  lua_setfield(L, -2, "compress");
-  lua_pushcfunction(L, &lua_wrap<&l_rescale>);
-  lua_setfield(L, -2, "rescale");
+  set_constructor(L, "compress", &lua_wrap<&l_compress>, compress_fields().infos());
+  set_constructor(L, "rescale", &lua_wrap<&l_rescale>, rescale_fields().infos());
 }
 
 }  // namespace invasim::lua

@@ -3,33 +3,50 @@
 #include <lua.hpp>
 
 #include "lua/engine_types.hpp"
+#include "lua/fields.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"
 
 namespace invasim::lua {
 
-std::string LuaType<Contacts>::describe(const Contacts& c) {
-  const ContactParams& p = c.force->params();
-  return cat("Contacts(alpha=", p.alpha, ", beta=", p.beta, ", eps_cc=", p.eps_cc,
-             ", eps_cv=", p.eps_cv, ", eps_vv=", p.eps_vv, ", skin=", p.skin, ")");
+namespace {
+
+// The keys of invasim.Contacts{}, c:set{} and c:params(); defaults: ContactParams'.
+const FieldTable<ContactParams>& contact_fields() {
+  using P = ContactParams;
+  static const FieldTable<P> table(
+      "Contacts",
+      {
+          number<P>("alpha", &P::alpha, Range::non_negative(), "1",
+                    "cohesion range: cells attract out to r_a = (1 + alpha) s"),
+          number<P>("beta", &P::beta, Range::non_negative(), "1",
+                    "cohesion depth: r_b = (1 + beta) s; 0 = purely repulsive"),
+          number<P>("eps_cc", &P::eps_cc, Range::positive(), "eps_c",
+                    "cancer-cancer contact energy"),
+          number<P>("eps_cv", &P::eps_cv, Range::positive(), "eps_c",
+                    "cancer-vertex contact energy"),
+          number<P>("eps_vv", &P::eps_vv, Range::positive(), "eps_c",
+                    "vertex-vertex contact energy (different adipocytes)"),
+          number<P>("skin", &P::skin, Range::non_negative(), "sigma", "neighbour-list skin"),
+      });
+  return table;
 }
 
-void read_contact_params(Kwargs& kw, ContactParams& p) {
-  p.alpha = kw.number("alpha", p.alpha, Range::non_negative());
-  p.beta = kw.number("beta", p.beta, Range::non_negative());
-  p.eps_cc = kw.number("eps_cc", p.eps_cc, Range::positive());
-  p.eps_cv = kw.number("eps_cv", p.eps_cv, Range::positive());
-  p.eps_vv = kw.number("eps_vv", p.eps_vv, Range::positive());
-  p.skin = kw.number("skin", p.skin, Range::non_negative());
+}  // namespace
+
+std::string LuaType<Contacts>::describe(const Contacts& c) {
+  return contact_fields().describe(c.force->params());
 }
+
+// The contact keys present in kw into p (the others keep p's values), for the `contacts`
+// key of compress and minimize (TemporaryContacts); checks kw for unknown keys.
+void read_contact_params(Kwargs& kw, ContactParams& p) { contact_fields().set(kw, p); }
 
 namespace {
 
 int l_new(lua_State* L) {
   Kwargs kw(L, 1, "Contacts");
-  ContactParams p;
-  read_contact_params(kw, p);
-  kw.finish();
+  const ContactParams p = contact_fields().make(kw);
   auto force = engine_call("Contacts", [&] { return std::make_shared<ContactForce>(p); });
   push(L, std::make_shared<Contacts>(std::move(force)));
   return 1;
@@ -41,8 +58,7 @@ int l_set(lua_State* L) {
   Contacts& c = check<Contacts>(L, 1);
   Kwargs kw(L, 2, "Contacts:set");
   ContactParams p = c.force->params();
-  read_contact_params(kw, p);
-  kw.finish();
+  contact_fields().set(kw, p);
   engine_call("Contacts:set", [&] { c.force->set_params(p); });
   if (auto sim = c.owner.lock()) sim->changed();
   return 0;
@@ -50,14 +66,7 @@ int l_set(lua_State* L) {
 
 // c:params() -> {alpha =, beta =, eps_cc =, eps_cv =, eps_vv =, skin =}
 int l_params(lua_State* L) {
-  const ContactParams& p = check<Contacts>(L, 1).force->params();
-  lua_createtable(L, 0, 6);
-  set_number(L, "alpha", p.alpha);
-  set_number(L, "beta", p.beta);
-  set_number(L, "eps_cc", p.eps_cc);
-  set_number(L, "eps_cv", p.eps_cv);
-  set_number(L, "eps_vv", p.eps_vv);
-  set_number(L, "skin", p.skin);
+  contact_fields().push_params(L, check<Contacts>(L, 1).force->params());
   return 1;
 }
 
@@ -71,8 +80,7 @@ const luaL_Reg kMethods[] = {
 
 void open_contacts(lua_State* L) {
   define_type<Contacts>(L, kMethods);
-  lua_pushcfunction(L, &lua_wrap<&l_new>);
-  lua_setfield(L, -2, "Contacts");
+  set_constructor(L, "Contacts", &lua_wrap<&l_new>, contact_fields().infos());
 }
 
 }  // namespace invasim::lua

@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "lua/checkpoint_parts.hpp"
+#include "lua/engine_fields.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"
@@ -24,6 +25,38 @@ struct CorrelatorHandle {
   TimeCorrelator correlator;
   std::shared_ptr<Group> group;
 };
+
+namespace {
+
+// The keys of invasim.Correlator{}; defaults: TimeCorrelatorParams'.
+struct CorrelatorKeys : TimeCorrelatorParams {
+  std::shared_ptr<Group> group;
+};
+
+const FieldTable<CorrelatorKeys>& correlator_fields() {
+  using P = CorrelatorKeys;
+  static const FieldTable<P> table(
+      "Correlator",
+      {
+          group_field<P>(&P::group, "the sites whose motion is correlated"),
+          required(number<P>("interval", &P::sample_interval, Range::greater_than(0), "tau",
+                             "time between samples (every * dt)")),
+          integer<P>("lags", &P::lags, Range::at_least(1), "samples", "number of lags"),
+          integer<P>("origin_every", &P::origin_every, Range::at_least(1), "samples",
+                     "samples between time origins"),
+          number<P>("k", &P::k, Range::greater_than(0), "1/sigma",
+                    "wave number of the self-intermediate scattering function"),
+          choice<P>("fs_average", &P::fs_average,
+                    {{"isotropic", FsAverage::kIsotropic}, {"yz", FsAverage::kAxesYZ}},
+                    "F_s averaged over all directions or over the y and z axes"),
+          boolean<P>("velocity", &P::velocity, "velocity autocorrelation"),
+          boolean<P>("orientation", &P::orientation, "orientation autocorrelation"),
+          boolean<P>("position", &P::position, "MSD and F_s(k, t)"),
+      });
+  return table;
+}
+
+}  // namespace
 
 template <>
 struct LuaType<CorrelatorHandle> {
@@ -39,25 +72,23 @@ namespace {
 
 int l_new(lua_State* L) {
   Kwargs kw(L, 1, "Correlator");
-  auto group = kw_group(kw, "group");
-  TimeCorrelatorParams p;
-  p.sample_interval = kw.number("interval", Range::greater_than(0));
-  p.lags = kw.integer<int>("lags", p.lags, Range::at_least(1));
-  p.origin_every = kw.integer<int>("origin_every", p.origin_every, Range::at_least(1));
-  p.k = kw.number("k", p.k, Range::greater_than(0));
-  p.fs_average = kw.choice("fs_average", {"isotropic", "yz"}, std::string("isotropic")) == "yz"
-                     ? FsAverage::kAxesYZ
-                     : FsAverage::kIsotropic;
-  p.velocity = kw.boolean("velocity", p.velocity);
-  p.orientation = kw.boolean("orientation", p.orientation);
-  p.position = kw.boolean("position", p.position);
-  kw.finish();
+  CorrelatorKeys k = correlator_fields().make(kw);
+  std::shared_ptr<Group> group = std::move(k.group);
+  const TimeCorrelatorParams& p = k;
   if (group->sites.empty()) fail_input("Correlator: group '", group->name, "' is empty");
   auto handle = engine_call("Correlator", [&] {
     return std::make_shared<CorrelatorHandle>(
         CorrelatorHandle{TimeCorrelator(group->sites, p), group});
   });
   push(L, std::move(handle));
+  return 1;
+}
+
+// c:params() -> {interval =, lags =, origin_every =, k =, fs_average =, velocity =, ...}
+int l_params(lua_State* L) {
+  CorrelatorKeys k;
+  static_cast<TimeCorrelatorParams&>(k) = check<CorrelatorHandle>(L, 1).correlator.params();
+  correlator_fields().push_params(L, k);
   return 1;
 }
 
@@ -114,13 +145,10 @@ int l_samples(lua_State* L) {
 }
 
 const luaL_Reg kMethods[] = {
-    {"sample", &lua_wrap<&l_sample>},
-    {"result", &lua_wrap<&l_result>},
-    {"tau_d", &lua_wrap<&l_tau_d>},
-    {"tau_d_standard", &lua_wrap<&l_tau_d_standard>},
-    {"tau_r", &lua_wrap<&l_tau_r>},
-    {"samples", &lua_wrap<&l_samples>},
-    {nullptr, nullptr},
+    {"sample", &lua_wrap<&l_sample>}, {"result", &lua_wrap<&l_result>},
+    {"tau_d", &lua_wrap<&l_tau_d>},   {"tau_d_standard", &lua_wrap<&l_tau_d_standard>},
+    {"tau_r", &lua_wrap<&l_tau_r>},   {"samples", &lua_wrap<&l_samples>},
+    {"params", &lua_wrap<&l_params>}, {nullptr, nullptr},
 };
 
 }  // namespace
@@ -134,8 +162,7 @@ std::shared_ptr<TimeCorrelator> shared_correlator(lua_State* L, int index) {
 
 void open_correlator(lua_State* L) {
   define_type<CorrelatorHandle>(L, kMethods);
-  lua_pushcfunction(L, &lua_wrap<&l_new>);
-  lua_setfield(L, -2, "Correlator");
+  set_constructor(L, "Correlator", &lua_wrap<&l_new>, correlator_fields().infos());
 }
 
 }  // namespace invasim::lua

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "lua/engine_fields.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"
@@ -58,10 +59,40 @@ PressureWall* prepare_dynamics(DynamicsHandle& d, const std::shared_ptr<Simulati
 
 namespace {
 
+// The keys of invasim.Dynamics{} (the engine's Dynamics takes dt without a default: this is
+// its one default).
+struct DynamicsKeys {
+  double dt = 0.05;
+};
+
+const FieldTable<DynamicsKeys>& dynamics_fields() {
+  static const FieldTable<DynamicsKeys> table(
+      "Dynamics", {number<DynamicsKeys>("dt", &DynamicsKeys::dt, Range::positive(), "tau",
+                                        "time step of the integrator")});
+  return table;
+}
+
+// The keys of dyn:pressure_wall{} besides `walls`; defaults: PressureWall's.
+const FieldTable<PressureWall>& pressure_wall_fields() {
+  using P = PressureWall;
+  static const FieldTable<P> table(
+      "pressure_wall",
+      {
+          required(number_or_ramp<P>("P", &P::pressure, &P::pressure_ramp, Range::non_negative(),
+                                     "eps_c/sigma^3",
+                                     "pressure on the left wall (a number or an invasim.ramp{})")),
+          number<P>("mass", &P::mass, Range::positive(), "m", "mass of the piston"),
+          number<P>("gamma", &P::gamma, Range::non_negative(), "sqrt(m eps_c)/sigma",
+                    "damping coefficient of the piston"),
+          number<P>("kT", &P::kT, Range::non_negative(), "eps_c",
+                    "temperature of the piston's bath (0: no noise)"),
+      });
+  return table;
+}
+
 int l_new(lua_State* L) {
   Kwargs kw(L, 1, "Dynamics");
-  const double dt = kw.number("dt", 0.05, Range::positive());
-  kw.finish();
+  const double dt = dynamics_fields().make(kw).dt;
   push(L, engine_call("Dynamics", [&] { return std::make_shared<DynamicsHandle>(dt); }));
   return 1;
 }
@@ -85,13 +116,7 @@ int l_add(lua_State* L) {
 int l_pressure_wall(lua_State* L) {
   DynamicsHandle& d = check<DynamicsHandle>(L, 1);
   Kwargs kw(L, 2, "pressure_wall");
-  auto wall = std::make_shared<PressureWall>();
-  const NumberOrRamp P = kw_number_or_ramp(kw, "P", Range::non_negative());
-  wall->pressure = P.value;
-  wall->pressure_ramp = P.ramp;
-  wall->mass = kw.number("mass", wall->mass, Range::positive());
-  wall->gamma = kw.number("gamma", wall->gamma, Range::non_negative());
-  wall->kT = kw.number("kT", wall->kT, Range::non_negative());
+  auto wall = std::make_shared<PressureWall>(pressure_wall_fields().read(kw));
   std::shared_ptr<Walls> walls;
   if (kw.push("walls") != LUA_TNIL) {
     if (!luaL_testudata(L, -1, LuaType<Walls>::metatable))
@@ -250,8 +275,8 @@ const luaL_Reg kMethods[] = {
 
 void open_dynamics(lua_State* L) {
   define_type<DynamicsHandle>(L, kMethods);
-  lua_pushcfunction(L, &lua_wrap<&l_new>);
-  lua_setfield(L, -2, "Dynamics");
+  set_constructor(L, "Dynamics", &lua_wrap<&l_new>, dynamics_fields().infos());
+  set_method_keys(L, "Dynamics", "pressure_wall", pressure_wall_fields().infos());
 }
 
 }  // namespace invasim::lua

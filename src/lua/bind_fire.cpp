@@ -5,25 +5,28 @@
 // this minimisation only (TemporaryContacts).
 #include <lua.hpp>
 
-#include "lua/engine_types.hpp"
+#include "lua/engine_fields.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"
 #include "lua/temporary_contacts.hpp"
 
 namespace invasim::lua {
 
+const FieldTable<FireParams>& fire_table() {
+  static const FieldTable<FireParams> table(
+      "Fire", fire_fields<FireParams>([](FireParams& p) -> FireParams& { return p; }));
+  return table;
+}
+
 std::string LuaType<Fire>::describe(const Fire& f) {
-  const FireParams& p = f.params();
-  return cat("Fire(ftol=", p.ftol, ", dt=", p.dt, ", dt_max=", p.dt_max,
-             ", max_steps=", p.max_steps, ")");
+  return fire_table().describe(f.params());
 }
 
 namespace {
 
 int l_new(lua_State* L) {
   Kwargs kw(L, 1, "Fire");
-  const FireParams p = kw_fire(kw);
-  kw.finish();
+  const FireParams p = fire_table().make(kw);
   push(L, engine_call("Fire", [&] { return std::make_shared<Fire>(p); }));
   return 1;
 }
@@ -60,8 +63,15 @@ int l_minimize(lua_State* L) {
   return 1;
 }
 
+// fire:params() -> {ftol =, dt =, dt_max =, max_steps =}
+int l_params(lua_State* L) {
+  fire_table().push_params(L, check<Fire>(L, 1).params());
+  return 1;
+}
+
 const luaL_Reg kMethods[] = {
     {"minimize", &lua_wrap<&l_minimize>},
+    {"params", &lua_wrap<&l_params>},
     {nullptr, nullptr},
 };
 
@@ -69,8 +79,7 @@ const luaL_Reg kMethods[] = {
 
 void open_fire(lua_State* L) {
   define_type<Fire>(L, kMethods);
-  lua_pushcfunction(L, &lua_wrap<&l_new>);
-  lua_setfield(L, -2, "Fire");
+  set_constructor(L, "Fire", &lua_wrap<&l_new>, fire_table().infos());
 }
 
 }  // namespace invasim::lua

@@ -15,6 +15,7 @@
 #include "io/atomic_file.hpp"
 #include "io/snapshot_writer.hpp"
 #include "lua/engine_types.hpp"
+#include "lua/fields.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"
 
@@ -75,15 +76,30 @@ int l_remove_path(lua_State* L) {
   return 1;
 }
 
+// The keys of invasim.Snapshots{}; defaults: SnapshotOptions'.
+struct SnapshotKeys : SnapshotOptions {
+  std::string dir;
+};
+
+const FieldTable<SnapshotKeys>& snapshot_fields() {
+  using P = SnapshotKeys;
+  static const FieldTable<P> table(
+      "Snapshots",
+      {
+          required(string<P>("dir", &P::dir, "path", "directory the files are written to")),
+          boolean<P>("cells_xyz", &P::cells_xyz, "cells_<step>.xyz"),
+          boolean<P>("spheres_vtp", &P::spheres_vtp, "spheres_<step>.vtp and spheres.pvd"),
+          boolean<P>("adipocytes_vtp", &P::adipocytes_vtp,
+                     "adipocytes_<step>.vtp and adipocytes.pvd"),
+      });
+  return table;
+}
+
 int l_snapshots(lua_State* L) {
   Kwargs kw(L, 1, "Snapshots");
-  const std::string dir = kw.string("dir");
-  SnapshotOptions o;
-  o.cells_xyz = kw.boolean("cells_xyz", o.cells_xyz);
-  o.spheres_vtp = kw.boolean("spheres_vtp", o.spheres_vtp);
-  o.adipocytes_vtp = kw.boolean("adipocytes_vtp", o.adipocytes_vtp);
-  kw.finish();
-  push(L, engine_call("Snapshots", [&] { return std::make_shared<SnapshotWriter>(dir, o); }));
+  const SnapshotKeys k = snapshot_fields().make(kw);
+  const SnapshotOptions& o = k;
+  push(L, engine_call("Snapshots", [&] { return std::make_shared<SnapshotWriter>(k.dir, o); }));
   return 1;
 }
 
@@ -123,8 +139,7 @@ void open_io(lua_State* L) {
   lua_pushcfunction(L, &lua_wrap<&l_remove_path>);
   lua_setfield(L, -2, "remove_path");
   define_type<SnapshotWriter>(L, kSnapshotMethods);
-  lua_pushcfunction(L, &lua_wrap<&l_snapshots>);
-  lua_setfield(L, -2, "Snapshots");
+  set_constructor(L, "Snapshots", &lua_wrap<&l_snapshots>, snapshot_fields().infos());
 }
 
 }  // namespace invasim::lua

@@ -10,33 +10,92 @@
 #include <cmath>
 #include <optional>
 
-#include "lua/engine_types.hpp"
+#include "lua/engine_fields.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"
 
 namespace invasim::lua {
 
+namespace {
+
+// The keys of the three method constructors: the engine's MethodParams (their defaults) and
+// what a constructor takes besides (the group, ramps, randomize).
+struct MethodKeys : MethodParams {
+  std::shared_ptr<Group> group;
+  std::optional<Ramp> kT_ramp, f0_ramp;
+  bool randomize = true;
+};
+
+using K = MethodKeys;
+
+Field<K> gamma_field() {
+  return number<K>("gamma", &K::gamma, Range::non_negative(), "sqrt(m eps_c)/sigma",
+                   "damping coefficient: force -gamma v");
+}
+Field<K> kT_field() {
+  return number_or_ramp<K>("kT", &K::kT, &K::kT_ramp, Range::non_negative(), "eps_c",
+                           "temperature of the thermal noise (a number or an invasim.ramp{})");
+}
+Field<K> group_of_method() {
+  return group_field<K>(&K::group, "the sites this method moves (sys:group(name))");
+}
+
+const FieldTable<K>& damped_fields() {
+  static const FieldTable<K> table("Damped", {group_of_method(), gamma_field()});
+  return table;
+}
+
+const FieldTable<K>& langevin_fields() {
+  static const FieldTable<K> table("Langevin",
+                                   {group_of_method(), gamma_field(), required(kT_field())});
+  return table;
+}
+
+// Active also lists every MethodParams field: it is the table m:params() reports for any kind.
+const FieldTable<K>& active_fields() {
+  static const FieldTable<K> table(
+      "Active",
+      {
+          group_of_method(),
+          gamma_field(),
+          kT_field(),
+          required(number_or_ramp<K>("f0", &K::f0, &K::f0_ramp, Range::non_negative(),
+                                     "eps_c/sigma",
+                                     "self-propulsion force (a number or an invasim.ramp{})")),
+          required(number<K>("tau_p", &K::tau_p, Range::non_negative(), "tau",
+                             "persistence time of the orientation (0: white noise; math.huge: "
+                             "frozen orientations)",
+                             /*allow_infinity=*/true)),
+          option(boolean<K>("randomize", &K::randomize,
+                            "give the group random orientations at creation")),
+      });
+  return table;
+}
+
+const FieldTable<K>& fields_of(const std::string& kind) {
+  if (kind == "Damped") return damped_fields();
+  if (kind == "Langevin") return langevin_fields();
+  return active_fields();
+}
+
+// The keys as a handle holds them.
+K keys_of(const MethodHandle& m) {
+  K k;
+  static_cast<MethodParams&>(k) = m.method->params();
+  k.group = m.group;
+  k.kT_ramp = m.method->kT_ramp();
+  k.f0_ramp = m.method->f0_ramp();
+  return k;
+}
+
+}  // namespace
+
 std::string LuaType<MethodHandle>::describe(const MethodHandle& m) {
-  const MethodParams& p = m.method->params();
-  std::string text = cat(m.kind, "(group '", m.group->name, "' of ", m.group->sites.size(),
-                         " sites, gamma=", p.gamma);
-  if (m.kind != "Damped") text += cat(", kT=", p.kT);
-  if (m.kind == "Active") text += cat(", f0=", p.f0, ", tau_p=", p.tau_p);
-  return text + ")";
+  return cat(m.kind, "(group '", m.group->name, "' of ", m.group->sites.size(), " sites, ",
+             fields_of(m.kind).describe_fields(keys_of(m)), ")");
 }
 
 namespace {
-
-// tau_p: a number >= 0, or math.huge for frozen orientations (Kwargs numbers must be finite).
-double kw_tau_p(Kwargs& kw, std::optional<double> fallback = std::nullopt) {
-  lua_State* L = kw.state();
-  const int type = kw.push("tau_p");
-  const bool infinite = type == LUA_TNUMBER && lua_tonumber(L, -1) == HUGE_VAL;
-  lua_pop(L, 1);
-  if (infinite) return HUGE_VAL;
-  return fallback ? kw.number("tau_p", *fallback, Range::non_negative())
-                  : kw.number("tau_p", Range::non_negative());
-}
 
 void push_method(lua_State* L, const char* kind, std::shared_ptr<Group> group,
                  std::shared_ptr<Method> method) {
@@ -45,49 +104,38 @@ void push_method(lua_State* L, const char* kind, std::shared_ptr<Group> group,
 
 int l_damped(lua_State* L) {
   Kwargs kw(L, 1, "Damped");
-  auto group = kw_group(kw, "group");
-  const double gamma = kw.number("gamma", 0.2, Range::non_negative());
-  kw.finish();
-  auto method = engine_call("Damped", [&] { return Method::damped(group->sites, gamma); });
-  push_method(L, "Damped", std::move(group), std::move(method));
+  K k = damped_fields().make(kw);
+  auto method = engine_call("Damped", [&] { return Method::damped(k.group->sites, k.gamma); });
+  push_method(L, "Damped", std::move(k.group), std::move(method));
   return 1;
 }
 
 int l_langevin(lua_State* L) {
   Kwargs kw(L, 1, "Langevin");
-  auto group = kw_group(kw, "group");
-  const double gamma = kw.number("gamma", 0.2, Range::non_negative());
-  const NumberOrRamp kT = kw_number_or_ramp(kw, "kT", Range::non_negative());
-  kw.finish();
+  K k = langevin_fields().make(kw);
   auto method =
-      engine_call("Langevin", [&] { return Method::langevin(group->sites, gamma, kT.value); });
-  engine_call("Langevin", [&] { method->set_kT_ramp(kT.ramp); });
-  push_method(L, "Langevin", std::move(group), std::move(method));
+      engine_call("Langevin", [&] { return Method::langevin(k.group->sites, k.gamma, k.kT); });
+  engine_call("Langevin", [&] { method->set_kT_ramp(k.kT_ramp); });
+  push_method(L, "Langevin", std::move(k.group), std::move(method));
   return 1;
 }
 
 int l_active(lua_State* L) {
   Kwargs kw(L, 1, "Active");
-  auto group = kw_group(kw, "group");
-  const double gamma = kw.number("gamma", 0.2, Range::non_negative());
-  const NumberOrRamp f0 = kw_number_or_ramp(kw, "f0", Range::non_negative());
-  const double tau_p = kw_tau_p(kw);
-  const NumberOrRamp kT = kw_number_or_ramp(kw, "kT", Range::non_negative(), 0.0);
-  const bool randomize = kw.boolean("randomize", true);
-  kw.finish();
+  K k = active_fields().make(kw);
   auto method = engine_call(
-      "Active", [&] { return Method::active(group->sites, gamma, f0.value, tau_p, kT.value); });
+      "Active", [&] { return Method::active(k.group->sites, k.gamma, k.f0, k.tau_p, k.kT); });
   engine_call("Active", [&] {
-    method->set_f0_ramp(f0.ramp);
-    method->set_kT_ramp(kT.ramp);
+    method->set_f0_ramp(k.f0_ramp);
+    method->set_kT_ramp(k.kT_ramp);
   });
-  if (randomize) {
-    Simulation& sim = owner_of(group->owner, "Active: group '" + group->name + "'",
+  if (k.randomize) {
+    Simulation& sim = owner_of(k.group->owner, "Active: group '" + k.group->name + "'",
                                "make groups with sys:group(name)");
     method->randomize_orientations(sim.system, sim.system.step);
     sim.changed();
   }
-  push_method(L, "Active", std::move(group), std::move(method));
+  push_method(L, "Active", std::move(k.group), std::move(method));
   return 1;
 }
 
@@ -102,14 +150,9 @@ int l_group(lua_State* L) {
   return 1;
 }
 
-// m:params() -> {gamma =, kT =, f0 =, tau_p =}
+// m:params() -> {gamma =, kT =, f0 =, tau_p =}: the Method's MethodParams, whatever its kind.
 int l_params(lua_State* L) {
-  const MethodParams& p = check<MethodHandle>(L, 1).method->params();
-  lua_createtable(L, 0, 4);
-  set_number(L, "gamma", p.gamma);
-  set_number(L, "kT", p.kT);
-  set_number(L, "f0", p.f0);
-  set_number(L, "tau_p", p.tau_p);
+  active_fields().push_params(L, keys_of(check<MethodHandle>(L, 1)));
   return 1;
 }
 
@@ -118,23 +161,17 @@ int l_params(lua_State* L) {
 int l_set(lua_State* L) {
   MethodHandle& m = check<MethodHandle>(L, 1);
   Kwargs kw(L, 2, m.kind + ":set");
+  const bool kT_given = m.kind != "Damped" && kw.has("kT");
+  const bool f0_given = m.kind == "Active" && kw.has("f0");
+  K k = keys_of(m);
+  fields_of(m.kind).set(kw, k);
   Method& method = *m.method;
-  MethodParams p = method.params();
-  p.gamma = kw.number("gamma", p.gamma, Range::non_negative());
-  std::optional<NumberOrRamp> kT, f0;
-  if (m.kind != "Damped" && kw.has("kT")) kT = kw_number_or_ramp(kw, "kT", Range::non_negative());
-  if (m.kind == "Active") {
-    if (kw.has("f0")) f0 = kw_number_or_ramp(kw, "f0", Range::non_negative());
-    p.tau_p = kw_tau_p(kw, p.tau_p);
-  }
-  kw.finish();
-  if (kT) p.kT = kT->value;
-  if (f0) p.f0 = f0->value;
   engine_call(kw.owner(), [&] {
+    const MethodParams& p = k;
     p.validate();
     method.params() = p;
-    if (kT) method.set_kT_ramp(kT->ramp);
-    if (f0) method.set_f0_ramp(f0->ramp);
+    if (kT_given) method.set_kT_ramp(k.kT_ramp);
+    if (f0_given) method.set_f0_ramp(k.f0_ramp);
   });
   return 0;
 }
@@ -148,12 +185,9 @@ const luaL_Reg kMethods[] = {
 
 void open_method(lua_State* L) {
   define_type<MethodHandle>(L, kMethods);
-  lua_pushcfunction(L, &lua_wrap<&l_damped>);
-  lua_setfield(L, -2, "Damped");
-  lua_pushcfunction(L, &lua_wrap<&l_langevin>);
-  lua_setfield(L, -2, "Langevin");
-  lua_pushcfunction(L, &lua_wrap<&l_active>);
-  lua_setfield(L, -2, "Active");
+  set_constructor(L, "Damped", &lua_wrap<&l_damped>, damped_fields().infos());
+  set_constructor(L, "Langevin", &lua_wrap<&l_langevin>, langevin_fields().infos());
+  set_constructor(L, "Active", &lua_wrap<&l_active>, active_fields().infos());
 }
 
 }  // namespace invasim::lua

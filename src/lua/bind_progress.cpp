@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "lua/binding.hpp"
+#include "lua/fields.hpp"
 #include "lua/kwargs.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"
@@ -27,13 +28,26 @@ struct LuaType<Progress> {
 
 namespace {
 
+// The keys of invasim.Progress{} besides `live` (default: whether stderr is a terminal, known
+// only at run time); defaults: ProgressOptions'.
+const FieldTable<ProgressOptions>& progress_fields() {
+  using P = ProgressOptions;
+  static const FieldTable<P> table(
+      "Progress", {
+                      integer<P>("total", &P::total, Range::non_negative(), "steps",
+                                 "steps in the run (0: unknown, no percentage or ETA)"),
+                      integer<P>("start", &P::start_step, Range::non_negative(), "steps",
+                                 "step at construction (for the rate of a continued run)"),
+                      number<P>("every_seconds", &P::every_seconds, Range::non_negative(), "s",
+                                "seconds between plain-mode lines (0: every update)"),
+                      string<P>("label", &P::label, "", "prefix of each line"),
+                  });
+  return table;
+}
+
 int l_new(lua_State* L) {
   Kwargs kw(L, 1, "Progress");
-  ProgressOptions options;
-  options.total = kw.integer<long long>("total", 0, Range::non_negative());
-  options.start_step = kw.integer<long long>("start", 0, Range::non_negative());
-  options.every_seconds = kw.number("every_seconds", 10.0, Range::non_negative());
-  options.label = kw.string("label", "");
+  const ProgressOptions options = progress_fields().read(kw);
   const bool live = kw.boolean("live", isatty(STDERR_FILENO) != 0);
   kw.finish();
   push(L, std::make_shared<Progress>(options, std::cerr, live));
@@ -62,8 +76,7 @@ const luaL_Reg kMethods[] = {
 
 void open_progress(lua_State* L) {
   define_type<Progress>(L, kMethods);
-  lua_pushcfunction(L, &lua_wrap<&l_new>);
-  lua_setfield(L, -2, "Progress");
+  set_constructor(L, "Progress", &lua_wrap<&l_new>, progress_fields().infos());
 }
 
 }  // namespace invasim::lua

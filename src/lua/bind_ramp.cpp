@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "lua/engine_types.hpp"
+#include "lua/fields.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"
 
@@ -42,13 +43,21 @@ NumberOrRamp kw_number_or_ramp(Kwargs& kw, std::string_view key, Range range,
 
 namespace {
 
+// The keys of invasim.ramp{} (all required).
+const FieldTable<Ramp>& ramp_fields() {
+  static const FieldTable<Ramp> table(
+      "ramp", {
+                  required(number<Ramp>("from", &Ramp::from, Range{}, "", "value at the start")),
+                  required(number<Ramp>("to", &Ramp::to, Range{}, "", "value after `steps`")),
+                  required(integer<Ramp>("steps", &Ramp::steps, Range::at_least(1), "steps",
+                                         "length of the ramp in time steps")),
+              });
+  return table;
+}
+
 int l_ramp(lua_State* L) {
   Kwargs kw(L, 1, "ramp");
-  Ramp r;
-  r.from = kw.number("from");
-  r.to = kw.number("to");
-  r.steps = kw.integer<std::uint64_t>("steps", Range::at_least(1));
-  kw.finish();
+  const Ramp r = ramp_fields().make(kw);
   push(L, std::make_shared<Ramp>(r));
   return 1;
 }
@@ -82,8 +91,7 @@ const luaL_Reg kMethods[] = {
 
 void open_ramp(lua_State* L) {
   define_type<Ramp>(L, kMethods);
-  lua_pushcfunction(L, &lua_wrap<&l_ramp>);
-  lua_setfield(L, -2, "ramp");
+  set_constructor(L, "ramp", &lua_wrap<&l_ramp>, ramp_fields().infos());
 }
 
 }  // namespace invasim::lua

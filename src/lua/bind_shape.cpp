@@ -2,33 +2,54 @@
 #include <lua.hpp>
 
 #include "lua/engine_types.hpp"
+#include "lua/fields.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"
 
 namespace invasim::lua {
 
+namespace {
+
+// The keys of invasim.Shape{} (both required: ShapeForce has no defaults).
+struct ShapeKeys {
+  double eps_v = 0.0, eps_a = 0.0;
+};
+
+const FieldTable<ShapeKeys>& shape_fields() {
+  using P = ShapeKeys;
+  static const FieldTable<P> table(
+      "Shape", {
+                   required(number<P>("eps_v", &P::eps_v, Range::non_negative(), "eps_c",
+                                      "adipocyte volume stiffness")),
+                   required(number<P>("eps_a", &P::eps_a, Range::non_negative(), "eps_c",
+                                      "adipocyte face-area stiffness")),
+               });
+  return table;
+}
+
+ShapeKeys keys_of(const Shape& s) {
+  return {s.force->eps_v(), s.force->eps_a()};
+}
+
+}  // namespace
+
 std::string LuaType<Shape>::describe(const Shape& s) {
-  return cat("Shape(eps_v=", s.force->eps_v(), ", eps_a=", s.force->eps_a(), ")");
+  return shape_fields().describe(keys_of(s));
 }
 
 namespace {
 
 int l_new(lua_State* L) {
   Kwargs kw(L, 1, "Shape");
-  const double eps_v = kw.number("eps_v", Range::non_negative());
-  const double eps_a = kw.number("eps_a", Range::non_negative());
-  kw.finish();
-  auto force = engine_call("Shape", [&] { return std::make_shared<ShapeForce>(eps_v, eps_a); });
+  const ShapeKeys k = shape_fields().make(kw);
+  auto force = engine_call("Shape", [&] { return std::make_shared<ShapeForce>(k.eps_v, k.eps_a); });
   push(L, std::make_shared<Shape>(std::move(force)));
   return 1;
 }
 
 // s:params() -> {eps_v =, eps_a =}
 int l_params(lua_State* L) {
-  const ShapeForce& f = *check<Shape>(L, 1).force;
-  lua_createtable(L, 0, 2);
-  set_number(L, "eps_v", f.eps_v());
-  set_number(L, "eps_a", f.eps_a());
+  shape_fields().push_params(L, keys_of(check<Shape>(L, 1)));
   return 1;
 }
 
@@ -41,8 +62,7 @@ const luaL_Reg kMethods[] = {
 
 void open_shape(lua_State* L) {
   define_type<Shape>(L, kMethods);
-  lua_pushcfunction(L, &lua_wrap<&l_new>);
-  lua_setfield(L, -2, "Shape");
+  set_constructor(L, "Shape", &lua_wrap<&l_new>, shape_fields().infos());
 }
 
 }  // namespace invasim::lua

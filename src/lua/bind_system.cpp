@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "lua/engine_types.hpp"
+#include "lua/fields.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"
 #include "measure/kinetic.hpp"
@@ -24,13 +25,51 @@ std::string LuaType<Simulation>::describe(const Simulation& sim) {
 
 namespace {
 
+// The keys of invasim.System{} (the engine's System takes box and seed without defaults: these
+// are their one defaults).
+struct SystemKeys {
+  std::vector<double> box;
+  std::vector<bool> periodic{false, true, true};  // walls in x, periodic in y and z
+  std::uint64_t seed = 1;
+};
+
+const FieldTable<SystemKeys>& system_fields() {
+  using P = SystemKeys;
+  static const FieldTable<P> table("System", [] {
+    Field<P> box;
+    box.info = {"box",
+                "list of 3 numbers",
+                std::nullopt,
+                Range::positive(),
+                {},
+                "sigma",
+                "box side lengths (the box spans [0, L] in each axis)"};
+    box.info.required = true;
+    box.read = [](Kwargs& kw, P& p, bool) { p.box = kw.number_list("box", 3, Range::positive()); };
+    Field<P> periodic;
+    periodic.info = {"periodic",
+                     "list of 3 booleans",
+                     std::nullopt,
+                     std::nullopt,
+                     {},
+                     "",
+                     "periodic axes (default: walls in x, periodic in y and z)"};
+    periodic.read = [](Kwargs& kw, P& p, bool) {
+      if (auto v = kw.maybe_boolean_list("periodic", 3)) p.periodic = *v;
+    };
+    return std::vector<Field<P>>{box, periodic,
+                                 integer<P>("seed", &P::seed, Range::non_negative(), "",
+                                            "random seed (placement, noise, orientations)")};
+  }());
+  return table;
+}
+
 int l_new(lua_State* L) {
   Kwargs kw(L, 1, "System");
-  const auto lengths = kw.number_list("box", 3, Range::positive());
-  const auto periodic =
-      kw.maybe_boolean_list("periodic", 3).value_or(std::vector<bool>{false, true, true});
-  const auto seed = kw.integer<std::uint64_t>("seed", 1, Range::non_negative());
-  kw.finish();
+  const SystemKeys k = system_fields().make(kw);
+  const std::vector<double>& lengths = k.box;
+  const std::vector<bool>& periodic = k.periodic;
+  const std::uint64_t seed = k.seed;
   auto sim = engine_call("System", [&] {
     const Box box(Vec3::Zero(), Vec3(lengths[0], lengths[1], lengths[2]),
                   {periodic[0], periodic[1], periodic[2]});
@@ -392,10 +431,9 @@ void open_system(lua_State* L) {
   lua_pushvalue(L, -1);  // the module table
   protected_call(L, 1, 0, [&methods](lua_State* S) noexcept {
     define_type<Simulation>(S, methods.data());
-    lua_pushcfunction(S, &lua_wrap<&l_new>);
-    lua_setfield(S, 1, "System");
     return 0;
   });
+  set_constructor(L, "System", &lua_wrap<&l_new>, system_fields().infos());
 }
 
 }  // namespace invasim::lua

@@ -4,22 +4,52 @@
 #include <lua.hpp>
 
 #include "lua/engine_types.hpp"
+#include "lua/fields.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"
 
 namespace invasim::lua {
 
+namespace {
+
+// The keys of invasim.Tethers{} (K required: TetherForce has no default).
+struct TetherKeys {
+  double K = 0.0;
+};
+
+const FieldTable<TetherKeys>& tether_fields() {
+  static const FieldTable<TetherKeys> table(
+      "Tethers", {required(number<TetherKeys>("K", &TetherKeys::K, Range::non_negative(),
+                                              "eps_c/sigma^2", "tether spring stiffness"))});
+  return table;
+}
+
+// The keys of t:connect{} (the engine's connect_by_mean_degree takes the degree without a
+// default: this is its one default).
+struct ConnectKeys {
+  double mean_degree = 6.0;
+};
+
+const FieldTable<ConnectKeys>& connect_fields() {
+  static const FieldTable<ConnectKeys> table(
+      "connect", {number<ConnectKeys>("mean_degree", &ConnectKeys::mean_degree, Range::positive(),
+                                      "tethers", "mean number of tethers per adipocyte")});
+  return table;
+}
+
+}  // namespace
+
 std::string LuaType<Tethers>::describe(const Tethers& t) {
-  return cat("Tethers(K=", t.force->stiffness(), ", ", t.force->tethers().size(), " tethers)");
+  return cat("Tethers(", tether_fields().describe_fields({t.force->stiffness()}), ", ",
+             t.force->tethers().size(), " tethers)");
 }
 
 namespace {
 
 int l_new(lua_State* L) {
   Kwargs kw(L, 1, "Tethers");
-  const double K = kw.number("K", Range::non_negative());
-  kw.finish();
-  auto force = engine_call("Tethers", [&] { return std::make_shared<TetherForce>(K); });
+  const TetherKeys k = tether_fields().make(kw);
+  auto force = engine_call("Tethers", [&] { return std::make_shared<TetherForce>(k.K); });
   push(L, std::make_shared<Tethers>(std::move(force)));
   return 1;
 }
@@ -33,8 +63,7 @@ Simulation& system_of(const Tethers& t, const char* method) {
 int l_connect(lua_State* L) {
   Tethers& t = check<Tethers>(L, 1);
   Kwargs kw(L, 2, "connect");
-  const double degree = kw.number("mean_degree", 6.0, Range::positive());
-  kw.finish();
+  const double degree = connect_fields().make(kw).mean_degree;
   Simulation& sim = system_of(t, "connect");
   const double d_c =
       engine_call("connect", [&] { return t.force->connect_by_mean_degree(sim.system, degree); });
@@ -110,8 +139,8 @@ const luaL_Reg kMethods[] = {
 
 void open_tethers(lua_State* L) {
   define_type<Tethers>(L, kMethods);
-  lua_pushcfunction(L, &lua_wrap<&l_new>);
-  lua_setfield(L, -2, "Tethers");
+  set_constructor(L, "Tethers", &lua_wrap<&l_new>, tether_fields().infos());
+  set_method_keys(L, "Tethers", "connect", connect_fields().infos());
 }
 
 }  // namespace invasim::lua

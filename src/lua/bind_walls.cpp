@@ -2,26 +2,59 @@
 #include <lua.hpp>
 
 #include "lua/engine_types.hpp"
+#include "lua/fields.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"
 
 namespace invasim::lua {
 
+namespace {
+
+// The keys of invasim.Walls{}; defaults: WallForce's constructor's.
+struct WallKeys {
+  double eps;
+  bool left, right;
+};
+
+const FieldTable<WallKeys>& wall_fields() {
+  using P = WallKeys;
+  static const WallForce engine_default;
+  static const FieldTable<P> table(
+      "Walls",
+      {
+          number<P>("eps", &P::eps, Range::positive(), "eps_c",
+                    "wall stiffness: F = (eps/s)(1 - d/s) into the box"),
+          boolean<P>("left", &P::left, "a wall at the lower x bound"),
+          boolean<P>("right", &P::right, "a wall at the upper x bound"),
+      },
+      P{engine_default.eps(), engine_default.left(), engine_default.right()});
+  return table;
+}
+
+WallKeys keys_of(const Walls& w) {
+  return {w.force->eps(), w.left, w.right};
+}
+
+}  // namespace
+
 std::string LuaType<Walls>::describe(const Walls& w) {
-  return cat("Walls(eps=", w.force->eps(), ", left=", w.left ? "true" : "false",
-             ", right=", w.right ? "true" : "false", ")");
+  return wall_fields().describe(keys_of(w));
 }
 
 namespace {
 
 int l_new(lua_State* L) {
   Kwargs kw(L, 1, "Walls");
-  const double eps = kw.number("eps", 1.0, Range::positive());
-  const bool left = kw.boolean("left", true);
-  const bool right = kw.boolean("right", true);
-  kw.finish();
-  auto force = engine_call("Walls", [&] { return std::make_shared<WallForce>(eps, left, right); });
-  push(L, std::make_shared<Walls>(std::move(force), left, right));
+  const WallKeys k = wall_fields().make(kw);
+  auto force =
+      engine_call("Walls", [&] { return std::make_shared<WallForce>(k.eps, k.left, k.right); });
+  push(L, std::make_shared<Walls>(std::move(force), k.left, k.right));
+  return 1;
+}
+
+// w:params() -> {eps =, left =, right =}
+int l_params(lua_State* L) {
+  wall_fields().push_params(L, keys_of(check<Walls>(L, 1)));
   return 1;
 }
 
@@ -35,6 +68,7 @@ int l_reaction(lua_State* L) {
 
 const luaL_Reg kMethods[] = {
     {"reaction", &lua_wrap<&l_reaction>},
+    {"params", &lua_wrap<&l_params>},
     {nullptr, nullptr},
 };
 
@@ -42,8 +76,7 @@ const luaL_Reg kMethods[] = {
 
 void open_walls(lua_State* L) {
   define_type<Walls>(L, kMethods);
-  lua_pushcfunction(L, &lua_wrap<&l_new>);
-  lua_setfield(L, -2, "Walls");
+  set_constructor(L, "Walls", &lua_wrap<&l_new>, wall_fields().infos());
 }
 
 }  // namespace invasim::lua

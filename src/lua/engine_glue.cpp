@@ -29,15 +29,6 @@ std::shared_ptr<Group> kw_group(Kwargs& kw, std::string_view key, bool required)
   return group;
 }
 
-FireParams kw_fire(Kwargs& kw) {
-  FireParams p;
-  p.ftol = kw.number("ftol", p.ftol, Range::positive());
-  p.dt = kw.number("dt", p.dt, Range::positive());
-  p.dt_max = kw.number("dt_max", p.dt_max, Range::positive());
-  p.max_steps = kw.integer<std::uint64_t>("max_steps", p.max_steps, Range::non_negative());
-  return p;
-}
-
 Simulation& owner_of(const std::weak_ptr<Simulation>& owner, const std::string& what,
                      const std::string& hint) {
   if (auto sim = owner.lock()) return *sim;

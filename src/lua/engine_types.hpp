@@ -133,11 +133,8 @@ struct NumberOrRamp {
 NumberOrRamp kw_number_or_ramp(Kwargs& kw, std::string_view key, Range range,
                                std::optional<double> fallback = std::nullopt);
 
-// FIRE settings from keys ftol, dt, dt_max, max_steps (defaults of FireParams).
-FireParams kw_fire(Kwargs& kw);
-
-// Contact keys alpha, beta, eps_cc, eps_cv, eps_vv, skin into p (defaults: p's values);
-// defined in bind_contacts.cpp.
+// Contact keys alpha, beta, eps_cc, eps_cv, eps_vv, skin present in kw into p (the others
+// keep p's values; unknown keys are refused); defined in bind_contacts.cpp.
 void read_contact_params(Kwargs& kw, ContactParams& p);
 
 // The Simulation a weak owner points to; throws "<what>: its System no longer exists" when it

@@ -324,6 +324,12 @@ bool Kwargs::has(std::string_view key) {
   return present;
 }
 
+bool Kwargs::is_infinity(std::string_view key) {
+  const bool infinite = fetch(key) == LUA_TNUMBER && lua_tonumber(L_, -1) == HUGE_VAL;
+  lua_pop(L_, 1);
+  return infinite;
+}
+
 void Kwargs::finish() const {
   std::vector<std::string> unknown, positional;
   lua_checkstack(L_, 3);

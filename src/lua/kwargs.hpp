@@ -119,6 +119,10 @@ class Kwargs {
   // Whether `key` is present (non-nil); also marks it known.
   bool has(std::string_view key);
 
+  // Whether `key` holds +inf (math.huge); also marks it known. For keys where infinity has a
+  // meaning (tau_p: frozen orientations) although numbers must otherwise be finite.
+  bool is_infinity(std::string_view key);
+
   // Throws if the table holds any key no getter asked about, or a positional value:
   // "System: unknown key 'bxo' (did you mean 'box'?); valid keys: box, periodic, seed".
   void finish() const;

@@ -84,6 +84,7 @@ int open_invasim(lua_State* L) {
   open_json(L);
   open_checkpoint(L);
   open_compression(L);
+  open_keywords(L);
   return 1;
 }
 

@@ -30,5 +30,6 @@ void open_checkpoint(
     lua_State* L);             // invasim.save/load_checkpoint, interrupted (bind_checkpoint.cpp)
 void open_ramp(lua_State* L);  // invasim.ramp{...}          (bind_ramp.cpp)
 void open_compression(lua_State* L);  // invasim.compress, rescale  (bind_compression.cpp)
+void open_keywords(lua_State* L);     // invasim.keywords(...)      (bind_keywords.cpp)
 
 }  // namespace invasim::lua

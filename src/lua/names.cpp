@@ -37,8 +37,9 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 }  // namespace
 
 std::string did_you_mean(std::string_view name, const std::vector<std::string>& candidates) {
-  // A hint only when the miss is small relative to the name (a typo, not a different word).
-  const std::size_t limit = name.size() <= 3 ? 1 : 2;
+  // A hint only when the miss is small relative to the name (a typo, not a different word):
+  // one edit for names of up to 3 characters, else two, or a third of the name's length.
+  const std::size_t limit = name.size() <= 3 ? 1 : std::max<std::size_t>(2, name.size() / 3);
   std::size_t best = limit + 1;
   const std::string* best_name = nullptr;
   for (const auto& candidate : candidates) {

@@ -20,8 +20,10 @@ std::string cat(const Parts&... parts) {
 // Sorted, de-duplicated, comma-separated: {"seed", "box"} -> "box, seed".
 std::string join_names(std::vector<std::string> names);
 
-// " (did you mean 'box'?)" when one candidate is within a small edit distance of `name`,
-// else "".
+// " (did you mean 'box'?)" when a candidate is within a small edit distance of `name`, else
+// "": optimal string alignment (Levenshtein plus adjacent transpositions, so "bxo" -> "box" is
+// one edit), at most 1 edit for names of up to 3 characters, else max(2, length / 3). The one
+// "did you mean" of the engine's and the stages' keyword checks (invasim.keywords).
 std::string did_you_mean(std::string_view name, const std::vector<std::string>& candidates);
 
 }  // namespace invasim::lua
