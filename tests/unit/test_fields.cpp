@@ -183,7 +183,7 @@ TEST_CASE("every key a constructor reads is declared in its field table", "[lua]
       assert(got == declared(c[1].fields, c[3]), i .. ": reads " .. got .. "; declares " .. declared(c[1].fields, c[3]))
     end
     local got = read_keys(iv.compress, sys, { to_phi = 0.5, zz = 1 })
-    assert(got == declared(iv.compress.fields, { "callback", "continue_from", "progress" }), got)
+    assert(got == declared(iv.compress.fields, { "callback", "contacts", "continue_from", "progress" }), got)
     got = read_keys(iv.rescale, sys, { phi_a = 0.5, zz = 1 })
     assert(got == declared(iv.rescale.fields), got)
     local dyn = iv.Dynamics{}
