@@ -251,20 +251,7 @@ std::string format_field_table(const std::vector<FieldInfo>& infos) {
     rows.push_back({f.name, f.type, def, allowed.empty() ? "-" : allowed,
                     f.unit.empty() ? "-" : f.unit, f.help});
   }
-  std::vector<std::size_t> width(rows[0].size(), 0);
-  for (const auto& row : rows)
-    for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
-  std::ostringstream out;
-  for (const auto& row : rows) {
-    std::string line = " ";
-    for (std::size_t c = 0; c < row.size(); ++c) {
-      line += " " + row[c];
-      if (c + 1 < row.size()) line += std::string(width[c] - row[c].size() + 1, ' ');
-    }
-    line.erase(line.find_last_not_of(' ') + 1);
-    out << line << '\n';
-  }
-  return out.str();
+  return aligned_table(rows);
 }
 
 }  // namespace invasim::lua

@@ -26,4 +26,8 @@ std::string join_names(std::vector<std::string> names);
 // "did you mean" of the engine's and the stages' keyword checks (invasim.keywords).
 std::string did_you_mean(std::string_view name, const std::vector<std::string>& candidates);
 
+// Rows of cells as text columns, each padded to its widest cell, two spaces before each
+// line (the listings of `invasim params` and `invasim keys`); trailing blanks trimmed.
+std::string aligned_table(const std::vector<std::vector<std::string>>& rows);
+
 }  // namespace invasim::lua

@@ -256,20 +256,7 @@ std::string format_param_table(const std::vector<Param>& params) {
     row.insert(row.end(), {p.unit.empty() ? "-" : p.unit, p.help});
     rows.push_back(row);
   }
-  std::vector<std::size_t> width(header.size(), 0);
-  for (const auto& row : rows)
-    for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
-  std::ostringstream out;
-  for (const auto& row : rows) {
-    std::string line = " ";
-    for (std::size_t c = 0; c < row.size(); ++c) {
-      line += " " + row[c];
-      if (c + 1 < row.size()) line += std::string(width[c] - row[c].size() + 1, ' ');
-    }
-    line.erase(line.find_last_not_of(' ') + 1);
-    out << line << '\n';
-  }
-  return out.str();
+  return aligned_table(rows);
 }
 
 }  // namespace invasim::lua
