@@ -43,12 +43,10 @@ std::string python() {
   return ::access("/usr/bin/python3", X_OK) == 0 ? "/usr/bin/python3" : "python3";
 }
 
-// "K=V" text of a declared parameter's default (numbers round-trip).
+// "K=V" text of a declared parameter's default (floats as Python's repr: they round-trip).
 std::string default_text(const lua::Param& p) {
-  std::ostringstream s;
-  s.precision(17);
-  std::visit([&s](const auto& v) { s << v; }, p.default_value);
-  return p.name + "=" + s.str();
+  return p.name + "=" +
+         sweep::set_text(std::visit([](const auto& v) { return sweep::Json(v); }, p.default_value));
 }
 
 // Runs argv, returns its exit status (128 + signal if it was killed).

@@ -13,7 +13,8 @@
 #     collect shows the 2 new ones pending with empty cells; run does only those 2;
 #  5. collect: the results.csv header of the contract (docs/sweeps.md);
 #  6. a sweep with a failing point: the other point is done, the failure is reported with its
-#     log, the exit status is 1.
+#     log, the exit status is 1;
+#  7. analyze runs the master-curve script on the collected table (defaults of P, beta, gamma).
 # Usage: sweep_local.sh INVASIM SPEC_DIR WORK_DIR PYTHON3
 set -euo pipefail
 invasim=$1 specs=$2 work=$3 python=$4
@@ -106,4 +107,17 @@ status=0
 grep -q "1 done now, 0 done before, 1 failed" failing.log || fail "failure tally" failing.log
 grep -q "failed: .*beta=0.5.*run.log (exit status 1)" failing.log || fail "failure report" failing.log
 grep -rq "beta = 0.5 must be smaller than alpha" failing/workspace/*/run.log || fail "failure log"
+# 7. analyze: collects into ws/results.csv (the same table as collect) and runs
+#    scripts/master_curve.py on it, with the user's options passed on and the protocol's
+#    defaults of the parameters the fits need (beta, gamma: this sweep does not set them)
+#    merged into the user's --fixed; two temperatures are too few for the sigmoid fit, and the
+#    script says so (exit status 1).
+status=0
+"$invasim" sweep analyze ws --no-figures --fixed P=0.002 > analyze.log 2>&1 || status=$?
+[ $status -eq 1 ] || fail "analyze of 2 temperatures exited with $status (expected 1)" analyze.log
+grep -q "sweep analyze: 6 rows in [^ ]*ws/results.csv$" analyze.log || fail "analyze: collect" analyze.log
+grep -q -- "master_curve.py [^ ]*ws/results.csv -o [^ ]*ws/analysis --fixed P=0.002,beta=0.01,gamma=0.2 --no-figures$" \
+  analyze.log || fail "analyze: the script's command line" analyze.log
+grep -q "needs at least 3" analyze.log || fail "analyze: the script's verdict" analyze.log
+cmp ws/results.csv results.csv || fail "analyze's results.csv differs from collect's"
 echo "sweep local: OK"
