@@ -15,8 +15,8 @@
 -- at the next FIRE iteration; the partly compressed tissue (velocities included), the counters
 -- so far and the minimiser's own state (dt, alpha, its counters) are saved to
 -- out/checkpoint/compressing.ckpt, and a --resume run continues from it to the same
--- compressed tissue, bit for bit. The final FIRE is not interrupted: a signal during it stops
--- the run after it, with the compressed tissue saved.
+-- compressed tissue, bit for bit; likewise inside the final FIRE (its state saved with the
+-- report of the compression steps).
 --
 -- The stage knows when not to compress: with `from` (a run directory, e.g. invasim.from), the
 -- compressed tissue that run saved replaces the compression (same system size, this run's
@@ -83,12 +83,14 @@ local function compress(tissue, o)
   if o.checkpoint and resume.compression_pending() then
     saved = resume.deserialize(iv.load_checkpoint(o.checkpoint, { system = sys }))
     resume.compression_done()
+    local where = saved.final_fire and string.format(" and %d iterations of the final FIRE", saved.final_fire.steps)
+                  or (saved.report and " and the final FIRE" or "")
     log.say("compress", "resumed after %d compression steps%s (phi = %.4f) from %s",
-            (saved.report or saved.compress).steps, saved.report and " and the final FIRE" or "",
-            sys:packing().total, o.checkpoint)
+            (saved.report or saved.compress).steps, where, sys:packing().total, o.checkpoint)
   end
   local clock = iv.clock()
-  local report = saved and saved.report  -- a complete compression (stopped after it)
+  -- A compression stopped after its steps: in (saved.final_fire) or after its final FIRE.
+  local report = saved and saved.report
   if not report then
     local progress = o.progress and iv.Progress{ total = 0, label = "compress", every_seconds = 10 } or nil
     report = iv.compress(sys, {
@@ -109,11 +111,22 @@ local function compress(tissue, o)
            string.format("during compression after step %d%s", report.steps, inside))
     end
     report.stopped = nil
-    local final = iv.Fire{ ftol = o.final_ftol, max_steps = o.max_steps }:minimize(sys, during)
+  end
+  if not report.final then
+    -- The final FIRE (or the rest of one stopped by a signal): a signal stops it before its
+    -- next iteration, and the tissue, the report and the minimiser's state are saved.
+    local final = iv.Fire{ ftol = o.final_ftol, max_steps = o.max_steps }:minimize(sys, {
+      contacts = during and during.contacts, stop_on_signal = true,
+      continue_from = saved and saved.final_fire and { fire_state = saved.final_fire } })
+    if final.stopped then
+      stop(sys, o, { report = report, final_fire = final.fire_state },
+           string.format("after compression step %d, inside the final FIRE at iteration %d",
+                         report.steps, final.fire_state.steps))
+    end
     report.final = final
     report.max_force = final.max_force
     report.converged = final.converged
-    -- A signal during the final FIRE: the compressed tissue and this report are saved.
+    -- A signal after the final FIRE: the compressed tissue and this report are saved.
     if iv.interrupted() then stop(sys, o, { report = report }, "after the compression") end
   end
   -- (No wall-clock time in the report: it goes into the production checkpoint, which must be

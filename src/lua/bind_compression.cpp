@@ -74,15 +74,7 @@ void push_compression_report(lua_State* L, const CompressionReport& r) {
     set_number(S, "max_force", r.max_force);
     push_vec3(S, r.box_lengths);
     lua_setfield(S, -2, "box");
-    if (r.fire_state) {  // stopped inside a FIRE: the minimiser's state
-      lua_createtable(S, 0, 5);
-      set_number(S, "dt", r.fire_state->dt);
-      set_number(S, "alpha", r.fire_state->alpha);
-      set_integer(S, "n_positive", r.fire_state->n_positive);
-      set_integer(S, "steps", static_cast<long long>(r.fire_state->steps));
-      set_number(S, "wall_velocity", r.fire_state->wall_velocity);
-      lua_setfield(S, -2, "fire_state");
-    }
+    if (r.fire_state) set_fire_state(S, *r.fire_state);  // stopped inside a FIRE
     return 1;
   });
 }
@@ -114,16 +106,7 @@ int l_compress(lua_State* L) {
     so_far.fire_steps = from.integer<std::uint64_t>("fire_steps", Range::at_least(0));
     so_far.converged = from.boolean("converged");
     so_far.max_force = from.number("max_force", Range::at_least(0));
-    if (auto f = from.maybe_table("fire_state")) {
-      FireState st;
-      st.dt = f->number("dt", Range::greater_than(0));
-      st.alpha = f->number("alpha", Range::between(0, 1));
-      st.n_positive = f->integer<int>("n_positive", Range::at_least(0));
-      st.steps = f->integer<std::uint64_t>("steps", Range::at_least(0));
-      st.wall_velocity = f->number("wall_velocity", 0.0);
-      f->finish();
-      so_far.fire_state = st;
-    }
+    so_far.fire_state = read_fire_state(from);
     from.finish();
   } else {
     lua_pop(L, 1);

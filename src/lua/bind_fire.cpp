@@ -1,10 +1,15 @@
 // invasim.Fire{ftol = 1e-8, dt = 0.05, dt_max = 0.5, max_steps = 1e6}: the FIRE minimiser.
-// fire:minimize(sys [, dyn] [, {contacts = {beta = 0, ...}}]) -> {converged, steps, max_force,
-// energy}; with a Dynamics that has a pressure wall, the left wall is minimised too
-// (mechanical equilibrium at its P); `contacts` changes the System's Contacts parameters for
-// this minimisation only (TemporaryContacts).
+// fire:minimize(sys [, dyn] [, {contacts = {beta = 0, ...}, stop_on_signal = false,
+//                                continue_from = {fire_state = ...}}])
+//   -> {converged, steps, max_force, energy [, stopped = true, fire_state = {...}]}
+// With a Dynamics that has a pressure wall, the left wall is minimised too (mechanical
+// equilibrium at its P); `contacts` changes the System's Contacts parameters for this
+// minimisation only (TemporaryContacts). With stop_on_signal, a SIGINT/SIGTERM ends it before
+// the next iteration (stopped, the minimiser's state in fire_state, velocities kept);
+// continue_from = {fire_state = that state} continues it, bit for bit.
 #include <lua.hpp>
 
+#include "core/stop_request.hpp"
 #include "lua/engine_fields.hpp"
 #include "lua/module.hpp"
 #include "lua/names.hpp"
@@ -51,14 +56,29 @@ int l_minimize(lua_State* L) {
   }
   std::optional<Kwargs> kw;
   std::optional<TemporaryContacts> contacts;  // undone on every exit path
+  FireControl control;
   if (!lua_isnoneornil(L, options)) {
     kw.emplace(L, options, "minimize");
+    if (kw->boolean("stop_on_signal", false)) control.stop = [] { return stop_requested() != 0; };
+    if (kw->push("continue_from") != LUA_TNIL) {
+      if (!lua_istable(L, -1))
+        fail_input("minimize: key 'continue_from' must be a table {fire_state = ...}, got ",
+                   type_name_at(L, -1));
+      Kwargs from(L, lua_gettop(L), "minimize: continue_from");
+      control.resume = read_fire_state(from);
+      if (!control.resume) fail_input("minimize: continue_from needs its key 'fire_state'");
+      from.finish();
+    } else {
+      lua_pop(L, 1);
+    }
     contacts.emplace(*kw, *sim, "minimize");
     kw->finish();
   }
   sim->changed();
-  const FireResult r =
-      engine_call("minimize", [&] { return fire.minimize(sim->system, sim->forces, wall); });
+  const FireResult r = engine_call("minimize", [&] {
+    return fire.minimize(sim->system, sim->forces, wall,
+                         control.stop || control.resume ? &control : nullptr);
+  });
   push_fire_result(L, r);
   return 1;
 }

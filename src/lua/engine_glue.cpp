@@ -95,15 +95,44 @@ Progress* test_progress(lua_State* L, int index) {
   return slot->get();
 }
 
+// Sets field "fire_state" of the table on top of S to {dt, alpha, n_positive, steps,
+// wall_velocity}.
+void set_fire_state(lua_State* S, const FireState& st) noexcept {
+  lua_createtable(S, 0, 5);
+  set_number(S, "dt", st.dt);
+  set_number(S, "alpha", st.alpha);
+  set_integer(S, "n_positive", st.n_positive);
+  set_integer(S, "steps", static_cast<long long>(st.steps));
+  set_number(S, "wall_velocity", st.wall_velocity);
+  lua_setfield(S, -2, "fire_state");
+}
+
 void push_fire_result(lua_State* L, const FireResult& r) {
   protected_call(L, 0, 1, [&r](lua_State* S) noexcept {
-    lua_createtable(S, 0, 4);
+    lua_createtable(S, 0, 6);
     set_boolean(S, "converged", r.converged);
     set_integer(S, "steps", static_cast<long long>(r.steps));
     set_number(S, "max_force", r.max_force);
     set_number(S, "energy", r.energy);
+    if (r.stopped) {
+      set_boolean(S, "stopped", true);
+      set_fire_state(S, r.state);
+    }
     return 1;
   });
+}
+
+std::optional<FireState> read_fire_state(Kwargs& kw) {
+  auto f = kw.maybe_table("fire_state");
+  if (!f) return std::nullopt;
+  FireState st;
+  st.dt = f->number("dt", Range::greater_than(0));
+  st.alpha = f->number("alpha", Range::between(0, 1));
+  st.n_positive = f->integer<int>("n_positive", Range::at_least(0));
+  st.steps = f->integer<std::uint64_t>("steps", Range::at_least(0));
+  st.wall_velocity = f->number("wall_velocity", 0.0);
+  f->finish();
+  return st;
 }
 
 }  // namespace invasim::lua

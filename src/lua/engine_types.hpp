@@ -172,8 +172,15 @@ PressureWall* prepare_dynamics(DynamicsHandle& d, const std::shared_ptr<Simulati
 // System methods defined in bind_measure.cpp (voronoi, shape_parameters, slices).
 extern const luaL_Reg kSystemMeasureMethods[];
 
-// Pushes a FIRE result table {converged, steps, max_force, energy} (protected: may be called
-// anywhere; a Lua error comes back as a C++ exception).
+// Pushes a FIRE result table {converged, steps, max_force, energy [, stopped, fire_state]}
+// (protected: may be called anywhere; a Lua error comes back as a C++ exception).
 void push_fire_result(lua_State* L, const FireResult& r);
+
+// Sets field "fire_state" = {dt, alpha, n_positive, steps, wall_velocity} of the table on top
+// of S (the state of a stopped minimisation, to continue it bit for bit).
+void set_fire_state(lua_State* S, const FireState& st) noexcept;
+
+// Key `fire_state` of kw (such a table), if present.
+std::optional<FireState> read_fire_state(Kwargs& kw);
 
 }  // namespace invasim::lua

@@ -6,7 +6,7 @@
 # production to the same end (identical series.csv, state.ckpt). The kill waits for an event
 # (the third compression step in log.txt), never for a time. The partial checkpoint carries
 # the run's identity: --resume refuses it once resume.txt describes another run. A signal
-# during the final FIRE stops the run after it, and --resume goes on to the same end too.
+# during the final FIRE stops it at its next iteration too, and --resume goes on to the same end.
 # Usage: compress_resume.sh INVASIM WORKDIR
 set -euo pipefail
 invasim=$1
@@ -59,23 +59,28 @@ for f in checkpoint/compressed.ckpt series.csv checkpoint/state.ckpt; do
   cmp "$work/straight/$f" "$work/killed/$f" || fail "$f differs from the uninterrupted run"
 done
 
-# A signal during the final FIRE (after the line of the last compression step): the run stops
-# once that FIRE is done, saving the compressed tissue and its report; --resume goes on from
-# there to the same end.
+# A signal during the final FIRE (after the line of the last compression step; that FIRE takes
+# about 59000 iterations here, 2 s): the run stops at its next iteration, saving the tissue,
+# the compression's report and the minimiser's state; --resume continues that FIRE to the
+# same compressed tissue and the same end.
 "$invasim" "${args[@]}" --out "$work/final" > "$work/final.log" 2>&1 &
 pid=$!
 wait_for "$pid" "the last compression step (its 'compress: step $total:' line in log.txt)" \
   grep -qs "^compress: step $total: " "$work/final/log.txt" || { cat "$work/final.log"; exit 1; }
 stop_with_sigterm "$pid" "$work/final.log" "the run killed in its final FIRE"
-grep -qF "stopped by SIGTERM after the compression (phi = 0.7200); checkpoint saved to $work/final/checkpoint/compressing.ckpt" "$work/final.log" ||
-  fail "the signal during the final FIRE did not stop the run after it" "$work/final.log"
-"$invasim" run --resume "$work/final" > "$work/final_resumed.log" 2>&1 || fail "--resume after the final FIRE" "$work/final_resumed.log"
-grep -q "^compress: resumed after $total compression steps and the final FIRE" "$work/final_resumed.log" ||
-  fail "did not resume after the final FIRE" "$work/final_resumed.log"
+grep -q "stopped by SIGTERM after compression step $total, inside the final FIRE at iteration [0-9]* (phi = 0.7200); checkpoint saved to $work/final/checkpoint/compressing.ckpt" "$work/final.log" ||
+  fail "the signal during the final FIRE did not stop it at its next iteration" "$work/final.log"
+iteration=$(grep -o "inside the final FIRE at iteration [0-9]*" "$work/final.log" | grep -o "[0-9]*$")
+"$invasim" run --resume "$work/final" > "$work/final_resumed.log" 2>&1 || fail "--resume inside the final FIRE" "$work/final_resumed.log"
+grep -q "^compress: resumed after $total compression steps and $iteration iterations of the final FIRE" "$work/final_resumed.log" ||
+  fail "did not continue the final FIRE from iteration $iteration" "$work/final_resumed.log"
+grep "^compress: phi = " "$work/final_resumed.log" | sed 's/; [0-9.]* s$//' > "$work/final.compress"
+cmp "$work/straight.compress" "$work/final.compress" ||
+  fail "the compression report differs: $(cat "$work/straight.compress") vs $(cat "$work/final.compress")"
 [ "$(grep -c "^compress: step " "$work/final/log.txt")" -eq "$total" ] ||
   fail "the resumed run compressed again" "$work/final/log.txt"
 [ ! -e "$work/final/checkpoint/compressing.ckpt" ] || fail "compressing.ckpt left after the final FIRE"
 for f in checkpoint/compressed.ckpt series.csv checkpoint/state.ckpt; do
   cmp "$work/straight/$f" "$work/final/$f" || fail "$f differs after a stop in the final FIRE"
 done
-echo "compress_resume: stopped by SIGTERM after compression step $stopped of $total, and after the final FIRE; --resume gave the uninterrupted run's compressed.ckpt, series.csv and state.ckpt"
+echo "compress_resume: stopped by SIGTERM after compression step $stopped of $total, and at iteration $iteration of the final FIRE; --resume gave the uninterrupted run's compressed.ckpt, series.csv and state.ckpt"
