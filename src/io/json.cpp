@@ -19,9 +19,7 @@ std::string json_float(double v) {
   return text;
 }
 
-namespace {
-
-void append_string(std::string& out, std::string_view s) {
+void append_json_string(std::string& out, std::string_view s) {
   out += '"';
   for (char c : s) {
     const auto u = static_cast<unsigned char>(c);
@@ -45,9 +43,8 @@ void append_string(std::string& out, std::string_view s) {
   out += '"';
 }
 
-}  // namespace
-
-void append_json(std::string& out, const Json& value, int indent, int level) {
+void append_json(std::string& out, const Json& value, int indent, int level,
+                 const JsonStyle& style) {
   switch (value.type()) {
     case Json::value_t::null:
       out += "null";
@@ -62,10 +59,10 @@ void append_json(std::string& out, const Json& value, int indent, int level) {
       out += std::to_string(value.get<std::uint64_t>());
       return;
     case Json::value_t::number_float:
-      out += json_float(value.get<double>());
+      out += style.number(value.get<double>());
       return;
     case Json::value_t::string:
-      append_string(out, value.get_ref<const std::string&>());
+      style.string(out, value.get_ref<const std::string&>());
       return;
     case Json::value_t::array: {
       out += '[';
@@ -73,7 +70,7 @@ void append_json(std::string& out, const Json& value, int indent, int level) {
       for (const Json& x : value) {
         if (!first) out += ", ";
         first = false;
-        append_json(out, x, indent, level + 1);
+        append_json(out, x, indent, level + 1, style);
       }
       out += ']';
       return;
@@ -94,9 +91,9 @@ void append_json(std::string& out, const Json& value, int indent, int level) {
         if (!first) out += indent > 0 ? "," : ", ";
         first = false;
         new_line(level + 1);
-        append_string(out, key);
+        style.string(out, key);
         out += ": ";
-        append_json(out, x, indent, level + 1);
+        append_json(out, x, indent, level + 1, style);
       }
       new_line(level);
       out += '}';

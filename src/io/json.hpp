@@ -35,8 +35,19 @@ std::string json_float(double v);
 // `value` as JSON text in the layout above, ending in a newline.
 std::string json_dump(const Json& value, int indent = 2);
 
+// Appends s as a JSON string with the escaping above.
+void append_json_string(std::string& out, std::string_view s);
+
+// How append_json writes floats and strings: invasim's rules above by default; the sweeps'
+// Python json.dumps text (signac ids, sweep/python_json) swaps in Python's.
+struct JsonStyle {
+  std::string (*number)(double) = &json_float;
+  void (*string)(std::string&, std::string_view) = &append_json_string;
+};
+
 // Appends `value` without the final newline; `level` is the nesting depth of `value`.
-void append_json(std::string& out, const Json& value, int indent, int level = 0);
+void append_json(std::string& out, const Json& value, int indent, int level = 0,
+                 const JsonStyle& style = {});
 
 // Parses JSON text; `origin` names it in messages. Throws IoError "<origin>: malformed JSON:
 // ... at line L, column C: ...".

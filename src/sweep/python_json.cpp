@@ -1,12 +1,12 @@
 #include "sweep/python_json.hpp"
 
-#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
 #include "core/errors.hpp"
+#include "io/json.hpp"
 #include "sweep/md5.hpp"
 
 namespace invasim::sweep {
@@ -58,7 +58,7 @@ std::string python_float_repr(double value) {
 namespace {
 
 // The code points of a UTF-8 string; InputError on malformed bytes.
-std::vector<char32_t> code_points(const std::string& text) {
+std::vector<char32_t> code_points(std::string_view text) {
   std::vector<char32_t> out;
   for (std::size_t i = 0; i < text.size();) {
     const auto byte = static_cast<unsigned char>(text[i]);
@@ -81,7 +81,7 @@ std::vector<char32_t> code_points(const std::string& text) {
   return out;
 }
 
-void append_escaped(std::string& out, const std::string& text) {
+void append_escaped(std::string& out, std::string_view text) {
   static const char* const hex = "0123456789abcdef";
   const auto unit = [&](unsigned u) {
     out += "\\u";
@@ -127,64 +127,13 @@ void append_escaped(std::string& out, const std::string& text) {
   out += '"';
 }
 
-void dump(std::string& out, const Json& value) {
-  switch (value.type()) {
-    case Json::value_t::null:
-      out += "null";
-      return;
-    case Json::value_t::boolean:
-      out += value.get<bool>() ? "true" : "false";
-      return;
-    case Json::value_t::number_integer:
-      out += std::to_string(value.get<std::int64_t>());
-      return;
-    case Json::value_t::number_unsigned:
-      out += std::to_string(value.get<std::uint64_t>());
-      return;
-    case Json::value_t::number_float:
-      out += python_float_repr(value.get<double>());
-      return;
-    case Json::value_t::string:
-      append_escaped(out, value.get_ref<const std::string&>());
-      return;
-    case Json::value_t::array: {
-      out += '[';
-      bool first = true;
-      for (const auto& item : value) {
-        if (!first) out += ", ";
-        first = false;
-        dump(out, item);
-      }
-      out += ']';
-      return;
-    }
-    case Json::value_t::object: {
-      // Python sorts str keys by code point, which is the byte order of their UTF-8.
-      std::vector<std::string> keys;
-      for (const auto& item : value.items()) keys.push_back(item.key());
-      std::sort(keys.begin(), keys.end());
-      out += '{';
-      bool first = true;
-      for (const auto& key : keys) {
-        if (!first) out += ", ";
-        first = false;
-        append_escaped(out, key);
-        out += ": ";
-        dump(out, value.at(key));
-      }
-      out += '}';
-      return;
-    }
-    default:
-      fail_input("a state point holds only JSON values; got ", value.type_name());
-  }
-}
-
 }  // namespace
 
 std::string python_dumps(const Json& value) {
+  // io/json's writer on one line (separators ", " and ": ", keys in byte order, which is
+  // Python's code-point order) with Python's floats and ensure_ascii strings.
   std::string out;
-  dump(out, value);
+  append_json(out, value, 0, 0, JsonStyle{&python_float_repr, &append_escaped});
   return out;
 }
 
