@@ -4,7 +4,7 @@
 Usage: master_curve.py RESULTS.csv -o DIR [--group K1,K2] [--temperature kT|T_c|kT_c_paper]
                        [--normalise-by K=V[,K=V]] [--normalise-within K1,K2]
                        [--fixed K=V[,K=V]] [--replicate-key seed] [--tau-g T] [--pool N]
-                       [--min-error E] [--no-figures]
+                       [--min-error E] [--max-drift K=F[,K=F]|none] [--no-figures]
 
 RESULTS.csv is what `invasim sweep collect WS -o results.csv` writes; only jobs with status
 `done` count. Writes into DIR: fits.csv, fits.json, points.csv, rows.csv, An_vs_T.png,
@@ -28,6 +28,10 @@ DEBIAN_PACKAGES = {"numpy": "python3-numpy", "scipy": "python3-scipy",
 DESCRIPTION = """\
 Fits the paper's master curve to a sweep's results table.
 
+0. Steadiness: a job whose quantity K drifts over its averaging window by more than F of
+   its mean (|K_drift| > F |K|, --max-drift, default L_x=0.05: a box still growing or
+   shrinking under the barostat) is not a steady state. It is scaled like the others
+   (rows.csv, hollow in the figure) but sets no normalisation and enters no fit.
 1. Per job: rA_t = (A_t - dA)/(A_t^max - dA), dA = A_t^max - min A_t^max, and
    A_n = (rA_t - min rA_t)/(max rA_t - min rA_t). The minima and maxima are over the state
    points (each the mean over its replicates) of the normalisation group (--normalise-by;
@@ -97,6 +101,9 @@ def parse_args(argv):
                    "each side along the curve (default: 1; 0: its own only)")
     p.add_argument("--min-error", type=float, default=1e-3, metavar="E",
                    help="floor of a state point's error of A_n (default: 1e-3)")
+    p.add_argument("--max-drift", default="L_x=0.05", metavar="K=F[,K=F]",
+                   help="jobs whose K drifts by more than F of its mean over the averaging "
+                   "window are not steady: not fitted (default: L_x=0.05; none: no check)")
     p.add_argument("--no-figures", dest="figures", action="store_false",
                    help="write the tables only")
     return p.parse_args(argv)
@@ -115,7 +122,7 @@ def main(argv):
     # numpy only: reading and checking the input stays fast (scipy is imported for the fits,
     # matplotlib for the figures).
     from master_curve_lib import analysis, output
-    from master_curve_lib.selection import parse_assignments, parse_keys
+    from master_curve_lib.selection import parse_assignments, parse_keys, parse_limits
     from master_curve_lib.table import InputError, Table
 
     try:
@@ -124,7 +131,7 @@ def main(argv):
             selector=parse_assignments(args.normalise_by, "--normalise-by"),
             fixed=dict(parse_assignments(args.fixed, "--fixed")), temperature=args.temperature,
             replicate_key=args.replicate_key, tau_g=args.tau_g, min_error=args.min_error,
-            window=args.pool)
+            window=args.pool, max_drift=parse_limits(args.max_drift, "--max-drift"))
         table = Table(args.results)
         for k in opts.fixed:
             if table.has(k):
@@ -139,6 +146,7 @@ def main(argv):
                 "normalise_by": dict(opts.selector), "normalise_within": opts.within,
                 "fixed": opts.fixed, "replicate_key": opts.replicate_key,
                 "tau_g": args.tau_g, "min_error": args.min_error, "pool": args.pool,
+                "max_drift": dict(opts.max_drift),
                 "state_keys": result["state_keys"]}
     paths = output.write_tables(args.out, result, settings)
     if args.figures:
@@ -150,6 +158,17 @@ def main(argv):
 
 
 def report(result, paths):
+    for key in result["unchecked_drift"]:
+        print("note: no %s_drift column (a results.csv from an older `sweep collect`?): "
+              "steadiness in %s not checked" % (key, key))
+    unsteady = [i for i, why in enumerate(result["unsteady"]) if why]
+    if unsteady:
+        print("not steady, so not fitted and not used to normalise (%d of %d jobs):"
+              % (len(unsteady), len(result["rows"])))
+        for i in unsteady:
+            r = result["rows"][i]
+            print("  %s (%s): %s" % (r.get("job_id") or "line %d" % r["_line"],
+                                     result["curve_of"][i], result["unsteady"][i]))
     for c in result["curves"]:
         print("curve %s: %d state points, %d jobs: a = %.4g +- %.2g, b = %.4g +- %.2g, "
               "chi2/dof = %s" % (c["name"], len(c["points"]), c["jobs"], c["a"], c["a_error"],

@@ -56,8 +56,29 @@ def row_values(table, keys, rows, temperature):
     return np.array(x), np.array(a_t), np.array(a_max), errors[0], errors[1]
 
 
-def normalise_rows(keys, rows, opts, a_t, a_max, err_t, err_max, point_of):
-    """A_n per row, normalised separately in each --normalise-within partition."""
+def steadiness(table, rows, max_drift):
+    """Per row: None if steady, else why not. A row is not steady when a quantity's drift over
+    its averaging window (the `<K>_drift` column of `sweep collect`: second half's mean minus
+    first half's) exceeds the limit relative to its mean: |K_drift| > limit |K|. Returns the
+    reasons and the keys that could not be checked (no `<K>_drift` column)."""
+    reasons, unchecked = [None] * len(rows), []
+    for key, limit in max_drift:
+        if not (table.has(key) and table.has(key + "_drift")):
+            unchecked.append(key)
+            continue
+        for i, r in enumerate(rows):
+            mean = table.number(r, key, "for --max-drift", allow_missing=True)
+            drift = table.number(r, key + "_drift", "for --max-drift", allow_missing=True)
+            if math.isfinite(mean) and math.isfinite(drift) and abs(drift) > limit * abs(mean):
+                why = "%s drifts by %+.3g of its mean over the averaging window (limit %g)" % (
+                    key, drift / mean if mean else math.inf, limit)
+                reasons[i] = why if reasons[i] is None else reasons[i] + "; " + why
+    return reasons, unchecked
+
+
+def normalise_rows(keys, rows, opts, a_t, a_max, err_t, err_max, point_of, steady):
+    """A_n per row, normalised separately in each --normalise-within partition; rows that
+    are not steady are scaled like the others but never set the normalisation."""
     n = len(rows)
     r_a, a_n, run_err = np.empty(n), np.empty(n), np.empty(n)
     norm_err = np.empty((n, 2))
@@ -65,7 +86,7 @@ def normalise_rows(keys, rows, opts, a_t, a_max, err_t, err_max, point_of):
     parts = group_indices([keys.label(r, opts.within) for r in rows])
     for part, idx in parts.items():
         where = ", ".join("%s=%s" % kv for kv in zip(opts.within, part)) or "the whole sweep"
-        sel = [matches(keys, rows[i], opts.selector) for i in idx]
+        sel = [matches(keys, rows[i], opts.selector) and steady[i] for i in idx]
         res = normalise(a_t[idx], a_max[idx], [point_of[i] for i in idx], sel,
                         None if err_t is None else err_t[idx],
                         None if err_max is None else err_max[idx], where)
@@ -156,18 +177,35 @@ def analyse(table, opts):
     point_keys = [k for k in keys.state_keys if k != opts.replicate_key]
     point_of = [keys.label(r, point_keys) for r in rows]
     x, a_t, a_max, err_t, err_max = row_values(table, keys, rows, opts.temperature)
+    unsteady, unchecked = steadiness(table, rows, opts.max_drift)
+    steady = [why is None for why in unsteady]
+    if not any(steady):
+        raise InputError("%s: no finished job is steady (--max-drift %s): %s" % (
+            table.path, ",".join("%s=%g" % kv for kv in opts.max_drift), unsteady[0]))
     r_a, a_n, run_err, norm_err, norm_info = normalise_rows(keys, rows, opts, a_t, a_max, err_t,
-                                                  err_max, point_of)
+                                                            err_max, point_of, steady)
     from . import fits  # scipy: imported only once the input has been read and checked
 
-    curves = []
-    for label, idx in group_indices([keys.label(r, opts.group) for r in rows]).items():
+    curves, curve_of = [], [None] * len(rows)
+    for label, all_idx in group_indices([keys.label(r, opts.group) for r in rows]).items():
         name = ", ".join("%s=%s" % kv for kv in zip(opts.group, label)) or "all"
+        for i in all_idx:
+            curve_of[i] = name
+        idx = [i for i in all_idx if steady[i]]
+        if not idx:
+            continue
         by_point = group_indices([point_of[i] for i in idx])
         points = build_points([np.array([idx[j] for j in js]) for js in by_point.values()],
                               x, a_n, run_err, norm_err, opts.min_error, opts.window)
-        fit = fits.fit_sigmoid([p["x"] for p in points], [p["A_n"] for p in points],
-                               [p["A_n_error"] for p in points], name)
+        try:
+            fit = fits.fit_sigmoid([p["x"] for p in points], [p["A_n"] for p in points],
+                                   [p["A_n_error"] for p in points], name)
+        except InputError as e:
+            left_out = len(all_idx) - len(idx)
+            if not left_out:
+                raise
+            raise InputError("%s (%d job%s of the curve left out as not steady: see --max-drift)"
+                             % (e, left_out, "" if left_out == 1 else "s"))
         varying = [k for k in point_keys if k not in opts.group
                    and len({keys.label(rows[i], [k]) for i in idx}) > 1]
         curve = {"name": name, "group": dict(zip(opts.group, label)), "points": points,
@@ -176,6 +214,7 @@ def analyse(table, opts):
         curves.append(curve)
     scale = scale_fit(curves, fits)
     return {"rows": rows, "x": x, "rA_t": r_a, "A_n": a_n, "curves": curves,
+            "curve_of": curve_of, "unsteady": unsteady, "unchecked_drift": unchecked,
             "scale_fit": scale, "normalisation": norm_info, "state_keys": keys.state_keys}
 
 

@@ -32,7 +32,7 @@ def normalise(a_t, a_max, points, group, err_t=None, err_max=None, where="the sw
     a_t, a_max = np.asarray(a_t, float), np.asarray(a_max, float)
     members = [i for i in range(len(a_t)) if group[i]]
     if not members:
-        raise InputError("the normalisation group of %s has no finished job" % where)
+        raise InputError("the normalisation group of %s has no finished, steady job" % where)
     min_max = min(point_means(a_max, points, members).values())
     if min_max <= 0:
         raise InputError("the normalisation group of %s has min A_t^max = %g <= 0"

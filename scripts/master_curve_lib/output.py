@@ -1,5 +1,6 @@
 """Writes the fit tables: fits.csv and fits.json (per curve a, b with errors; the fit of a
-across curves), points.csv (state points of every curve) and rows.csv (rA_t, A_n per job)."""
+across curves), points.csv (state points of every curve) and rows.csv (rA_t, A_n and
+steadiness per job)."""
 
 import csv
 import json
@@ -47,8 +48,11 @@ def write_tables(out_dir, result, settings):
             w.writerow([rec["curve"]] + [c["group"][k] for k in group_keys]
                        + [_text(rec[k]) for k in CURVE_COLUMNS[1:]])
     scale = {k: _clean(v) for k, v in result["scale_fit"].items()}
+    unsteady = [{"job_id": r.get("job_id", ""), "curve": result["curve_of"][i], "why": why}
+                for i, (r, why) in enumerate(zip(result["rows"], result["unsteady"])) if why]
     doc = {"settings": settings, "normalisation": result["normalisation"],
-           "curves": [curve_record(c) for c in curves], "scale_fit": scale}
+           "curves": [curve_record(c) for c in curves], "scale_fit": scale,
+           "not_steady": unsteady}
     with open(paths["fits.json"], "w") as f:
         json.dump(doc, f, indent=2, sort_keys=False)
         f.write("\n")
@@ -62,13 +66,10 @@ def write_tables(out_dir, result, settings):
                             _text(p["A_n_error"]), p["replicates"], _text(p["x"] / c["a"]), jobs])
     with open(paths["rows.csv"], "w", newline="") as f:
         w = csv.writer(f, lineterminator="\n")
-        w.writerow(["job_id", "curve", "x", "rA_t", "A_n"])
-        names = {}
-        for c in curves:
-            for p in c["points"]:
-                for i in p["rows"]:
-                    names[int(i)] = c["name"]
+        w.writerow(["job_id", "curve", "x", "rA_t", "A_n", "steady", "not_steady_because"])
         for i, r in enumerate(result["rows"]):
-            w.writerow([r.get("job_id", ""), names[i], _text(result["x"][i]),
-                        _text(result["rA_t"][i]), _text(result["A_n"][i])])
+            why = result["unsteady"][i]
+            w.writerow([r.get("job_id", ""), result["curve_of"][i], _text(result["x"][i]),
+                        _text(result["rA_t"][i]), _text(result["A_n"][i]),
+                        "false" if why else "true", why or ""])
     return paths

@@ -24,15 +24,31 @@ def _points(c):
             np.array([p["A_n_error"] for p in ps]))
 
 
-def curves_figure(path, curves, x_label):
+def _unsteady_jobs(result, name):
+    """x and A_n of the jobs of curve `name` that are not steady (drawn hollow, not fitted)."""
+    idx = [i for i, why in enumerate(result["unsteady"])
+           if why and result["curve_of"][i] == name]
+    return result["x"][idx], result["A_n"][idx]
+
+
+def curves_figure(path, result, x_label):
     fig, ax = plt.subplots(figsize=(6.4, 4.6))
-    for k, c in enumerate(curves):
+    hollow = False
+    for k, c in enumerate(result["curves"]):
         st = _style(k)
         x, y, e = _points(c)
         ax.errorbar(x, y, yerr=e, ls="none", capsize=2, ms=5, color=st["color"],
                     marker=st["marker"], label="%s: a=%.3g, b=%.2f" % (c["name"], c["a"], c["b"]))
-        xs = np.logspace(np.log10(x.min()) - 0.2, np.log10(x.max()) + 0.2, 200)
+        ux, uy = _unsteady_jobs(result, c["name"])
+        if len(ux):
+            hollow = True
+            ax.plot(ux, uy, ls="none", ms=5, mfc="none", color=st["color"], marker=st["marker"])
+        span = np.concatenate([x, ux])
+        xs = np.logspace(np.log10(span.min()) - 0.2, np.log10(span.max()) + 0.2, 200)
         ax.plot(xs, sigmoid(xs, c["a"], c["b"]), color=st["color"], lw=1.2)
+    if hollow:
+        ax.plot([], [], ls="none", marker="o", mfc="none", color="0.4",
+                label="hollow: single jobs not steady (not fitted)")
     ax.set_xscale("log")
     ax.set_xlabel(x_label)
     ax.set_ylabel(r"$A_n$")
@@ -104,7 +120,7 @@ def write_figures(out_dir, result, x_label):
     """Writes An_vs_T.png, collapse.png and (if the fit of a was done) a_vs_tau.png."""
     paths = {"An_vs_T.png": os.path.join(out_dir, "An_vs_T.png"),
              "collapse.png": os.path.join(out_dir, "collapse.png")}
-    curves_figure(paths["An_vs_T.png"], result["curves"], x_label)
+    curves_figure(paths["An_vs_T.png"], result, x_label)
     collapse_figure(paths["collapse.png"], result["curves"])
     if result["scale_fit"]["done"]:
         paths["a_vs_tau.png"] = os.path.join(out_dir, "a_vs_tau.png")

@@ -18,6 +18,21 @@ def parse_assignments(text, option):
     return pairs
 
 
+def parse_limits(text, option):
+    """`L_x=0.05,A_t=0.1` -> [("L_x", 0.05), ...]; `none` -> []; InputError naming the option
+    if a limit is not a number >= 0."""
+    if (text or "").strip().lower() == "none":
+        return []
+    limits = []
+    for key, value in parse_assignments(text, option):
+        limit = as_number(value)
+        if limit is None or not limit >= 0 or limit == float("inf"):
+            raise InputError("%s: %s=%s: the limit must be a finite number >= 0 (a fraction "
+                             "of the mean, e.g. %s %s=0.05)" % (option, key, value, option, key))
+        limits.append((key, limit))
+    return limits
+
+
 def parse_keys(text):
     """`beta,tau_p` -> ['beta', 'tau_p'] (empty text: [])."""
     return [k.strip() for k in (text or "").split(",") if k.strip()]

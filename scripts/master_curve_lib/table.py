@@ -1,7 +1,8 @@
 """Reads the results table written by `invasim sweep collect` (results.csv).
 
 One row per job: job_id, status, wall_seconds, the state-point keys (bare names), then the
-summary averages `<name> [unit]` with `<name>_error [unit]`, then tau_d, tau_r. Columns are
+summary averages `<name> [unit]` with `<name>_error [unit]` and (since the drift was added)
+`<name>_drift [unit]`, then tau_d, tau_r. Columns are
 addressed by their bare name (the ` [unit]` suffix stripped)."""
 
 import csv
@@ -92,13 +93,16 @@ class Table:
 
     def state_keys(self):
         """The state-point columns: unitless columns that are neither bookkeeping nor a
-        measurement (a measurement has an `_error` companion, is one, or is a tau_*)."""
+        measurement (a measurement has an `_error` companion, is one or a `_drift`, or is a
+        tau_*)."""
         names = set(self.names)
         keys = []
         for n in self.names:
             if n in BOOKKEEPING or n in MEASURED_WITHOUT_ERROR or self.units[n]:
                 continue
             if n.endswith("_error") or n + "_error" in names:
+                continue
+            if n.endswith("_drift") and n[:-len("_drift")] + "_error" in names:
                 continue
             keys.append(n)
         return keys

@@ -6,6 +6,8 @@
 #include <set>
 #include <sstream>
 
+#include "sweep/window_drift.hpp"
+
 namespace invasim::sweep {
 
 namespace {
@@ -73,29 +75,33 @@ int collect(const Workspace& ws, std::ostream& out) {
   struct Row {
     std::string id, status;
     Json statepoint, document, summary;
+    std::map<std::string, double> drifts;
   };
   std::vector<Row> rows;
   std::set<std::string> keys, averages;
   std::map<std::string, std::string> units;
   for (const auto& id : ws.ids()) {
     const fs::path dir = ws.job_dir(id);
-    Row row{id, job_status(dir), ws.statepoint(id), read_document(dir), Json()};
+    Row row{id, job_status(dir), ws.statepoint(id), read_document(dir), Json(), {}};
     for (const auto& item : row.statepoint.items()) keys.insert(item.key());
     if (row.status == "done") {
       row.summary = read_summary(dir);
       read_units(dir / "series.csv", units);
-      if (row.summary.contains("averages"))
+      if (row.summary.contains("averages")) {
+        row.drifts = window_drifts(dir / "series.csv", row.summary["averages"]);
         for (const auto& item : row.summary["averages"].items())
           if (item.value().is_object() && item.value().contains("mean") &&
               item.value().contains("error"))
             averages.insert(item.key());
+      }
     }
     rows.push_back(std::move(row));
   }
   out << "job_id,status,wall_seconds [s]";
   for (const auto& k : keys) out << ',' << k;
   for (const auto& a : averages)
-    out << ',' << with_unit(a, units, a) << ',' << with_unit(a + "_error", units, a);
+    out << ',' << with_unit(a, units, a) << ',' << with_unit(a + "_error", units, a) << ','
+        << with_unit(a + "_drift", units, a);
   out << ",tau_d [tau],tau_r [tau]\n";
   for (const auto& row : rows) {
     const bool done = row.status == "done";
@@ -109,8 +115,10 @@ int collect(const Workspace& ws, std::ostream& out) {
       if (done && row.summary.contains("averages") && row.summary["averages"].contains(a))
         entry = row.summary["averages"][a];
       const bool ok = entry.is_object();
+      const auto drift = row.drifts.find(a);
       out << ',' << (ok && entry.contains("mean") ? cell(entry["mean"]) : "") << ','
-          << (ok && entry.contains("error") ? cell(entry["error"]) : "");
+          << (ok && entry.contains("error") ? cell(entry["error"]) : "") << ','
+          << (drift != row.drifts.end() ? number(drift->second) : "");
     }
     out << ',' << (done ? cell(time_of(row.summary, "tau_d")) : "") << ','
         << (done ? cell(time_of(row.summary, "tau_r")) : "") << '\n';

@@ -2,8 +2,9 @@
 // `invasim sweep collect WS -o results.csv`: one row per state point, columns
 //   job_id, status, wall_seconds [s], the state-point keys (sorted), then for every entry of
 //   summary.json's "averages" that has a mean and an error (sorted by name) "<name> [unit]"
-//   and "<name>_error [unit]" (unit from series.csv's header, no brackets when unitless),
-//   then tau_d [tau], tau_r [tau].
+//   "<name>_error [unit]" and "<name>_drift [unit]" (unit from series.csv's header, no
+//   brackets when unitless; the drift is the second half of the averaging window's mean minus
+//   the first half's, window_drift.hpp), then tau_d [tau], tau_r [tau].
 // Numbers with %.17g; strings as they are (quoted when they hold a comma or a quote); a job
 // that is not done has its status and empty measurement cells. docs/sweeps.md, "results.csv".
 #include <ostream>

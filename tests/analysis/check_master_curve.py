@@ -5,6 +5,8 @@ Usage: check_master_curve.py CASE MASTER_CURVE_PY SCRATCH_DIR, CASE one of
                  recover them within their stated errors, and the errors match the scatter;
   normalisation  a tiny table whose rA_t and A_n are computed by hand (also --normalise-by,
                  the temperature conventions and the outputs);
+  steadiness     jobs whose L_x drifts beyond --max-drift are scaled but neither normalise
+                 nor enter a fit; a unitless _drift column is not taken for a state-point key;
   errors         bad input: each case exits with status 1 (2: command line) and names the
                  problem.
 Exits 77 (CTest SKIP_RETURN_CODE) when this interpreter lacks numpy, scipy or matplotlib.
@@ -118,7 +120,7 @@ def calibration(np, synthetic, truth, scratch):
 
     opts = argparse.Namespace(group=["beta", "tau_p"], within=[], selector=[], fixed={},
                               temperature="kT_c_paper", replicate_key="seed", tau_g=None,
-                              min_error=1e-3, window=1)
+                              min_error=1e-3, window=1, max_drift=[("L_x", 0.05)])
     per_curve, scale = [], []
     for seed in range(5):
         path = os.path.join(scratch, "calibration.csv")
@@ -247,7 +249,68 @@ def case_normalisation(script, scratch):
           "--normalise-within K_ecm: tethered A_n = 0, 0.5, 1")
 
 
-# --- (c) bad input -----------------------------------------------------------------------
+# --- (c) steadiness ------------------------------------------------------------------------
+# The hand table plus L_x (mean 20, error 0.1) and A_ratio (unitless) with their drifts: u5's
+# L_x grew by 2 over its averaging window (10 %, beyond the default 5 %), u3's by 0.8 (4 %).
+DRIFT_HEADER = HEADER + ",L_x [sigma],L_x_error [sigma],L_x_drift [sigma],A_ratio,A_ratio_error,A_ratio_drift"
+
+
+def drift_rows():
+    drift = {"u5": "2.0", "u3": "0.8", "f1": ""}
+    return [r + ",20,0.1,%s,0.5,0.01,0.3" % drift.get(r.split(",")[0], "0.01") for r in HAND_ROWS]
+
+
+def case_steadiness(script, scratch):
+    table = os.path.join(scratch, "drift.csv")
+    with open(table, "w") as f:
+        f.write(DRIFT_HEADER + "\n" + "\n".join(drift_rows()) + "\n")
+    out = os.path.join(scratch, "out")
+    p = run(script, [table, "-o", out, "--group", "K_ecm", "--normalise-by", "K_ecm=0"])
+    check(p.returncode == 0, "the table with drifts is analysed")
+    if p.returncode != 0:
+        return
+    rows = {r["job_id"]: r for r in read_csv(os.path.join(out, "rows.csv"))}
+    # Without u5 the untethered extremes are u1/u2 (D = 595 on average) and u4 (D = 100):
+    # A_n = (595 - D)/495, u5 (D = 50) scaled the same way lands above 1.
+    for job, d in (("u3", 350), ("u4", 100), ("u5", 50)):
+        check(abs(float(rows[job]["A_n"]) - (595 - d) / 495) < 1e-12,
+              "%s: A_n = %s (hand, u5 left out of the normalisation: %.15g)"
+              % (job, rows[job]["A_n"], (595 - d) / 495))
+    check(rows["u5"]["steady"] == "false" and "L_x drifts by +0.1 of its mean" in
+          rows["u5"]["not_steady_because"] and rows["u3"]["steady"] == "true",
+          "rows.csv: u5 not steady (L_x +10 %% > 5 %%), u3 steady (4 %%): %s"
+          % rows["u5"]["not_steady_because"])
+    points = [r for r in read_csv(os.path.join(out, "points.csv")) if r["curve"] == "K_ecm=0"]
+    check(len(points) == 3 and all("u5" not in r["jobs"] for r in points),
+          "points.csv: the untethered curve has 3 state points, without u5")
+    with open(os.path.join(out, "fits.json")) as f:
+        fits = json.load(f)
+    check([j["job_id"] for j in fits["not_steady"]] == ["u5"]
+          and fits["settings"]["max_drift"] == {"L_x": 0.05},
+          "fits.json lists u5 as not steady, with the limit used")
+    check("not steady, so not fitted" in p.stdout and "u5 (K_ecm=0)" in p.stdout,
+          "the report names u5")
+    check(os.path.exists(os.path.join(out, "An_vs_T.png")), "the figure is drawn with u5 hollow")
+    # A tighter limit catches u3 too; none switches the check off (u5 back at A_n = 1).
+    p = run(script, [table, "-o", out, "--group", "K_ecm", "--normalise-by", "K_ecm=0",
+                     "--max-drift", "L_x=0.03", "--no-figures"])
+    rows = {r["job_id"]: r for r in read_csv(os.path.join(out, "rows.csv"))}
+    check(p.returncode == 1 and "(2 jobs of the curve left out as not steady" in p.stderr,
+          "--max-drift L_x=0.03: the untethered curve keeps 2 state points, too few, and says why")
+    p = run(script, [table, "-o", out, "--group", "K_ecm", "--normalise-by", "K_ecm=0",
+                     "--max-drift", "none", "--no-figures"])
+    rows = {r["job_id"]: r for r in read_csv(os.path.join(out, "rows.csv"))}
+    check(p.returncode == 0 and abs(float(rows["u5"]["A_n"]) - 1) < 1e-12
+          and rows["u5"]["steady"] == "true", "--max-drift none: u5 is used, A_n = 1")
+    p = run(script, [table, "-o", out, "--group", "A_ratio_drift", "--no-figures"])
+    check(p.returncode == 1 and "'A_ratio_drift' is a measured column" in p.stderr,
+          "a unitless _drift column is a measurement, not a state-point key")
+    p = run(script, [table, "-o", out, "--max-drift", "L_x=-1", "--no-figures"])
+    check(p.returncode == 1 and "--max-drift: L_x=-1: the limit must be a finite number >= 0"
+          in p.stderr, "a negative --max-drift is refused")
+
+
+# --- (d) bad input -----------------------------------------------------------------------
 def write(scratch, name, lines):
     path = os.path.join(scratch, name)
     with open(path, "w") as f:
@@ -277,7 +340,7 @@ def case_errors(script, scratch):
                                       "K_ecm"], 1, "--normalise-by: 'K_ecm' is not KEY=VALUE"),
         ("empty normalisation group", [write(scratch, "n2.csv", good), "--normalise-by",
                                        "K_ecm=7"], 1,
-         "the normalisation group of the whole sweep has no finished job"),
+         "the normalisation group of the whole sweep has no finished, steady job"),
         ("not a number", [write(scratch, "nan.csv", good[:4] + [
             good[4].replace(",1100,", ",11OO,")] + good[5:])], 1,
          "nan.csv line 5 \\(job u4\\): column 'A_t_max' = '11OO' is not a finite number"),
@@ -323,7 +386,7 @@ def main():
     shutil.rmtree(scratch, ignore_errors=True)
     os.makedirs(scratch)
     {"synthetic": case_synthetic, "normalisation": case_normalisation,
-     "errors": case_errors}[case](SCRIPT, scratch)
+     "steadiness": case_steadiness, "errors": case_errors}[case](SCRIPT, scratch)
     if failures:
         print("%d check(s) FAILED" % len(failures))
         sys.exit(1)

@@ -87,16 +87,31 @@ keys = head[3:head.index("A_ratio")]
 assert keys == sorted(keys) and "seed" in keys and "kT" in keys, keys
 assert head[-2:] == ["tau_d [tau]", "tau_r [tau]"], head
 means = head[head.index("A_ratio"):-2]
-names = [c.split(" [")[0] for c in means[0::2]]
+names = [c.split(" [")[0] for c in means[0::3]]
 assert names == sorted(names), names
-for mean, err in zip(means[0::2], means[1::2]):
+for mean, err, drift in zip(means[0::3], means[1::3], means[2::3]):
     n, _, unit = mean.partition(" [")
     assert err == n + "_error" + (" [" + unit if unit else ""), (mean, err)
+    assert drift == n + "_drift" + (" [" + unit if unit else ""), (mean, drift)
 assert "T_c [eps_c]" in head and "T_c_error [eps_c]" in head and "A_ratio_error" in head, head
+assert "L_x_drift [sigma]" in head, head
 assert len(rows) == 7 and all(r[1] == "done" for r in rows[1:]), rows
 for r in rows[1:]:
     assert all(c != "" for c in r), r
     float(r[head.index("T_c [eps_c]")])
+# The drift, recomputed from a job's series.csv and summary.json: the mean of the averaging
+# window's second half minus its first half's.
+import json, os
+for r in rows[1:]:
+    job = os.path.join("ws", "workspace", r[0])
+    series = list(csv.reader(open(os.path.join(job, "series.csv"))))
+    n = json.load(open(os.path.join(job, "summary.json")))["averages"]["T_c"]["samples"]
+    col = series[0].index("T_c [eps_c]")
+    window = [float(s[col]) for s in series[1:]][-n:]
+    h = n // 2
+    want = sum(window[-h:]) / h - sum(window[:h]) / h
+    got = float(r[head.index("T_c_drift [eps_c]")])
+    assert n >= 2 and abs(got - want) <= 1e-12 * max(1.0, abs(want)), (r[0], n, got, want)
 PY
 
 # 6. A failing point does not stop the others.
