@@ -28,10 +28,11 @@ DEBIAN_PACKAGES = {"numpy": "python3-numpy", "scipy": "python3-scipy",
 DESCRIPTION = """\
 Fits the paper's master curve to a sweep's results table.
 
-0. Steadiness: a job whose quantity K drifts over its averaging window by more than F of
-   its mean (|K_drift| > F |K|, --max-drift, default L_x=0.05: a box still growing or
-   shrinking under the barostat) is not a steady state. It is scaled like the others
-   (rows.csv, hollow in the figure) but sets no normalisation and enters no fit.
+0. Steadiness: a state point whose quantity K drifts over the averaging window by more
+   than F of its mean, averaged over replicates (|mean K_drift/K| > F, --max-drift,
+   default L_x=0.05: a box still growing or shrinking under the barostat) is not a steady
+   state. Its jobs are scaled like the others (rows.csv, hollow in the figure) but set no
+   normalisation and enter no fit.
 1. Per job: rA_t = (A_t - dA)/(A_t^max - dA), dA = A_t^max - min A_t^max, and
    A_n = (rA_t - min rA_t)/(max rA_t - min rA_t). The minima and maxima are over the state
    points (each the mean over its replicates) of the normalisation group (--normalise-by;
@@ -102,8 +103,9 @@ def parse_args(argv):
     p.add_argument("--min-error", type=float, default=1e-3, metavar="E",
                    help="floor of a state point's error of A_n (default: 1e-3)")
     p.add_argument("--max-drift", default="L_x=0.05", metavar="K=F[,K=F]",
-                   help="jobs whose K drifts by more than F of its mean over the averaging "
-                   "window are not steady: not fitted (default: L_x=0.05; none: no check)")
+                   help="state points whose K drifts by more than F of its mean over the "
+                   "averaging window (mean over replicates) are not steady: not fitted "
+                   "(default: L_x=0.05; none: no check)")
     p.add_argument("--no-figures", dest="figures", action="store_false",
                    help="write the tables only")
     return p.parse_args(argv)

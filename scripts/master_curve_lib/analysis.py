@@ -56,22 +56,30 @@ def row_values(table, keys, rows, temperature):
     return np.array(x), np.array(a_t), np.array(a_max), errors[0], errors[1]
 
 
-def steadiness(table, rows, max_drift):
-    """Per row: None if steady, else why not. A row is not steady when a quantity's drift over
-    its averaging window (the `<K>_drift` column of `sweep collect`: second half's mean minus
-    first half's) exceeds the limit relative to its mean: |K_drift| > limit |K|. Returns the
+def steadiness(table, rows, max_drift, point_of):
+    """Per row: None if its state point is steady, else why not. A state point is not steady
+    when a quantity's relative drift over the averaging window, averaged over its replicates,
+    exceeds the limit: mean over replicates of K_drift/K > limit in magnitude (K_drift: the
+    `<K>_drift` column of `sweep collect`, the second half's mean minus the first half's).
+    Averaging over replicates keeps one fluctuating replicate from deciding. Returns the
     reasons and the keys that could not be checked (no `<K>_drift` column)."""
     reasons, unchecked = [None] * len(rows), []
     for key, limit in max_drift:
         if not (table.has(key) and table.has(key + "_drift")):
             unchecked.append(key)
             continue
+        relative = {}
         for i, r in enumerate(rows):
             mean = table.number(r, key, "for --max-drift", allow_missing=True)
             drift = table.number(r, key + "_drift", "for --max-drift", allow_missing=True)
-            if math.isfinite(mean) and math.isfinite(drift) and abs(drift) > limit * abs(mean):
-                why = "%s drifts by %+.3g of its mean over the averaging window (limit %g)" % (
-                    key, drift / mean if mean else math.inf, limit)
+            if math.isfinite(mean) and math.isfinite(drift) and mean != 0:
+                relative.setdefault(point_of[i], []).append(drift / mean)
+        for i in range(len(rows)):
+            values = relative.get(point_of[i])
+            if values and abs(np.mean(values)) > limit:
+                why = ("%s drifts by %+.3g of its mean over the averaging window (mean of %d "
+                       "replicate%s; limit %g)" % (key, np.mean(values), len(values),
+                                                   "" if len(values) == 1 else "s", limit))
                 reasons[i] = why if reasons[i] is None else reasons[i] + "; " + why
     return reasons, unchecked
 
@@ -177,7 +185,7 @@ def analyse(table, opts):
     point_keys = [k for k in keys.state_keys if k != opts.replicate_key]
     point_of = [keys.label(r, point_keys) for r in rows]
     x, a_t, a_max, err_t, err_max = row_values(table, keys, rows, opts.temperature)
-    unsteady, unchecked = steadiness(table, rows, opts.max_drift)
+    unsteady, unchecked = steadiness(table, rows, opts.max_drift, point_of)
     steady = [why is None for why in unsteady]
     if not any(steady):
         raise InputError("%s: no finished job is steady (--max-drift %s): %s" % (
