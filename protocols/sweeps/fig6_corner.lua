@@ -1,9 +1,9 @@
 -- A 2 x 2 corner of the paper's Fig. 6 at reduced scale: active cohesive cancer cells with
 -- beta in {1e-3, 1e-2} and tau_p in {25, 250}; along each curve the self-propulsion f0 sets
 -- the measured temperature k_B T_c/(P sigma^3) (the paper's knob for active runs,
--- docs/model.md), all from one compressed tissue (the shared preparation). Seven f0 values
--- from 0.002 to 0.02 (a factor ~1.47 apart) x 3 seeds = 84 points, about 45 minutes on
--- 2 cores (docs/sweeps.md):
+-- docs/model.md), all from one compressed tissue (the shared preparation). Nine f0 values
+-- from 0.002 to 0.02, denser between 0.0095 and 0.014 where the cohesive (beta = 1e-2) cells
+-- melt, x 3 seeds = 108 points, about 60 minutes on 2 cores (docs/sweeps.md):
 --   invasim sweep init protocols/sweeps/fig6_corner.lua
 --   invasim sweep run out/fig6_corner
 --   invasim sweep collect out/fig6_corner -o out/fig6_corner/results.csv
@@ -13,7 +13,7 @@ return {
           quench_steps = 20000, steps = 250000, every = 1000,
           snapshot_every = 0, checkpoint_every = 10000 },
   product = { beta = { 1e-3, 1e-2 }, tau_p = { 25.0, 250.0 },
-              f0 = { 0.002, 0.003, 0.0045, 0.0065, 0.0095, 0.014, 0.02 } },
+              f0 = { 0.002, 0.003, 0.0045, 0.0065, 0.0095, 0.011, 0.0125, 0.014, 0.02 } },
   seeds = { 1, 2, 3 },
   prep = { set = { quench_steps = 0, steps = 0 } },
 }
