@@ -167,10 +167,13 @@ def report(result, paths):
     if unsteady:
         print("not steady, so not fitted and not used to normalise (%d of %d jobs):"
               % (len(unsteady), len(result["rows"])))
+        by_reason = {}
         for i in unsteady:
             r = result["rows"][i]
-            print("  %s (%s): %s" % (r.get("job_id") or "line %d" % r["_line"],
-                                     result["curve_of"][i], result["unsteady"][i]))
+            by_reason.setdefault((result["curve_of"][i], result["unsteady"][i]), []).append(
+                (r.get("job_id") or "line %d" % r["_line"])[:8])
+        for (curve, why), jobs in by_reason.items():
+            print("  %s: %s: %s" % (curve, why, ", ".join(jobs)))
     for c in result["curves"]:
         print("curve %s: %d state points, %d jobs: a = %.4g +- %.2g, b = %.4g +- %.2g, "
               "chi2/dof = %s" % (c["name"], len(c["points"]), c["jobs"], c["a"], c["a_error"],

@@ -290,7 +290,8 @@ def case_steadiness(script, scratch):
     check([j["job_id"] for j in fits["not_steady"]] == ["u5"]
           and fits["settings"]["max_drift"] == {"L_x": 0.05},
           "fits.json lists u5 as not steady, with the limit used")
-    check("not steady, so not fitted" in p.stdout and "u5 (K_ecm=0)" in p.stdout,
+    check("not steady, so not fitted" in p.stdout and "K_ecm=0: L_x drifts" in p.stdout
+          and ": u5\n" in p.stdout,
           "the report names u5")
     check(os.path.exists(os.path.join(out, "An_vs_T.png")), "the figure is drawn with u5 hollow")
     # A tighter limit catches u3 too; none switches the check off (u5 back at A_n = 1).
