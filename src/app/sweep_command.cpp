@@ -171,7 +171,7 @@ int run(const std::vector<std::string>& args) {
               << " threads exceed the " << n << " cores\n";
   settings.executable = executable();
   std::cout << "sweep run: " << ws.root().string() << ": " << settings.jobs << " at a time, "
-            << settings.threads << " threads each\n"
+            << settings.threads << (settings.threads == 1 ? " thread" : " threads") << " each\n"
             << std::flush;
   return sweep::run_local(ws, settings, std::cout);
 }
