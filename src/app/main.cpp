@@ -11,6 +11,7 @@
 #include "app/render_command.hpp"
 #include "app/sweep_command.hpp"
 #include "core/errors.hpp"
+#include "core/wait_policy.hpp"
 #include "invasim_version.hpp"
 #include "lua/fields.hpp"
 #include "lua/lua_state.hpp"
@@ -83,6 +84,7 @@ int run(const Command& command) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  invasim::use_passive_wait_policy_by_default(argv);
   bool traceback = false;
   try {
     if (argc > 1 && std::string(argv[1]) == "sweep")

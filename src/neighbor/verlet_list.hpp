@@ -1,9 +1,11 @@
 #pragma once
 // Full Verlet neighbour list built from a cell list, with a skin. Each site lists every
 // other site within its pair cutoff + skin (both directions, so forces are a per-site gather:
-// no atomics, and a summation order that does not depend on the thread count). Vertices of
-// the same adipocyte are excluded. The list rebuilds itself only when some site has moved
-// more than half the skin since the last build, the periodic box changed, or sites were added.
+// no atomics, and a summation order that does not depend on the thread count), in increasing
+// index order. Vertices of the same adipocyte are excluded. The list rebuilds itself only when
+// some site has moved more than half the skin since the last build, the periodic box changed,
+// or sites were added. The build scans the cells one by one, with the sites' data copied in
+// cell order, so that the candidates of neighbouring sites are read from contiguous memory.
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -31,6 +33,7 @@ class VerletList {
   // Forces a rebuild at the next update.
   void invalidate() { valid_ = false; }
 
+  // Full row of site i (count(i) entries, increasing index).
   int count(std::size_t i) const { return counts_[i]; }
   const int* neighbors(std::size_t i) const { return &list_[i * stride_]; }
   std::uint64_t builds() const { return builds_; }
@@ -49,8 +52,13 @@ class VerletList {
   std::vector<int> counts_;
   std::vector<int> list_;
   std::vector<Vec3> pos_at_build_;
-  // cell list scratch
+  // Cell list scratch: cell of each site, sites sorted by cell, and their data in that order
+  // (a contiguous scan of the 27 cells around a site).
   std::vector<int> cell_of_, cell_start_, cell_sites_;
+  std::vector<Vec3> cell_pos_;
+  std::vector<double> cell_diam_;
+  std::vector<int> cell_body_;
+  std::vector<SiteKind> cell_kind_;
 };
 
 }  // namespace invasim

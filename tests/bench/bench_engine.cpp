@@ -5,13 +5,20 @@
 // Each with 1 and 2 OpenMP threads. Usage: bench_engine [steps=2000]
 // `bench_engine lammps-data N FILE` writes workload (a)'s relaxed start as a LAMMPS data file
 // (types 1/2 = diameters 0.9/1.1) so compare_lammps.sh can time LAMMPS on the same state.
+// For scripts (OMP_NUM_THREADS sets the threads), each printing "<wall rate> <CPU rate>"
+// (particle-steps per second of wall time and of the process's CPU time; on a loaded machine
+// the CPU rate at 1 thread is the one to compare):
+//   bench_engine single N STEPS [beta=0] [kT=1e-3]   workload (a)
+//   bench_engine full N_CELLS STEPS                  workload (b), N_CELLS = 1500 or 7000
 #include <omp.h>
+#include <time.h>
 
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
+#include "core/wait_policy.hpp"
 #include "integrate/dynamics.hpp"
 #include "integrate/fire.hpp"
 #include "test_support.hpp"
@@ -24,6 +31,28 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// CPU time of the whole process (all threads), in seconds.
+double cpu_seconds() {
+  timespec t;
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+// Particle-steps per second of wall time and of CPU time.
+struct Rate {
+  double wall = 0.0, cpu = 0.0;
+};
+
+// Times `steps` steps of dyn on sys.
+Rate time_steps(System& sys, ForceField& ff, Dynamics& dyn, int steps) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const double c0 = cpu_seconds();
+  dyn.run(sys, ff, steps);
+  const double cpu = cpu_seconds() - c0, wall = seconds_since(t0);
+  const double work = double(sys.n_sites()) * steps;
+  return {work / wall, work / cpu};
+}
+
 // Relaxes the random start a little so the timed run sees a realistic contact network.
 void relax(System& sys, ForceField& ff) {
   FireParams fp;
@@ -32,8 +61,8 @@ void relax(System& sys, ForceField& ff) {
   Fire(fp).minimize(sys, ff);
 }
 
-// Times workload (a); returns particle-steps per second.
-double time_cancer(int n, double beta, int steps, std::uint64_t* builds = nullptr) {
+// Times workload (a) at temperature kT.
+Rate time_cancer(int n, double beta, int steps, std::uint64_t* builds = nullptr, double kT = 1e-3) {
   System sys = test::random_spheres(n, 0.65, false, 7);
   ForceField ff;
   ContactParams cp;
@@ -42,26 +71,26 @@ double time_cancer(int n, double beta, int steps, std::uint64_t* builds = nullpt
   ff.add(contacts);
   relax(sys, ff);
   Dynamics dyn(0.05);
-  dyn.add(Method::langevin(sys.sites_of_kind(SiteKind::kCancer), 0.2, 1e-3));
+  dyn.add(Method::langevin(sys.sites_of_kind(SiteKind::kCancer), 0.2, kT));
   dyn.run(sys, ff, 50);  // warm up
   const auto builds0 = contacts->neighbor_list().builds();
-  const auto t0 = std::chrono::steady_clock::now();
-  dyn.run(sys, ff, steps);
-  const double t = seconds_since(t0);
+  const Rate rate = time_steps(sys, ff, dyn, steps);
   if (builds) *builds = contacts->neighbor_list().builds() - builds0;
-  return double(n) * steps / t;
+  return rate;
 }
 
 void bench_cancer(int n, double beta, int steps, int threads) {
   omp_set_num_threads(threads);
   std::uint64_t builds = 0;
-  const double rate = time_cancer(n, beta, steps, &builds);
-  std::printf("| cancer only, beta=%-6g | %6d | %d | %10.3e | %5llu |\n", beta, n, threads, rate,
-              (unsigned long long)builds);
+  const Rate rate = time_cancer(n, beta, steps, &builds);
+  std::printf("| cancer only, beta=%-6g | %6d | %d | %10.3e | %10.3e | %5llu |\n", beta, n, threads,
+              rate.wall, rate.cpu, (unsigned long long)builds);
+  std::fflush(stdout);
 }
 
-void bench_full(int nx, int nyz, int n_cells, int steps, int threads) {
-  omp_set_num_threads(threads);
+// Times workload (b): nx x nyz x nyz adipocytes and n_cells cells.
+Rate time_full(int nx, int nyz, int n_cells, int steps, int* n_bodies = nullptr,
+               int* n_sites = nullptr) {
   System sys = test::slab_system(nx, nyz, n_cells, 5.2, 0.6, 11);
   ForceField ff = test::standard_forces(1e-2, 1000.0, 1.0);
   relax(sys, ff);
@@ -69,12 +98,18 @@ void bench_full(int nx, int nyz, int n_cells, int steps, int threads) {
   dyn.add(Method::active(sys.sites_of_kind(SiteKind::kCancer), 0.2, 0.05, 25.0, 1e-3));
   dyn.add(Method::damped(sys.sites_of_kind(SiteKind::kVertex), 0.2));
   dyn.run(sys, ff, 50);
-  const auto t0 = std::chrono::steady_clock::now();
-  dyn.run(sys, ff, steps);
-  const double t = seconds_since(t0);
-  const int n = int(sys.n_sites());
-  std::printf("| full: %3d adipocytes + %4d cells | %6d | %d | %10.3e | |\n",
-              int(sys.bodies().size()), n_cells, n, threads, double(n) * steps / t);
+  if (n_bodies) *n_bodies = int(sys.bodies().size());
+  if (n_sites) *n_sites = int(sys.n_sites());
+  return time_steps(sys, ff, dyn, steps);
+}
+
+void bench_full(int nx, int nyz, int n_cells, int steps, int threads) {
+  omp_set_num_threads(threads);
+  int bodies = 0, n = 0;
+  const Rate rate = time_full(nx, nyz, n_cells, steps, &bodies, &n);
+  std::printf("| full: %3d adipocytes + %4d cells | %6d | %d | %10.3e | %10.3e | |\n", bodies,
+              n_cells, n, threads, rate.wall, rate.cpu);
+  std::fflush(stdout);
 }
 
 }  // namespace
@@ -102,16 +137,31 @@ int write_lammps_data(int n, const char* path) {
 }
 
 int main(int argc, char** argv) {
+  use_passive_wait_policy_by_default(argv);  // as invasim does
   if (argc == 4 && std::string(argv[1]) == "lammps-data")
     return write_lammps_data(std::atoi(argv[2]), argv[3]);
-  if (argc == 4 && std::string(argv[1]) == "single") {  // one workload-(a) rate, for scripts
-    std::printf("%.3e\n", time_cancer(std::atoi(argv[2]), 0.0, std::atoi(argv[3])));
+  if (argc >= 4 && argc <= 6 && std::string(argv[1]) == "single") {  // workload (a), for scripts
+    const double beta = argc > 4 ? std::atof(argv[4]) : 0.0;
+    const double kT = argc > 5 ? std::atof(argv[5]) : 1e-3;
+    const Rate r = time_cancer(std::atoi(argv[2]), beta, std::atoi(argv[3]), nullptr, kT);
+    std::printf("%.3e %.3e\n", r.wall, r.cpu);
+    return 0;
+  }
+  if (argc == 4 && std::string(argv[1]) == "full") {  // workload (b), for scripts
+    const int n_cells = std::atoi(argv[2]);
+    if (n_cells != 1500 && n_cells != 7000) {
+      std::fprintf(stderr, "bench_engine full: N_CELLS = %d, expected 1500 or 7000\n", n_cells);
+      return 2;
+    }
+    const Rate r = n_cells == 1500 ? time_full(7, 2, 1500, std::atoi(argv[3]))
+                                   : time_full(8, 4, 7000, std::atoi(argv[3]));
+    std::printf("%.3e %.3e\n", r.wall, r.cpu);
     return 0;
   }
   const int steps = argc > 1 ? std::atoi(argv[1]) : 2000;
   std::printf("invasim engine benchmark, %d steps each\n", steps);
-  std::printf("| workload | sites | threads | particle-steps/s | list builds |\n");
-  std::printf("|---|---|---|---|---|\n");
+  std::printf("| workload | sites | threads | particle-steps/s (wall) | (CPU) | list builds |\n");
+  std::printf("|---|---|---|---|---|---|\n");
   for (int threads : {1, 2})
     for (int n : {1500, 7000, 28000}) bench_cancer(n, 0.0, steps, threads);
   for (int threads : {1, 2})
