@@ -26,6 +26,9 @@
 -- Decisions (docs/model.md): the minimisations between steps stop at ftol = 1e-3 and only the
 -- final state is minimised tightly (final_ftol = 1e-6): the intermediate states are not
 -- measured, and near jamming each 3 % step costs 1e4-1e5 FIRE iterations at ftol = 1e-4.
+-- FIRE's largest time step `dt_max` defaults to 0.15 sqrt(1e3 / eps_v) (at most 0.15) when
+-- the tissue has adipocytes, below the stability limit of their volume mode (see
+-- default_dt_max); without adipocytes, the engine's default.
 --
 --   require("lib.compress")(tissue, { to_phi = 0.72, out = out, from = invasim.from })
 local iv = require("invasim")
@@ -36,6 +39,7 @@ local spec = {
   to_phi = 0.72, step = iv.compress.defaults.step, ftol = 1e-3, final_ftol = 1e-6,
   cohesion = false,           -- keep the cancer cells' cohesion (beta) on while compressing
   max_steps = iv.Fire.defaults.max_steps,  -- FIRE iterations per minimisation
+  dt_max = { "number", range = "(0, inf)" },  -- FIRE's largest time step (default: default_dt_max)
   progress = true,
   out = { "string" },         -- the run directory: compressed.ckpt (for --from) and, on
                               -- SIGINT/SIGTERM, compressing.ckpt (for --resume)
@@ -43,6 +47,20 @@ local spec = {
 }
 
 local resume = require("lib.resume")
+
+-- FIRE's largest time step for this tissue. The adipocytes' volume term (eps_v) gives each mesh
+-- a stiff breathing mode: at eps_v = 1e3 and unit vertex mass semi-implicit Euler becomes
+-- unstable in it between dt = 0.2 and 0.25. With the engine's dt_max = 0.5, FIRE grew dt into
+-- that instability, reset, and grew it again, over and over: the reduced system took 114160
+-- iterations, the paper's 484720 (375000 of them in the final FIRE); with 0.15, 22840 and
+-- 45944 (docs/performance_compression.md). The mode's frequency grows as sqrt(eps_v), so the
+-- step shrinks as 1/sqrt(eps_v); it never exceeds 0.15 (softer meshes leave the contacts'
+-- own limit, not measured beyond that). Without adipocytes (or eps_v = 0): the engine's.
+local function default_dt_max(tissue)
+  local eps_v = tissue.shape and tissue.shape:params().eps_v or 0
+  if tissue.sys:n_adipocytes() == 0 or eps_v <= 0 then return iv.Fire.defaults.dt_max end
+  return 0.15 * math.sqrt(math.min(1.0, 1e3 / eps_v))
+end
 
 -- Saves the (partly) compressed tissue and `state` to o.checkpoint on a stop signal and stops
 -- the run with a message saying how to continue it.
@@ -77,8 +95,9 @@ local function compress(tissue, o)
   -- Cohesion off: the engine applies this for the compression and the final FIRE only.
   local during = (not o.cohesion and tissue.contacts) and { contacts = { beta = 0.0 } } or nil
   local beta = tissue.contacts and (during and 0.0 or tissue.contacts:params().beta) or 0.0
-  log.say("compress", "to phi = %g in steps of %g, FIRE to %g (final %g), cohesion beta = %g during compression",
-          o.to_phi, o.step, o.ftol, o.final_ftol, beta)
+  local dt_max = o.dt_max or default_dt_max(tissue)
+  log.say("compress", "to phi = %g in steps of %g, FIRE to %g (final %g, dt_max %g), cohesion beta = %g during compression",
+          o.to_phi, o.step, o.ftol, o.final_ftol, dt_max, beta)
   local saved  -- the state of a compression stopped by a signal, when resuming it
   if o.checkpoint and resume.compression_pending() then
     saved = resume.deserialize(iv.load_checkpoint(o.checkpoint, { system = sys }))
@@ -94,7 +113,7 @@ local function compress(tissue, o)
   if not report then
     local progress = o.progress and iv.Progress{ total = 0, label = "compress", every_seconds = 10 } or nil
     report = iv.compress(sys, {
-      to_phi = o.to_phi, step = o.step, ftol = o.ftol, max_steps = o.max_steps,
+      to_phi = o.to_phi, step = o.step, ftol = o.ftol, max_steps = o.max_steps, dt_max = dt_max,
       continue_from = saved and saved.compress, contacts = during and during.contacts,
       callback = function(r)  -- each step in log.txt (the course of the compression)
         log.note("compress", "step %d: phi = %.4f, %d FIRE iterations so far", r.steps, r.phi, r.fire_steps)
@@ -115,7 +134,7 @@ local function compress(tissue, o)
   if not report.final then
     -- The final FIRE (or the rest of one stopped by a signal): a signal stops it before its
     -- next iteration, and the tissue, the report and the minimiser's state are saved.
-    local final = iv.Fire{ ftol = o.final_ftol, max_steps = o.max_steps }:minimize(sys, {
+    local final = iv.Fire{ ftol = o.final_ftol, max_steps = o.max_steps, dt_max = dt_max }:minimize(sys, {
       contacts = during and during.contacts, stop_on_signal = true,
       continue_from = saved and saved.final_fire and { fire_state = saved.final_fire } })
     if final.stopped then

@@ -121,18 +121,18 @@ FireResult Fire::minimize(System& sys, ForceField& ff, PressureWall* wall,
       }
       sum.v2 = 0.0;
     }
-    // Semi-implicit Euler with FIRE velocity mixing, using |v| and |F| after the kick.
-#pragma omp parallel for schedule(static) if (parallel_light(n))
-    for (std::size_t i = 0; i < n; ++i) s.vel[i] += dt / s.mass[i] * s.force[i];
-    if (wall) wall_v += dt / wall_mass * fw;
-    Sums mixed = deterministic_sum(n, Sums{}, [&](std::size_t i) {
-      return Sums{0.0, s.vel[i].squaredNorm(), s.force[i].squaredNorm(), 0.0};
+    // Semi-implicit Euler with FIRE velocity mixing, using |v| after the kick and |F| (the
+    // forces are unchanged since sum.f2). One pass kicks and sums |v|^2 (each site is visited
+    // once, in deterministic_sum's fixed blocks).
+    double v2 = deterministic_sum(n, 0.0, [&](std::size_t i) {
+      s.vel[i] += dt / s.mass[i] * s.force[i];
+      return s.vel[i].squaredNorm();
     });
     if (wall) {
-      mixed.v2 += wall_v * wall_v;
-      mixed.f2 += fw * fw;
+      wall_v += dt / wall_mass * fw;
+      v2 += wall_v * wall_v;
     }
-    const double ratio = mixed.f2 > 0.0 ? std::sqrt(mixed.v2 / mixed.f2) : 0.0;
+    const double ratio = sum.f2 > 0.0 ? std::sqrt(v2 / sum.f2) : 0.0;
 #pragma omp parallel for schedule(static) if (parallel_light(n))
     for (std::size_t i = 0; i < n; ++i) {
       s.vel[i] = (1.0 - alpha) * s.vel[i] + alpha * ratio * s.force[i];
