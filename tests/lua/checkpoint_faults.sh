@@ -36,7 +36,7 @@ status=0
 INVASIM_TEST_FAIL_CHECKPOINT_WRITE=2 "$invasim" run checkpoint_faults.lua --out "$work/nospace" > "$log" 2>&1 || status=$?
 [ "$status" -eq 1 ] || fail "a failed checkpoint write exited with $status (expected 1)" "$log"
 ckpt=$work/nospace/checkpoint/state.ckpt
-grep -q "cannot write \"$ckpt\": write failed: No space left on device.*last good checkpoint: $ckpt (step 200)" "$log" ||
+grep -q "cannot write '$ckpt': write failed: No space left on device.*last good checkpoint: $ckpt (step 200)" "$log" ||
   fail "no message naming the file and the last good checkpoint" "$log"
 ! ls "$ckpt".tmp.* > /dev/null 2>&1 || fail "a temporary file was left behind" "$log"
 "$invasim" run checkpoint_faults.lua --set check="$ckpt" > "$work/load2.log" 2>&1 ||

@@ -8,6 +8,6 @@ local tissue = require("lib.init"){ N_a = 2, N_c = 20, L0 = 30.0, seed = 1 }
 local ok, err = pcall(require("lib.compress"), tissue, { to_phi = 0.5, progress = false })
 assert(not ok, "the compression with a NaN position should have stopped")
 print(err)
-assert(tostring(err):find("compress: FIRE iteration %d+: blow%-up at step %d+: site 0 %(.-%) has a non%-finite position %(nan"),
+assert(tostring(err):find("compress%.lua:%d+: FIRE iteration %d+: blow%-up at step %d+: site 0 %(.-%) has a non%-finite position %(nan"),
        "not the blow-up guard's diagnostic: " .. tostring(err))
 print("nan_in_compression: the blow-up guard stopped the compression")
