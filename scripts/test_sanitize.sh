@@ -12,9 +12,9 @@ command -v ccache > /dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DINVASIM_SANITIZE=address,undefined \
   "${launcher[@]}" > /dev/null
 cmake --build "$build" -j"$(nproc)"
-# halt_on_error: the first finding ends the process (and fails its test). detect_leaks=0 in the
-# OpenMP worker threads would hide nothing of ours; leaks are checked (LeakSanitizer is part of
-# ASan). Suppressions, each justified there: scripts/sanitize.supp (UBSan), scripts/lsan.supp.
+# halt_on_error: the first finding ends the process (and fails its test). LeakSanitizer (part of
+# ASan) checks leaks at exit.
+# Suppressions, each justified there: scripts/ubsan.supp, scripts/lsan.supp.
 here=$(pwd)
 export ASAN_OPTIONS="halt_on_error=1:abort_on_error=0:detect_stack_use_after_return=0"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$here/scripts/ubsan.supp"
