@@ -2,7 +2,8 @@
 # The sanitizer CI job (issue 14): builds a second build directory, build-sanitize, with
 # -DINVASIM_SANITIZE=address,undefined and runs a fast subset of the default suite under it
 # (every unit test and the Lua/CLI tests, less the long kill-and-resume and full-protocol runs;
-# about 15 minutes on 2 cores with a warm ccache). The first ASan or UBSan finding fails the run.
+# budget about 15 minutes on 2 cores with a warm ccache, not yet measured). The first ASan or
+# UBSan finding fails the run.
 # Usage: scripts/test_sanitize.sh [--all]   (--all: the whole default suite, ctest -LE long)
 set -euo pipefail
 cd "$(dirname "$0")/.."
