@@ -103,6 +103,10 @@ return function(tissue, opts)
   end
   local parts = { system = sys, dynamics = dyn, tethers = tissue.tethers, correlator = correlator }
   local checkpoint = o.out and resume.checkpoint_path(o.out) or nil
+  if o.steps > math.maxinteger - sys:step() then  -- the step counter is a 64-bit integer
+    error(string.format("%s: steps = %d from step %d overflows the step counter (at most %d)",
+                        o.label, o.steps, sys:step(), math.maxinteger), 2)
+  end
   local rows, end_step = {}, sys:step() + o.steps
   if resume.pending() and checkpoint then
     local state = resume.deserialize(iv.load_checkpoint(checkpoint, parts))

@@ -21,8 +21,19 @@ return function(tissue, opts)
   end
   local sys = tissue.sys
   local before = sys:packing()
-  local r = iv.rescale(sys, { phi_a = o.phi_a, ftol = o.ftol, max_steps = o.max_steps })
+  local r = iv.rescale(sys, { phi_a = o.phi_a, ftol = o.ftol, max_steps = o.max_steps,
+                              stop_on_signal = true })
   local after = sys:packing()
+  if r.stopped then
+    -- No checkpoint inside the rescale: the compressed tissue (compressed.ckpt) is the last
+    -- state saved, and --resume starts the run again from the beginning (like a quench).
+    local dir = require("lib.resume").run_dir()
+    error(string.format("stopped by %s during the rescale's FIRE at iteration %d (phi_a %.4f); " ..
+                        "no checkpoint is written during the rescale: %s", iv.interrupted() or "a signal",
+                        r.steps, after.adipocyte,
+                        dir and "invasim run --resume " .. dir .. " starts the run again from the beginning"
+                        or "run the protocol again from the start"), 0)
+  end
   log.say("rescale", "phi_a %.4f -> %.4f (phi %.4f), box %s, FIRE %d steps, max force %.2e%s",
           before.adipocyte, after.adipocyte, after.total, log.box(sys:box().lengths), r.steps,
           r.max_force, r.converged and "" or " (NOT converged)")

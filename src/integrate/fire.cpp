@@ -6,6 +6,7 @@
 
 #include "core/deterministic_sum.hpp"
 #include "core/errors.hpp"
+#include "integrate/blowup_guard.hpp"
 
 namespace invasim {
 
@@ -71,6 +72,14 @@ FireResult Fire::minimize(System& sys, ForceField& ff, PressureWall* wall,
   int n_positive = resume ? resume->n_positive : 0;
   if (resume && wall) wall_v = resume->wall_velocity;
   FireResult result;
+  // The blow-up guard, its message prefixed with the iteration.
+  auto guard = [&sys](std::uint64_t iteration) {
+    try {
+      check_blowup(sys);
+    } catch (const SimulationError& e) {
+      fail_simulation("FIRE iteration ", iteration, ": ", e.what());
+    }
+  };
   ff.compute(sys);
   for (result.steps = resume ? resume->steps : 0;; ++result.steps) {
     if (control && control->stop && control->stop()) {  // an iteration boundary
@@ -95,8 +104,14 @@ FireResult Fire::minimize(System& sys, ForceField& ff, PressureWall* wall,
       result.converged = result.max_force < p.ftol && wall_ok;
       break;
     }
-    if (!std::isfinite(sum.f2))
-      fail_simulation("FIRE: a force became non-finite at step ", result.steps);
+    // Blow-up guard (integrate/blowup_guard.hpp) inside minimisations too (issue 14): a
+    // non-finite force, and every kDefaultEvery iterations a non-finite position or velocity
+    // (a NaN position can give zero forces, and FIRE would "converge" on it).
+    if (!std::isfinite(sum.f2) || result.steps % BlowupGuard::kDefaultEvery == 0) {
+      guard(result.steps);
+      if (!std::isfinite(sum.f2))
+        fail_simulation("FIRE: a force became non-finite at step ", result.steps);
+    }
     // At rest (the first step, or right after a reset) there is no uphill move to undo.
     const bool at_rest = sum.v2 == 0.0;
     if (sum.power > 0.0 || at_rest) {
@@ -147,6 +162,7 @@ FireResult Fire::minimize(System& sys, ForceField& ff, PressureWall* wall,
   }
 #pragma omp parallel for schedule(static) if (parallel_light(n))
   for (std::size_t i = 0; i < n; ++i) s.vel[i].setZero();
+  guard(result.steps);
   result.energy = ff.energy(sys);
   return result;
 }

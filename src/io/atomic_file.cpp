@@ -11,6 +11,7 @@
 #include <system_error>
 
 #include "io/io_error.hpp"
+#include "io/test_hooks.hpp"
 
 namespace invasim {
 
@@ -84,7 +85,20 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
     fail_io("cannot write ", quoted(path), ": cannot create temporary file ", quoted(tmp), ": ",
             std::strerror(err));
   }
-  if (!write_all(fd.get(), contents)) fail("write failed");
+  // Fault injection for the reliability tests (io/test_hooks.hpp): stop halfway through.
+  std::string_view rest = contents;
+  if (const WriteFault fault = checkpoint_write_fault(path); fault != WriteFault::kNone) {
+    const std::string_view half = contents.substr(0, contents.size() / 2);
+    if (!write_all(fd.get(), half)) fail("write failed");
+    if (fault == WriteFault::kNoSpace) {
+      errno = ENOSPC;
+      fail("write failed");
+    }
+    ::fsync(fd.get());
+    pause_inside_write(path);
+    rest = contents.substr(half.size());
+  }
+  if (!write_all(fd.get(), rest)) fail("write failed");
   if (::fsync(fd.get()) != 0) fail("fsync failed");
   if (fd.close() != 0) fail("close failed");
   if (::rename(tmp.c_str(), path.c_str()) != 0) fail("rename of the temporary file failed");

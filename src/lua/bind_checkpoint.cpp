@@ -31,27 +31,27 @@ namespace invasim::lua {
 CheckpointParts read_checkpoint_parts(Kwargs& kw, bool need_system) {
   lua_State* L = kw.state();
   CheckpointParts p;
-  auto object = [&](const char* key, const char* metatable) -> int {
+  // The stack index of kw[key] (0 if nil); `is_type` checks its type tag, `wanted` names it.
+  auto object = [&](const char* key, bool (*is_type)(lua_State*, int), const char* wanted) -> int {
     const int type = kw.push(key);
     if (type == LUA_TNIL) {
       lua_pop(L, 1);
       return 0;
     }
-    if (metatable && !luaL_testudata(L, -1, metatable))
-      fail_input(kw.owner(), ": key '", key, "' must be a ", metatable + 8, ", got ",
-                 type_name_at(L, -1));
+    if (is_type && !is_type(L, -1))
+      fail_input(kw.owner(), ": key '", key, "' must be a ", wanted, ", got ", type_name_at(L, -1));
     return lua_gettop(L);
   };
   if (need_system) {
-    const int s = object("system", LuaType<Simulation>::metatable);
+    const int s = object("system", &is<Simulation>, "System");
     if (!s) fail_input(kw.owner(), ": missing required key 'system' (a System)");
     p.sim = check_shared<Simulation>(L, s);
-    if (const int d = object("dynamics", LuaType<DynamicsHandle>::metatable))
+    if (const int d = object("dynamics", &is<DynamicsHandle>, "Dynamics"))
       p.dyn = check_shared<DynamicsHandle>(L, d);
   }
-  if (const int t = object("tethers", LuaType<Tethers>::metatable))
+  if (const int t = object("tethers", &is<Tethers>, "Tethers"))
     p.tethers = check_shared<Tethers>(L, t);
-  if (const int c = object("correlator", nullptr)) {
+  if (const int c = object("correlator", nullptr, "Correlator")) {
     p.correlator = shared_correlator(L, c);
     if (!p.correlator)
       fail_input(kw.owner(), ": key 'correlator' must be a Correlator, got ", type_name_at(L, c));

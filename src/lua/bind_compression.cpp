@@ -49,6 +49,7 @@ const FieldTable<CompressionParams>& compress_fields() {
 struct RescaleKeys {
   double phi_a = 0.0;
   FireParams fire;
+  bool stop_on_signal = false;  // SIGINT/SIGTERM ends the FIRE before its next iteration
 };
 
 const FieldTable<RescaleKeys>& rescale_fields() {
@@ -57,6 +58,9 @@ const FieldTable<RescaleKeys>& rescale_fields() {
     std::vector<Field<P>> f = {required(number<P>("phi_a", &P::phi_a, Range::between(0, 1), "1",
                                                   "adipocyte packing fraction to reach"))};
     for (auto& fire : fire_fields<P>(&P::fire)) f.push_back(std::move(fire));
+    f.push_back(boolean<P>("stop_on_signal", &P::stop_on_signal,
+                           "a SIGINT/SIGTERM ends the FIRE before its next iteration (stopped = "
+                           "true in the result)"));
     return f;
   }());
   return table;
@@ -138,8 +142,10 @@ int l_rescale(lua_State* L) {
   const double phi_a = k.phi_a;
   const FireParams& fire = k.fire;
   sim->changed();
+  FireControl control;
+  if (k.stop_on_signal) control.stop = [] { return stop_requested() != 0; };
   const FireResult r = engine_call(
-      "rescale", [&] { return rescale_to_phi_a(sim->system, sim->forces, phi_a, fire); });
+      "rescale", [&] { return rescale_to_phi_a(sim->system, sim->forces, phi_a, fire, &control); });
   push_fire_result(L, r);
   return 1;
 }

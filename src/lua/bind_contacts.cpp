@@ -40,7 +40,9 @@ std::string LuaType<Contacts>::describe(const Contacts& c) {
 
 // The contact keys present in kw into p (the others keep p's values), for the `contacts`
 // key of compress and minimize (TemporaryContacts); checks kw for unknown keys.
-void read_contact_params(Kwargs& kw, ContactParams& p) { contact_fields().set(kw, p); }
+void read_contact_params(Kwargs& kw, ContactParams& p) {
+  contact_fields().set(kw, p);
+}
 
 namespace {
 

@@ -154,8 +154,7 @@ const luaL_Reg kMethods[] = {
 }  // namespace
 
 std::shared_ptr<TimeCorrelator> shared_correlator(lua_State* L, int index) {
-  auto* slot = static_cast<std::shared_ptr<CorrelatorHandle>*>(
-      luaL_testudata(L, index, LuaType<CorrelatorHandle>::metatable));
+  auto* slot = test<CorrelatorHandle>(L, index);
   if (!slot || !*slot) return nullptr;
   return std::shared_ptr<TimeCorrelator>(*slot, &(*slot)->correlator);
 }

@@ -119,7 +119,7 @@ int l_pressure_wall(lua_State* L) {
   auto wall = std::make_shared<PressureWall>(pressure_wall_fields().read(kw));
   std::shared_ptr<Walls> walls;
   if (kw.push("walls") != LUA_TNIL) {
-    if (!luaL_testudata(L, -1, LuaType<Walls>::metatable))
+    if (!is<Walls>(L, -1))
       fail_input("pressure_wall: key 'walls' must be a Walls force, got ", type_name_at(L, -1));
     walls = check_shared<Walls>(L, lua_gettop(L));
   }

@@ -113,8 +113,7 @@ int l_snapshot_write(lua_State* L) {
 }  // namespace
 
 std::shared_ptr<SnapshotWriter> shared_snapshots(lua_State* L, int index) {
-  auto* slot = static_cast<std::shared_ptr<SnapshotWriter>*>(
-      luaL_testudata(L, index, LuaType<SnapshotWriter>::metatable));
+  auto* slot = test<SnapshotWriter>(L, index);
   return slot ? *slot : nullptr;
 }
 

@@ -14,6 +14,7 @@
 #include <chrono>
 #include <vector>
 
+#include "core/memory_budget.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
 #include "measure/block_average.hpp"
@@ -118,6 +119,9 @@ int l_histogram(lua_State* L) {
   const int bins = kw.integer<int>("bins", 20, Range::at_least(1));
   kw.finish();
   if (!(hi > lo)) fail_input("histogram: hi = ", hi, " must be greater than lo = ", lo);
+  // Per bin: edges, counts, density and the counts' copy (4 x 8 bytes) and three Lua table
+  // slots (3 x 16 bytes).
+  check_memory("histogram", "bins", double(bins), 80.0);
   const Histogram h = histogram(values, lo, hi, bins);
   const std::vector<double> counts(h.counts.begin(), h.counts.end());
   return push_results(L, 1, [&h, &counts](lua_State* S) noexcept {

@@ -26,6 +26,14 @@ struct LuaType<Progress> {
   }
 };
 
+// Declared in engine_types.hpp: the Progress at `index`, or nullptr if it is none.
+Progress* test_progress(lua_State* L, int index) {
+  auto* slot = test<Progress>(L, index);
+  if (slot == nullptr) return nullptr;
+  if (!*slot) throw InputError("Progress object is no longer valid");
+  return slot->get();
+}
+
 namespace {
 
 // The keys of invasim.Progress{} besides `live` (default: whether stderr is a terminal, known

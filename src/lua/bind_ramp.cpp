@@ -23,8 +23,7 @@ NumberOrRamp kw_number_or_ramp(Kwargs& kw, std::string_view key, Range range,
   lua_State* L = kw.state();
   const int type = kw.push(key);
   if (type == LUA_TUSERDATA) {
-    auto* ramp =
-        static_cast<std::shared_ptr<Ramp>*>(luaL_testudata(L, -1, LuaType<Ramp>::metatable));
+    auto* ramp = test<Ramp>(L, -1);
     if (!ramp || !*ramp)
       fail_input(kw.owner(), ": key '", key, "' must be a number or an invasim.ramp{}, got ",
                  type_name_at(L, -1));

@@ -93,10 +93,10 @@ Trigger kw_trigger(Kwargs& kw) {
 
 int l_new(lua_State* L) {
   Kwargs kw(L, 1, "Simulation");
-  if (kw.push("system") == LUA_TNIL || !luaL_testudata(L, -1, LuaType<Simulation>::metatable))
+  if (kw.push("system") == LUA_TNIL || !is<Simulation>(L, -1))
     fail_input("Simulation: key 'system' must be a System, got ", type_name_at(L, -1));
   auto system = check_shared<Simulation>(L, lua_gettop(L));
-  if (kw.push("dynamics") == LUA_TNIL || !luaL_testudata(L, -1, LuaType<DynamicsHandle>::metatable))
+  if (kw.push("dynamics") == LUA_TNIL || !is<DynamicsHandle>(L, -1))
     fail_input("Simulation: key 'dynamics' must be a Dynamics, got ", type_name_at(L, -1));
   auto dyn = check_shared<DynamicsHandle>(L, lua_gettop(L));
   kw.finish();

@@ -352,13 +352,13 @@ int l_add(lua_State* L) {
     sim->handles.emplace_back(handle);
     sim->changed();
   };
-  if (luaL_testudata(L, 2, LuaType<Contacts>::metatable))
+  if (is<Contacts>(L, 2))
     attach(check_shared<Contacts>(L, 2), "Contacts");
-  else if (luaL_testudata(L, 2, LuaType<Walls>::metatable))
+  else if (is<Walls>(L, 2))
     attach(check_shared<Walls>(L, 2), "Walls");
-  else if (luaL_testudata(L, 2, LuaType<Shape>::metatable))
+  else if (is<Shape>(L, 2))
     attach(check_shared<Shape>(L, 2), "Shape");
-  else if (luaL_testudata(L, 2, LuaType<Tethers>::metatable))
+  else if (is<Tethers>(L, 2))
     attach(check_shared<Tethers>(L, 2), "Tethers");
   else
     throw InputError(bad_argument(L, 2, "force (Contacts, Walls, Shape or Tethers)"));

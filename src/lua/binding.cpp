@@ -1,5 +1,7 @@
 #include "lua/binding.hpp"
 
+#include <algorithm>
+#include <mutex>
 #include <vector>
 
 #include "lua/kwargs.hpp"
@@ -19,14 +21,50 @@ void push_where(lua_State* L) {
   lua_pushliteral(L, "");
 }
 
-// Type name of a value, using the __name of bound userdata ("invasim.Progress" -> "Progress").
+namespace detail {
+
+namespace {
+std::mutex tags_mutex;
+std::vector<const TypeTag*>& registered_tags() {
+  static std::vector<const TypeTag*> tags;
+  return tags;
+}
+}  // namespace
+
+void register_tag(const TypeTag* tag) {
+  std::lock_guard lock(tags_mutex);
+  auto& tags = registered_tags();
+  if (std::find(tags.begin(), tags.end(), tag) == tags.end()) tags.push_back(tag);
+}
+
+const TypeTag* tag_at(lua_State* L, int index) {
+  if (lua_type(L, index) != LUA_TUSERDATA || lua_rawlen(L, index) != kUserdataSize) return nullptr;
+  UserdataHeader header;
+  std::memcpy(&header, lua_touserdata(L, index), sizeof header);
+  std::lock_guard lock(tags_mutex);
+  const auto& tags = registered_tags();
+  return std::find(tags.begin(), tags.end(), header.tag) != tags.end() ? header.tag : nullptr;
+}
+
+int gc(lua_State* L) {
+  if (const TypeTag* tag = tag_at(L, 1))
+    tag->destroy(static_cast<unsigned char*>(lua_touserdata(L, 1)) + kPayloadOffset);
+  return 0;
+}
+
+}  // namespace detail
+
+// Type name of a value: a bound object's type from its tag ("Progress"), "userdata" for a
+// foreign userdata dressed in an invasim metatable, the __name of other userdata ("FILE*"),
+// else the Lua type.
 std::string type_name_at(lua_State* L, int index) {
   if (lua_type(L, index) == LUA_TNONE) return "no value";
+  if (const TypeTag* tag = detail::tag_at(L, index)) return tag->name;
   const int field = luaL_getmetafield(L, index, "__name");  // pushes nothing if absent
   if (field == LUA_TSTRING) {
     std::string name = lua_tostring(L, -1);
     lua_pop(L, 1);
-    if (name.rfind("invasim.", 0) == 0) name.erase(0, 8);
+    if (name.rfind("invasim.", 0) == 0) return luaL_typename(L, index);
     return name;
   }
   if (field != LUA_TNIL) lua_pop(L, 1);
@@ -35,15 +73,32 @@ std::string type_name_at(lua_State* L, int index) {
 
 namespace {
 
-// The name of the running C function and whether it was called as a method (obj:f()).
+// Registry key of the table {[method's C function] = its name} of every bound type.
+char method_names_key;
+
+// The name of the running C function and whether it was called as a method (obj:f()). When
+// Lua cannot name it (called through pcall or as t[k](...)), a bound method is named from the
+// method table, and taken as called with its object as argument 1. Never raises.
 std::string running_function(lua_State* L, bool& method) {
   std::string function = "?";
   method = false;
   lua_Debug ar;
   if (lua_getstack(L, 0, &ar)) {
-    lua_getinfo(L, "n", &ar);
-    if (ar.name) function = ar.name;
-    method = ar.namewhat && std::strcmp(ar.namewhat, "method") == 0;
+    lua_getinfo(L, "nf", &ar);                        // "f" pushes the function
+    if (ar.name && std::strcmp(ar.name, "?") != 0) {  // "?": called as t[k](...)
+      function = ar.name;
+      method = ar.namewhat && std::strcmp(ar.namewhat, "method") == 0;
+    } else if (lua_rawgetp(L, LUA_REGISTRYINDEX, &method_names_key) == LUA_TTABLE) {
+      lua_pushvalue(L, -2);
+      if (lua_rawget(L, -2) == LUA_TSTRING) {
+        function = lua_tostring(L, -1);
+        method = true;
+      }
+      lua_pop(L, 2);  // the name (or nil) and the table
+    } else {
+      lua_pop(L, 1);  // not a table
+    }
+    lua_pop(L, 1);  // the function
   }
   return function;
 }
@@ -61,6 +116,28 @@ std::string bad_argument(lua_State* L, int arg, const std::string& expected,
   return "bad argument #" + std::to_string(arg) + " to '" + function + "' (" + expected +
          " expected, got " + got + ")";
 }
+
+namespace detail {
+
+std::string wrong_type_message(lua_State* L, int index, const char* expected) {
+  std::string message = bad_argument(L, index, expected);
+  if (lua_type(L, index) == LUA_TUSERDATA) {
+    // A bound object of another type, or a userdata dressed in our metatable: name the
+    // position plainly (the method-call hints of bad_argument would mislead).
+    bool method = false;
+    const std::string function = running_function(L, method);
+    const std::string what = type_name_at(L, index);
+    if (method && index == 1)
+      return "bad self for '" + function + "' (" + expected + " expected, got " + what + ")";
+    return "bad argument #" + std::to_string(method ? index - 1 : index) + " to '" + function +
+           "' (" + expected + " expected, got " + what + ")";
+  }
+  if (index == 1 && message.back() == ')')  // most likely obj.method(...) for obj:method(...)
+    message.insert(message.size() - 1, "; for a method call write obj:method(...)");
+  return message;
+}
+
+}  // namespace detail
 
 namespace {
 char stop_token;  // its address identifies the stop sentinel
@@ -165,6 +242,19 @@ void define_metatable(lua_State* L, const char* name, const char* type_name,
   lua_setfield(L, -2, "__tostring");
   lua_newtable(L);
   luaL_setfuncs(L, methods, 0);
+  // method_names[f] = "name" for each method (see running_function).
+  if (lua_rawgetp(L, LUA_REGISTRYINDEX, &method_names_key) != LUA_TTABLE) {
+    lua_pop(L, 1);
+    lua_newtable(L);
+    lua_pushvalue(L, -1);
+    lua_rawsetp(L, LUA_REGISTRYINDEX, &method_names_key);
+  }
+  for (const luaL_Reg* m = methods; m->name != nullptr; ++m) {
+    lua_pushcfunction(L, m->func);
+    lua_pushstring(L, m->name);
+    lua_rawset(L, -3);
+  }
+  lua_pop(L, 1);
   lua_pushstring(L, type_name);
   lua_pushcclosure(L, &lua_wrap<&l_index>, 2);
   lua_setfield(L, -2, "__index");

@@ -176,17 +176,67 @@ int lua_wrap(lua_State* L) {
   return lua_error(L);
 }
 
+// --- Type tags ---
+// A bound object's userdata is [TypeTag pointer][nullptr][std::shared_ptr<T>]: the tag names
+// the C++ type stored in it and is checked on every access (check, test, __gc, __tostring).
+// The metatable is not trusted for that, since debug.setmetatable can swap it. The nullptr
+// at offset 8 makes the block read as a closed file to Lua's io library should a script give
+// a bound object the FILE* metatable (io then refuses it instead of using the tag as a FILE*).
+
+// Identifies one bound C++ type; `destroy` resets the shared_ptr stored in a payload.
+struct TypeTag {
+  const char* name;
+  void (*destroy)(void* payload) noexcept;
+};
+
+namespace detail {
+
+struct UserdataHeader {
+  const TypeTag* tag;
+  void* closed_file;  // always nullptr (see above)
+};
+constexpr std::size_t kPayloadOffset = sizeof(UserdataHeader);
+constexpr std::size_t kUserdataSize = kPayloadOffset + sizeof(std::shared_ptr<void>);
+
+template <typename T>
+void destroy_payload(void* payload) noexcept {
+  auto* slot = static_cast<std::shared_ptr<T>*>(payload);
+  slot->~shared_ptr();
+  new (slot) std::shared_ptr<T>();  // a resurrected userdata reads as "no longer valid"
+}
+
+template <typename T>
+inline constexpr TypeTag kTypeTag{LuaType<T>::name, &destroy_payload<T>};
+
+// Adds a tag to the set tag_at() accepts (define_type does it). Thread-safe.
+void register_tag(const TypeTag* tag);
+
+// The tag of the bound object at `index`, or nullptr if the value is anything else (not a full
+// userdata, a userdata of another size, or one whose first word is no registered tag).
+const TypeTag* tag_at(lua_State* L, int index);
+
+// The payload (the shared_ptr's address) of the bound object at `index` if it holds a T.
+template <typename T>
+std::shared_ptr<T>* test_slot(lua_State* L, int index) {
+  if (lua_type(L, index) != LUA_TUSERDATA || lua_rawlen(L, index) != kUserdataSize) return nullptr;
+  auto* block = static_cast<unsigned char*>(lua_touserdata(L, index));
+  UserdataHeader header;
+  std::memcpy(&header, block, sizeof header);
+  if (header.tag != &kTypeTag<T>) return nullptr;
+  return std::launder(reinterpret_cast<std::shared_ptr<T>*>(block + kPayloadOffset));
+}
+
+// "bad argument #1 to 'f' (System expected, got Contacts)" and the method-call hints.
+std::string wrong_type_message(lua_State* L, int index, const char* expected);
+
+}  // namespace detail
+
 // The shared_ptr held by the userdata at `index`; throws InputError if the value is not a T
-// or the object was already collected.
+// (by its type tag) or the object was already collected.
 template <typename T>
 std::shared_ptr<T>& check_shared(lua_State* L, int index) {
-  auto* slot = static_cast<std::shared_ptr<T>*>(luaL_testudata(L, index, LuaType<T>::metatable));
-  if (slot == nullptr) {
-    std::string message = bad_argument(L, index, LuaType<T>::name);
-    if (index == 1 && message.back() == ')')  // most likely obj.method(...) for obj:method(...)
-      message.insert(message.size() - 1, "; for a method call write obj:method(...)");
-    throw InputError(message);
-  }
+  auto* slot = detail::test_slot<T>(L, index);
+  if (slot == nullptr) throw InputError(detail::wrong_type_message(L, index, LuaType<T>::name));
   if (!*slot) throw InputError(std::string(LuaType<T>::name) + " object is no longer valid");
   return *slot;
 }
@@ -197,16 +247,32 @@ T& check(lua_State* L, int index) {
   return *check_shared<T>(L, index);
 }
 
-// Pushes a new userdata holding `object` (placement new of the shared_ptr) with T's metatable.
-// The object moves into the userdata only once its memory exists: if the allocation fails, it
-// is still owned by `object`, which C++ unwinding destroys.
+// The shared_ptr held by the value at `index` if it is a T (by its type tag), else nullptr;
+// an empty shared_ptr (collected object) is returned as is. Never raises.
+template <typename T>
+std::shared_ptr<T>* test(lua_State* L, int index) {
+  return detail::test_slot<T>(L, index);
+}
+
+// Whether the value at `index` is a bound T (by its type tag).
+template <typename T>
+bool is(lua_State* L, int index) {
+  return detail::test_slot<T>(L, index) != nullptr;
+}
+
+// Pushes a new userdata holding `object` (tag, then placement new of the shared_ptr) with T's
+// metatable. The object moves into the userdata only once its memory exists: if the allocation
+// fails, it is still owned by `object`, which C++ unwinding destroys.
 template <typename T>
 void push(lua_State* L, std::shared_ptr<T> object) {
+  static_assert(sizeof(std::shared_ptr<T>) == sizeof(std::shared_ptr<void>));
   if (!object) throw std::logic_error(std::string("push of a null ") + LuaType<T>::name);
   std::shared_ptr<T>* source = &object;
   protected_call(L, 0, 1, [source](lua_State* S) noexcept {
-    void* memory = lua_newuserdatauv(S, sizeof(std::shared_ptr<T>), 0);
-    new (memory) std::shared_ptr<T>(std::move(*source));
+    auto* block = static_cast<unsigned char*>(lua_newuserdatauv(S, detail::kUserdataSize, 0));
+    const detail::UserdataHeader header{&detail::kTypeTag<T>, nullptr};
+    std::memcpy(block, &header, sizeof header);
+    new (block + detail::kPayloadOffset) std::shared_ptr<T>(std::move(*source));
     luaL_setmetatable(S, LuaType<T>::metatable);  // the registered name: no allocation
     return 1;
   });
@@ -214,23 +280,19 @@ void push(lua_State* L, std::shared_ptr<T> object) {
 
 namespace detail {
 
-// __gc: destroys the shared_ptr and leaves an empty one in its place, so that a userdata seen
-// again (resurrected by another finaliser) reads as "no longer valid" instead of dangling.
-template <typename T>
-int gc(lua_State* L) {
-  auto* slot = static_cast<std::shared_ptr<T>*>(luaL_testudata(L, 1, LuaType<T>::metatable));
-  if (slot != nullptr) {
-    slot->~shared_ptr();
-    new (slot) std::shared_ptr<T>();
-  }
-  return 0;
-}
+// __gc of every bound type: destroys the shared_ptr of the type its tag names (whatever the
+// metatable says), leaving an empty one in its place.
+int gc(lua_State* L);
 
 template <typename T>
 int tostring(lua_State* L) {
-  auto* slot = static_cast<std::shared_ptr<T>*>(luaL_testudata(L, 1, LuaType<T>::metatable));
-  const std::string text = slot && *slot ? LuaType<T>::describe(**slot)
-                                         : std::string(LuaType<T>::name) + " (no longer valid)";
+  auto* slot = test_slot<T>(L, 1);
+  const TypeTag* tag = tag_at(L, 1);
+  std::string text = "userdata";  // our metatable on a foreign userdata (debug.setmetatable)
+  if (slot)
+    text = *slot ? LuaType<T>::describe(**slot) : std::string(tag->name) + " (no longer valid)";
+  else if (tag)
+    text = std::string(tag->name) + " (with the metatable of a " + LuaType<T>::name + ")";
   return push_results(L, 1, [&text](lua_State* S) noexcept {
     lua_pushlstring(S, text.data(), text.size());
     return 1;
@@ -248,7 +310,8 @@ void define_metatable(lua_State* L, const char* name, const char* type_name,
 // __index that names the valid methods on a typo, and a locked __metatable.
 template <typename T>
 void define_type(lua_State* L, const luaL_Reg* methods) {
-  detail::define_metatable(L, LuaType<T>::metatable, LuaType<T>::name, methods, &detail::gc<T>,
+  detail::register_tag(&detail::kTypeTag<T>);
+  detail::define_metatable(L, LuaType<T>::metatable, LuaType<T>::name, methods, &detail::gc,
                            &lua_wrap<&detail::tostring<T>>);
 }
 

@@ -17,8 +17,7 @@ std::shared_ptr<Group> kw_group(Kwargs& kw, std::string_view key, bool required)
                  "' (a Group, from sys:group(name) or sys:place{...})");
     return nullptr;
   }
-  auto* slot =
-      static_cast<std::shared_ptr<Group>*>(luaL_testudata(L, -1, LuaType<Group>::metatable));
+  auto* slot = test<Group>(L, -1);
   if (slot == nullptr)
     fail_input(kw.owner(), ": key '", key,
                "' must be a Group (from sys:group(name) or sys:place{...}), got ",
@@ -84,15 +83,6 @@ void push_integer_list(lua_State* L, const int* values, std::size_t n) noexcept 
 
 void push_force(lua_State* L, const ForceHandle& handle) {
   std::visit([L](const auto& h) { push(L, h); }, handle);
-}
-
-Progress* test_progress(lua_State* L, int index) {
-  // The metatable name of bind_progress.cpp's LuaType<Progress>.
-  auto* slot =
-      static_cast<std::shared_ptr<Progress>*>(luaL_testudata(L, index, "invasim.Progress"));
-  if (slot == nullptr) return nullptr;
-  if (!*slot) throw InputError("Progress object is no longer valid");
-  return slot->get();
 }
 
 // Sets field "fire_state" of the table on top of S to {dt, alpha, n_positive, steps,

@@ -45,6 +45,7 @@ Progress::~Progress() {
 
 std::string Progress::format_duration(double seconds) {
   if (!std::isfinite(seconds) || seconds < 0) return "--:--";
+  if (seconds > 100 * 86400.0) return printf_string("%.3g years", seconds / (365.25 * 86400.0));
   const long long s = std::llround(seconds);
   char buffer[48];
   if (s >= 3600)
@@ -93,11 +94,34 @@ void Progress::print(const std::string& text) {
   out_.flush();
 }
 
+std::string Progress::eta_warning(long long step, double now) const {
+  constexpr double kYear = 365.25 * 86400.0;
+  const double elapsed = now - start_time_;
+  const long long steps_done = step - options_.start_step;
+  if (options_.total <= 0 || elapsed <= 0 || steps_done <= 0) return "";
+  const double rate = double(steps_done) / elapsed;
+  const double remaining = double(std::max(options_.total - step, 0LL));
+  if (!(remaining / rate > kYear)) return "";
+  return (options_.label.empty() ? "" : options_.label + ": ") + "warning: at " +
+         printf_string(rate >= 100 ? "%.0f" : "%.3g", rate) + " steps/s the remaining " +
+         printf_string("%.6g", remaining) + " steps take " + format_duration(remaining / rate) +
+         ", more than a year; check the number of steps";
+}
+
 void Progress::update(long long step, std::optional<double> time) {
   if (finished_) return;
   step_ = step;
   if (time) time_ = time;
   const double now = clock_();
+  if (!eta_warned_) {
+    if (std::string warning = eta_warning(step, now); !warning.empty()) {
+      eta_warned_ = true;
+      if (live_ && last_width_ > 0) out_ << '\n';
+      out_ << warning << '\n';
+      last_width_ = 0;
+      out_.flush();
+    }
+  }
   const double period = live_ ? options_.live_interval : options_.every_seconds;
   if (last_print_ && now - *last_print_ < period) return;
   last_print_ = now;

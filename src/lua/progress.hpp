@@ -3,6 +3,7 @@
 //   step 1200/10000 (12.0%)  t = 60  1530 steps/s  ETA 0:05
 // elsewhere (CI, Slurm logs): the same text as plain lines, the first update, then at most one
 // every `every_seconds`, and a last line from finish() ("done in 0:06" instead of the ETA).
+// An ETA beyond a year is also said once, on a line of its own, at the first update.
 // The clock and the stream are injectable for tests.
 #include <functional>
 #include <iosfwd>
@@ -40,8 +41,12 @@ class Progress {
   // The text of one report at wall-clock `now` (no '\r' or newline).
   std::string line(long long step, std::optional<double> time, double now, bool done) const;
 
-  // "0:05", "12:34", "1:02:03".
+  // "0:05", "12:34", "1:02:03"; beyond 100 days "3.2e+03 years".
   static std::string format_duration(double seconds);
+
+  // The warning printed once, at the first update that gives an ETA beyond a year (issue 14:
+  // e.g. --set steps=9223372036854775807), or "" if there is none at wall-clock `now`.
+  std::string eta_warning(long long step, double now) const;
 
   long long step() const { return step_; }
   long long total() const { return options_.total; }
@@ -61,6 +66,7 @@ class Progress {
   std::optional<double> time_;
   std::size_t last_width_ = 0;
   bool finished_ = false;
+  bool eta_warned_ = false;
 };
 
 }  // namespace invasim::lua

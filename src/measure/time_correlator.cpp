@@ -4,6 +4,7 @@
 
 #include "core/deterministic_sum.hpp"
 #include "core/errors.hpp"
+#include "core/memory_budget.hpp"
 #include "core/parallel.hpp"
 
 namespace invasim {
@@ -49,6 +50,13 @@ TimeCorrelator::TimeCorrelator(std::vector<int> group, const TimeCorrelatorParam
   if (group_.empty()) fail_input("time correlator: the group of sites is empty");
   for (int i : group_)
     if (i < 0) fail_input("time correlator: site index ", i, " < 0");
+  // Memory per lag, checked before allocating (issue 14): the stored snapshots of the group
+  // (one slot per origin_every lags) and the lag's sums.
+  const int arrays = int(params_.velocity) + int(params_.orientation) + int(params_.position);
+  const double per_lag = double(arrays) * double(group_.size()) * 3.0 * 8.0 /
+                             double(std::max(params_.origin_every, 1)) +
+                         8.0 * (1 + kTerms);
+  check_memory("time correlator", "lags", double(params_.lags), per_lag);
   const std::size_t snap = slots() * group_.size() * 3;
   if (params_.velocity) state_.velocity.assign(snap, 0.0);
   if (params_.orientation) state_.orientation.assign(snap, 0.0);

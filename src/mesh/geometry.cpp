@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/errors.hpp"
+
 namespace invasim {
 
 Vec3 vertex_centroid(int n, const Vec3* x) {
@@ -72,7 +74,16 @@ double union_volume(const MeshTopology& topo, const Vec3* x, double vertex_diame
   }
   lo.array() -= r;
   hi.array() += r;
-  const Vec3i cells = ((hi - lo) / h).array().ceil().cast<int>();
+  // The grid's size is checked in doubles before the cast to int (issue 14): a tiny spacing
+  // would overflow int and run for days.
+  const Vec3 extent = ((hi - lo) / h).array().ceil();
+  const double points = extent.prod();
+  if (!(h > 0.0) || !(points <= kMaxUnionVolumeGridPoints))
+    fail_input(
+        "volume_grid = ", h, " gives ", points, " grid points over the mesh's ", "bounding box (",
+        (hi - lo).transpose(), "); the limit is ", kMaxUnionVolumeGridPoints,
+        " points, i.e. volume_grid >= ", std::cbrt((hi - lo).prod() / kMaxUnionVolumeGridPoints));
+  const Vec3i cells = extent.cast<int>();
   // Points beyond the farthest vertex from the centroid are outside the mesh (no winding
   // number needed there).
   const Vec3 centre = vertex_centroid(n, x);

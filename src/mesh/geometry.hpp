@@ -24,7 +24,10 @@ Vec3 vertex_centroid(int n, const Vec3* x);
 void add_volume_gradient(const MeshTopology& topo, const Vec3* x, double scale, Vec3* grad);
 
 // Volume of the union of the mesh interior and the vertex spheres of the given diameter
-// (the paper's V_i), estimated on a regular grid of spacing h; error O(h).
+// (the paper's V_i), estimated on a regular grid of spacing h; error O(h). A grid of more than
+// kMaxUnionVolumeGridPoints points (the default h = 0.05 of placement.hpp gives ~1e6 for an
+// adipocyte of diameter 6) is an InputError naming volume_grid and the smallest allowed h.
+inline constexpr double kMaxUnionVolumeGridPoints = 1e8;
 double union_volume(const MeshTopology& topo, const Vec3* x, double vertex_diameter, double h);
 
 }  // namespace invasim

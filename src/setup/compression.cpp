@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "setup/test_hooks.hpp"
 
 namespace invasim {
 
@@ -35,6 +36,7 @@ CompressionReport compress_to_phi(System& sys, ForceField& ff, const Compression
                         report.steps, " steps (phi = ", phi, ")");
       const double next = std::min(phi * (1.0 + params.step), params.target_phi);
       sys.scale(Vec3::Constant(std::cbrt(phi / next)), true);
+      inject_nan_at_compression_step(sys, report.steps + 1);  // test hook, off by default
     }
     const FireResult r = fire.minimize(sys, ff, nullptr, &control);
     control.resume.reset();
@@ -61,11 +63,12 @@ CompressionReport compress_to_phi(System& sys, ForceField& ff, const Compression
   return report;
 }
 
-FireResult rescale_to_phi_a(System& sys, ForceField& ff, double phi_a, const FireParams& fire) {
+FireResult rescale_to_phi_a(System& sys, ForceField& ff, double phi_a, const FireParams& fire,
+                            const FireControl* control) {
   if (!(phi_a > 0.0 && phi_a < 1.0)) fail_input("rescale: phi_a = ", phi_a, " must be in (0, 1)");
   const double now = packing_fractions(sys).adipocyte;
   sys.scale(Vec3::Constant(std::cbrt(now / phi_a)), true);
-  return Fire(fire).minimize(sys, ff);
+  return Fire(fire).minimize(sys, ff, nullptr, control);
 }
 
 }  // namespace invasim

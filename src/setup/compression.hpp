@@ -54,6 +54,8 @@ CompressionReport compress_to_phi(System& sys, ForceField& ff, const Compression
 // Affine rescale of the box, the cancer cells and the adipocyte centres (adipocytes move
 // rigidly, keeping their shape and V_i) so that the adipocyte
 // packing fraction becomes phi_a, then FIRE. Returns the minimiser result.
-FireResult rescale_to_phi_a(System& sys, ForceField& ff, double phi_a, const FireParams& fire);
+// `control` (optional): its stop function ends the FIRE early (result.stopped).
+FireResult rescale_to_phi_a(System& sys, ForceField& ff, double phi_a, const FireParams& fire,
+                            const FireControl* control = nullptr);
 
 }  // namespace invasim

@@ -1,8 +1,10 @@
 #include "setup/placement.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "core/memory_budget.hpp"
 #include "core/rng.hpp"
 #include "mesh/geometry.hpp"
 
@@ -63,6 +65,13 @@ PlacementResult place_random(System& sys, const MeshPlacement& meshes,
   if (spheres.n > 0 && spheres.diameters.empty())
     fail_input("placement: no cancer-cell diameters given");
   for (double d : spheres.diameters) require_positive("cancer-cell diameter", d);
+  // Memory of the new sites, checked before any is added (issue 14).
+  const double vertices = 10.0 * std::pow(4.0, std::clamp(meshes.subdivisions, 0, 30)) + 2.0;
+  check_memory("placement", "cells.n", double(spheres.n), kBytesPerSite);
+  check_memory("placement", "adipocytes.n", double(meshes.n), kBytesPerSite * vertices);
+  check_memory("placement", "cells.n + adipocytes.n x vertices",
+               double(sys.n_sites()) + double(spheres.n) + double(meshes.n) * vertices,
+               kBytesPerSite);
   PlacementResult out;
   std::vector<Ball> balls;
   for (std::size_t i = 0; i < sys.n_sites(); ++i)

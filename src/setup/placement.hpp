@@ -31,6 +31,11 @@ struct MeshPlacement {
   double max_attempts_per_body = 10000;
 };
 
+// Memory per site assumed by the placement's memory check (core/memory_budget.hpp): the
+// System's per-site arrays (~130 bytes), a neighbour list of ~50 entries, the forces' and
+// measurements' per-site buffers; an upper estimate, so the check errs on the safe side.
+inline constexpr double kBytesPerSite = 1024;
+
 // Places meshes first, then spheres, avoiding every existing site. Returns the new site
 // indices of the spheres (the cancer-cell group). Throws InputError when a region cannot
 // hold the requested bodies (names the region and how many were placed).

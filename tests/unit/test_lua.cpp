@@ -566,6 +566,31 @@ TEST_CASE("Progress formats the line", "[lua][progress]") {
   CHECK(open_ended.line(30, std::nullopt, 2.0, false) == "quench: step 30  15 steps/s");
 }
 
+TEST_CASE("Progress warns once when the ETA exceeds a year", "[lua][progress]") {
+  double now = 0.0;
+  std::ostringstream out;
+  ProgressOptions options;
+  options.total = 9223372036854775807LL;  // --set steps=9223372036854775807
+  options.label = "production";
+  Progress progress(options, out, false, [&] { return now; });
+  now = 1.0;
+  progress.update(1000);
+  now = 20.0;
+  progress.update(20000);
+  const std::string text = out.str();
+  CHECK(text.find("production: warning: at 1000 steps/s the remaining 9.22337e+18 steps take "
+                  "2.92e+08 years, more than a year; check the number of steps\n") == 0);
+  CHECK(text.find("warning", 20) == std::string::npos);  // once
+  CHECK(text.find("ETA 2.92e+08 years") != std::string::npos);
+
+  std::ostringstream quiet;
+  options.total = 1000000;  // 1000 s at 1000 steps/s: no warning
+  Progress short_run(options, quiet, false, [&] { return now; });
+  now = 21.0;
+  short_run.update(1000);
+  CHECK(quiet.str().find("warning") == std::string::npos);
+}
+
 TEST_CASE("Progress prints plain lines every N seconds plus first and last", "[lua][progress]") {
   double now = 0.0;
   std::ostringstream out;
