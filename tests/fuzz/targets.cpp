@@ -2,6 +2,7 @@
 
 #include <lua.hpp>
 
+#include <cstdio>
 #include <stdexcept>
 
 #include "../io/io_test_support.hpp"
@@ -46,7 +47,7 @@ std::string checkpoint_bytes(bool tethers, bool correlator, const std::string& e
   CheckpointWriter w;
   write_system(w, sys);
   if (tethers) {
-    TetherForce t;
+    TetherForce t(0.05);
     iotest::sample_tethers(sys, t);
     write_tethers(w, t);
   }
@@ -74,7 +75,7 @@ void run_checkpoint(const std::string& input) {
   const CheckpointReader r = CheckpointReader::parse(input, "'fuzz.ckpt'");
   const System sys = read_system(r);
   if (r.has("tethers.a")) {
-    TetherForce t;
+    TetherForce t(0.05);
     read_tethers(r, sys, t);
   }
   if (r.has("correlator.samples") && !cancer_sites(sys).empty()) {
@@ -219,7 +220,7 @@ Target set_target() {
 const char* const kKeywordDriver = R"lua(
 local iv = require("invasim")
 local sys = iv.System{ box = { 8, 8, 8 }, seed = 3 }
-local placed = sys:place{ cells = { n = 4, diameters = { 0.9, 1.1 } } }
+local placed = sys:place{ cells = { n = 4, diameters = { 0.9, 1.1 }, x = { 1, 7 } } }
 local objects = { ["@System"] = sys, ["@Group"] = placed.cells }
 local function resolve(t, depth)
   if depth > 20 then return end
@@ -318,6 +319,7 @@ Target keywords_target() {
       const std::string message = lua_tostring(L, -1);
       lua_settop(L, 0);
       if (foreign_exception(message)) throw std::logic_error("not a project error: " + message);
+      throw InputError(message);  // a project error, raised in Lua: its kind feeds the corpus
     }
     lua_settop(L, 0);
   };
