@@ -81,7 +81,7 @@ end
 -- The compressed tissue that the run in directory `from` saved, loaded into tissue.sys.
 local function load_compressed(tissue, from)
   local path = resume.compressed_path(from)
-  local saved = resume.deserialize(iv.load_checkpoint(path, { system = tissue.sys, seed = tissue.params.seed }))
+  local saved = resume.deserialize(iv.load_checkpoint(path, { system = tissue.sys, seed = tissue.params.seed }), path)
   saved.from = path
   log.say("compress", "skipped: the compressed tissue of %s (box %.4g, phi = %.4f)", from, saved.box[1], saved.phi)
   return saved
@@ -100,7 +100,7 @@ local function compress(tissue, o)
           o.to_phi, o.step, o.ftol, o.final_ftol, dt_max, beta)
   local saved  -- the state of a compression stopped by a signal, when resuming it
   if o.checkpoint and resume.compression_pending() then
-    saved = resume.deserialize(iv.load_checkpoint(o.checkpoint, { system = sys }))
+    saved = resume.deserialize(iv.load_checkpoint(o.checkpoint, { system = sys }), o.checkpoint)
     resume.compression_done()
     local where = saved.final_fire and string.format(" and %d iterations of the final FIRE", saved.final_fire.steps)
                   or (saved.report and " and the final FIRE" or "")

@@ -109,7 +109,7 @@ return function(tissue, opts)
   end
   local rows, end_step = {}, sys:step() + o.steps
   if resume.pending() and checkpoint then
-    local state = resume.deserialize(iv.load_checkpoint(checkpoint, parts))
+    local state = resume.deserialize(iv.load_checkpoint(checkpoint, parts), checkpoint)
     rows, end_step, tissue.compression = state.rows, state.end_step, state.compression
     resume.done()
     log.say(o.label, "resumed at step %d (t = %g) from %s; %d steps to go", sys:step(), sys:time(),

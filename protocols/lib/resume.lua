@@ -125,9 +125,11 @@ function M.serialize(v)
   error("resume: cannot save a " .. t)
 end
 
-function M.deserialize(text)
-  local chunk = assert(load("return " .. text, "checkpoint", "t", { math = math }))
-  return chunk()
+-- The data back from serialize's text: parsed as data by invasim.decode_state, never run as
+-- code (a crafted checkpoint must not be able to loop or allocate without bound). `origin`
+-- names the checkpoint in messages.
+function M.deserialize(text, origin)
+  return iv.decode_state(text, origin and ("checkpoint " .. origin .. ": section 'extra'") or nil)
 end
 
 return M

@@ -1,13 +1,17 @@
 #include "app/resume_options.hpp"
 
+#include <filesystem>
 #include <fstream>
 
 #include "core/errors.hpp"
+#include "io/regular_file.hpp"
 
 namespace invasim::app {
 
 lua::RunOptions read_resume_options(const std::string& dir) {
   const std::string path = dir + "/resume.txt";
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec)) require_regular_file(path, "run description");
   std::ifstream in(path);
   if (!in)
     fail_input("--resume ", dir, ": cannot read ", path,

@@ -48,6 +48,10 @@ StoredBodies read_bodies(const CheckpointReader& in, const Keys& key, const Site
   const std::vector<int> faces = in.get_i32s(key("topologies.faces"));
   std::size_t at = 0;
   for (std::size_t t = 0; t < nv.size(); ++t) {
+    // A topology sizes per-vertex arrays: its vertices must be sites of this checkpoint.
+    if (nv[t] < 0 || std::size_t(nv[t]) > s.size())
+      in.fail("section '", key("topologies.n_vertices"), "': topology ", t, " has ", nv[t],
+              " vertices, outside [0, ", s.size(), "] (the number of stored sites)");
     if (nf[t] < 0 || faces.size() - at < 3 * std::size_t(nf[t]))
       in.fail("section '", key("topologies.faces"), "' is too short for topology ", t);
     std::vector<MeshTopology::Face> f(nf[t]);
@@ -82,8 +86,8 @@ StoredBodies read_bodies(const CheckpointReader& in, const Keys& key, const Site
       in.fail("body ", k, ": topology index ", t, " out of range");
     const int first = b.first_site[k], n = b.topologies[t]->n_vertices();
     if (first < next_site || std::size_t(first) + n > s.size())
-      in.fail("body ", k, ": sites [", first, ", ", first + n, ") overlap another body or lie ",
-              "outside the ", s.size(), " sites");
+      in.fail("body ", k, ": sites [", first, ", ", std::size_t(first) + std::size_t(n),
+              ") overlap another body or lie ", "outside the ", s.size(), " sites");
     for (int i = first; i < first + n; ++i) owner[i] = int(k);
     next_site = first + n;
     b.area_offset.push_back(areas);
@@ -238,10 +242,13 @@ System read_system(const CheckpointReader& in, const std::string& prefix) {
     b.outer_volume = bodies.outer_volume[k];
   }
   sys.sites() = std::move(s);
-  // Box::version counts set_bounds calls; replay them so the version matches exactly.
+  // Box::version counts set_bounds calls: restored as stored (any value is a valid count, and
+  // the System rebuilt above has not yet counted any change).
   const std::uint64_t version = in.get_u64(key("box.version"));
-  for (std::uint64_t v = sys.box().version(); v < version; ++v)
-    sys.box().set_bounds(sys.box().lo(), sys.box().hi());
+  if (version < sys.box().version())
+    in.fail("section '", key("box.version"), "' holds ", version, ", below the ",
+            sys.box().version(), " of a freshly built box");
+  sys.box().restore_version(version);
   sys.step = in.get_u64(key("step"));
   sys.time = in.get_f64(key("time"));
   return sys;

@@ -62,6 +62,9 @@ class Box {
   void set_wall(int axis, bool upper, double value);
   // Replaces both corners (compression, rescaling); bumps the version.
   void set_bounds(const Vec3& lo, const Vec3& hi);
+  // Sets the version counter (a checkpoint restores it exactly, in O(1): replaying
+  // set_bounds calls would loop as often as a crafted file says).
+  void restore_version(std::uint64_t version) { version_ = version; }
 
  private:
   Vec3 lo_ = Vec3::Zero();

@@ -5,12 +5,11 @@
 
 #include <cerrno>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <system_error>
 
 #include "io/io_error.hpp"
+#include "io/regular_file.hpp"
 #include "io/test_hooks.hpp"
 
 namespace invasim {
@@ -127,15 +126,20 @@ void ensure_directory(const std::filesystem::path& dir) {
 }
 
 std::string read_file(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    const int err = errno;
-    fail_io("cannot read ", quoted(path), ": ", std::strerror(err));
+  FileDescriptor fd(open_regular_file(path));
+  std::string out;
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fd.get(), buffer, sizeof buffer);
+    if (n == 0) break;
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int err = errno;
+      fail_io("cannot read ", quoted(path), ": read error: ", std::strerror(err));
+    }
+    out.append(buffer, std::size_t(n));
   }
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) fail_io("cannot read ", quoted(path), ": read error");
-  return buffer.str();
+  return out;
 }
 
 }  // namespace invasim

@@ -27,7 +27,8 @@ std::filesystem::path atomic_temp_path(const std::filesystem::path& path);
 // directory if it cannot be created or if the path exists and is not a directory.
 void ensure_directory(const std::filesystem::path& dir);
 
-// Reads a whole file into a string. Throws IoError naming the file if it cannot be read.
+// Reads a whole file into a string. Throws IoError naming the file if it cannot be read or is
+// not a regular file (a FIFO, directory or device: io/regular_file.hpp), without blocking.
 std::string read_file(const std::filesystem::path& path);
 
 }  // namespace invasim

@@ -5,6 +5,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/io_error.hpp"
+#include "io/regular_file.hpp"
 #include "io/snapshot_writer.hpp"
 #include "io/text_format.hpp"
 #include "io/vtk_format.hpp"
@@ -205,8 +206,9 @@ Frame load_vtp_alone(const std::filesystem::path& path) {
 
 Frame load_snapshot_frame(const std::filesystem::path& snapshot) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(snapshot, ec))
+  if (!std::filesystem::exists(snapshot, ec))
     fail_io("cannot read snapshot ", quoted(snapshot), ": no such file");
+  require_regular_file(snapshot, "snapshot");  // a FIFO, directory or device: refused
   const std::string name = snapshot.filename().string();
   const std::int64_t step = SnapshotWriter::step_of_file_name(name);
   const std::string kind = step >= 0 ? name.substr(0, name.rfind('_')) : "";

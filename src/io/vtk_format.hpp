@@ -31,6 +31,8 @@ struct PvdEntry {
 std::string pvd_text(const std::vector<PvdEntry>& entries);
 // The entries of a .pvd file in file order. Throws IoError if it is not a VTK Collection.
 std::vector<PvdEntry> read_pvd(const std::filesystem::path& path);
+// The same for text; `origin` names it in messages.
+std::vector<PvdEntry> parse_pvd(std::string_view text, const std::string& origin);
 
 // The contents of one of our .vtp files.
 struct VtpData {

@@ -26,11 +26,25 @@ bool named(pugi::xml_node node, const char* name) {
   return std::strcmp(node.name(), name) == 0;
 }
 
+std::string cat_count(const char* text, long n) {
+  return text + std::to_string(n);
+}
+
+// `v` as an integer in [lo, hi], or nullopt (NaN, fractions and values out of range, which
+// would be undefined behaviour to convert).
+std::optional<std::int64_t> integral(double v, double lo, double hi) {
+  if (!(v >= lo && v <= hi) || v != std::floor(v)) return std::nullopt;
+  return std::int64_t(v);
+}
+
 }  // namespace
 
 std::vector<PvdEntry> read_pvd(const std::filesystem::path& path) {
-  const XmlDocument xml(read_file(path), quoted(path));
-  const std::string& origin = xml.origin();
+  return parse_pvd(read_file(path), quoted(path));
+}
+
+std::vector<PvdEntry> parse_pvd(std::string_view text, const std::string& origin) {
+  const XmlDocument xml(text, origin);
   const pugi::xml_node root = xml.root();
   const auto type = attr(root, "type");
   const pugi::xml_node coll = root.child("Collection");
@@ -63,8 +77,16 @@ VtpData::Array parse_array(const XmlDocument& xml, pugi::xml_node e, long tuples
     if (!n || *n < 1) fail_io(origin, ": line ", xml.line(e), ": bad NumberOfComponents");
     a.components = *n;
   }
-  if (const auto nt = attr(e, "NumberOfTuples"))
-    if (auto n = text::parse<long>(*nt)) tuples = *n;
+  // A stated NumberOfTuples must agree with the count the caller expects: it never replaces
+  // it (a Points array claiming 0 tuples of a 5-point Piece would leave points unread).
+  if (const auto nt = attr(e, "NumberOfTuples")) {
+    const auto n = text::parse<long>(*nt);
+    if (!n || *n < 0 || (tuples >= 0 && *n != tuples))
+      fail_io(origin, ": line ", xml.line(e), ": DataArray ", label, " NumberOfTuples=\"", *nt,
+              "\"", tuples >= 0 ? cat_count(" where the Piece declares ", tuples) : "",
+              " is not a valid count");
+    tuples = *n;
+  }
   const std::string data = xml_text(e);
   std::vector<std::string_view> tok;
   text::split_whitespace(data, tok);
@@ -75,7 +97,9 @@ VtpData::Array parse_array(const XmlDocument& xml, pugi::xml_node e, long tuples
       fail_io(origin, ": line ", xml.line(e), ": DataArray ", label, ": '", t, "' is not a number");
     a.values.push_back(*v);
   }
-  if (tuples >= 0 && a.values.size() != std::size_t(tuples) * a.components)
+  // Compared by division: tuples x components could overflow.
+  if (tuples >= 0 && (a.values.size() % std::size_t(a.components) != 0 ||
+                      a.values.size() / std::size_t(a.components) != std::size_t(tuples)))
     fail_io(origin, ": line ", xml.line(e), ": DataArray ", label, " has ", a.values.size(),
             " values, expected ", tuples, " x ", a.components);
   return a;
@@ -96,8 +120,9 @@ std::vector<std::int64_t> to_indices(const VtpData::Array& a, const std::string&
   std::vector<std::int64_t> out;
   out.reserve(a.values.size());
   for (double v : a.values) {
-    if (v != std::floor(v) || v < 0) fail_io(origin, ": ", what, " holds a non-index value ", v);
-    out.push_back(std::int64_t(v));
+    const auto i = integral(v, 0, 9.0e18);
+    if (!i) fail_io(origin, ": ", what, " holds a non-index value ", v);
+    out.push_back(*i);
   }
   return out;
 }
@@ -155,7 +180,10 @@ void frame_header_from_vtp(const VtpData& vtp, const std::string& origin, Frame&
     fail_io(origin, ": ", e.what());
   }
   f.time = field("TimeValue", 1)[0];
-  f.step = std::uint64_t(field("step", 1)[0]);
+  const double step = field("step", 1)[0];
+  const auto s = integral(step, 0, 9.0e18);
+  if (!s) fail_io(origin, ": FieldData step ", step, " is not a step number");
+  f.step = std::uint64_t(*s);
 }
 
 }  // namespace
@@ -187,6 +215,7 @@ VtpData parse_vtp(std::string_view text, const std::string& origin) {
   parse_named_arrays(xml, piece.child("CellData"), n_verts + n_polys, out.cell_data);
   parse_cells(xml, piece, "Verts", n_verts, out.vert_connectivity, out.vert_offsets);
   parse_cells(xml, piece, "Polys", n_polys, out.poly_connectivity, out.poly_offsets);
+  if (n_points > 2147483647L) fail_io(origin, ": ", n_points, " points exceed the limit 2^31 - 1");
   for (auto c : {&out.vert_connectivity, &out.poly_connectivity})
     for (std::int64_t i : *c)
       if (i >= n_points) fail_io(origin, ": connectivity refers to point ", i, " of ", n_points);
@@ -214,7 +243,16 @@ Frame mesh_frame_from_vtp(const VtpData& vtp, const std::string& origin) {
   const auto shape = vtp.cell_data.find("shape_parameter");
   if (body == vtp.cell_data.end() || shape == vtp.cell_data.end())
     fail_io(origin, ": CellData needs the arrays adipocyte and shape_parameter");
-  for (double b : body->second.values) m.triangle_body.push_back(int(b));
+  // One value per triangle: the file's CellData counts Verts too.
+  if (body->second.values.size() != m.triangles.size() ||
+      shape->second.values.size() != m.triangles.size())
+    fail_io(origin, ": CellData adipocyte and shape_parameter need one value per triangle (",
+            m.triangles.size(), ")");
+  for (double b : body->second.values) {
+    const auto k = integral(b, 0, 2147483647.0);
+    if (!k) fail_io(origin, ": CellData adipocyte holds ", b, ", not a body index");
+    m.triangle_body.push_back(int(*k));
+  }
   m.triangle_shape = shape->second.values;
   const auto radius = vtp.point_data.find("radius");  // optional: 0 when absent
   m.point_radius = radius != vtp.point_data.end() && radius->second.components == 1

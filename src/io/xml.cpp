@@ -15,6 +15,41 @@ bool elements_open(const pugi::xml_parse_result& r) {
          r.status == pugi::status_bad_attribute || r.status == pugi::status_bad_end_element;
 }
 
+pugi::xml_node first_element(pugi::xml_node n) {
+  for (pugi::xml_node c = n.first_child(); c; c = c.next_sibling())
+    if (c.type() == pugi::node_element) return c;
+  return {};
+}
+pugi::xml_node next_element(pugi::xml_node n) {
+  for (pugi::xml_node c = n.next_sibling(); c; c = c.next_sibling())
+    if (c.type() == pugi::node_element) return c;
+  return {};
+}
+
+// The first element nested deeper than kMaxXmlDepth (a walk in document order without
+// recursion), or an empty node.
+pugi::xml_node too_deep(pugi::xml_node root) {
+  int depth = 1;
+  pugi::xml_node n = root;
+  for (;;) {
+    if (depth > kMaxXmlDepth) return n;
+    if (const pugi::xml_node c = first_element(n)) {
+      n = c;
+      ++depth;
+      continue;
+    }
+    for (;;) {  // up to the nearest ancestor-or-self with a later sibling
+      if (n == root) return {};
+      if (const pugi::xml_node s = next_element(n)) {
+        n = s;
+        break;
+      }
+      n = n.parent();
+      --depth;
+    }
+  }
+}
+
 }  // namespace
 
 XmlDocument::XmlDocument(std::string_view text, std::string origin)
@@ -36,6 +71,9 @@ XmlDocument::XmlDocument(std::string_view text, std::string origin)
         n.type() == pugi::node_cdata)
       fail(std::size_t(n.offset_debug()), "content after the root element");
   }
+  if (const pugi::xml_node deep = too_deep(root()))
+    fail_io(origin_, ": line ", line(deep), ": XML elements nested deeper than ", kMaxXmlDepth,
+            " levels (the limit of invasim's VTK reader; its files nest 5)");
 }
 
 std::size_t XmlDocument::line_at(std::size_t offset) const {

@@ -8,13 +8,19 @@
 
 namespace invasim {
 
+// The deepest element nesting a document may have. invasim's files nest 5 levels
+// (VTKFile/PolyData/Piece/PointData/DataArray); the limit keeps every walk over the tree (ours
+// and the library's) far from any stack limit, whatever a hostile file holds.
+inline constexpr int kMaxXmlDepth = 64;
+
 // A parsed XML document with one root element. Keeps the text so that a reader's messages
 // can give the line of any node.
 class XmlDocument {
  public:
   // Parses `text`; `origin` names it in messages ("'dir/a.vtp'"). Throws IoError
   // "<origin>: line L (offset O): malformed XML: <what>" for text that is not well-formed
-  // XML with exactly one root element.
+  // XML with exactly one root element, and "<origin>: line L: XML elements nested deeper than
+  // 64 levels ..." for a document deeper than kMaxXmlDepth (checked without recursion).
   XmlDocument(std::string_view text, std::string origin);
   XmlDocument(const XmlDocument&) = delete;
   XmlDocument& operator=(const XmlDocument&) = delete;

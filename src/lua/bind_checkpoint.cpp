@@ -6,6 +6,8 @@
 //   local id, parameters = invasim.checkpoint_run(path)  -- the run that wrote it (nil, nil if
 //                                                          -- it was written outside a run)
 //   invasim.interrupted()   -> "SIGINT" / "SIGTERM" once a stop was requested, else nil
+//   invasim.decode_state(text [, origin]) -> the plain Lua data of a checkpoint's `extra`
+//                                            (io/lua_data.hpp: parsed as data, never run)
 // save writes the System (every site array, bit for bit), the Dynamics (time step, method
 // parameters and ramp anchors, the pressure wall), the tethers, a correlator's accumulators
 // and a string of the protocol's own (`extra`), atomically. load restores them into objects
@@ -21,6 +23,7 @@
 #include "checkpoint/dynamics_sections.hpp"
 #include "checkpoint/state_checkpoint.hpp"
 #include "core/stop_request.hpp"
+#include "io/lua_data.hpp"
 #include "lua/checkpoint_parts.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
@@ -151,6 +154,50 @@ int l_checkpoint_run(lua_State* L) {
   return 2;
 }
 
+// Pushes a parsed datum (depth <= kMaxLuaDataDepth); runs inside push_results' protected
+// call, so a Lua memory error unwinds to it (no C++ object of this frame needs destroying).
+void push_datum(lua_State* L, const LuaDatum& d) noexcept {
+  switch (d.kind) {
+    case LuaDatum::Kind::kNil:
+      lua_pushnil(L);
+      return;
+    case LuaDatum::Kind::kBoolean:
+      lua_pushboolean(L, d.boolean);
+      return;
+    case LuaDatum::Kind::kInteger:
+      lua_pushinteger(L, lua_Integer(d.integer));
+      return;
+    case LuaDatum::Kind::kNumber:
+      lua_pushnumber(L, d.number);
+      return;
+    case LuaDatum::Kind::kString:
+      lua_pushlstring(L, d.string.data(), d.string.size());
+      return;
+    case LuaDatum::Kind::kTable:
+      luaL_checkstack(L, 4, "checkpoint state");
+      // As Lua's constructor {[k]=v, ...} builds it: a hash part of that size, keys in order.
+      lua_createtable(L, 0, int(std::min<std::size_t>(d.entries.size(), 1u << 26)));
+      for (const auto& [key, value] : d.entries) {
+        push_datum(L, key);
+        push_datum(L, value);
+        lua_rawset(L, -3);
+      }
+      return;
+  }
+}
+
+// invasim.decode_state(text [, origin]): resume.lua's serialized state back as Lua data.
+int l_decode_state(lua_State* L) {
+  const std::string text = arg_string(L, 1);
+  const std::string origin = lua_isnoneornil(L, 2) ? "checkpoint state" : arg_string(L, 2);
+  LuaDatum datum;
+  engine_call("decode_state", [&] { datum = parse_lua_data(text, origin); });
+  return push_results(L, 1, [&datum](lua_State* S) noexcept {
+    push_datum(S, datum);
+    return 1;
+  });
+}
+
 int l_interrupted(lua_State* L) {
   const int signal = stop_requested();
   return push_results(L, 1, [signal](lua_State* S) noexcept {
@@ -174,6 +221,8 @@ void open_checkpoint(lua_State* L) {
   lua_setfield(L, -2, "load");  // invasim.load(path, {...}): the same, shorter
   lua_pushcfunction(L, &lua_wrap<&l_checkpoint_run>);
   lua_setfield(L, -2, "checkpoint_run");
+  lua_pushcfunction(L, &lua_wrap<&l_decode_state>);
+  lua_setfield(L, -2, "decode_state");
   lua_pushcfunction(L, &lua_wrap<&l_interrupted>);
   lua_setfield(L, -2, "interrupted");
 }

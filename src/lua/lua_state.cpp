@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "core/errors.hpp"
+#include "io/regular_file.hpp"
 #include "lua/binding.hpp"
 #include "lua/module.hpp"
 #include "lua/text_chunks.hpp"
@@ -138,6 +139,7 @@ LuaState::Outcome LuaState::run_file(const std::string& path) {
   if (!fs::exists(path, error)) fail_input("cannot open protocol file '", path, "': no such file");
   if (fs::is_directory(path, error))
     fail_input("cannot open protocol file '", path, "': it is a directory");
+  require_regular_file(path, "protocol file");  // a FIFO or device would block or never end
   // Let the script require modules next to it: <dir>/?.lua and <dir>/?/init.lua first.
   const std::string parent = fs::path(path).parent_path().string();
   const std::string dir = parent.empty() ? std::string(".") : parent;

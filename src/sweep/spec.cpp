@@ -12,6 +12,7 @@
 #include <variant>
 
 #include "core/errors.hpp"
+#include "io/regular_file.hpp"
 #include "lua/lua_state.hpp"
 #include "lua/names.hpp"
 
@@ -348,7 +349,8 @@ std::vector<Json> SweepSpec::points() const {
 }
 
 SweepSpec load_spec(const std::string& path) {
-  if (!fs::is_regular_file(path)) fail_input("sweep spec ", path, ": no such file");
+  if (!fs::exists(path)) fail_input("sweep spec ", path, ": no such file");
+  require_regular_file(path, "sweep spec");  // a FIFO would block the reader
   std::unique_ptr<lua_State, decltype(&lua_close)> state(luaL_newstate(), &lua_close);
   lua_State* L = state.get();
   luaL_openlibs(L);

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "io/regular_file.hpp"
 
 namespace invasim::sweep {
 
@@ -17,6 +18,7 @@ namespace {
 const char* const kConfig = "invasim_sweep.json";
 
 Json read_json(const fs::path& path) {
+  require_regular_file(path, "sweep configuration");  // a FIFO would block the reader
   std::ifstream in(path);
   if (!in) fail_input("cannot read ", path.string());
   try {
