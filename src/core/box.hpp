@@ -44,9 +44,6 @@ class Box {
         const double len = hi_[a] - lo_[a];
         if (r[a] >= hi_[a] || r[a] < lo_[a]) {
           const double shift = std::floor((r[a] - lo_[a]) / len);
-          // A site flung absurdly far (a blow-up) stays where it is for the blow-up guard to
-          // report: its image count would not fit an int (converting it would be undefined).
-          if (!(std::abs(double(image[a]) + shift) < 1e9)) continue;
           r[a] -= shift * len;
           image[a] += static_cast<int>(shift);
           if (r[a] >= hi_[a]) r[a] = lo_[a];  // guards round-off at the upper edge
