@@ -38,9 +38,9 @@ void read_units(const fs::path& series, std::map<std::string, std::string>& unit
   if (!std::getline(in, header)) return;
   std::stringstream columns(header);
   for (std::string column; std::getline(columns, column, ',');) {
-    const auto open = column.find(" [");
-    if (open != std::string::npos && column.back() == ']')
-      units.emplace(column.substr(0, open), column.substr(open + 2, column.size() - open - 3));
+    const std::string name = bare_column_name(column);
+    if (name.size() + 3 <= column.size() && column.back() == ']')
+      units.emplace(name, column.substr(name.size() + 2, column.size() - name.size() - 3));
   }
 }
 

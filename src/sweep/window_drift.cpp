@@ -17,12 +17,6 @@ std::vector<std::string> split_csv_line(const std::string& line) {
   return cells;
 }
 
-// "T_c [eps_c]" -> "T_c".
-std::string bare_name(const std::string& column) {
-  const auto open = column.find(" [");
-  return open == std::string::npos ? column : column.substr(0, open);
-}
-
 // The number in `text`, or NaN if it is not one whole number.
 double parse_number(const std::string& text) {
   if (text.empty()) return std::nan("");
@@ -33,6 +27,11 @@ double parse_number(const std::string& text) {
 
 }  // namespace
 
+std::string bare_column_name(const std::string& column) {
+  const auto open = column.find(" [");
+  return open == std::string::npos ? column : column.substr(0, open);
+}
+
 std::map<std::string, double> window_drifts(const fs::path& series, const Json& averages) {
   std::map<std::string, double> drifts;
   std::ifstream in(series);
@@ -40,7 +39,7 @@ std::map<std::string, double> window_drifts(const fs::path& series, const Json& 
   if (!averages.is_object() || !std::getline(in, line)) return drifts;
   std::map<std::string, std::size_t> column_of;
   const auto header = split_csv_line(line);
-  for (std::size_t c = 0; c < header.size(); ++c) column_of.emplace(bare_name(header[c]), c);
+  for (std::size_t c = 0; c < header.size(); ++c) column_of.emplace(bare_column_name(header[c]), c);
   std::vector<std::vector<std::string>> rows;
   while (std::getline(in, line))
     if (!line.empty()) rows.push_back(split_csv_line(line));

@@ -14,6 +14,9 @@ namespace invasim::sweep {
 
 namespace fs = std::filesystem;
 
+// A series.csv column name without its unit: "T_c [eps_c]" -> "T_c".
+std::string bare_column_name(const std::string& column);
+
 // For every entry of `averages` ({"name": {"samples": n, ...}}) with n >= 2 and a column of
 // that name in `series` (units in brackets ignored) whose last n values are finite numbers:
 // mean of the last floor(n/2) values minus the mean of the floor(n/2) before them (the middle
