@@ -38,12 +38,21 @@ class Box {
     return d;
   }
   // Wraps r into the primary cell on periodic axes and counts the crossings in image.
+  // Image counts are ints; a site more than this many box lengths away has blown up.
+  static constexpr double kMaxImage = 1e9;
   void wrap(Vec3& r, Vec3i& image) const {
     for (int a = 0; a < 3; ++a)
       if (periodic_[a]) {
         const double len = hi_[a] - lo_[a];
         if (r[a] >= hi_[a] || r[a] < lo_[a]) {
           const double shift = std::floor((r[a] - lo_[a]) / len);
+          if (!(std::abs(double(image[a]) + shift) < kMaxImage)) {
+            // Flung further than any int image count can say (a blow-up; converting the
+            // shift would be undefined): the coordinate becomes infinite, a non-finite
+            // position the blow-up guard reports.
+            r[a] = std::copysign(std::numeric_limits<double>::infinity(), shift);
+            continue;
+          }
           r[a] -= shift * len;
           image[a] += static_cast<int>(shift);
           if (r[a] >= hi_[a]) r[a] = lo_[a];  // guards round-off at the upper edge

@@ -14,6 +14,7 @@
 #include "lua/module.hpp"
 #include "lua/names.hpp"
 #include "lua/temporary_contacts.hpp"
+#include "setup/test_hooks.hpp"
 
 namespace invasim::lua {
 
@@ -59,7 +60,10 @@ int l_minimize(lua_State* L) {
   FireControl control;
   if (!lua_isnoneornil(L, options)) {
     kw.emplace(L, options, "minimize");
-    if (kw->boolean("stop_on_signal", false)) control.stop = [] { return stop_requested() != 0; };
+    if (kw->boolean("stop_on_signal", false)) {
+      control.stop = [] { return stop_requested() != 0; };
+      pause_in_stoppable_minimize();  // test hook, off by default
+    }
     if (kw->push("continue_from") != LUA_TNIL) {
       if (!lua_istable(L, -1))
         fail_input("minimize: key 'continue_from' must be a table {fire_state = ...}, got ",

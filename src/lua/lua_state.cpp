@@ -11,6 +11,7 @@
 #include "core/errors.hpp"
 #include "io/regular_file.hpp"
 #include "lua/binding.hpp"
+#include "lua/finalizer_guard.hpp"
 #include "lua/module.hpp"
 #include "lua/text_chunks.hpp"
 
@@ -90,6 +91,7 @@ LuaState::LuaState(RunOptions options)
   lua_atpanic(L_, &panic);
   luaL_openlibs(L_);
   restrict_to_text_chunks(L_);
+  guard_bound_finalizers(L_);
   lua_pushlightuserdata(L_, context_.get());
   lua_setfield(L_, LUA_REGISTRYINDEX, kContextKey);
   luaL_getsubtable(L_, LUA_REGISTRYINDEX, LUA_PRELOAD_TABLE);

@@ -36,7 +36,8 @@ CompressionReport compress_to_phi(System& sys, ForceField& ff, const Compression
                         report.steps, " steps (phi = ", phi, ")");
       const double next = std::min(phi * (1.0 + params.step), params.target_phi);
       sys.scale(Vec3::Constant(std::cbrt(phi / next)), true);
-      inject_nan_at_compression_step(sys, report.steps + 1);  // test hook, off by default
+      inject_nan_at_compression_step(sys, report.steps + 1);  // test hooks, off by default
+      pause_at_compression_step(report.steps + 1);
     }
     const FireResult r = fire.minimize(sys, ff, nullptr, &control);
     control.resume.reset();

@@ -18,7 +18,9 @@ args=(run ../../protocols/invasion.lua --set N_a=4 --set N_c=60 --set L0=32.0 --
       --set steps=1000 --set every=200 --set checkpoint_every=1000 --set snapshot_every=0)
 "$invasim" "${args[@]}" --out "$work/straight" > "$work/straight.log" 2>&1 || fail "straight run" "$work/straight.log"
 
-"$invasim" "${args[@]}" --out "$work/killed" > "$work/killed.log" 2>&1 &
+# The killed run waits inside compression step 4 (a test hook that only waits for the signal,
+# numbers untouched), so the signal always lands during the compression, however fast it is.
+INVASIM_TEST_PAUSE_AT_COMPRESSION_STEP=4 "$invasim" "${args[@]}" --out "$work/killed" > "$work/killed.log" 2>&1 &
 pid=$!
 wait_for "$pid" "the third compression step (its 'compress: step 3:' line in log.txt)" \
   grep -qs "^compress: step 3: " "$work/killed/log.txt" || { cat "$work/killed.log"; exit 1; }
@@ -59,11 +61,11 @@ for f in checkpoint/compressed.ckpt series.csv checkpoint/state.ckpt; do
   cmp "$work/straight/$f" "$work/killed/$f" || fail "$f differs from the uninterrupted run"
 done
 
-# A signal during the final FIRE (after the line of the last compression step; that FIRE takes
-# about 59000 iterations here, 2 s): the run stops at its next iteration, saving the tissue,
+# A signal during the final FIRE (after the line of the last compression step): the run stops at its next iteration, saving the tissue,
 # the compression's report and the minimiser's state; --resume continues that FIRE to the
 # same compressed tissue and the same end.
-"$invasim" "${args[@]}" --out "$work/final" > "$work/final.log" 2>&1 &
+# (The final run waits at the start of its final FIRE, a test hook, so the signal lands inside it.)
+INVASIM_TEST_PAUSE_IN_STOPPABLE_MINIMIZE=1 "$invasim" "${args[@]}" --out "$work/final" > "$work/final.log" 2>&1 &
 pid=$!
 wait_for "$pid" "the last compression step (its 'compress: step $total:' line in log.txt)" \
   grep -qs "^compress: step $total: " "$work/final/log.txt" || { cat "$work/final.log"; exit 1; }

@@ -3,9 +3,9 @@
 -- on the wrong C++ type. For every pair (A, B) of bound types, an A object is given B's
 -- metatable and every method of B is called on it (self = A, and with a B as self and the A as
 -- each argument): each call must be a Lua error naming the function, the argument position,
--- the expected and the given type, or succeed on a valid B. Nothing may crash. Also: a bound
--- object dressed as a FILE*, a FILE* dressed as a bound object, and collection of swapped
--- objects (each __gc destroys by its own tag).
+-- the expected and the given type, or succeed on a valid B. Nothing may crash. Also: a FILE*
+-- dressed as a bound object, a bound object refused a metatable without invasim's __gc, and
+-- collection of swapped objects (each __gc destroys by its own tag).
 local iv = require("invasim")
 
 local function make_all()
@@ -105,12 +105,23 @@ local progress = iv.Progress{ total = 1, live = false }
 debug.setmetatable(f, debug.getmetatable(progress))
 local ok, err = pcall(function() return f:update(1) end)
 assert(not ok and err:find("bad self for 'update' %(Progress expected, got userdata%)"), tostring(err))
+-- A bound object may not lose invasim's __gc (the FILE* metatable, a plain table, nil): its
+-- C++ object would never be freed (LeakSanitizer found that leak). The refusal names the type.
 local ramp = iv.ramp{ from = 0, to = 1, steps = 10 }
-debug.setmetatable(ramp, file_meta)
-ok, err = pcall(function() return ramp:write("x") end)
-assert(not ok and err:find("closed file"), tostring(err))
-ok, err = pcall(iv.Langevin, { group = ramp, gamma = 1, kT = 0 })
-assert(not ok and err:find("key 'group' must be a Group"), tostring(err))
+local ramp_meta = debug.getmetatable(ramp)
+for _, foreign in ipairs({ file_meta, {}, { __gc = function() end } }) do
+  ok, err = pcall(function() debug.setmetatable(ramp, foreign) end)
+  assert(not ok and err:find("^type_tags%.lua:%d+: debug%.setmetatable: a bound Ramp must keep an invasim metatable"),
+         tostring(err))
+  assert(debug.getmetatable(ramp) == ramp_meta, "the refused swap changed the metatable")
+end
+ok, err = pcall(function() debug.setmetatable(ramp, nil) end)
+assert(not ok and err:find("a bound Ramp must keep an invasim metatable"), tostring(err))
+assert(ramp:value(5) == 0.5, "the ramp still works after the refused swaps")
+-- Other values are untouched by the guard.
+local plain = {}
+assert(debug.setmetatable(plain, { __index = { answer = 42 } }) == plain and plain.answer == 42)
+assert(debug.setmetatable(io.tmpfile(), file_meta))
 f, ramp = nil, nil
 collectgarbage()
 

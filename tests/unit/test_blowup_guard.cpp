@@ -165,6 +165,38 @@ TEST_CASE("a site flying out through a wall stops the run") {
   CHECK(s.sys.sites().pos[3][0] > s.sys.box().hi()[0] + 50.0);
 }
 
+TEST_CASE("a site flung beyond an int's image count along a periodic axis stops the run") {
+  // Box::wrap cannot count 1e12 box lengths in an int image (the conversion was undefined
+  // behaviour, caught by UBSan): the coordinate becomes infinite and the guard reports it.
+  const Box box(Vec3(0.0, 0.0, 0.0), Vec3(10.0, 10.0, 10.0), {false, true, true});
+  Vec3 r(5.0, 1e13, -1e13);
+  Vec3i image(0, 3, 0);
+  box.wrap(r, image);
+  CHECK(r[0] == 5.0);
+  CHECK(r[1] == kInf);
+  CHECK(r[2] == -kInf);
+  CHECK(image == Vec3i(0, 3, 0));
+  // Near the limit an existing image count counts too.
+  Vec3 q(5.0, 5.0 + 10.0 * 5e8, 5.0);
+  Vec3i near(0, int(6e8), 0);
+  box.wrap(q, near);
+  CHECK(q[1] == kInf);
+  CHECK(near[1] == int(6e8));
+  // Ordinary crossings are still counted.
+  Vec3 p(5.0, 25.0, -5.0);
+  Vec3i counted(0, 0, 0);
+  box.wrap(p, counted);
+  CHECK(p[1] == Approx(5.0));
+  CHECK(p[2] == Approx(5.0));
+  CHECK(counted == Vec3i(0, 2, -1));
+
+  Setup s;
+  s.dyn.set_check_every(10);
+  s.sys.sites().vel[3] = Vec3(0.0, 1e14, 0.0);  // > 1e9 box lengths in one step of the run
+  CHECK_THAT(s.run(100), StartsWith("blow-up at step 10: site 3 (cancer cell) has a non-finite "
+                                    "position"));
+}
+
 TEST_CASE("a normal run passes the checks") {
   Setup s;
   s.dyn.set_check_every(10);
