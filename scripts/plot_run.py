@@ -5,9 +5,13 @@ Usage: plot_run.py RUN_DIR
 
 Reads RUN_DIR/series.csv (a header row of `name [unit]` or `name` entries, then one row of
 numbers per sample) and writes PNG plots into RUN_DIR/plots/, one per group of columns that is
-present: A_t.png (A_t, A_t_max and, below, A_ratio = A_t/A_t^max), temperature.png (T_c, T_a),
-pressure.png (P_left, P_right), box_length.png (L_x), packing.png (phi, phi_c, phi_a, ...).
-Missing columns are skipped. The horizontal axis is `time` if present, else `step`.
+present: A_t.png (A_t, A_t_max, A_wall_a and, below, A_ratio = A_t/A_t^max),
+temperature.png (T_c, T_a, on a log scale when they span a decade or more, and T_c/T_a
+below), pressure.png (P_left, P_right), box_length.png (L_x), packing.png (phi, phi_c,
+phi_a and, on its own axis below, the standard deviation phi_a_local_std). Missing columns
+are skipped. The horizontal axis is `time` if present, else `step`. Every axis carries its
+unit and every legend entry a human label from scripts/plot_labels.py; the labels drawn are
+recorded in RUN_DIR/plots/labels.json (figure -> axes -> x/y label, y scale, legend).
 
 Needs numpy and matplotlib (Debian 12: apt-get install python3-numpy python3-matplotlib). If
 the python3 running this script lacks them, it re-runs itself with /usr/bin/python3.
@@ -26,26 +30,20 @@ SYSTEM_PYTHON = "/usr/bin/python3"
 NO_REEXEC = "INVASIM_PLOT_NO_REEXEC"  # set when re-executed, so it happens at most once
 DEBIAN_PACKAGES = {"numpy": "python3-numpy", "matplotlib": "python3-matplotlib"}
 
-# Plot groups: output file, columns (in legend order), y-axis label. packing.png takes every
-# column named phi or phi_*.
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import plot_labels  # noqa: E402  (scripts/plot_labels.py: the figures' label table)
+
+# Plot groups: output file, then its panels from top to bottom as (columns in legend order,
+# what the axis shows). A panel's columns share the unit of the first.
 GROUPS = [
-    ("temperature.png", ["T_c", "T_a"], "temperature"),
-    ("pressure.png", ["P_left", "P_right"], "pressure"),
-    ("box_length.png", ["L_x"], "box length"),
+    ("temperature.png", [(["T_c", "T_a"], "temperature"),
+                         (["T_c_over_T_a"], plot_labels.symbol("T_c_over_T_a"))]),
+    ("pressure.png", [(["P_left", "P_right"], "pressure on the walls")]),
+    ("box_length.png", [(["L_x"], "box length " + plot_labels.symbol("L_x"))]),
+    ("packing.png", [(["phi", "phi_c", "phi_a"], "packing fraction"),
+                     (["phi_a_local_std"], plot_labels.symbol("phi_a_local_std")
+                      + r", std of the local $\phi_a$")]),
 ]
-LABELS = {
-    "T_c": "$T_c$ (cancer cells)",
-    "T_a": "$T_a$ (adipocytes)",
-    "P_left": r"$P_\mathrm{left}$",
-    "P_right": r"$P_\mathrm{right}$",
-    "L_x": "$L_x$",
-    "A_t": "$A_t$",
-    "A_t_max": r"$A_t^\mathrm{max}$",
-    "A_ratio": r"$A_t / A_t^\mathrm{max}$",
-    "phi": r"$\phi$",
-    "phi_c": r"$\phi_c$",
-    "phi_a": r"$\phi_a$",
-}
 
 
 class SeriesError(Exception):
@@ -139,7 +137,7 @@ def read_series(path):
 
 
 def axis_label(text, unit):
-    return "%s [%s]" % (text, unit) if unit else text
+    return plot_labels.axis_label(text, unit)
 
 
 def save(figure, path):
@@ -153,24 +151,52 @@ def save(figure, path):
             os.remove(temporary)
 
 
-def plot_lines(np, plt, x, x_label, names, units, columns, y_label, path):
-    """One PNG with the given columns against x."""
-    figure, axes = plt.subplots(figsize=(6.4, 4.0), constrained_layout=True)
-    for name in names:
-        axes.plot(x, np.asarray(columns[name]), label=LABELS.get(name, name))
-    axes.set_xlabel(x_label)
-    axes.set_ylabel(axis_label(y_label, units[names[0]]))
-    if len(names) > 1:
-        axes.legend()
-    axes.grid(alpha=0.3)
+def spans_decades(np, arrays):
+    """Whether positive data spanning a factor 10 or more (e.g. T_a next to T_c) calls for a
+    log scale; never for data with zeros or negative values."""
+    values = np.concatenate([np.asarray(a, float) for a in arrays])
+    values = values[np.isfinite(values)]
+    return values.size > 0 and values.min() > 0 and values.max() >= 10.0 * values.min()
+
+
+def record(axes_list):
+    """The labels a figure shows, per panel (for labels.json and its test)."""
+    out = []
+    for ax in axes_list:
+        handles, legend = ax.get_legend_handles_labels()
+        out.append({"xlabel": ax.get_xlabel(), "ylabel": ax.get_ylabel(),
+                    "yscale": ax.get_yscale(), "legend": legend if ax.get_legend() else []})
+    return out
+
+
+def plot_panels(np, plt, x, x_label, panels, units, columns, path):
+    """One PNG with a panel per (columns, axis text) against x; returns its labels."""
+    figure, axes = plt.subplots(len(panels), 1, figsize=(6.4, 3.0 * len(panels) + 1.0),
+                                sharex=True, squeeze=False, constrained_layout=True)
+    axes = axes[:, 0]
+    for ax, (names, text) in zip(axes, panels):
+        data = [np.asarray(columns[n]) for n in names]
+        for name, y in zip(names, data):
+            ax.plot(x, y, label=plot_labels.label(name))
+        if spans_decades(np, data):
+            ax.set_yscale("log")
+        ax.set_ylabel(axis_label(text, units[names[0]]))
+        if len(names) > 1:
+            ax.legend()
+        ax.grid(alpha=0.3)
+    axes[-1].set_xlabel(x_label)
     save(figure, path)
+    labels = record(axes)
     plt.close(figure)
+    return labels
 
 
 def plot_interface(np, plt, x, x_label, units, columns, path):
-    """A_t.png: A_t (and A_t_max) on top; A_t/A_t^max below when known. Returns the columns
-    shown (A_ratio computed from A_t and A_t_max if the file has no A_ratio column)."""
-    shown = [n for n in ("A_t", "A_t_max") if n in columns]
+    """A_t.png: A_t, A_t_max and A_wall_a on top; A_t/A_t^max below when known. Returns the
+    columns shown (A_ratio computed from A_t and A_t_max if the file has no A_ratio column)
+    and the labels drawn."""
+    areas = [n for n in ("A_t", "A_t_max", "A_wall_a") if n in columns]
+    shown = list(areas)
     ratio = None
     if "A_ratio" in columns:
         ratio = np.asarray(columns["A_ratio"])
@@ -179,25 +205,36 @@ def plot_interface(np, plt, x, x_label, units, columns, path):
         with np.errstate(divide="ignore", invalid="ignore"):
             ratio = np.asarray(columns["A_t"]) / np.asarray(columns["A_t_max"])
         shown.append("A_t/A_t_max (computed)")
-    areas = [n for n in ("A_t", "A_t_max") if n in columns]
     panels = (1 if areas else 0) + (1 if ratio is not None else 0)
     figure, axes = plt.subplots(panels, 1, figsize=(6.4, 3.2 * panels + 0.8), sharex=True,
                                 squeeze=False, constrained_layout=True)
     axes = axes[:, 0]
     if areas:
         for name in areas:
-            axes[0].plot(x, np.asarray(columns[name]), label=LABELS[name])
+            axes[0].plot(x, np.asarray(columns[name]), label=plot_labels.label(name))
         axes[0].set_ylabel(axis_label("interfacial area", units[areas[0]]))
         axes[0].legend()
         axes[0].grid(alpha=0.3)
     if ratio is not None:
         axes[-1].plot(x, ratio, color="C2")
-        axes[-1].set_ylabel(LABELS["A_ratio"])
+        axes[-1].set_ylabel(axis_label(plot_labels.symbol("A_ratio"), ""))
         axes[-1].grid(alpha=0.3)
     axes[-1].set_xlabel(x_label)
     save(figure, path)
+    labels = record(axes)
     plt.close(figure)
-    return shown
+    return shown, labels
+
+
+def write_labels(out_dir, labels):
+    """plots/labels.json: figure -> its panels' labels (written atomically)."""
+    import json
+
+    path = os.path.join(out_dir, "labels.json")
+    with open(path + ".tmp", "w") as f:
+        json.dump(labels, f, indent=1, ensure_ascii=False, sort_keys=True)
+        f.write("\n")
+    os.replace(path + ".tmp", path)
 
 
 def main():
@@ -218,29 +255,32 @@ def main():
         fail(str(e))
 
     if "time" in columns:
-        x, x_label = np.asarray(columns["time"]), axis_label("time", units["time"])
+        x, x_label = np.asarray(columns["time"]), axis_label("time $t$", units["time"] or "tau")
     elif "step" in columns:
-        x, x_label = np.asarray(columns["step"]), axis_label("step", units["step"])
+        x, x_label = np.asarray(columns["step"]), "step (completed integration steps)"
     else:
-        x, x_label = np.arange(len(columns[names[0]])), "sample"
+        x, x_label = np.arange(len(columns[names[0]])), "sample (row of series.csv)"
 
     out_dir = os.path.join(args.run_dir, "plots")
     os.makedirs(out_dir, exist_ok=True)
-    written, skipped = [], []
+    written, skipped, labels = [], [], {}
     if any(n in columns for n in ("A_t", "A_t_max", "A_ratio")):
         path = os.path.join(out_dir, "A_t.png")
-        written.append((path, plot_interface(np, plt, x, x_label, units, columns, path)))
+        shown, labels["A_t.png"] = plot_interface(np, plt, x, x_label, units, columns, path)
+        written.append((path, shown))
     else:
         skipped.append("A_t.png (A_t, A_t_max, A_ratio)")
-    phi = [n for n in names if n == "phi" or n.startswith("phi_")]
-    for file_name, wanted, y_label in GROUPS + [("packing.png", phi, "packing fraction")]:
-        present = [n for n in wanted if n in columns]
+    for file_name, panels in GROUPS:
+        present = [([n for n in wanted if n in columns], text) for wanted, text in panels]
+        present = [(names, text) for names, text in present if names]
         if not present:
-            skipped.append("%s (%s)" % (file_name, ", ".join(wanted) or "phi, phi_*"))
+            skipped.append("%s (%s)" % (file_name, ", ".join(panels[0][0])))
             continue
         path = os.path.join(out_dir, file_name)
-        plot_lines(np, plt, x, x_label, present, units, columns, y_label, path)
-        written.append((path, present))
+        labels[file_name] = plot_panels(np, plt, x, x_label, present, units, columns, path)
+        written.append((path, [n for names, _ in present for n in names]))
+    if written:
+        write_labels(out_dir, labels)
 
     rows = len(columns[names[0]])
     for path, shown in written:

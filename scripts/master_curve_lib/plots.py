@@ -1,6 +1,9 @@
 """The figures of the master-curve analysis (PNG, matplotlib's Agg backend): A_n against
-k_B T/(P sigma^3) per curve with its fit, the collapse on E_c^b, a against tau_g/tau_d."""
+k_B T/(P sigma^3) per curve with its fit, the collapse on E_c^b, a against tau_g/tau_d.
+Legends name the curves by their state-point keys' symbols (scripts/plot_labels.py); the
+labels drawn are recorded in figure_labels.json."""
 
+import json
 import os
 
 import matplotlib
@@ -9,9 +12,29 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from plot_labels import state_label, unit_text  # noqa: E402  (scripts/ is on sys.path)
+
 from .fits import sigmoid  # noqa: E402
 
 MARKERS = "osD^vP*Xph<>"
+NONE = unit_text("")  # "(dimensionless)": every axis of these figures is a pure number
+A_N_LABEL = r"$A_n$, normalised interfacial area " + NONE
+
+
+def _name(c):
+    """A curve's legend name: "$\\beta$ = 0.01, $\\tau_p$ = 25" (its group keys)."""
+    return state_label(c.get("group") or {})
+
+
+def _record(fig):
+    """The labels a figure shows, per panel (figure_labels.json)."""
+    out = []
+    for ax in fig.axes:
+        legend = ax.get_legend()
+        out.append({"xlabel": ax.get_xlabel(), "ylabel": ax.get_ylabel(),
+                    "xscale": ax.get_xscale(), "yscale": ax.get_yscale(),
+                    "legend": [t.get_text() for t in legend.get_texts()] if legend else []})
+    return {"title": fig._suptitle.get_text() if fig._suptitle else "", "axes": out}
 
 
 def _style(k):
@@ -38,7 +61,8 @@ def curves_figure(path, result, x_label):
         st = _style(k)
         x, y, e = _points(c)
         ax.errorbar(x, y, yerr=e, ls="none", capsize=2, ms=5, color=st["color"],
-                    marker=st["marker"], label="%s: a=%.3g, b=%.2f" % (c["name"], c["a"], c["b"]))
+                    marker=st["marker"],
+                    label="%s: $a$ = %.3g, $b$ = %.2f" % (_name(c), c["a"], c["b"]))
         ux, uy = _unsteady_jobs(result, c["name"])
         if len(ux):
             hollow = True
@@ -50,12 +74,14 @@ def curves_figure(path, result, x_label):
         ax.plot([], [], ls="none", marker="o", mfc="none", color="0.4",
                 label="hollow: single jobs not steady (not fitted)")
     ax.set_xscale("log")
-    ax.set_xlabel(x_label)
-    ax.set_ylabel(r"$A_n$")
+    ax.set_xlabel(x_label + " " + NONE)
+    ax.set_ylabel(A_N_LABEL)
     ax.legend(fontsize=7, loc="best")
     fig.tight_layout()
     fig.savefig(path, dpi=120)
+    labels = _record(fig)
     plt.close(fig)
+    return labels
 
 
 def collapse_figure(path, curves):
@@ -66,17 +92,19 @@ def collapse_figure(path, curves):
         x, y, e = _points(c)
         ecb = (x / c["a"]) ** c["b"]
         lo, hi = min(lo, ecb.min()), max(hi, ecb.max())
-        ax.errorbar(ecb, y, yerr=e, ls="none", capsize=2, ms=5, label=c["name"], **st)
+        ax.errorbar(ecb, y, yerr=e, ls="none", capsize=2, ms=5, label=_name(c), **st)
     xs = np.logspace(np.log10(lo) - 0.2, np.log10(hi) + 0.2, 200)
     ax.plot(xs, 0.5 * (np.tanh(np.log10(xs)) + 1.0), color="k", lw=1.2,
             label=r"$(\tanh[\log_{10} E_c^b] + 1)/2$")
     ax.set_xscale("log")
-    ax.set_xlabel(r"$E_c^b$, $E_c = k_B T/(a P \sigma^3)$ (a, b fitted per curve)")
-    ax.set_ylabel(r"$A_n$")
+    ax.set_xlabel(r"$E_c^b$, $E_c = k_B T/(a P \sigma^3)$ ($a$, $b$ fitted per curve) " + NONE)
+    ax.set_ylabel(A_N_LABEL)
     ax.legend(fontsize=7, loc="best")
     fig.tight_layout()
     fig.savefig(path, dpi=120)
+    labels = _record(fig)
     plt.close(fig)
+    return labels
 
 
 def scale_figure(path, curves, scale):
@@ -90,7 +118,7 @@ def scale_figure(path, curves, scale):
         model = scale["c1"] * (1 + c2 * c["q"]) * c["tau_g_over_tau_d"]
         for axis, x in ((ax, c["tau_g_over_tau_d"]), (bx, model)):
             axis.errorbar(x, c["a"], yerr=c["a_sigma_in_scale_fit"], ls="none", capsize=2,
-                          ms=6, label=c["name"], **st)
+                          ms=6, label=_name(c), **st)
     r = np.array([c["tau_g_over_tau_d"] for _, c in used])
     rs = np.logspace(np.log10(r.min()) - 0.3, np.log10(r.max()) + 0.3, 50)
     for n, q in enumerate(sorted({c["q"] for _, c in used})):
@@ -107,22 +135,30 @@ def scale_figure(path, curves, scale):
     for axis in (ax, bx):
         axis.set_xscale("log")
         axis.set_yscale("log")
-        axis.set_ylabel(r"$a$")
+        axis.set_ylabel(r"$a$, fitted scale of $k_B T/(P\sigma^3)$ " + NONE)
         axis.legend(fontsize=7, loc="best")
-    ax.set_xlabel(r"$\tau_\gamma/\tau_d$ ($\tau_\gamma = m/\gamma$)")
-    bx.set_xlabel(r"$c_1(1 + c_2\beta\epsilon_c/(P\sigma^3))\,\tau_\gamma/\tau_d$ (fitted)")
+    ax.set_xlabel(r"$\tau_\gamma/\tau_d$ ($\tau_\gamma = m/\gamma$) " + NONE)
+    bx.set_xlabel(r"$c_1(1 + c_2\beta\epsilon_c/(P\sigma^3))\,\tau_\gamma/\tau_d$ (fitted) " + NONE)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
+    labels = _record(fig)
     plt.close(fig)
+    return labels
 
 
 def write_figures(out_dir, result, x_label):
-    """Writes An_vs_T.png, collapse.png and (if the fit of a was done) a_vs_tau.png."""
+    """Writes An_vs_T.png, collapse.png, (if the fit of a was done) a_vs_tau.png and
+    figure_labels.json (figure -> its title and its panels' labels and scales)."""
     paths = {"An_vs_T.png": os.path.join(out_dir, "An_vs_T.png"),
              "collapse.png": os.path.join(out_dir, "collapse.png")}
-    curves_figure(paths["An_vs_T.png"], result, x_label)
-    collapse_figure(paths["collapse.png"], result["curves"])
+    labels = {"An_vs_T.png": curves_figure(paths["An_vs_T.png"], result, x_label),
+              "collapse.png": collapse_figure(paths["collapse.png"], result["curves"])}
     if result["scale_fit"]["done"]:
         paths["a_vs_tau.png"] = os.path.join(out_dir, "a_vs_tau.png")
-        scale_figure(paths["a_vs_tau.png"], result["curves"], result["scale_fit"])
+        labels["a_vs_tau.png"] = scale_figure(paths["a_vs_tau.png"], result["curves"],
+                                              result["scale_fit"])
+    paths["figure_labels.json"] = os.path.join(out_dir, "figure_labels.json")
+    with open(paths["figure_labels.json"], "w") as f:
+        json.dump(labels, f, indent=1, ensure_ascii=False, sort_keys=True)
+        f.write("\n")
     return paths

@@ -6,6 +6,8 @@
 #include "io/atomic_file.hpp"
 #include "io/io_error.hpp"
 #include "io/regular_file.hpp"
+#include "io/slice_axes.hpp"
+#include "io/slice_outline.hpp"
 #include "io/snapshot_writer.hpp"
 #include "io/text_format.hpp"
 #include "io/vtk_format.hpp"
@@ -19,27 +21,11 @@ RenderCounts count_shapes(const Slice& slice) {
   c.discs = int(slice.discs.size());
   c.vertex_discs = int(slice.vertex_discs.size());
   for (const SlicePolygon& p : slice.polygons) ++(p.closed ? c.polygons : c.open_chains);
+  for (const BodyOutline& b : body_outlines(slice)) c.outlines += int(b.loops.size());
   return c;
 }
 
 namespace {
-
-// Simulated time for a caption: 10 significant digits hide the round-off that summing dt
-// accumulates (6000.000000013062 -> 6000).
-std::string time_label(double t) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", t);
-  return buf;
-}
-
-// Maps simulation coordinates (u, w) to SVG pixels (w upwards).
-struct Canvas {
-  double lo_u, hi_u, lo_w, hi_w, scale, margin, top;
-  double x(double u) const { return margin + (u - lo_u) * scale; }
-  double y(double w) const { return top + (hi_w - w) * scale; }
-  double width() const { return 2 * margin + (hi_u - lo_u) * scale; }
-  double height() const { return top + margin + (hi_w - lo_w) * scale; }
-};
 
 void num(std::string& out, double v) {
   text::append_fixed(out, v, 2);
@@ -55,8 +41,9 @@ std::vector<double> image_shifts(bool periodic, double lo, double hi, double min
   return shifts;
 }
 
-void line(std::string& out, double x1, double y1, double x2, double y2, bool wall) {
-  out += "  <line x1=\"";
+// A box edge: a wall (thick) or a periodic edge (dashed).
+void edge(std::string& out, double x1, double y1, double x2, double y2, bool wall) {
+  out += wall ? "  <line data-edge=\"wall\" x1=\"" : "  <line data-edge=\"periodic\" x1=\"";
   num(out, x1);
   out += "\" y1=\"";
   num(out, y1);
@@ -68,29 +55,144 @@ void line(std::string& out, double x1, double y1, double x2, double y2, bool wal
               : "\" stroke=\"black\" stroke-width=\"1\" stroke-dasharray=\"6,4\"/>\n";
 }
 
-// Circles for discs and their in-plane periodic copies; `id` names the attribute holding the
-// disc's index, `style` is the fill and stroke.
-void draw_discs(std::string& out, const Canvas& cv, const Slice& s,
-                const std::vector<SliceDisc>& discs, const char* id, const char* style) {
+// Calls draw(du, dw) for a shape spanning [min_u, max_u] x [min_w, max_w] and for each of its
+// in-plane periodic copies that reaches into the box.
+template <typename Draw>
+void each_image(const SliceCanvas& cv, const Slice& s, double min_u, double max_u, double min_w,
+                double max_w, Draw draw) {
   const Box& box = s.box;
-  for (const SliceDisc& d : discs) {
-    const double r = d.radius;
-    const double u = d.centre[0], w = d.centre[1];
-    for (double du : image_shifts(box.periodic(s.u_axis), cv.lo_u, cv.hi_u, u - r, u + r))
-      for (double dw : image_shifts(box.periodic(s.w_axis), cv.lo_w, cv.hi_w, w - r, w + r)) {
-        out += "    <circle ";
-        out += id;
-        out += "=\"" + std::to_string(d.cell) + "\" cx=\"";
-        num(out, cv.x(u + du));
-        out += "\" cy=\"";
-        num(out, cv.y(w + dw));
-        out += "\" r=\"";
-        num(out, r * cv.scale);
-        out += "\" ";
-        out += style;
-        out += "/>\n";
-      }
+  for (double du : image_shifts(box.periodic(s.u_axis), cv.lo_u, cv.hi_u, min_u, max_u))
+    for (double dw : image_shifts(box.periodic(s.w_axis), cv.lo_w, cv.hi_w, min_w, max_w))
+      draw(du, dw);
+}
+
+// Whether the cells' discs are drawn in two colours (both active and passive cells present).
+bool two_kinds(const Slice& s) {
+  bool active = false, passive = false;
+  for (const SliceDisc& d : s.discs) (d.active == 1 ? active : passive) |= d.active >= 0;
+  return active && passive;
+}
+
+void draw_cells(std::string& out, const SliceCanvas& cv, const Slice& s) {
+  const bool two = two_kinds(s);
+  for (const SliceDisc& d : s.discs) {
+    const double r = d.radius, u = d.centre[0], w = d.centre[1];
+    const char* style = two && d.active == 0 ? slice_style::kCellPassive : slice_style::kCellActive;
+    each_image(cv, s, u - r, u + r, w - r, w + r, [&](double du, double dw) {
+      out += "    <circle data-cell=\"" + std::to_string(d.cell) + "\" cx=\"";
+      num(out, cv.x(u + du));
+      out += "\" cy=\"";
+      num(out, cv.y(w + dw));
+      out += "\" r=\"";
+      num(out, r * cv.scale);
+      out += "\" ";
+      out += style;
+      out += "/>\n";
+    });
   }
+}
+
+// The SVG path data of outline loops shifted by (du, dw): "M x y L ... A ... Z" per loop;
+// arcs are counter-clockwise in (u, w), i.e. sweep-flag 0 with the w axis drawn upwards.
+std::string path_data(const SliceCanvas& cv, const std::vector<OutlineLoop>& loops, double du,
+                      double dw) {
+  std::string d;
+  auto point = [&](const Point2& p) {
+    num(d, cv.x(p[0] + du));
+    d += ' ';
+    num(d, cv.y(p[1] + dw));
+  };
+  for (const OutlineLoop& loop : loops) {
+    d += d.empty() ? "M " : " M ";
+    point(loop.start);
+    for (const OutlineStep& step : loop.steps) {
+      if (step.radius > 0.0) {
+        d += " A ";
+        num(d, step.radius * cv.scale);
+        d += ' ';
+        num(d, step.radius * cv.scale);
+        d += step.large_arc ? " 0 1 0 " : " 0 0 0 ";
+      } else {
+        d += " L ";
+      }
+      point(step.to);
+    }
+    d += " Z";
+  }
+  return d;
+}
+
+// The adipocytes: every envelope section filled, then the mesh sections as thin lines, then
+// every envelope outline, so that overlapping neighbours keep both outlines visible.
+void draw_adipocytes(std::string& out, const SliceCanvas& cv, const Slice& s) {
+  struct Drawn {
+    int body;
+    std::string d;
+  };
+  std::vector<Drawn> paths;
+  for (const BodyOutline& b : body_outlines(s)) {
+    double min_u = INFINITY, max_u = -INFINITY, min_w = INFINITY, max_w = -INFINITY;
+    auto extend = [&](const Point2& p, double r) {
+      min_u = std::min(min_u, p[0] - r), max_u = std::max(max_u, p[0] + r);
+      min_w = std::min(min_w, p[1] - r), max_w = std::max(max_w, p[1] + r);
+    };
+    for (const OutlineLoop& loop : b.loops) {
+      extend(loop.start, 0.0);
+      for (const OutlineStep& step : loop.steps)
+        extend(step.radius > 0.0 ? step.centre : step.to, step.radius);
+    }
+    each_image(cv, s, min_u, max_u, min_w, max_w, [&](double du, double dw) {
+      paths.push_back({b.body, path_data(cv, b.loops, du, dw)});
+    });
+  }
+  for (const Drawn& p : paths)
+    out += "    <path data-body=\"" + std::to_string(p.body) + "\" d=\"" + p.d + "\" " +
+           slice_style::kAdipocyteFill + "/>\n";
+  for (const SlicePolygon& p : s.polygons) {
+    double min_u = INFINITY, max_u = -INFINITY, min_w = INFINITY, max_w = -INFINITY;
+    for (const Point2& q : p.points) {
+      min_u = std::min(min_u, q[0]), max_u = std::max(max_u, q[0]);
+      min_w = std::min(min_w, q[1]), max_w = std::max(max_w, q[1]);
+    }
+    each_image(cv, s, min_u, max_u, min_w, max_w, [&](double du, double dw) {
+      out += p.closed ? "    <polygon" : "    <polyline";
+      out += " data-body=\"" + std::to_string(p.body) + "\" points=\"";
+      for (const Point2& q : p.points) {
+        num(out, cv.x(q[0] + du));
+        out += ',';
+        num(out, cv.y(q[1] + dw));
+        out += ' ';
+      }
+      out += "\" ";
+      out += slice_style::kMesh;
+      out += "/>\n";
+    });
+  }
+  for (const Drawn& p : paths)
+    out += "    <path data-outline=\"" + std::to_string(p.body) + "\" d=\"" + p.d + "\" " +
+           slice_style::kAdipocyteOutline + "/>\n";
+}
+
+// The legend: the kinds of cells in the slice, adipocytes, and the kinds of box edge shown.
+std::vector<LegendEntry> legend_of(const Slice& s) {
+  std::vector<LegendEntry> legend;
+  bool active = false, passive = false;
+  for (const SliceDisc& d : s.discs) (d.active == 1 ? active : passive) |= d.active >= 0;
+  if (active && passive) {
+    legend.push_back({"cell-active", "active cancer cell"});
+    legend.push_back({"cell-passive", "passive cancer cell"});
+  } else {
+    legend.push_back({"cell", active    ? "cancer cell (active)"
+                              : passive ? "cancer cell (passive)"
+                                        : "cancer cell"});
+  }
+  legend.push_back({"adipocyte", "adipocyte (mesh + vertex spheres)"});
+  legend.push_back({"mesh", "mesh section"});
+  const Box& box = s.box;
+  if (!box.periodic(s.u_axis) || !box.periodic(s.w_axis)) legend.push_back({"wall", "wall"});
+  if (box.periodic(s.u_axis) || box.periodic(s.w_axis))
+    legend.push_back({"periodic", "periodic boundary"});
+  return legend;
 }
 
 }  // namespace
@@ -98,9 +200,8 @@ void draw_discs(std::string& out, const Canvas& cv, const Slice& s,
 std::string slice_svg(const Slice& s, double size_px) {
   const int u = s.u_axis, w = s.w_axis;
   const Box& box = s.box;
-  const double Lu = box.length(u), Lw = box.length(w);
-  Canvas cv{box.lo()[u], box.hi()[u], box.lo()[w], box.hi()[w], size_px / std::max(Lu, Lw),
-            20.0,        40.0};
+  const std::vector<LegendEntry> legend = legend_of(s);
+  const SliceCanvas cv = slice_canvas(s, size_px, legend);
   std::string out;
   out += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" ";
   out += "width=\"";
@@ -112,57 +213,36 @@ std::string slice_svg(const Slice& s, double size_px) {
   out += ' ';
   num(out, cv.height());
   out += "\">\n";
-  out += "  <title>";
-  std::string title;
-  title += "xyz"[s.plane.axis];
-  title += " = " + text::str(s.plane.value) + ", step " + std::to_string(s.step) +
-           ", t = " + time_label(s.time);
-  out += xml_escape(title);
-  out += "</title>\n  <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  const std::string caption = slice_caption(s);
+  out += "  <title>" + xml_escape(caption) + "</title>\n";
+  out +=
+      "  <desc>Slice of an invasim frame. Lengths in sigma (the mean cancer-cell diameter), "
+      "time in tau = sqrt(m sigma^2/eps_c).</desc>\n";
+  out += "  <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   out += "  <text x=\"";
-  num(out, cv.margin);
-  out += "\" y=\"25\" font-family=\"sans-serif\" font-size=\"16\">" + xml_escape(title);
-  out += std::string(" (horizontal ") + "xyz"[u] + ", vertical " + "xyz"[w] + ")</text>\n";
+  num(out, cv.left);
+  out += "\" y=\"26\" font-family=\"DejaVu Sans, Arial, sans-serif\" font-size=\"16\">" +
+         xml_escape(caption) + "</text>\n";
   out += "  <defs><clipPath id=\"box\"><rect x=\"";
   num(out, cv.x(cv.lo_u));
   out += "\" y=\"";
   num(out, cv.y(cv.hi_w));
   out += "\" width=\"";
-  num(out, Lu * cv.scale);
+  num(out, box.length(u) * cv.scale);
   out += "\" height=\"";
-  num(out, Lw * cv.scale);
+  num(out, box.length(w) * cv.scale);
   out += "\"/></clipPath></defs>\n  <g clip-path=\"url(#box)\">\n";
-
-  draw_discs(out, cv, s, s.vertex_discs, "data-vertex", "fill=\"cyan\"");
-  for (const SlicePolygon& p : s.polygons) {
-    double min_u = INFINITY, max_u = -INFINITY, min_w = INFINITY, max_w = -INFINITY;
-    for (const Point2& q : p.points) {
-      min_u = std::min(min_u, q[0]), max_u = std::max(max_u, q[0]);
-      min_w = std::min(min_w, q[1]), max_w = std::max(max_w, q[1]);
-    }
-    for (double du : image_shifts(box.periodic(u), cv.lo_u, cv.hi_u, min_u, max_u))
-      for (double dw : image_shifts(box.periodic(w), cv.lo_w, cv.hi_w, min_w, max_w)) {
-        out += p.closed ? "    <polygon" : "    <polyline";
-        out += " data-body=\"" + std::to_string(p.body) + "\" points=\"";
-        for (const Point2& q : p.points) {
-          num(out, cv.x(q[0] + du));
-          out += ',';
-          num(out, cv.y(q[1] + dw));
-          out += ' ';
-        }
-        out += p.closed ? "\" fill=\"cyan\" stroke=\"#007b8a\" stroke-width=\"1\"/>\n"
-                        : "\" fill=\"none\" stroke=\"#007b8a\" stroke-width=\"1\"/>\n";
-      }
-  }
-  draw_discs(out, cv, s, s.discs, "data-cell",
-             "fill=\"red\" stroke=\"#800000\" stroke-width=\"0.5\"");
+  draw_adipocytes(out, cv, s);
+  draw_cells(out, cv, s);
   out += "  </g>\n";
   // Box edges: walls (non-periodic axes) thick, periodic edges dashed.
   const double x0 = cv.x(cv.lo_u), x1 = cv.x(cv.hi_u), y0 = cv.y(cv.lo_w), y1 = cv.y(cv.hi_w);
-  line(out, x0, y0, x0, y1, !box.periodic(u));
-  line(out, x1, y0, x1, y1, !box.periodic(u));
-  line(out, x0, y0, x1, y0, !box.periodic(w));
-  line(out, x0, y1, x1, y1, !box.periodic(w));
+  edge(out, x0, y0, x0, y1, !box.periodic(u));
+  edge(out, x1, y0, x1, y1, !box.periodic(u));
+  edge(out, x0, y0, x1, y0, !box.periodic(w));
+  edge(out, x0, y1, x1, y1, !box.periodic(w));
+  append_axes(out, cv, s);
+  append_legend(out, cv, legend);
   out += "</svg>\n";
   return out;
 }

@@ -1,9 +1,12 @@
 #pragma once
 // Pictures of a slice (docs/output_formats.md, "Slice pictures"): an SVG like the paper's
-// Fig. 1(c-d), with cancer cells as red discs, adipocytes as cyan polygons outlined in dark
-// cyan over their (unoutlined) cyan vertex-sphere sections, walls as thick black lines and
-// periodic edges as dashed lines; shapes that cross a periodic edge are drawn
-// again at their periodic image (clipped to the box). Entry point of `invasim render`.
+// Fig. 1(c-d), with cancer cells as red discs (active red, passive orange when both are
+// present), each adipocyte as the section of its contact envelope (mesh plus vertex spheres)
+// filled in cyan with its own dark closed outline (io/slice_outline.hpp) and its mesh section
+// as a thin line, walls as thick black lines and periodic edges as dashed lines; shapes that
+// cross a periodic edge are drawn again at their periodic image (clipped to the box). Axes
+// with ticks in sigma, the time in tau and a legend frame it (io/slice_axes.hpp). Entry point
+// of `invasim render`.
 #include <filesystem>
 #include <string>
 
@@ -18,10 +21,12 @@ struct RenderCounts {
   int polygons = 0;
   int open_chains = 0;
   int vertex_discs = 0;  // sections of adipocyte vertex spheres
+  int outlines = 0;      // closed loops of the adipocytes' envelope outlines
 };
 RenderCounts count_shapes(const Slice& slice);
 
-// The SVG text of a slice; the longer box side spans `size_px` pixels.
+// The SVG text of a slice; the longer box side spans `size_px` pixels (axes, caption and
+// legend around it).
 std::string slice_svg(const Slice& slice, double size_px = 800.0);
 
 // Cuts a frame and writes the SVG atomically to `out`.

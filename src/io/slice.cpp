@@ -81,10 +81,22 @@ Slice cut_frame(const Frame& frame, const SlicePlane& plane) {
     if (std::abs(d) < r) out.push_back({id, {x[u], x[w]}, std::sqrt(r * r - d * d)});
   };
   const CellFrame& c = frame.cells;
-  for (std::size_t i = 0; i < c.size(); ++i) cut_sphere(c.pos[i], c.radius[i], int(i), s.discs);
+  const bool oriented = c.orient.size() == c.size();
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const std::size_t before = s.discs.size();
+    cut_sphere(c.pos[i], c.radius[i], int(i), s.discs);
+    if (oriented && s.discs.size() > before) s.discs.back().active = c.orient[i].norm() > 0.5;
+  }
   const MeshFrame& m = frame.meshes;
-  for (std::size_t p = 0; p < m.point_radius.size() && p < m.points.size(); ++p)
+  std::vector<int> body_of_point(m.points.size(), -1);
+  for (std::size_t t = 0; t < m.triangles.size() && t < m.triangle_body.size(); ++t)
+    for (int p : m.triangles[t])
+      if (p >= 0 && std::size_t(p) < body_of_point.size()) body_of_point[p] = m.triangle_body[t];
+  for (std::size_t p = 0; p < m.point_radius.size() && p < m.points.size(); ++p) {
+    const std::size_t before = s.vertex_discs.size();
     cut_sphere(m.points[p], m.point_radius[p], int(p), s.vertex_discs);
+    if (s.vertex_discs.size() > before) s.vertex_discs.back().body = body_of_point[p];
+  }
 
   // Meshes: each body against every periodic copy of the plane that crosses it.
   const int n_bodies = m.n_bodies();

@@ -24,9 +24,13 @@ SlicePlane parse_slice_plane(std::string_view spec);
 using Point2 = std::array<double, 2>;
 
 struct SliceDisc {
-  int cell;       // index in the frame's cells
+  int cell;       // index in the frame's cells (vertex discs: the point index)
   Point2 centre;  // in-plane coordinates (u, w)
   double radius;
+  int body = -1;  // vertex discs: the adipocyte the point belongs to (cells: -1)
+  // Cells: 1 active (the frame gives it an orientation), 0 passive (zero orientation), -1
+  // unknown (the frame has no orientations).
+  int active = -1;
 };
 
 struct SlicePolygon {
@@ -43,8 +47,9 @@ struct Slice {
   double time = 0.0;
   std::vector<SliceDisc> discs;
   std::vector<SlicePolygon> polygons;
-  // Sections of the adipocyte vertices' contact spheres (`cell` = point index): with the
-  // polygons they outline the adipocyte's contact envelope (mesh plus vertex spheres).
+  // Sections of the adipocyte vertices' contact spheres (`cell` = point index, `body` its
+  // adipocyte): with the polygons they outline the adipocyte's contact envelope (mesh plus
+  // vertex spheres; io/slice_outline.hpp).
   std::vector<SliceDisc> vertex_discs;
 };
 

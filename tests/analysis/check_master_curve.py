@@ -106,7 +106,35 @@ def case_synthetic(script, scratch):
             head = f.read(8)
         check(head == b"\x89PNG\r\n\x1a\n" and os.path.getsize(path) > 10000,
               "%s is a PNG figure" % name)
+    check_figure_labels(os.path.join(out, "figure_labels.json"), script)
     calibration(np, synthetic, truth, scratch)
+
+
+def check_figure_labels(path, script):
+    """The labels the figures show: curves named by their keys' symbols (no raw key or column
+    names), a unit (here: dimensionless) on every axis, log scales on the temperature axes."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(script)))
+    import plot_labels
+
+    check(os.path.isfile(path), "figure_labels.json written")
+    if not os.path.isfile(path):
+        return
+    with open(path) as f:
+        figures = json.load(f)
+    check(sorted(figures) == ["An_vs_T.png", "a_vs_tau.png", "collapse.png"],
+          "figure_labels.json: the three figures")
+    for name, fig in figures.items():
+        for k, ax in enumerate(fig["axes"]):
+            texts = [ax["xlabel"], ax["ylabel"]] + ax["legend"]
+            check(not [t for t in texts if plot_labels.raw_names(t)],
+                  "%s panel %d: no raw names in %s" % (name, k + 1, texts))
+            check(all("(dimensionless)" in t for t in (ax["xlabel"], ax["ylabel"])),
+                  "%s panel %d: units on both axes" % (name, k + 1))
+            check(ax["xscale"] == "log", "%s panel %d: log x axis" % (name, k + 1))
+    legend = figures["An_vs_T.png"]["axes"][0]["legend"]
+    check(len(legend) == 6 and all(t.startswith(r"$\beta$ = ") and r", $\tau_p$ = " in t
+                                   for t in legend),
+          "An_vs_T.png: curves named '$\\beta$ = ..., $\\tau_p$ = ...' (%s)" % legend[:2])
 
 
 def calibration(np, synthetic, truth, scratch):

@@ -19,6 +19,10 @@ SKIP = 77
 FULL_HEADER = ("step,time [tau],T_c [eps_c],T_a [eps_c],P_left [eps_c/sigma^3],"
                "P_right [eps_c/sigma^3],L_x [sigma],phi,phi_c,phi_a,A_t [sigma^2],"
                "A_t_max [sigma^2],A_ratio")
+# The header of the main job's series.csv (protocols/invasion.lua).
+MAIN_JOB_HEADER = ("step,time [tau],T_c [eps_c],T_a [eps_c],T_c_over_T_a,kT_c_paper [eps_c],"
+                   "P_left [eps_c/sigma^3],P_right [eps_c/sigma^3],L_x [sigma],phi,phi_c,phi_a,"
+                   "A_t [sigma^2],A_t_max [sigma^2],A_ratio,phi_a_local_std,A_wall_a [sigma^2]")
 ALL_PLOTS = ["A_t.png", "temperature.png", "pressure.png", "box_length.png", "packing.png"]
 failures = []
 
@@ -55,6 +59,59 @@ def png_size(path):
     return struct.unpack(">II", head[16:24])
 
 
+def check_labels(path, script):
+    """The labels plot_run.py recorded for the main job's figures, and its label table."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(script)))
+    import plot_labels
+
+    # The table: every column of the main job's series.csv has a human label; an unknown
+    # name is an error naming it, never printed raw.
+    for entry in MAIN_JOB_HEADER.split(","):
+        name = entry.split(" [")[0]
+        check(not plot_labels.raw_names(plot_labels.label(name)),
+              "label table: '%s' -> '%s'" % (name, plot_labels.label(name)))
+    try:
+        plot_labels.label("no_such_column")
+        check(False, "label table: an unknown column is refused")
+    except plot_labels.LabelError as e:
+        check("no_such_column" in str(e), "label table: an unknown column is refused by name")
+    check(plot_labels.raw_names("phi_a_local_std (x)") == ["phi_a_local_std"]
+          and plot_labels.raw_names(r"$\phi_a$ [$\sigma^2$]") == [],
+          "label table: raw names are found outside $...$ only")
+
+    import json
+
+    check(os.path.isfile(path), "labels.json written")
+    if not os.path.isfile(path):
+        return
+    with open(path) as f:
+        figures = json.load(f)
+    check(sorted(figures) == sorted(ALL_PLOTS), "labels.json: every figure (%s)" % sorted(figures))
+    for name, panels in figures.items():
+        for k, panel in enumerate(panels):
+            where = "%s panel %d" % (name, k + 1)
+            texts = [panel["xlabel"], panel["ylabel"]] + panel["legend"]
+            check(not [t for t in texts if plot_labels.raw_names(t)],
+                  "%s: no raw column name in %s" % (where, texts))
+            check("[" in panel["ylabel"] or "(dimensionless)" in panel["ylabel"],
+                  "%s: the y axis has a unit: %s" % (where, panel["ylabel"]))
+        check(panels[-1]["xlabel"] == "time $t$ [$\\tau$]",
+              "%s: time axis in tau (%s)" % (name, panels[-1]["xlabel"]))
+    packing = figures.get("packing.png", [])
+    check(len(packing) == 2 and "packing fraction" in packing[0]["ylabel"]
+          and len(packing[0]["legend"]) == 3
+          and not [t for t in packing[0]["legend"] if "Delta" in t or "std" in t],
+          "packing.png: phi, phi_c, phi_a share the packing-fraction axis, without the std")
+    check(len(packing) == 2 and packing[1]["ylabel"].startswith(r"$\Delta\phi_a$"),
+          "packing.png: the std of the local phi_a on its own axis")
+    temperature = figures.get("temperature.png", [])
+    check(len(temperature) == 2 and temperature[0]["yscale"] == "log"
+          and temperature[0]["ylabel"] == r"temperature [$\epsilon_c$]",
+          "temperature.png: T_c and T_a (a decade apart) on a log scale, in eps_c")
+    check(len(temperature) == 2 and temperature[1]["ylabel"].startswith("$T_c/T_a$"),
+          "temperature.png: T_c/T_a on its own axis")
+
+
 def main():
     script, scratch = sys.argv[1], sys.argv[2]
     probe = subprocess.run([sys.executable, "-c", "import numpy, matplotlib"],
@@ -87,12 +144,24 @@ def main():
     check(not [f for f in os.listdir(os.path.join(full, "plots")) if ".tmp" in f],
           "full series: no temporary files left")
 
+    # The main job's columns (protocols/invasion.lua): the figures' labels, as recorded in
+    # plots/labels.json, are human (no raw column name), carry units, keep the standard
+    # deviation off the packing-fraction axis and put T_c next to a much colder T_a on a log
+    # scale.
+    rows = ["%d,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g" % (
+        100 * k, 5.0 * k, 1e-4 * (1 + 0.01 * k), 8e-6, 12.5, 2e-4, 1.3e-3, 1.4e-3, 13.3, 0.6,
+        0.13, 0.47, 480 + k, 1300, (480 + k) / 1300, 0.16 - 1e-3 * k, 117) for k in range(20)]
+    main_job = make_run(scratch, "main_job", MAIN_JOB_HEADER + "\n" + "\n".join(rows) + "\n")
+    p = run(script, main_job)
+    check(p.returncode == 0, "main-job series: exit status 0")
+    check_labels(os.path.join(main_job, "plots", "labels.json"), script)
+
     # Some columns only (A_t without A_t_max: no ratio), an empty field, no time column.
     partial = make_run(scratch, "partial", "step,T_c [eps_c],phi_a,A_t [sigma^2]\n"
                        "0,1e-3,0.9,100\n10,,0.91,101\n20,1.2e-3,0.92,103\n")
     p = run(script, partial)
     check(p.returncode == 0, "partial series: exit status 0")
-    present = sorted(os.listdir(os.path.join(partial, "plots")))
+    present = sorted(f for f in os.listdir(os.path.join(partial, "plots")) if f != "labels.json")
     check(present == ["A_t.png", "packing.png", "temperature.png"],
           "partial series: exactly A_t, packing and temperature plots (got %s)" % present)
     check("A_t.png: A_t\n" in p.stdout, "partial series: A_t.png shows A_t only")

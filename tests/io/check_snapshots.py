@@ -254,15 +254,30 @@ def check_svg(path, exp):
     root = ET.parse(path).getroot()
     check(root.tag == ns + "svg", "slice.svg: root is not <svg>")
     circles = [c for c in root.iter(ns + "circle") if c.get("data-cell") is not None]
-    vertices = [c for c in root.iter(ns + "circle") if c.get("data-vertex") is not None]
     polygons = list(root.iter(ns + "polygon"))
-    check(len(vertices) > 0 and all(c.get("fill") == "cyan" for c in vertices),
-          "slice.svg: vertex sphere sections must be cyan")
+    fills = [p for p in root.iter(ns + "path") if p.get("data-body") is not None]
+    outlines = [p for p in root.iter(ns + "path") if p.get("data-outline") is not None]
+    # Each adipocyte's envelope: filled in cyan, then outlined by closed loops of its own.
+    check(len(outlines) >= int(exp["svg_polygons"]) > 0, f"slice.svg: {len(outlines)} outlines")
+    check([p.get("data-body") for p in fills] == [p.get("data-outline") for p in outlines],
+          "slice.svg: one fill per outline, same bodies")
+    check(all(p.get("fill") == "#9ee9f2" for p in fills), "slice.svg: envelopes must be cyan")
+    for p in outlines:
+        d = p.get("d").split()
+        check(d[0] == "M" and d[-1] == "Z" and d.count("M") == d.count("Z")
+              and p.get("fill") == "none" and p.get("stroke") == "#00424a",
+              "slice.svg: outline of body %s: closed dark loops" % p.get("data-outline"))
     check(len(circles) >= int(exp["svg_discs"]) > 0, f"slice.svg: {len(circles)} circles")
     check(len(polygons) >= int(exp["svg_polygons"]) > 0, f"slice.svg: {len(polygons)} polygons")
     check(len({c.get("data-cell") for c in circles}) == int(exp["svg_discs"]), "slice.svg: cells")
-    check(all(c.get("fill") == "red" for c in circles), "slice.svg: circles must be red")
-    check(all(p.get("fill") == "cyan" for p in polygons), "slice.svg: polygons must be cyan")
+    check(all(c.get("fill") in ("#e3221c", "#fd9a4b") for c in circles),
+          "slice.svg: circles must be red (active) or orange (passive)")
+    check(all(p.get("fill") == "none" for p in polygons), "slice.svg: mesh sections are lines")
+    texts = ["".join(t.itertext()) for t in root.iter(ns + "text")]
+    check(any(t.startswith("z = 5 \u03c3, step ") and t.endswith(" \u03c4") for t in texts),
+          "slice.svg: caption with the plane in sigma and the time in tau")
+    check(any(g.get("id") == "legend" for g in root.iter(ns + "g")), "slice.svg: legend")
+    check(any(g.get("id") == "axes" for g in root.iter(ns + "g")), "slice.svg: axes")
 
 
 def main():

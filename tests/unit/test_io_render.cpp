@@ -152,20 +152,23 @@ TEST_CASE("render from snapshot files: the same counts and the documented SVG el
   CHECK(svg.rfind("<?xml", 0) == 0);
   CHECK(svg.find("<svg xmlns=\"http://www.w3.org/2000/svg\"") != std::string::npos);
   CHECK(occurrences(svg, "<circle data-cell=") == 3);
-  CHECK(occurrences(svg, "fill=\"red\"") == 3);
+  // The cells in red (one kind: no orientations), and the legend's sample.
+  CHECK(occurrences(svg, "fill=\"#e3221c\"") == 3 + 1);
   CHECK(occurrences(svg, "<polygon data-body=\"0\"") == 1);
-  CHECK(occurrences(svg, "fill=\"cyan\" stroke=") == 1);
-  // The vertex spheres of adipocyte 0 within one vertex radius of the plane, in cyan.
+  // Adipocyte 0's envelope (its mesh section and the sections of its vertex spheres within
+  // one vertex radius of the plane): filled once, outlined once.
   const System sys0 = known_configuration();
   int near = 0;
   for (int v = 0; v < 42; ++v) near += std::abs(sys0.sites().pos[5 + v][2] - 5.0) < 1.0;
   CHECK(near > 0);
-  CHECK(occurrences(svg, "<circle data-vertex=") == std::size_t(near));
-  CHECK(occurrences(svg, "fill=\"cyan\"/>") == std::size_t(near));
+  CHECK(render_snapshot(vtp, parse_slice_plane("z=5"), dir / "s.svg").vertex_discs == near);
+  CHECK(occurrences(svg, "<path data-body=\"0\"") == 1);
+  CHECK(occurrences(svg, "<path data-outline=\"0\"") == 1);
+  CHECK(occurrences(svg, "<path ") == 2);
   // Plane z: horizontal x (walls: thick), vertical y (periodic: dashed).
-  CHECK(occurrences(svg, "stroke-width=\"4\"") == 2);
-  CHECK(occurrences(svg, "stroke-dasharray") == 2);
-  CHECK(svg.find("z = 5, step 1200") != std::string::npos);
+  CHECK(occurrences(svg, "<line data-edge=\"wall\"") == 2);
+  CHECK(occurrences(svg, "<line data-edge=\"periodic\"") == 2);
+  CHECK(svg.find("z = 5 \u03c3, step 1200") != std::string::npos);
 
   // A plane x = 7 cuts both adipocytes; the upper one crosses the periodic z edge and is drawn
   // twice (once per side); all four edges are periodic.
@@ -173,7 +176,9 @@ TEST_CASE("render from snapshot files: the same counts and the documented SVG el
   CHECK(c.polygons == 2);
   const std::string xs = read_file(dir / "x.svg");
   CHECK(occurrences(xs, "<polygon") == 3);
-  CHECK(occurrences(xs, "stroke-dasharray") == 4);
+  CHECK(occurrences(xs, "<path data-outline=") == 3);
+  CHECK(occurrences(xs, "<line data-edge=\"periodic\"") == 4);
+  CHECK(occurrences(xs, "<line data-edge=\"wall\"") == 0);
 
   // The sample system's adipocyte 1 sticks out of the box past y = 10 and below z = 0: cut by
   // x = 7.5, it is drawn four times (itself and its images in y, z and both).
@@ -232,4 +237,94 @@ TEST_CASE("render: the files of one frame agree on a box whose hi does not round
                         Contains("cells_000020000.xyz' beyond round-off"));
   CHECK_FALSE(same_box(sys.box(), moved.box()));
   CHECK_FALSE(same_box(sys.box(), Box(sys.box().lo(), sys.box().hi(), {true, true, true})));
+}
+
+namespace {
+
+// The `d` attributes of the SVG's elements that start with `element` (e.g. `<path
+// data-outline="0"`).
+std::vector<std::string> path_data_of(const std::string& svg, const std::string& element) {
+  std::vector<std::string> out;
+  for (std::size_t k = svg.find(element); k != std::string::npos; k = svg.find(element, k + 1)) {
+    const std::size_t d = svg.find(" d=\"", k) + 4;
+    out.push_back(svg.substr(d, svg.find('"', d) - d));
+  }
+  return out;
+}
+
+}  // namespace
+
+// Where the envelopes (mesh plus vertex spheres) of two adipocytes touch or overlap, the
+// picture used to fill their vertex-sphere sections without outline, merging them into one
+// shapeless blob: each body now has its own closed outline.
+TEST_CASE("render: two adipocytes in contact are two closed outlines, not one blob") {
+  // Side by side in x (mesh gap 0.5, vertex spheres overlapping), cut through their centres;
+  // stacked in z, cut by a plane between them (through their vertex spheres only).
+  struct Pair {
+    Vec3 a, b;
+    SlicePlane plane;
+  };
+  for (const Pair& pair : {Pair{Vec3(4.0, 5.0, 6.0), Vec3(8.5, 5.0, 6.0), {2, 6.0}},
+                           Pair{Vec3(6.0, 5.0, 3.0), Vec3(6.0, 5.0, 7.5), {2, 5.25}}}) {
+    INFO("z = " << pair.plane.value);
+    System sys(Box(Vec3::Zero(), Vec3(12.0, 10.0, 12.0), {false, true, true}), 1);
+    sys.add_mesh_scaled(icosphere(1), pair.a, 2.0, 2.0, 1.1);
+    sys.add_mesh_scaled(icosphere(1), pair.b, 2.0, 2.0, 1.1);
+    const std::string svg = slice_svg(cut_frame(frame_from_system(sys), pair.plane));
+    for (int b : {0, 1}) {
+      INFO("body " << b);
+      const auto d = path_data_of(svg, "<path data-outline=\"" + std::to_string(b) + "\"");
+      REQUIRE(d.size() == 1);  // one outline per body (no periodic copy here)
+      CHECK(d[0].rfind("M ", 0) == 0);
+      CHECK(occurrences(d[0], "M ") == occurrences(d[0], " Z"));  // every loop closed
+      CHECK(d[0].substr(d[0].size() - 2) == " Z");
+      CHECK(occurrences(d[0], " A ") >= 6);  // the vertex spheres' arcs
+    }
+    CHECK(occurrences(svg, "<path data-outline=") == 2);
+    CHECK(occurrences(svg, "<circle data-vertex=") == 0);  // no unoutlined sphere sections
+  }
+}
+
+TEST_CASE("render: axes with ticks in sigma, the time in tau and a legend") {
+  System sys = known_configuration();
+  sys.step = 1200;
+  sys.time = 60.000000000013;
+  const std::string svg = slice_svg(cut_frame(frame_from_system(sys), {2, 5.0}));
+  // Caption and title: plane and time with their units.
+  CHECK(occurrences(svg, "<title>z = 5 \u03c3, step 1200, t = 60 \u03c4</title>") == 1);
+  CHECK(occurrences(svg, ">z = 5 \u03c3, step 1200, t = 60 \u03c4</text>") == 1);
+  CHECK(occurrences(svg, "time in tau = sqrt(m sigma^2/eps_c)") == 1);
+  // x from 0 to 12: ticks every 2 sigma (7); y from 0 to 10: every 2 (6); marks and labels.
+  CHECK(occurrences(svg, "<line data-tick=\"u\"") == 7);
+  CHECK(occurrences(svg, "<line data-tick=\"w\"") == 6);
+  CHECK(occurrences(svg, "data-tick-label=\"u\">") == 7);
+  CHECK(occurrences(svg, "data-tick-label=\"w\">") == 6);
+  for (const char* label : {">0</text>", ">6</text>", ">12</text>"})
+    CHECK(occurrences(svg, std::string("data-tick-label=\"u\"") + label) == 1);
+  CHECK(occurrences(svg, "data-tick-label=\"w\">10</text>") == 1);
+  CHECK(occurrences(svg, "data-tick-label=\"w\">12</text>") == 0);
+  CHECK(occurrences(svg, "data-axis=\"u\">x [\u03c3], normal to the walls</text>") == 1);
+  CHECK(occurrences(svg, ">y [\u03c3], periodic</text>") == 1);
+  // Legend: cells (passive: no orientation), adipocytes, mesh, wall and periodic edges.
+  for (const char* kind : {"cell", "adipocyte", "mesh", "wall", "periodic"})
+    CHECK(occurrences(svg, std::string("<g data-legend=\"") + kind + "\">") == 1);
+  CHECK(occurrences(svg, ">cancer cell (passive)</text>") == 1);
+  CHECK(occurrences(svg, ">adipocyte (mesh + vertex spheres)</text>") == 1);
+  CHECK(occurrences(svg, ">periodic boundary</text>") == 1);
+}
+
+TEST_CASE("render: active and passive cells in one slice are told apart") {
+  System sys(Box(Vec3::Zero(), Vec3(10.0, 10.0, 10.0), {false, true, true}), 1);
+  sys.add_sphere(Vec3(2.0, 2.0, 5.0), 1.0, 1.0, Vec3(0.0, 0.0, 1.0));  // active
+  sys.add_sphere(Vec3(5.0, 5.0, 5.0), 1.0);                            // passive
+  const std::string svg = slice_svg(cut_frame(frame_from_system(sys), {2, 5.0}));
+  CHECK(occurrences(svg, "<g data-legend=\"cell-active\">") == 1);
+  CHECK(occurrences(svg, "<g data-legend=\"cell-passive\">") == 1);
+  CHECK(occurrences(svg, ">active cancer cell</text>") == 1);
+  CHECK(occurrences(svg, ">passive cancer cell</text>") == 1);
+  CHECK(occurrences(svg, "<circle data-cell=\"0\" cx=\"") == 1);
+  const std::size_t passive = svg.find("<circle data-cell=\"1\"");
+  REQUIRE(passive != std::string::npos);
+  CHECK(svg.substr(passive, svg.find('\n', passive) - passive).find("fill=\"#fd9a4b\"") !=
+        std::string::npos);
 }
