@@ -2,6 +2,11 @@
 // the measurements built on it. See voronoi.hpp and docs/measurements.md.
 #include "measure/voronoi.hpp"
 
+// CGAL's containers keep their freed blocks for the next call (recycling_allocator.hpp): every
+// call builds a fresh triangulation of about the same size. Must precede the CGAL headers.
+#include "measure/recycling_allocator.hpp"
+#define CGAL_ALLOCATOR(T) invasim::RecyclingAllocator<T>
+
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Delaunay_triangulation_cell_base_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "core/errors.hpp"
+#include "measure/recycling_allocator.hpp"
 #include "measure/voronoi.hpp"
 #include "test_support.hpp"
 
@@ -462,4 +463,19 @@ TEST_CASE("radical variant: equal weights give the Voronoi cells, unequal ones s
     CHECK(m.tessellation.volume[0] == Approx(1.1).epsilon(1e-12));
     CHECK(measure_voronoi(sys).tessellation.volume[0] == Approx(1.0).epsilon(1e-12));
   }
+}
+
+TEST_CASE("the triangulation's blocks are kept for the next call, not returned to the system") {
+  // Every call builds a fresh triangulation; its freed blocks stay in the thread's pool
+  // (recycling_allocator.hpp), and the next call of the same size takes them all back.
+  const Box box = walled_box(Vec3(-1.0, 2.0, 0.5), Vec3(6.0, 5.0, 5.0));
+  const std::vector<Vec3> p = random_points(box, 300, 11);
+  const BlockPool* pool = BlockPool::of_this_thread();
+  REQUIRE(pool != nullptr);
+  const VoronoiTessellation first = tessellate(box, p);
+  const std::size_t kept = pool->kept_bytes();
+  CHECK(kept > 100000);  // a few hundred cells of ~100 bytes and their vertices
+  const VoronoiTessellation second = tessellate(box, p);
+  CHECK(pool->kept_bytes() == kept);
+  CHECK(second.volume == first.volume);
 }
