@@ -57,6 +57,7 @@ std::vector<double> check_numbers(lua_State* L, int index, const char* what) {
 int l_voronoi(lua_State* L) {
   const Simulation& sim = check<Simulation>(L, 1);
   VoronoiOptions options;
+  options.interface_only = true;  // the per-site volumes and the faces are not returned
   if (!lua_isnoneornil(L, 2)) {
     Kwargs kw(L, 2, "voronoi");
     options.radical = kw.boolean("radical", options.radical);

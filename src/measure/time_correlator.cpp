@@ -6,6 +6,7 @@
 #include "core/errors.hpp"
 #include "core/memory_budget.hpp"
 #include "core/parallel.hpp"
+#include "measure/fast_trig.hpp"
 
 namespace invasim {
 
@@ -30,17 +31,10 @@ struct TimeCorrelator::Partial {
 };
 
 namespace {
-inline Vec3 load(const std::vector<double>& a, std::size_t i) {
-  return {a[3 * i], a[3 * i + 1], a[3 * i + 2]};
-}
 inline void put(std::vector<double>& a, std::size_t i, const Vec3& v) {
   a[3 * i] = v[0];
   a[3 * i + 1] = v[1];
   a[3 * i + 2] = v[2];
-}
-// sin(x)/x, exact 1 at x = 0 (Taylor below 1e-4, where the next term is < 1e-18).
-inline double sinc(double x) {
-  return x < 1e-4 ? 1.0 - x * x / 6.0 : std::sin(x) / x;
 }
 }  // namespace
 
@@ -102,34 +96,96 @@ void TimeCorrelator::store_origin(std::size_t slot, const Vec3* v, const Vec3* n
   }
 }
 
+// Per-site terms of one block, computed in vectorised loops, then summed site by site in
+// index order (the order of the sums, hence their rounding, is that of a plain loop).
+struct TimeCorrelator::Scratch {
+  double vv[kSumBlock], vv_norm[kSumBlock], nn[kSumBlock], dr2[kSumBlock], fs[kSumBlock];
+  bool moving[kSumBlock];  // |v(t')| > 0: the per-particle normalisation skips the others
+};
+
 TimeCorrelator::Partial TimeCorrelator::block_terms(std::size_t slot, std::size_t lo,
                                                     std::size_t hi, const Vec3* v, const Vec3* n,
                                                     const Vec3* r) const {
-  Partial p;
-  const std::size_t base = slot * group_.size();
+  Scratch sc;
+  const std::size_t m = hi - lo, base = 3 * (slot * group_.size() + lo);
   const double k = params_.k;
-  for (std::size_t i = lo; i < hi; ++i) {
+  // a . b summed as Eigen's Vec3::dot does: a0 b0 + (a1 b1 + a2 b2).
+  auto dot = [](const double* a, const Vec3& b) {
+    return a[0] * b[0] + (a[1] * b[1] + a[2] * b[2]);
+  };
+  if (params_.velocity) {
+    const double* v0 = state_.velocity.data() + base;
+#pragma omp simd
+    for (std::size_t i = 0; i < m; ++i) {
+      const double* a = v0 + 3 * i;
+      const double d = dot(a, v[lo + i]);
+      const double v02 = a[0] * a[0] + (a[1] * a[1] + a[2] * a[2]);
+      sc.vv[i] = d;
+      sc.moving[i] = v02 > 0.0;
+      sc.vv_norm[i] = d / (v02 > 0.0 ? v02 : 1.0);
+    }
+  }
+  if (params_.orientation) {
+    const double* n0 = state_.orientation.data() + base;
+#pragma omp simd
+    for (std::size_t i = 0; i < m; ++i) sc.nn[i] = dot(n0 + 3 * i, n[lo + i]);
+  }
+  if (params_.position) {
+    const double* r0 = state_.position.data() + base;
+    // dr = r(t) - r(t'), |dr|^2 summed as Eigen's squaredNorm does.
+    auto dr = [&](std::size_t i, int a) { return r[lo + i][a] - r0[3 * i + a]; };
+    double max_arg = 0.0;  // largest argument of sin / cos (libm beyond fast_trig::kMaxArg)
+    if (params_.fs_average == FsAverage::kIsotropic) {
+#pragma omp simd reduction(max : max_arg)
+      for (std::size_t i = 0; i < m; ++i) {
+        const double dx = dr(i, 0), dy = dr(i, 1), dz = dr(i, 2);
+        const double r2 = dx * dx + (dy * dy + dz * dz), x = k * std::sqrt(r2);
+        sc.dr2[i] = r2;
+        max_arg = std::max(max_arg, x);
+        sc.fs[i] = fast_trig::sinc(std::min(x, fast_trig::kMaxArg));
+      }
+    } else {
+#pragma omp simd reduction(max : max_arg)
+      for (std::size_t i = 0; i < m; ++i) {
+        const double dx = dr(i, 0), dy = dr(i, 1), dz = dr(i, 2);
+        const double xy = std::abs(k * dy), xz = std::abs(k * dz);
+        sc.dr2[i] = dx * dx + (dy * dy + dz * dz);
+        max_arg = std::max(max_arg, std::max(xy, xz));
+        sc.fs[i] = 0.5 * (fast_trig::cos(std::min(xy, fast_trig::kMaxArg)) +
+                          fast_trig::cos(std::min(xz, fast_trig::kMaxArg)));
+      }
+    }
+    if (max_arg > fast_trig::kMaxArg)  // clamped above: redone with libm
+      for (std::size_t i = 0; i < m; ++i) sc.fs[i] = libm_fs_term(r[lo + i], r0 + 3 * i, sc.fs[i]);
+  }
+  Partial p;
+  for (std::size_t i = 0; i < m; ++i) {
     if (params_.velocity) {
-      const Vec3 v0 = load(state_.velocity, base + i);
-      const double d = v0.dot(v[i]), v02 = v0.squaredNorm();
-      p.t[kVV] += d;
-      if (v02 > 0.0) {  // the per-particle normalisation skips particles at rest
-        p.t[kVVNorm] += d / v02;
+      p.t[kVV] += sc.vv[i];
+      if (sc.moving[i]) {
+        p.t[kVVNorm] += sc.vv_norm[i];
         p.t[kVVCount] += 1.0;
       }
     }
-    if (params_.orientation) p.t[kNN] += load(state_.orientation, base + i).dot(n[i]);
+    if (params_.orientation) p.t[kNN] += sc.nn[i];
     if (params_.position) {
-      const Vec3 dr = r[i] - load(state_.position, base + i);
-      const double r2 = dr.squaredNorm();
-      p.t[kDR2] += r2;
-      p.t[kDR4] += r2 * r2;
-      p.t[kFs] += params_.fs_average == FsAverage::kIsotropic
-                      ? sinc(k * std::sqrt(r2))
-                      : 0.5 * (std::cos(k * dr[1]) + std::cos(k * dr[2]));
+      p.t[kDR2] += sc.dr2[i];
+      p.t[kDR4] += sc.dr2[i] * sc.dr2[i];
+      p.t[kFs] += sc.fs[i];
     }
   }
   return p;
+}
+
+double TimeCorrelator::libm_fs_term(const Vec3& r, const double* r0, double fast) const {
+  const Vec3 dr = r - Vec3(r0[0], r0[1], r0[2]);
+  const double k = params_.k;
+  if (params_.fs_average == FsAverage::kIsotropic) {
+    const double x = k * dr.norm();
+    return x > fast_trig::kMaxArg ? std::sin(x) / x : fast;
+  }
+  const double xy = std::abs(k * dr[1]), xz = std::abs(k * dr[2]);
+  return std::max(xy, xz) > fast_trig::kMaxArg ? 0.5 * (std::cos(xy) + std::cos(xz)) : fast;
 }
 
 void TimeCorrelator::add_sample(const Vec3* v, const Vec3* n, const Vec3* r) {

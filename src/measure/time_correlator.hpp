@@ -106,9 +106,13 @@ class TimeCorrelator {
 
  private:
   struct Partial;
+  struct Scratch;
   void store_origin(std::size_t slot, const Vec3* v, const Vec3* n, const Vec3* r);
   Partial block_terms(std::size_t slot, std::size_t lo, std::size_t hi, const Vec3* v,
                       const Vec3* n, const Vec3* r) const;
+  // F_s's term of one site (position r, origin r0) from libm if its argument is beyond
+  // fast_trig::kMaxArg, else `fast`.
+  double libm_fs_term(const Vec3& r, const double* r0, double fast) const;
   std::size_t slots() const;
   std::vector<int> group_;
   TimeCorrelatorParams params_;

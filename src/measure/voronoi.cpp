@@ -2,6 +2,11 @@
 // the measurements built on it. See voronoi.hpp and docs/measurements.md.
 #include "measure/voronoi.hpp"
 
+// CGAL's containers keep their freed blocks for the next call (recycling_allocator.hpp): every
+// call builds a fresh triangulation of about the same size. Must precede the CGAL headers.
+#include "measure/recycling_allocator.hpp"
+#define CGAL_ALLOCATOR(T) invasim::RecyclingAllocator<T>
+
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Delaunay_triangulation_cell_base_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -430,17 +435,21 @@ void add_face(const Tr& tr, const typename Tr::Edge& e, typename Tr::Vertex_hand
 }
 
 // Faces and volumes of the real cells from the verified triangulation: every edge at a real
-// vertex, an edge between two real vertices once (from its lower site).
+// vertex, an edge between two real vertices once (from its lower site). Edges between two
+// sites marked in `skip` (or a marked site and an image of one) are left out, and the
+// volumes of the marked sites are NaN (incomplete).
 template <class Tr>
 void collect(const Tr& tr, const std::vector<Tag>& tags, const PreparedSites& s,
-             VoronoiTessellation& out) {
+             const std::vector<char>& skip, VoronoiTessellation& out) {
   out.volume.assign(s.pos.size(), 0.0);
   out.faces.clear();
+  auto skipped = [&](int site) { return !skip.empty() && skip[std::size_t(site)]; };
   std::vector<typename Tr::Edge> edges;
   for (auto it = tr.finite_vertices_begin(); it != tr.finite_vertices_end(); ++it) {
     const typename Tr::Vertex_handle v = it;
     const Tag& ta = tags[v->info()];
     if (!ta.real()) continue;
+    const bool skip_a = skipped(ta.site);
     edges.clear();
     tr.finite_incident_edges(v, std::back_inserter(edges));
     for (const auto& e : edges) {
@@ -448,15 +457,20 @@ void collect(const Tr& tr, const std::vector<Tag>& tags, const PreparedSites& s,
       if (w == v) w = e.first->vertex(e.third);
       const Tag& tb = tags[w->info()];
       if (tb.real() && tb.site < ta.site) continue;
+      if (skip_a && tb.side == 0 && skipped(tb.site)) continue;
       add_face(tr, e, v, w, tags, s, out);
     }
   }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t i = 0; i < skip.size(); ++i)
+    if (skip[i]) out.volume[i] = nan;
 }
 
 // Builds the triangulation of the unfolded points within margin m of the box and refines it
 // until verified; widens the margin (rebuild) when real sites reach the convex hull.
 template <class Tr>
-VoronoiTessellation run(const PreparedSites& s, const VoronoiOptions& opt) {
+VoronoiTessellation run(const PreparedSites& s, const VoronoiOptions& opt,
+                        const std::vector<char>& skip) {
   VoronoiTessellation out;
   const Unfolded u(s);
   const double m_cap = u.max_margin();
@@ -483,7 +497,7 @@ VoronoiTessellation run(const PreparedSites& s, const VoronoiOptions& opt) {
       out.margin = m;
       out.n_points = tags.size();
       out.n_added = added.size();
-      collect(tr, tags, s, out);
+      collect(tr, tags, s, skip, out);
       return out;
     }
     if (out.builds >= opt.max_builds || m >= m_cap)
@@ -552,7 +566,8 @@ void local_packing(const System& sys, VoronoiMeasurement& m) {
 }  // namespace
 
 VoronoiTessellation tessellate(const Box& box, const std::vector<Vec3>& points,
-                               const VoronoiOptions& opt, const std::vector<double>& weights) {
+                               const VoronoiOptions& opt, const std::vector<double>& weights,
+                               const std::vector<char>& skip_faces_between) {
   check_box(box);
   if (opt.radical && weights.size() != points.size())
     fail_input("Voronoi: the radical tessellation needs one weight per point (", weights.size(),
@@ -560,7 +575,11 @@ VoronoiTessellation tessellate(const Box& box, const std::vector<Vec3>& points,
   if (opt.max_builds < 1) fail_input("Voronoi: max_builds = ", opt.max_builds, " must be >= 1");
   if (points.empty()) return {};
   const PreparedSites s = prepare(box, points, opt.radical ? weights : std::vector<double>{});
-  return opt.radical ? run<Regular>(s, opt) : run<Delaunay>(s, opt);
+  if (!skip_faces_between.empty() && skip_faces_between.size() != points.size())
+    fail_input("Voronoi: ", skip_faces_between.size(), " skip flags for ", points.size(),
+               " points");
+  return opt.radical ? run<Regular>(s, opt, skip_faces_between)
+                     : run<Delaunay>(s, opt, skip_faces_between);
 }
 
 VoronoiMeasurement measure_voronoi(const System& sys, const VoronoiOptions& opt) {
@@ -569,7 +588,10 @@ VoronoiMeasurement measure_voronoi(const System& sys, const VoronoiOptions& opt)
   if (opt.radical)
     for (double d : sites.diameter) weights.push_back(0.25 * d * d);
   VoronoiMeasurement m;
-  m.tessellation = tessellate(sys.box(), sites.pos, opt, weights);
+  std::vector<char> cancer;
+  if (opt.interface_only)
+    for (SiteKind k : sites.kind) cancer.push_back(k == SiteKind::kCancer);
+  m.tessellation = tessellate(sys.box(), sites.pos, opt, weights, cancer);
   m.adipocyte_surface.assign(sys.bodies().size(), 0.0);
   m.adipocyte_wall_area.assign(sys.bodies().size(), 0.0);
   for (const VoronoiFace& f : m.tessellation.faces) {

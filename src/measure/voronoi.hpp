@@ -26,6 +26,10 @@ struct VoronoiOptions {
   // Radical (power) tessellation with weights (diameter/2)^2: invasim's variant, not the
   // paper's (the paper uses the plain Voronoi tessellation, the default).
   bool radical = false;
+  // measure_voronoi only: skip the faces between two cancer cells, which none of its
+  // results but the tessellation's cancer-cell volumes (then NaN) and face list need
+  // (docs/measurements.md; the main job's observer sets it: a third of the call's time).
+  bool interface_only = false;
 };
 
 // Neighbour codes of a face lying on a wall.
@@ -55,12 +59,15 @@ struct VoronoiTessellation {
 };
 
 // Tessellation of `points` in `box` (walls in x, periodic y and z; positions need not be
-// wrapped). With opt.radical, `weights` (one per point) give the power diagram. Throws
-// InputError if the box is not walled in x and periodic in y, z or the weights are missing,
+// wrapped). With opt.radical, `weights` (one per point) give the power diagram. Faces
+// between two points flagged in `skip_faces_between` (empty, or one flag per point) are
+// neither computed nor listed, and the flagged points' volumes are NaN. Throws InputError if
+// the box is not walled in x and periodic in y, z or the weights or flags are missing,
 // SimulationError if no margin could be verified within opt.max_builds builds.
 VoronoiTessellation tessellate(const Box& box, const std::vector<Vec3>& points,
                                const VoronoiOptions& opt = {},
-                               const std::vector<double>& weights = {});
+                               const std::vector<double>& weights = {},
+                               const std::vector<char>& skip_faces_between = {});
 
 // The Voronoi measurements of one configuration (docs/measurements.md, "Voronoi tessellation").
 struct VoronoiMeasurement {

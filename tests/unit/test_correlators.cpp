@@ -258,6 +258,26 @@ TEST_CASE("correlator equals a brute-force sum over all stored origins", "[corre
   }
 }
 
+TEST_CASE("F_s: displacements beyond the fast sine's range fall back to libm", "[correlator]") {
+  // k |dr| from 0 to 1.7e6, across fast_trig::kMaxArg = 1e6: the fast sin / cos clamp their
+  // argument there and the correlator redoes those terms with std::sin / std::cos.
+  const int S = 8, N = 5;
+  for (const FsAverage fs : {FsAverage::kIsotropic, FsAverage::kAxesYZ}) {
+    Trajectory t = random_trajectory(S, N, 17);
+    for (int s = 0; s < S; ++s)
+      for (int q = 0; q < N; ++q) t.r[s][q] += Vec3(0.5, 1.0, 0.7).normalized() * 2e4 * s * q;
+    TimeCorrelatorParams p;
+    p.lags = S;
+    p.k = 3.0;
+    p.fs_average = fs;
+    std::vector<int> group(N);
+    for (int q = 0; q < N; ++q) group[q] = q;
+    TimeCorrelator corr(group, p);
+    feed(corr, t, 0, S);
+    require_close(corr.result().fs, brute_force(t, p).fs, "fs");
+  }
+}
+
 TEST_CASE("rotating velocities: C_vv = cos(w t) in both normalisations, MSD exact",
           "[correlator]") {
   // v_q(t) = A_q (cos(w t + p_q), sin(w t + p_q), 0), r_q(t) = (A_q / w)(sin, -cos, 0):

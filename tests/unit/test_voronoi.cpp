@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "core/errors.hpp"
+#include "measure/recycling_allocator.hpp"
 #include "measure/voronoi.hpp"
 #include "test_support.hpp"
 
@@ -462,4 +463,59 @@ TEST_CASE("radical variant: equal weights give the Voronoi cells, unequal ones s
     CHECK(m.tessellation.volume[0] == Approx(1.1).epsilon(1e-12));
     CHECK(measure_voronoi(sys).tessellation.volume[0] == Approx(1.0).epsilon(1e-12));
   }
+}
+
+TEST_CASE("the triangulation's blocks are kept for the next call, not returned to the system") {
+  // Every call builds a fresh triangulation; its freed blocks stay in the thread's pool
+  // (recycling_allocator.hpp), and the next call of the same size takes them all back.
+  const Box box = walled_box(Vec3(-1.0, 2.0, 0.5), Vec3(6.0, 5.0, 5.0));
+  const std::vector<Vec3> p = random_points(box, 300, 11);
+  const BlockPool* pool = BlockPool::of_this_thread();
+  REQUIRE(pool != nullptr);
+  const VoronoiTessellation first = tessellate(box, p);
+  const std::size_t kept = pool->kept_bytes();
+  CHECK(kept > 100000);  // a few hundred cells of ~100 bytes and their vertices
+  const VoronoiTessellation second = tessellate(box, p);
+  CHECK(pool->kept_bytes() == kept);
+  CHECK(second.volume == first.volume);
+}
+
+TEST_CASE("interface_only: the same measurement without the faces between two cancer cells") {
+  // What the main job's observer asks for (sys:voronoi): A_t, S_i, the wall areas and the
+  // local packing fractions bit for bit as from the full tessellation; only the faces between
+  // cancer cells (and so the cancer cells' volumes) are left out.
+  const System sys = test::mixed_system(3, 150, 5.0, 0.4, 37);
+  const Sites& sites = sys.sites();
+  VoronoiOptions only;
+  only.interface_only = true;
+  const VoronoiMeasurement full = measure_voronoi(sys), part = measure_voronoi(sys, only);
+  CHECK(part.interface_area == full.interface_area);
+  CHECK(part.cancer_adipocyte_area == full.cancer_adipocyte_area);
+  CHECK(part.cancer_wall_area == full.cancer_wall_area);
+  CHECK(part.max_interface_area == full.max_interface_area);
+  CHECK(part.adipocyte_surface == full.adipocyte_surface);
+  CHECK(part.adipocyte_wall_area == full.adipocyte_wall_area);
+  CHECK(part.adipocyte_volume == full.adipocyte_volume);
+  auto same = [](double x, double y) { return x == y || (std::isnan(x) && std::isnan(y)); };
+  CHECK(same(part.std_local_phi_a, full.std_local_phi_a));
+  CHECK(same(part.mean_local_phi_a, full.mean_local_phi_a));
+  auto cancer = [&](int i) { return i >= 0 && sites.kind[i] == SiteKind::kCancer; };
+  std::size_t between_cancer = 0, kept = 0;
+  for (const VoronoiFace& f : full.tessellation.faces) {
+    if (cancer(f.a) && cancer(f.b))
+      ++between_cancer;
+    else
+      ++kept;
+  }
+  REQUIRE(between_cancer > 100);
+  CHECK(part.tessellation.faces.size() == kept);
+  for (const VoronoiFace& f : part.tessellation.faces) CHECK(!(cancer(f.a) && cancer(f.b)));
+  for (std::size_t i = 0; i < sites.kind.size(); ++i) {
+    if (sites.kind[i] == SiteKind::kCancer)
+      CHECK(std::isnan(part.tessellation.volume[i]));
+    else
+      CHECK(part.tessellation.volume[i] == full.tessellation.volume[i]);
+  }
+  // The flags of tessellate() must match the points.
+  CHECK_THROWS_AS(tessellate(sys.box(), sites.pos, {}, {}, std::vector<char>(3, 1)), InputError);
 }
