@@ -98,6 +98,9 @@ class MinimumImage {
   double x(double d) const { return axis(0, d); }
   double y(double d) const { return axis(1, d); }
   double z(double d) const { return axis(2, d); }
+  // Half the period along axis a (infinite on a walled axis) and the period (0 there).
+  double half(int a) const { return half_[a]; }
+  double length(int a) const { return len_[a]; }
 
  private:
   double len_[3], half_[3];

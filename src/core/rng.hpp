@@ -1,7 +1,8 @@
 #pragma once
 // Counter-based random numbers: Philox4x32-10 (Salmon et al., SC'11), written from the
-// published description. Every draw is a pure function of (seed, step, site, stream), so
-// trajectories do not depend on thread count, site processing order or restarts.
+// published description; normal numbers by Box-Muller (normal4) or the ziggurat (normal3). Every
+// draw is a pure function of (seed, step, site, stream), so trajectories do not depend on thread
+// count, site processing order or restarts.
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -36,6 +37,32 @@ enum class RngStream : std::uint32_t {
   kUser = 16         // first id free for later uses
 };
 
+// The 128-layer ziggurat for the standard normal (Marsaglia and Tsang 2000, in the form of
+// Doornik 2005 with the layer index and the uniform taken from separate bits): x[0] = v/f(r),
+// x[1] = r = 3.442619855899, x[128] = 0, layers of equal area v = 9.91256303526217e-3 under
+// f(x) = exp(-x^2/2); ratio[i] = x[i+1]/x[i].
+struct ZigguratTables {
+  static constexpr int kLayers = 128;
+  static constexpr double kR = 3.442619855899, kV = 9.91256303526217e-3;
+  double x[kLayers + 1];
+  double ratio[kLayers];
+  ZigguratTables() {
+    double f = std::exp(-0.5 * kR * kR);
+    x[0] = kV / f;
+    x[1] = kR;
+    x[kLayers] = 0.0;
+    for (int i = 2; i < kLayers; ++i) {
+      x[i] = std::sqrt(-2.0 * std::log(kV / x[i - 1] + f));
+      f = std::exp(-0.5 * x[i] * x[i]);
+    }
+    for (int i = 0; i < kLayers; ++i) ratio[i] = x[i + 1] / x[i];
+  }
+};
+inline const ZigguratTables& ziggurat_tables() {
+  static const ZigguratTables t;
+  return t;
+}
+
 // The random draws for one (seed, step, site, stream) key.
 class RandomKey {
  public:
@@ -59,13 +86,72 @@ class RandomKey {
     const double t0 = 2.0 * M_PI * u[1], t1 = 2.0 * M_PI * u[3];
     return {r0 * std::cos(t0), r0 * std::sin(t0), r1 * std::cos(t1), r1 * std::sin(t1)};
   }
-  // A standard normal 3-vector (the fourth normal is discarded).
+  // A standard normal 3-vector by the ziggurat: the three components take their uniforms
+  // from words 0-2 of one Philox block and their layers from 7-bit fields of word 3; with
+  // probability ~0.988 each is accepted at once (no log, no trigonometry). A rejected one
+  // (a wedge or the tail beyond r) continues with further blocks of the same key, told apart
+  // by a retry count in bits 24-31 of the stream word (which the streams and sub-streams
+  // leave free), so the result stays a pure function of the key.
   Vec3 normal3() const {
-    const auto g = normal4();
-    return {g[0], g[1], g[2]};
+    const auto w = philox4x32_10(ctr_, key_);
+    const ZigguratTables& z = ziggurat_tables();
+    Vec3 g;
+    Retry retry{*this};
+    for (int c = 0; c < 3; ++c) {
+      const double u = signed_uniform(w[c]);
+      const int layer = int(w[3] >> (7 * c)) & (ZigguratTables::kLayers - 1);
+      g[c] = std::abs(u) < z.ratio[layer] ? u * z.x[layer] : ziggurat_slow(u, layer, retry);
+    }
+    return g;
   }
 
  private:
+  // Uniform in (-1, 1) from a 32-bit word, never 0.
+  static double signed_uniform(std::uint32_t w) {
+    return (double(std::int32_t(w)) + 0.5) * 0x1p-31;
+  }
+  static double uniform(std::uint32_t w) { return (double(w) + 0.5) * 0x1p-32; }
+  // Further words of this key for the ziggurat's rare rejections: blocks 1, 2, ... in the
+  // retry field of the stream word.
+  struct Retry {
+    const RandomKey& key;
+    std::uint32_t block = 0;
+    std::array<std::uint32_t, 4> words{};
+    int used = 4;
+    std::uint32_t next() {
+      if (used == 4) {
+        ++block;
+        auto ctr = key.ctr_;
+        ctr[3] ^= (block & 0xFFu) << 24;
+        words = philox4x32_10(ctr, key.key_);
+        used = 0;
+      }
+      return words[used++];
+    }
+  };
+  // The ziggurat after the fast test failed for uniform u in layer `layer`: the tail beyond
+  // r for the base layer, the wedge test otherwise; a rejection draws a new (u, layer).
+  static double ziggurat_slow(double u, int layer, Retry& retry) {
+    const ZigguratTables& z = ziggurat_tables();
+    for (;;) {
+      if (layer == 0) {  // tail: Marsaglia's method
+        double x, y;
+        do {
+          x = std::log(uniform(retry.next())) / ZigguratTables::kR;
+          y = std::log(uniform(retry.next()));
+        } while (-2.0 * y < x * x);
+        return u < 0.0 ? x - ZigguratTables::kR : ZigguratTables::kR - x;
+      }
+      const double x = u * z.x[layer];
+      const double f0 = std::exp(-0.5 * (z.x[layer] * z.x[layer] - x * x));
+      const double f1 = std::exp(-0.5 * (z.x[layer + 1] * z.x[layer + 1] - x * x));
+      if (f1 + uniform(retry.next()) * (f0 - f1) < 1.0) return x;
+      u = signed_uniform(retry.next());
+      layer = int(retry.next() & (ZigguratTables::kLayers - 1));
+      if (std::abs(u) < z.ratio[layer]) return u * z.x[layer];
+    }
+  }
+
   std::array<std::uint32_t, 2> key_;
   std::array<std::uint32_t, 4> ctr_;
 };

@@ -52,62 +52,192 @@ void ContactForce::set_params(const ContactParams& params) {
   list_.set_cutoff_rule(rule);
 }
 
-ForceResult ContactForce::add_forces(System& sys, const ForceFlags& flags) {
-  list_.update(sys);
+namespace {
+
+// The constants of pair (i, j) read from the class table (few distinct (kind, diameter)).
+struct TablePairs {
+  const PairTable& t;
+  const int* cls;
+  int row;  // class of site i times the number of classes
+  PairCoefficients operator()(int j) const {
+    const int k = row + cls[j];
+    return {t.rc2[k],   t.rb2[k],    t.c_rep[k],  t.d_rep[k], t.c_att[k],
+            t.d_att[k], t.r0_rep[k], t.r0_att[k], t.e0[k],    t.tiny2[k]};
+  }
+};
+
+// The constants of pair (i, j) computed from the diameters (fallback for many classes).
+struct DirectPairs {
+  const double* diam;
+  const int* kind;
+  const double* eps;  // the energies of site i's kind with kinds 0 and 1
+  double alpha, beta, di;
+  int ki;
+  PairCoefficients operator()(int j) const {
+    const int kj = kind[j];
+    const double cc = (ki | kj) == 0 ? 1.0 : 0.0;  // cohesion between cancer cells only
+    return pair_coefficients(0.5 * (di + diam[j]), eps[kj], alpha, cc * beta);
+  }
+};
+
+// Per-thread scratch: the contribution of every entry of one row (zero beyond the cutoff).
+// Vector lanes of the pair loop: 8 doubles fill an AVX-512 register (two AVX2 ones).
+constexpr int kLanes = 8;
+
+// Per-thread scratch: the contribution of every entry of one row (zero beyond the cutoff).
+struct RowScratch {
+  std::vector<int> idx;
+  std::vector<double> fx, fy, fz, e, wx, wy, wz;
+  void reserve(std::size_t m) {
+    m = (m + kLanes - 1) / kLanes * kLanes;
+    if (idx.size() < m) idx.resize(m);
+    for (auto* v : {&fx, &fy, &fz, &e, &wx, &wy, &wz})
+      if (v->size() < m) v->resize(m);
+  }
+};
+
+// Force, energy and virial of site i from its neighbour row nb[0..m). The pair terms are
+// computed in a vectorisable loop into the scratch, then summed in row order (increasing
+// index), so the sums do not depend on which sites beyond the cutoff the list holds (skin,
+// build time) nor on the vector width.
+template <bool kCohesive, bool kEnergy, bool kVirial, class Pairs>
+void site_contacts(int i, const double* pos, const int* nb, int m, const MinimumImage& image,
+                   const Pairs& pairs, RowScratch& b, Vec3& force, double& energy, Vec3& virial) {
+  const double xi = pos[3 * i], yi = pos[3 * i + 1], zi = pos[3 * i + 2];
+  // The minimum image with the box's constants in registers.
+  const double hx = image.half(0), hy = image.half(1), hz = image.half(2);
+  const double lx = image.length(0), ly = image.length(1), lz = image.length(2);
+  auto wrap = [](double d, double half, double len) {
+    return d > half ? d - len : (d < -half ? d + len : d);
+  };
+  double* __restrict gx = b.fx.data();
+  double* __restrict gy = b.fy.data();
+  double* __restrict gz = b.fz.data();
+  double* __restrict ge = b.e.data();
+  double* __restrict wx = b.wx.data();
+  double* __restrict wy = b.wy.data();
+  double* __restrict wz = b.wz.data();
+  // The row padded to whole vectors with site i itself (masked out below), so that every
+  // entry is computed in vector lanes (rows are short: a remainder loop would dominate).
+  const int m_pad = (m + kLanes - 1) / kLanes * kLanes;
+  int* __restrict idx = b.idx.data();
+  for (int k = 0; k < m; ++k) idx[k] = nb[k];
+  for (int k = m; k < m_pad; ++k) idx[k] = i;
+  for (int k0 = 0; k0 < m_pad; k0 += kLanes) {
+#pragma omp simd
+    for (int k = k0; k < k0 + kLanes; ++k) {
+      const int j = idx[k];
+      const double dx = wrap(xi - pos[3 * j], hx, lx), dy = wrap(yi - pos[3 * j + 1], hy, ly),
+                   dz = wrap(zi - pos[3 * j + 2], hz, lz);
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      const PairCoefficients c = pairs(j);
+      const bool in = r2 < c.rc2 && j != i;
+      const bool rep = !kCohesive || r2 <= c.rb2;
+      const double cf = rep ? c.c_rep : c.c_att, df = rep ? c.d_rep : c.d_att;
+      const double r = std::sqrt(r2);
+      const double inv_r = 1.0 / r;
+      // Coincident sites: the force at r along a fixed direction, opposite for the partners.
+      const bool coincident = r2 <= c.tiny2;
+      const double f_over_r = cf * inv_r - df;
+      const double sign = i < j ? 1.0 : -1.0;
+      const double fx = coincident ? (cf - df * r) * sign : f_over_r * dx;
+      const double fy = coincident ? 0.0 : f_over_r * dy;
+      const double fz = coincident ? 0.0 : f_over_r * dz;
+      gx[k] = in ? fx : 0.0;
+      gy[k] = in ? fy : 0.0;
+      gz[k] = in ? fz : 0.0;
+      if constexpr (kEnergy) {
+        const double r0 = rep ? c.r0_rep : c.r0_att;
+        const double u = 0.5 * df * (r - r0) * (r - r0) + (rep ? c.e0 : 0.0);
+        ge[k] = in ? 0.5 * u : 0.0;
+      }
+      if constexpr (kVirial) {
+        wx[k] = in ? 0.5 * fx * dx : 0.0;
+        wy[k] = in ? 0.5 * fy * dy : 0.0;
+        wz[k] = in ? 0.5 * fz * dz : 0.0;
+      }
+    }
+  }
+  double fx = 0.0, fy = 0.0, fz = 0.0;
+  for (int k = 0; k < m; ++k) {
+    fx += gx[k];
+    fy += gy[k];
+    fz += gz[k];
+  }
+  force += Vec3(fx, fy, fz);
+  if constexpr (kEnergy) {
+    double e = 0.0;
+    for (int k = 0; k < m; ++k) e += ge[k];
+    energy = e;
+  }
+  if constexpr (kVirial) {
+    double ax = 0.0, ay = 0.0, az = 0.0;
+    for (int k = 0; k < m; ++k) {
+      ax += wx[k];
+      ay += wy[k];
+      az += wz[k];
+    }
+    virial = Vec3(ax, ay, az);
+  }
+}
+
+}  // namespace
+
+template <bool kCohesive, bool kEnergy, bool kVirial>
+void ContactForce::add_forces_impl(System& sys) {
   Sites& s = sys.sites();
   const std::size_t n = s.size();
-  const Box& box = sys.box();
-  const MinimumImage image(box);
+  const MinimumImage image(sys.box());
+  static_assert(sizeof(Vec3) == 3 * sizeof(double), "positions are read as a flat array");
+  const double* pos = s.pos.data()->data();
   const double eps[2][2] = {{params_.eps_cc, params_.eps_cv}, {params_.eps_cv, params_.eps_vv}};
-  const double alpha = params_.alpha, beta = params_.beta;
-  const bool cohesive = beta > 0.0;
+  const std::size_t width = list_.max_count();
+#pragma omp parallel if (parallel_heavy(n))
+  {
+    RowScratch scratch;
+    scratch.reserve(width);
+#pragma omp for schedule(dynamic, 128)
+    for (std::size_t i = 0; i < n; ++i) {
+      double e = 0.0;
+      Vec3 w = Vec3::Zero();
+      const int* nb = list_.neighbors(i);
+      const int m = list_.count(i);
+      if (table_.usable()) {
+        const TablePairs pairs{table_, table_.site_class(),
+                               table_.site_class()[i] * table_.n_classes()};
+        site_contacts<kCohesive, kEnergy, kVirial>(int(i), pos, nb, m, image, pairs, scratch,
+                                                   s.force[i], e, w);
+      } else {
+        const DirectPairs pairs{s.diameter.data(), table_.site_kind(), eps[int(s.kind[i])],
+                                params_.alpha,     params_.beta,       s.diameter[i],
+                                int(s.kind[i])};
+        site_contacts<kCohesive, kEnergy, kVirial>(int(i), pos, nb, m, image, pairs, scratch,
+                                                   s.force[i], e, w);
+      }
+      if constexpr (kEnergy) site_energy_[i] = e;
+      if constexpr (kVirial) site_virial_[i] = w;
+    }
+  }
+}
+
+ForceResult ContactForce::add_forces(System& sys, const ForceFlags& flags) {
+  if (list_.update(sys)) table_.build(sys.sites(), params_);
+  const std::size_t n = sys.n_sites();
   const bool want_e = flags.energy, want_v = flags.virial;
   if (want_e) site_energy_.assign(n, 0.0);
   if (want_v) site_virial_.assign(n, Vec3::Zero());
-  const Vec3* pos = s.pos.data();
-  const double* diam = s.diameter.data();
-  const SiteKind* kind = s.kind.data();
-
-#pragma omp parallel for schedule(dynamic, 128) if (parallel_heavy(n))
-  for (std::size_t i = 0; i < n; ++i) {
-    const double xi = pos[i][0], yi = pos[i][1], zi = pos[i][2];
-    const double di = diam[i];
-    const int ki = int(kind[i]);
-    const int* nb = list_.neighbors(i);
-    const int m = list_.count(i);
-    double fx = 0.0, fy = 0.0, fz = 0.0, ei = 0.0;
-    Vec3 wi = Vec3::Zero();
-    for (int k = 0; k < m; ++k) {
-      const int j = nb[k];
-      const double dx = image.x(xi - pos[j][0]), dy = image.y(yi - pos[j][1]),
-                   dz = image.z(zi - pos[j][2]);
-      const double r2 = dx * dx + dy * dy + dz * dz;
-      const double sig = 0.5 * (di + diam[j]);
-      const int kj = int(kind[j]);
-      const bool cc = cohesive && (ki | kj) == 0;
-      const double rc = cc ? (1.0 + alpha) * sig : sig;
-      if (r2 >= rc * rc) continue;
-      const double r = std::sqrt(r2);
-      const PairEval pe =
-          cc ? cohesive_spring(r, sig, eps[0][0], alpha, beta) : linear_spring(r, sig, eps[ki][kj]);
-      double ux, uy, uz;
-      if (r > 1e-12 * sig) {
-        const double inv = 1.0 / r;
-        ux = dx * inv, uy = dy * inv, uz = dz * inv;
-      } else {
-        // Coincident sites: a fixed direction, opposite for the two partners.
-        ux = int(i) < j ? 1.0 : -1.0, uy = 0.0, uz = 0.0;
-      }
-      fx += pe.force * ux;
-      fy += pe.force * uy;
-      fz += pe.force * uz;
-      if (want_e) ei += 0.5 * pe.energy;
-      if (want_v) wi += 0.5 * pe.force * Vec3(dx * ux, dy * uy, dz * uz);
-    }
-    s.force[i] += Vec3(fx, fy, fz);
-    if (want_e) site_energy_[i] = ei;
-    if (want_v) site_virial_[i] = wi;
-  }
+  // One instantiation of the kernel per combination of the flags.
+  const bool cohesive = params_.beta > 0.0;
+  using Impl = void (ContactForce::*)(System&);
+  static constexpr Impl impls[8] = {&ContactForce::add_forces_impl<false, false, false>,
+                                    &ContactForce::add_forces_impl<false, false, true>,
+                                    &ContactForce::add_forces_impl<false, true, false>,
+                                    &ContactForce::add_forces_impl<false, true, true>,
+                                    &ContactForce::add_forces_impl<true, false, false>,
+                                    &ContactForce::add_forces_impl<true, false, true>,
+                                    &ContactForce::add_forces_impl<true, true, false>,
+                                    &ContactForce::add_forces_impl<true, true, true>};
+  (this->*impls[4 * cohesive + 2 * want_e + want_v])(sys);
   ForceResult out;
   if (want_e)
     out.energy = deterministic_sum(n, 0.0, [&](std::size_t i) { return site_energy_[i]; });

@@ -4,6 +4,7 @@
 //   cancer-cancer: the same repulsion plus cohesion, attractive from s to r_b = (1+beta)s and
 //   falling linearly to zero at r_a = (1+alpha)s.
 // s is the mean of the two diameters. One pass over one neighbour list serves all kinds.
+#include "forces/contact_pairs.hpp"
 #include "forces/force.hpp"
 #include "neighbor/verlet_list.hpp"
 
@@ -42,8 +43,12 @@ class ContactForce : public Force {
   VerletList& neighbor_list() { return list_; }
 
  private:
+  // The kernel, specialised for cohesion and for the requested energy and virial.
+  template <bool kCohesive, bool kEnergy, bool kVirial>
+  void add_forces_impl(System& sys);
   ContactParams params_;
   VerletList list_;
+  PairTable table_;  // rebuilt with the list (sites added, checkpoint loaded, new parameters)
   std::vector<double> site_energy_;
   std::vector<Vec3> site_virial_;
 };

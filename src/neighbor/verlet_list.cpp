@@ -177,6 +177,7 @@ void VerletList::build(const System& sys) {
       stride_ = std::size_t(max_count) + 16;
       overflow = true;
     }
+    max_count_ = std::size_t(max_count);
   }
   pos_at_build_ = s.pos;
   box_version_ = box.version();

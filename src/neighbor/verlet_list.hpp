@@ -37,6 +37,8 @@ class VerletList {
   int count(std::size_t i) const { return counts_[i]; }
   const int* neighbors(std::size_t i) const { return &list_[i * stride_]; }
   std::uint64_t builds() const { return builds_; }
+  // Longest row of the last build.
+  std::size_t max_count() const { return max_count_; }
 
   // Builds the list unconditionally.
   void build(const System& sys);
@@ -49,6 +51,7 @@ class VerletList {
   std::uint64_t builds_ = 0;
   std::uint64_t box_version_ = 0;
   std::size_t stride_ = 64;
+  std::size_t max_count_ = 0;
   std::vector<int> counts_;
   std::vector<int> list_;
   std::vector<Vec3> pos_at_build_;

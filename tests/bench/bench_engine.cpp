@@ -8,7 +8,7 @@
 // For scripts (OMP_NUM_THREADS sets the threads), each printing "<wall rate> <CPU rate>"
 // (particle-steps per second of wall time and of the process's CPU time; on a loaded machine
 // the CPU rate at 1 thread is the one to compare):
-//   bench_engine single N STEPS [beta=0] [kT=1e-3]   workload (a)
+//   bench_engine single N STEPS [beta=0] [kT=1e-3]   workload (a) (list builds on stderr)
 //   bench_engine full N_CELLS STEPS                  workload (b), N_CELLS = 1500 or 7000
 #include <omp.h>
 #include <time.h>
@@ -143,8 +143,10 @@ int main(int argc, char** argv) {
   if (argc >= 4 && argc <= 6 && std::string(argv[1]) == "single") {  // workload (a), for scripts
     const double beta = argc > 4 ? std::atof(argv[4]) : 0.0;
     const double kT = argc > 5 ? std::atof(argv[5]) : 1e-3;
-    const Rate r = time_cancer(std::atoi(argv[2]), beta, std::atoi(argv[3]), nullptr, kT);
+    std::uint64_t builds = 0;
+    const Rate r = time_cancer(std::atoi(argv[2]), beta, std::atoi(argv[3]), &builds, kT);
     std::printf("%.3e %.3e\n", r.wall, r.cpu);
+    std::fprintf(stderr, "list builds: %llu\n", (unsigned long long)builds);
     return 0;
   }
   if (argc == 4 && std::string(argv[1]) == "full") {  // workload (b), for scripts

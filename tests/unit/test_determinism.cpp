@@ -191,6 +191,52 @@ TEST_CASE("RandomKey::normal4 is standard normal over 1e6 draws (5-sigma toleran
   CHECK(umax < 1.0);
 }
 
+TEST_CASE(
+    "RandomKey::normal3 (ziggurat) is standard normal over 3e6 draws: moments, CDF, tail, "
+    "independent components (5-sigma tolerances)") {
+  const int keys = 1000000;  // x 3 = 3e6 draws
+  const double cuts[] = {-3.0, -2.0, -1.5, -1.0, -0.5, -0.2, 0.0, 0.2, 0.5, 1.0, 1.5, 2.0, 3.0};
+  constexpr int n_cuts = sizeof(cuts) / sizeof(cuts[0]);
+  long below[n_cuts] = {};
+  long tail = 0;  // |x| > r: drawn by the ziggurat's tail method
+  long impure = 0;
+  double sum = 0, sum2 = 0, sum3 = 0, sum4 = 0, cross01 = 0, cross12 = 0, cross02 = 0;
+  for (int k = 0; k < keys; ++k) {
+    const RandomKey key(2024, std::uint64_t(k / 1000), std::uint32_t(k % 1000),
+                        RngStream::kThermal);
+    const Vec3 g = key.normal3();
+    impure += !(g == key.normal3());  // a pure function of the key
+    for (int c = 0; c < 3; ++c) {
+      const double x = g[c];
+      sum += x;
+      sum2 += x * x;
+      sum3 += x * x * x;
+      sum4 += x * x * x * x;
+      for (int q = 0; q < n_cuts; ++q) below[q] += x < cuts[q];
+      tail += std::abs(x) > ZigguratTables::kR;
+    }
+    cross01 += g[0] * g[1];
+    cross12 += g[1] * g[2];
+    cross02 += g[0] * g[2];
+  }
+  const double n = 3.0 * keys;
+  CHECK(impure == 0);
+  CHECK(std::abs(sum / n) < 5.0 / std::sqrt(n));
+  CHECK(std::abs(sum2 / n - 1.0) < 5.0 * std::sqrt(2.0 / n));
+  CHECK(std::abs(sum3 / n) < 5.0 * std::sqrt(15.0 / n));
+  CHECK(std::abs(sum4 / n - 3.0) < 5.0 * std::sqrt(96.0 / n));
+  for (double c : {cross01, cross12, cross02})
+    CHECK(std::abs(c / keys) < 5.0 / std::sqrt(double(keys)));
+  for (int q = 0; q < n_cuts; ++q) {
+    const double p = 0.5 * std::erfc(-cuts[q] / std::sqrt(2.0));
+    CAPTURE(cuts[q], below[q] / n, p);
+    CHECK(std::abs(below[q] / n - p) < 5.0 * std::sqrt(p * (1 - p) / n));
+  }
+  const double p_tail = std::erfc(ZigguratTables::kR / std::sqrt(2.0));
+  CHECK(tail > 0);
+  CHECK(std::abs(tail / n - p_tail) < 5.0 * std::sqrt(p_tail / n));
+}
+
 TEST_CASE("different seeds, steps, sites, streams and sub-streams give different numbers") {
   const auto base = RandomKey(7, 100, 5, RngStream::kThermal).uniform4();
   // Same key: same numbers.

@@ -395,6 +395,40 @@ TEST_CASE(
   CHECK(max_force(one) == 0.0);
 }
 
+TEST_CASE(
+    "contact kernel: class table for few diameters, direct fallback for many; both equal the "
+    "all-pairs sums, and forces do not depend on the skin, bit for bit") {
+  for (bool many : {false, true}) {
+    CAPTURE(many);
+    System sys = mixed_system(2, 80, 4.6, 0.4, 11);
+    if (many)  // 20 distinct cancer-cell diameters: more classes than the table takes
+      for (std::size_t i = 0; i < sys.n_sites(); ++i)
+        if (sys.sites().kind[i] == SiteKind::kCancer)
+          sys.sites().diameter[i] = 0.9 + 0.01 * double(i % 20);
+    ContactParams p = cohesive_params();
+    p.eps_cv = 0.7;
+    p.eps_vv = 1.3;
+    PairTable table;
+    CHECK(table.build(sys.sites(), p) == !many);
+    if (!many) CHECK(table.n_classes() == 3);  // cancer 0.9 and 1.1, vertices
+    std::vector<Vec3> first;
+    for (double skin : {0.0, 0.3, 0.77}) {
+      CAPTURE(skin);
+      p.skin = skin;
+      ForceField ff = field_of(std::make_shared<ContactForce>(p));
+      const ForceResult res = ff.compute(sys, {true, true});
+      CHECK(res.energy == Approx(brute_contact_energy(sys, p, nullptr)).epsilon(1e-12));
+      const std::vector<Vec3> fb = brute_contact_forces(sys, p);
+      double err = 0.0;
+      for (std::size_t i = 0; i < fb.size(); ++i)
+        err = std::max(err, (fb[i] - sys.sites().force[i]).norm());
+      CHECK(err < 1e-12 * max_force(sys));
+      if (first.empty()) first = sys.sites().force;
+      CHECK(sys.sites().force == first);
+    }
+  }
+}
+
 TEST_CASE("contact forces are minus the gradient of the contact energy (finite differences)") {
   SECTION("cancer-cancer with cohesion, all three branches, periodic box") {
     const ContactParams p = cohesive_params();

@@ -1,0 +1,56 @@
+#include "forces/contact_pairs.hpp"
+
+#include "forces/contact_force.hpp"
+
+namespace invasim {
+
+PairCoefficients pair_coefficients(const ContactParams& p, SiteKind ka, SiteKind kb, double da,
+                                   double db) {
+  const bool cc = ka == SiteKind::kCancer && kb == SiteKind::kCancer;
+  const bool cv = ka != kb;
+  const double eps = cc ? p.eps_cc : (cv ? p.eps_cv : p.eps_vv);
+  return pair_coefficients(0.5 * (da + db), eps, p.alpha, cc ? p.beta : 0.0);
+}
+
+bool PairTable::build(const Sites& s, const ContactParams& p) {
+  const std::size_t n = s.size();
+  std::vector<SiteKind> kinds;
+  std::vector<double> diams;
+  cls_.resize(n);
+  kind_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) kind_[i] = int(s.kind[i]);
+  usable_ = false;
+  for (std::size_t i = 0; i < n; ++i) {
+    int c = 0;
+    while (c < int(kinds.size()) && !(kinds[c] == s.kind[i] && diams[c] == s.diameter[i])) ++c;
+    if (c == int(kinds.size())) {
+      if (c == kMaxClasses) return false;
+      kinds.push_back(s.kind[i]);
+      diams.push_back(s.diameter[i]);
+    }
+    cls_[i] = c;
+  }
+  n_classes_ = int(kinds.size());
+  const std::size_t nt = std::size_t(n_classes_) * n_classes_;
+  for (auto* v : {&rc2, &rb2, &c_rep, &d_rep, &c_att, &d_att, &r0_rep, &r0_att, &e0, &tiny2})
+    v->resize(nt);
+  for (int a = 0; a < n_classes_; ++a)
+    for (int b = 0; b < n_classes_; ++b) {
+      const PairCoefficients c = pair_coefficients(p, kinds[a], kinds[b], diams[a], diams[b]);
+      const std::size_t t = std::size_t(a) * n_classes_ + b;
+      rc2[t] = c.rc2;
+      rb2[t] = c.rb2;
+      c_rep[t] = c.c_rep;
+      d_rep[t] = c.d_rep;
+      c_att[t] = c.c_att;
+      d_att[t] = c.d_att;
+      r0_rep[t] = c.r0_rep;
+      r0_att[t] = c.r0_att;
+      e0[t] = c.e0;
+      tiny2[t] = c.tiny2;
+    }
+  usable_ = true;
+  return true;
+}
+
+}  // namespace invasim

@@ -1,0 +1,81 @@
+#pragma once
+// Constants of the contact law for one pair type, precomputed so that the contact kernel's
+// inner loop needs no division by s: with F the force magnitude (positive = repulsive),
+//   repulsive branch (r <= r_b):  F = eps/s (1 - r/s)  = c_rep - d_rep r,
+//   attractive branch (r_b < r < r_a, cancer-cancer with cohesion): F = k (r - r_a)
+//                                                     = c_att - d_att r,
+// so the force vector is (c/r - d) (dx, dy, dz): one square root and one division per pair.
+// The energy on each branch is U = d/2 (r - r0)^2 + e0. Sites are grouped in classes of equal
+// (kind, diameter); PairTable holds the constants of every class pair (few classes in practice:
+// the cancer-cell diameters and the vertex diameter).
+#include <cstdint>
+#include <vector>
+
+#include "state/system.hpp"
+
+namespace invasim {
+
+struct ContactParams;
+
+struct PairCoefficients {
+  double rc2;     // squared cutoff: s^2, or r_a^2 for a cohesive pair
+  double rb2;     // squared end of the repulsive branch (= rc2 without cohesion)
+  double c_rep;   // eps / s
+  double d_rep;   // eps / s^2
+  double c_att;   // -k r_a, k = eps beta / (s^2 (alpha - beta)) (= c_rep without cohesion)
+  double d_att;   // -k (= d_rep without cohesion)
+  double r0_rep;  // s
+  double r0_att;  // r_a (= s without cohesion)
+  double e0;      // energy offset of the repulsive branch: -eps alpha beta / 2 (0 without)
+  double tiny2;   // (1e-12 s)^2: closer sites count as coincident
+};
+
+// Constants of a pair with contact distance s and energy eps; beta = 0: purely repulsive.
+// Written without branches so that the kernel's fallback path (many classes) vectorises.
+inline PairCoefficients pair_coefficients(double s, double eps, double alpha, double beta) {
+  const bool cohesive = beta > 0.0;
+  const double inv_s = 1.0 / s;
+  const double ra = (1.0 + alpha) * s, rb = (1.0 + beta) * s;
+  const double k = cohesive ? eps * inv_s * inv_s * beta / (alpha - beta) : 0.0;
+  PairCoefficients c;
+  c.c_rep = eps * inv_s;
+  c.d_rep = eps * inv_s * inv_s;
+  c.r0_rep = s;
+  c.rc2 = cohesive ? ra * ra : s * s;
+  c.rb2 = cohesive ? rb * rb : s * s;
+  c.c_att = cohesive ? -k * ra : c.c_rep;
+  c.d_att = cohesive ? -k : c.d_rep;
+  c.r0_att = cohesive ? ra : s;
+  c.e0 = cohesive ? -0.5 * eps * alpha * beta : 0.0;
+  c.tiny2 = (1e-12 * s) * (1e-12 * s);
+  return c;
+}
+
+// The pair type's constants for sites of kinds ka, kb and diameters da, db (cohesion only
+// between two cancer cells).
+PairCoefficients pair_coefficients(const ContactParams& p, SiteKind ka, SiteKind kb, double da,
+                                   double db);
+
+// Classes of sites with equal (kind, diameter) and the constants of every class pair, stored
+// field by field (structure of arrays, entry ci * n_classes + cj) for the kernel's gathers.
+class PairTable {
+ public:
+  static constexpr int kMaxClasses = 16;
+  // Assigns the classes and fills the table; false (table unusable) when the sites have more
+  // than kMaxClasses distinct (kind, diameter).
+  bool build(const Sites& s, const ContactParams& p);
+  bool usable() const { return usable_; }
+  int n_classes() const { return n_classes_; }
+  const int* site_class() const { return cls_.data(); }
+  // The sites' kinds as ints (for the gathers of the fallback path without a table).
+  const int* site_kind() const { return kind_.data(); }
+
+  std::vector<double> rc2, rb2, c_rep, d_rep, c_att, d_att, r0_rep, r0_att, e0, tiny2;
+
+ private:
+  bool usable_ = false;
+  int n_classes_ = 0;
+  std::vector<int> cls_, kind_;
+};
+
+}  // namespace invasim
