@@ -45,13 +45,19 @@ class Method {
   const std::optional<Ramp>& f0_ramp() const { return f0_ramp_; }
   // Sets kT and f0 from their ramps for time step `step` (no-op without ramps).
   void apply_ramps(std::uint64_t step);
+  // The parameters apply_ramps(step) would set, without setting them (a ramp used for the
+  // first time is anchored at `step`, as apply_ramps would).
+  MethodParams params_at(std::uint64_t step);
   // Gives every site of the group a random orientation (for active methods).
   void randomize_orientations(System& sys, std::uint64_t stream_step = 0) const;
 
+  // The two halves of a step, called by every thread of a parallel region (ForceField's
+  // TeamHooks): the group's sites shared with an orphaned `omp for nowait` (groups of different
+  // methods are disjoint), so the caller adds the barrier.
   // v_h = v + dt/2 F/m; x += v_h dt (positions wrapped).
-  void drift(System& sys, double dt) const;
-  // Orientation update and drive at step `step`; then v = v_h + dt/2 F/m.
-  void kick(System& sys, double dt) const;
+  void drift_team(System& sys, double dt) const;
+  // Orientation update and drive of step `step` with parameters p; then v = v_h + dt/2 F/m.
+  void kick_team(System& sys, double dt, std::uint64_t step, const MethodParams& p) const;
   // Adds -gamma v + drive to the site forces (used to start a run from the current v).
   void add_drive(System& sys, double dt) const;
 
@@ -116,6 +122,7 @@ class Dynamics {
   std::shared_ptr<PressureWall> wall_;
   bool prepared_ = false;
   BlowupGuard blowup_guard_;
+  std::vector<MethodParams> next_params_;  // each method's parameters for the step being made
 };
 
 }  // namespace invasim
