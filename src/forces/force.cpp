@@ -49,13 +49,24 @@ ForceResult ForceField::compute(System& sys, const ForceFlags& flags,
 
   std::size_t k = team_run_end(0);
   // Zeroing alone is light work: a region of its own only for large systems.
-  const bool work_in_first = k > 0 || hooks.before || (k == n_terms && hooks.after);
+  const bool more_in_first = k > 0 || (k == n_terms && hooks.after);
+  const bool hook_zeroes = hooks.before && hooks.zeroes_forces;
   ++team_regions_;
-#pragma omp parallel if (work_in_first ? parallel : parallel_light(f.size()))
+#pragma omp parallel if (more_in_first || hooks.before ? parallel : parallel_light(f.size()))
   {
-    if (hooks.before) hooks.before();
-#pragma omp for schedule(static)
-    for (std::size_t i = 0; i < f.size(); ++i) f[i].setZero();
+    if (hooks.before) {
+      hooks.before();
+      if (!hook_zeroes) {  // all reads of the old forces done before any is zeroed
+#pragma omp barrier
+      }
+    }
+    if (!hook_zeroes) {
+#pragma omp for schedule(static) nowait
+      for (std::size_t i = 0; i < f.size(); ++i) f[i].setZero();
+    }
+    if (more_in_first) {  // (otherwise the region's end is the barrier)
+#pragma omp barrier
+    }
     team_terms(0, k);
   }
   while (k < n_terms) {

@@ -50,12 +50,14 @@ class Force {
 };
 
 // Work of the integrator done by every thread of ForceField::compute's parallel regions (its
-// loops shared with orphaned `omp for`, no exceptions). `before` runs in the first region
-// before the forces are zeroed and must end with a barrier after its last read of the forces;
+// loops shared with orphaned `omp for`, no exceptions; ForceField adds the barriers around
+// them). `before` runs in the first region before the forces are zeroed; if `zeroes_forces`,
+// it zeroes every site's force itself (each after its last read) and ForceField does not.
 // `after` runs after the last term has added its forces (in the last term's region when that
 // term supports team evaluation).
 struct TeamHooks {
   std::function<void()> before, after;
+  bool zeroes_forces = false;
 };
 
 // An ordered list of force terms, evaluated together.

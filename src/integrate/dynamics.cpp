@@ -87,6 +87,7 @@ void Method::drift_team(System& sys, double dt) const {
     s.vel[i] += 0.5 * dt / s.mass[i] * s.force[i];
     s.pos[i] += dt * s.vel[i];
     box.wrap(s.pos[i], s.image[i]);
+    s.force[i].setZero();
   }
 }
 
@@ -228,6 +229,22 @@ void Dynamics::prepare(System& sys, ForceField& ff) {
   prepared_ = true;
 }
 
+void Dynamics::update_free_sites(const System& sys) {
+  // (The groups are checked as in prepare: the drift of different groups runs concurrently.)
+  std::vector<char> owned(sys.n_sites(), 0);
+  for (const auto& m : methods_)
+    for (int i : m->group()) {
+      if (i < 0 || std::size_t(i) >= sys.n_sites())
+        fail_input("integrator: site ", i, " of a group is outside [0, ", sys.n_sites(), ")");
+      if (owned[i]++) fail_input("integrator: site ", i, " belongs to two integration methods");
+    }
+  free_sites_.clear();
+  for (std::size_t i = 0; i < owned.size(); ++i)
+    if (!owned[i]) free_sites_.push_back(int(i));
+  free_sites_n_ = sys.n_sites();
+  free_sites_valid_ = true;
+}
+
 void Dynamics::step(System& sys, ForceField& ff) {
   if (!prepared_) prepare(sys, ff);
   // The piston's half kick and move first: the sites' drift does not read the wall (it wraps
@@ -236,15 +253,21 @@ void Dynamics::step(System& sys, ForceField& ff) {
     wall_->velocity += 0.5 * dt_ / wall_->mass * wall_->force;
     sys.box().set_wall(0, false, sys.box().lo()[0] + dt_ * wall_->velocity);
   }
+  if (!free_sites_valid_ || free_sites_n_ != sys.n_sites()) update_free_sites(sys);
   const std::uint64_t next = sys.step + 1;
   next_params_.clear();
   for (const auto& m : methods_) next_params_.push_back(m->params_at(next));
   // Drift and kick run inside the force field's parallel regions (one region per run of
   // team-capable terms, docs/performance.md "Round 2"), not in regions of their own.
   TeamHooks hooks;
+  // The drift zeroes the forces of its sites; the sites of no method are zeroed alongside.
+  hooks.zeroes_forces = true;
   hooks.before = [&] {
     for (const auto& m : methods_) m->drift_team(sys, dt_);
-#pragma omp barrier
+    auto& f = sys.sites().force;
+    const int n_free = int(free_sites_.size());
+#pragma omp for schedule(static) nowait
+    for (int k = 0; k < n_free; ++k) f[free_sites_[k]].setZero();
   };
   hooks.after = [&] {
     for (std::size_t k = 0; k < methods_.size(); ++k)

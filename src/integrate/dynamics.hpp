@@ -54,7 +54,8 @@ class Method {
   // The two halves of a step, called by every thread of a parallel region (ForceField's
   // TeamHooks): the group's sites shared with an orphaned `omp for nowait` (groups of different
   // methods are disjoint), so the caller adds the barrier.
-  // v_h = v + dt/2 F/m; x += v_h dt (positions wrapped).
+  // v_h = v + dt/2 F/m; x += v_h dt (positions wrapped); then F = 0 (the next evaluation adds
+  // into it).
   void drift_team(System& sys, double dt) const;
   // Orientation update and drive of step `step` with parameters p; then v = v_h + dt/2 F/m.
   void kick_team(System& sys, double dt, std::uint64_t step, const MethodParams& p) const;
@@ -92,7 +93,10 @@ class Dynamics {
   explicit Dynamics(double dt);
   double dt() const { return dt_; }
   void set_dt(double dt);
-  void add(std::shared_ptr<Method> method) { methods_.push_back(std::move(method)); }
+  void add(std::shared_ptr<Method> method) {
+    methods_.push_back(std::move(method));
+    free_sites_valid_ = false;
+  }
   const std::vector<std::shared_ptr<Method>>& methods() const { return methods_; }
   void set_pressure_wall(std::shared_ptr<PressureWall> wall) { wall_ = std::move(wall); }
   std::shared_ptr<PressureWall> pressure_wall() const { return wall_; }
@@ -123,6 +127,11 @@ class Dynamics {
   bool prepared_ = false;
   BlowupGuard blowup_guard_;
   std::vector<MethodParams> next_params_;  // each method's parameters for the step being made
+  // Sites in no method (their forces are zeroed next to the drift), for free_sites_n_ sites.
+  void update_free_sites(const System& sys);
+  std::vector<int> free_sites_;
+  std::size_t free_sites_n_ = 0;
+  bool free_sites_valid_ = false;
 };
 
 }  // namespace invasim
