@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The sanitizer job (issue 14; not yet in .ci/run, see docs/reliability.md): builds a second
+# The sanitizer job (issue 14; run by .ci/run after the Release suite): builds a second
 # build directory, build-sanitize, with
 # -DINVASIM_SANITIZE=address,undefined and runs a fast subset of the default suite under it
 # (every unit test and the Lua/CLI tests, less the long kill-and-resume and full-protocol runs;

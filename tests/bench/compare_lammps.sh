@@ -55,7 +55,7 @@ compare_case() {
   for n in $sizes; do
     row="| $n |"
     for p in 1 2; do
-      read -r ours ours_cpu < <(OMP_NUM_THREADS=$p "$bench" single "$n" "$steps" "$2" "$3")
+      read -r ours ours_cpu < <(OMP_NUM_THREADS=$p "$bench" single "$n" "$steps" "$2" "$3" 2>/dev/null)
       (cd "$work" && OMP_NUM_THREADS=1 mpirun --allow-run-as-root --oversubscribe -np "$p" lmp \
          -nocite -var data "data.$n" -var table "$4" -var steps "$steps" -var kT "$3" \
          -var c09 "$(awk -v f="$5" 'BEGIN { print 0.9 * f }')" -var c10 "$5" \
@@ -93,8 +93,8 @@ busy_pid=$!
 echo "| run | 1 thread | 2 threads | 2 threads / 1 thread |"
 echo "|---|---|---|---|"
 for rep in 1 2; do
-  read -r one _ < <(OMP_NUM_THREADS=1 "$bench" single 7000 "$steps")
-  read -r two _ < <(OMP_NUM_THREADS=2 "$bench" single 7000 "$steps")
+  read -r one _ < <(OMP_NUM_THREADS=1 "$bench" single 7000 "$steps" 2>/dev/null)
+  read -r two _ < <(OMP_NUM_THREADS=2 "$bench" single 7000 "$steps" 2>/dev/null)
   echo "| $rep | $one | $two | $(awk -v a="$two" -v b="$one" 'BEGIN { printf "%.2f", a / b }') |"
 done
 kill "$busy_pid"
