@@ -28,7 +28,7 @@ RenderCounts count_shapes(const Slice& slice) {
 namespace {
 
 void num(std::string& out, double v) {
-  text::append_fixed(out, v, 2);
+  svg_number(out, v);
 }
 
 // Periodic copies to draw for a shape spanning [min, max] along an in-plane axis: the shape
@@ -43,16 +43,11 @@ std::vector<double> image_shifts(bool periodic, double lo, double hi, double min
 
 // A box edge: a wall (thick) or a periodic edge (dashed).
 void edge(std::string& out, double x1, double y1, double x2, double y2, bool wall) {
-  out += wall ? "  <line data-edge=\"wall\" x1=\"" : "  <line data-edge=\"periodic\" x1=\"";
-  num(out, x1);
-  out += "\" y1=\"";
-  num(out, y1);
-  out += "\" x2=\"";
-  num(out, x2);
-  out += "\" y2=\"";
-  num(out, y2);
-  out += wall ? "\" stroke=\"black\" stroke-width=\"4\"/>\n"
-              : "\" stroke=\"black\" stroke-width=\"1\" stroke-dasharray=\"6,4\"/>\n";
+  if (wall)
+    svg_line(out, "data-edge=\"wall\"", x1, y1, x2, y2, "stroke=\"black\" stroke-width=\"4\"");
+  else
+    svg_line(out, "data-edge=\"periodic\"", x1, y1, x2, y2,
+             "stroke=\"black\" stroke-width=\"1\" stroke-dasharray=\"6,4\"");
 }
 
 // Calls draw(du, dw) for a shape spanning [min_u, max_u] x [min_w, max_w] and for each of its

@@ -18,7 +18,7 @@ constexpr double kLegendSample = 26.0;  // px, width of a legend entry's sample
 constexpr double kLegendGap = 18.0;     // px between legend entries
 
 void num(std::string& out, double v) {
-  text::append_fixed(out, v, 2);
+  svg_number(out, v);
 }
 
 // Short decimal form for captions and tick labels: 10 significant digits hide the round-off
@@ -62,17 +62,8 @@ void text_at(std::string& out, double x, double y, const char* anchor, const std
 }
 
 void tick_line(std::string& out, const char* axis, double x1, double y1, double x2, double y2) {
-  out += "  <line data-tick=\"";
-  out += axis;
-  out += "\" x1=\"";
-  num(out, x1);
-  out += "\" y1=\"";
-  num(out, y1);
-  out += "\" x2=\"";
-  num(out, x2);
-  out += "\" y2=\"";
-  num(out, y2);
-  out += "\" stroke=\"black\" stroke-width=\"1\"/>\n";
+  const std::string attributes = std::string("data-tick=\"") + axis + "\"";
+  svg_line(out, attributes.c_str(), x1, y1, x2, y2, "stroke=\"black\" stroke-width=\"1\"");
 }
 
 // "x [σ], normal to the walls" for the wall axis, "y [σ], periodic" for a periodic one.
@@ -193,6 +184,27 @@ void append_legend(std::string& out, const SliceCanvas& cv,
     text_at(out, x + kLegendSample + 6.0, y + 4.5, "start", e.label);
   }
   out += "  </g>\n";
+}
+
+void svg_number(std::string& out, double v) {
+  text::append_fixed(out, v, 2);
+}
+
+void svg_line(std::string& out, const char* attributes, double x1, double y1, double x2, double y2,
+              const char* style) {
+  out += "  <line ";
+  out += attributes;
+  out += " x1=\"";
+  svg_number(out, x1);
+  out += "\" y1=\"";
+  svg_number(out, y1);
+  out += "\" x2=\"";
+  svg_number(out, x2);
+  out += "\" y2=\"";
+  svg_number(out, y2);
+  out += "\" ";
+  out += style;
+  out += "/>\n";
 }
 
 }  // namespace invasim

@@ -22,6 +22,13 @@ struct SliceCanvas {
   double height() const { return top + below + legend_height + (hi_w - lo_w) * scale; }
 };
 
+// Appends an SVG number with 2 decimals (the pictures' coordinate format).
+void svg_number(std::string& out, double v);
+// Appends `  <line ATTRIBUTES x1=".." y1=".." x2=".." y2=".." STYLE/>` and a newline (ticks,
+// box edges).
+void svg_line(std::string& out, const char* attributes, double x1, double y1, double x2, double y2,
+              const char* style);
+
 // One legend entry: a sample drawn by `kind` ("cell-active", "cell-passive", "cell",
 // "adipocyte", "mesh", "wall", "periodic") and its label.
 struct LegendEntry {
