@@ -1,6 +1,6 @@
 -- The paper's Fig. 8a at reduced scale: tethered tissue (protocols/tethered.lua) at tau_p = 25,
--- beta = 1e-2, K_ecm in {0, 0.01, 0.04, 0.16} x five f0 (k_B T_c/(P sigma^3) ~ 0.02 to 3), one
--- seed, from one compressed tissue (the tethers are inserted after it, before the quench).
+-- beta = 1e-2, K_ecm in {0, 0.01, 0.04, 0.16} x five f0 (k_B T_c/(P sigma^3) ~ 0.02 to 3) x two
+-- seeds, from one compressed tissue (the tethers are inserted after it, before the quench).
 -- A_n is normalised by the K_ecm = 0 sweep (its plateau below 1 with tethers).
 --   invasim sweep init protocols/sweeps/fig8a_tethered.lua
 --   invasim sweep run out/fig8a_tethered --jobs 2
@@ -11,7 +11,7 @@ return {
           snapshot_every = 0, checkpoint_every = 20000 },
   product = { K_ecm = { 0.0, 0.01, 0.04, 0.16 },
               f0 = { 0.0075, 0.0105, 0.0125, 0.014, 0.02 } },
-  seeds = { 1 },
+  seeds = { 1, 2 },
   prep = { set = { quench_steps = 0, equilibrate_steps = 0, steps = 0 } },
   tiny = { set = { quench_steps = 100, equilibrate_steps = 100, steps = 400, every = 100,
                    checkpoint_every = 0 }, take = 2 },

@@ -5,9 +5,11 @@ Cost model of a point: fixed + steps/rate, with steps = the sum of the point's i
 parameters named *steps (quench_steps, equilibrate_steps, steps; the protocol's default
 where the spec leaves one out). Two ways to get `fixed` and `rate`:
 - timing (plan SPEC): two short runs of the spec's first point, differing only in `steps`
-  (S and S + delta, all other *steps at 0 where allowed), after its shared preparation if
-  it has one: rate = delta/(wall_B - wall_A), fixed = wall_A - S/rate; the preparation's
-  own wall time is counted once;
+  (S = 2 x every and S + delta, all other *steps at 0), after its shared preparation if it
+  has one: the rate from the longer run's production clock (summary.json's `seconds`), or
+  where a protocol writes none, rate = delta/(wall_B - wall_A); fixed = wall_A - S/rate
+  (start-up, compression, rescale: per point); the preparation's own wall time counts once.
+  The first point's rate stands for all points of the spec;
 - done points (plan --workspace WS): the wall_seconds that `sweep run` recorded; the points
   not done yet are estimated with the mean wall time per step of the done ones.
 The wall time with N jobs replays `sweep run`: the preparation alone, then the points in
@@ -62,6 +64,16 @@ def _doc(path):
         return json.load(f)
 
 
+def _production_seconds(path):
+    """The seconds a run's production loop took (summary.json), or None."""
+    p = os.path.join(path, "summary.json")
+    if not os.path.exists(p):
+        return None
+    with open(p) as f:
+        v = json.load(f).get("averages", {}).get("seconds")
+    return float(v) if isinstance(v, (int, float)) and v > 0 else None
+
+
 def _run(cmd):
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
@@ -88,7 +100,7 @@ def time_spec(invasim, spec, scratch, delta):
     meta, sps = statepoints(full)
     steps = declared_steps(invasim, meta["protocol"])
     first = sps[0][1]
-    base = ["--set", "checkpoint_every=0"] if "checkpoint_every" in first or True else []
+    base = ["--set", "checkpoint_every=0"]
     zeroed = [n for n in steps if n != "steps"]
     s_a = int(first.get("every", 1000)) * 2
     sets = base + sum((["--set", "%s=0" % n] for n in zeroed), [])
@@ -103,13 +115,24 @@ def time_spec(invasim, spec, scratch, delta):
              for i, sp in tsps}
     if None in walls.values():
         raise InputError("%s: a timing run did not finish (see %s)" % (spec, timing))
-    rate = delta / max(1e-9, walls[s_a + delta] - walls[s_a])
+    production = {int(sp["steps"]): _production_seconds(os.path.join(timing, "workspace", i))
+                  for i, sp in tsps}
+    if production[s_a + delta]:
+        rate = (s_a + delta) / production[s_a + delta]   # the run's own production clock
+        how = "production clock of %d steps" % (s_a + delta)
+    elif walls[s_a + delta] > walls[s_a]:
+        rate = delta / (walls[s_a + delta] - walls[s_a])
+        how = "wall time of %d and %d steps" % (s_a, s_a + delta)
+    else:
+        raise InputError("%s: the timing is inconclusive (%d steps took %.2f s, %d steps %.2f s: "
+                         "the machine is busy); try a larger --delta" % (
+                             spec, s_a, walls[s_a], s_a + delta, walls[s_a + delta]))
     fixed = max(0.0, walls[s_a] - s_a / rate)
     prep = _doc(os.path.join(timing, "prep")).get("wall_seconds", 0.0) if meta.get("prep") else 0.0
     shutil.rmtree(os.path.join(scratch, name), ignore_errors=True)
     counts = [point_steps(sp, steps, spec) for _, sp in sps]
     return {"spec": spec, "points": len(sps), "steps": counts, "rate": rate, "fixed": fixed,
-            "prep": prep, "source": "timing of the first point (%d and %d steps)" % (s_a, s_a + delta),
+            "prep": prep, "source": "timing of the first point (%s)" % how,
             "costs": [fixed + n / rate for n in counts]}
 
 

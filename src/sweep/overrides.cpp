@@ -30,7 +30,12 @@ void set_fixed(SweepSpec& spec, const std::string& name, const Json& value) {
 }  // namespace
 
 Json override_value(const lua::Param& p, const std::string& text, const std::string& where) {
-  const lua::ParamValue parsed = lua::parse_value(p.type, p.name, text);
+  lua::ParamValue parsed;
+  try {
+    parsed = lua::parse_value(p.type, p.name, text);
+  } catch (const InputError& e) {
+    fail_input(where, ": ", e.what());
+  }
   if (const std::string why = lua::value_violation(p, parsed); !why.empty())
     fail_input(where, ": parameter '", p.name, "' ", why);
   if (p.type == lua::ParamType::kNumber) {
