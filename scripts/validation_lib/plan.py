@@ -4,12 +4,13 @@ measured rate = core-hours, and the wall time with --jobs N.
 Cost model of a point: fixed + steps/rate, with steps = the sum of the point's integer
 parameters named *steps (quench_steps, equilibrate_steps, steps; the protocol's default
 where the spec leaves one out). Two ways to get `fixed` and `rate`:
-- timing (plan SPEC): two short runs of the spec's first point, differing only in `steps`
-  (S = 2 x every and S + delta, all other *steps at 0), after its shared preparation if it
-  has one: the rate from the longer run's production clock (summary.json's `seconds`), or
-  where a protocol writes none, rate = delta/(wall_B - wall_A); fixed = wall_A - S/rate
-  (start-up, compression, rescale: per point); the preparation's own wall time counts once.
-  The first point's rate stands for all points of the spec;
+- timing (plan SPEC): two short runs of the spec's first point (`invasim sweep job`, one
+  thread), differing only in `steps` (S = 2 x every and S + delta, all other *steps at 0),
+  after its shared preparation if it has one, each measured in CPU time (so that a busy
+  machine does not skew the rate): rate = delta/(cpu_B - cpu_A), fixed = cpu_A - S/rate
+  (start-up, compression, rescale: per point); the preparation's CPU time counts once. The
+  first point's rate stands for all points of the spec. Core-hours and wall times are then
+  those of an idle machine;
 - done points (plan --workspace WS): the wall_seconds that `sweep run` recorded; the points
   not done yet are estimated with the mean wall time per step of the done ones.
 The wall time with N jobs replays `sweep run`: the preparation alone, then the points in
@@ -17,6 +18,7 @@ order, each on the first free of N slots."""
 
 import json
 import os
+import resource
 import shutil
 import subprocess
 
@@ -64,14 +66,12 @@ def _doc(path):
         return json.load(f)
 
 
-def _production_seconds(path):
-    """The seconds a run's production loop took (summary.json), or None."""
-    p = os.path.join(path, "summary.json")
-    if not os.path.exists(p):
-        return None
-    with open(p) as f:
-        v = json.load(f).get("averages", {}).get("seconds")
-    return float(v) if isinstance(v, (int, float)) and v > 0 else None
+def _cpu_seconds(cmd):
+    """The CPU seconds (user + system) of one child process run to completion."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    _run(cmd)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 def _run(cmd):
@@ -109,26 +109,18 @@ def time_spec(invasim, spec, scratch, delta):
     for s in (s_a, s_a + delta):
         _run([invasim, "sweep", "init", spec, "--workspace", timing, "--take", "1",
               "--set", "steps=%d" % s] + sets)
-    _run([invasim, "sweep", "run", timing, "--jobs", "1", "--threads", "1"])
-    _, tsps = statepoints(timing)
-    walls = {int(sp["steps"]): _doc(os.path.join(timing, "workspace", i)).get("wall_seconds")
-             for i, sp in tsps}
-    if None in walls.values():
-        raise InputError("%s: a timing run did not finish (see %s)" % (spec, timing))
-    production = {int(sp["steps"]): _production_seconds(os.path.join(timing, "workspace", i))
-                  for i, sp in tsps}
-    if production[s_a + delta]:
-        rate = (s_a + delta) / production[s_a + delta]   # the run's own production clock
-        how = "production clock of %d steps" % (s_a + delta)
-    elif walls[s_a + delta] > walls[s_a]:
-        rate = delta / (walls[s_a + delta] - walls[s_a])
-        how = "wall time of %d and %d steps" % (s_a, s_a + delta)
-    else:
-        raise InputError("%s: the timing is inconclusive (%d steps took %.2f s, %d steps %.2f s: "
-                         "the machine is busy); try a larger --delta" % (
-                             spec, s_a, walls[s_a], s_a + delta, walls[s_a + delta]))
-    fixed = max(0.0, walls[s_a] - s_a / rate)
-    prep = _doc(os.path.join(timing, "prep")).get("wall_seconds", 0.0) if meta.get("prep") else 0.0
+    meta_t, tsps = statepoints(timing)
+    prep = _cpu_seconds([invasim, "sweep", "job", timing, "prep", "--threads", "1"]) \
+        if meta_t.get("prep") else 0.0
+    cpu = {int(sp["steps"]): _cpu_seconds([invasim, "sweep", "job", timing, i, "--threads", "1"])
+           for i, sp in tsps}
+    if cpu[s_a + delta] <= cpu[s_a]:
+        raise InputError("%s: the timing is inconclusive (%d steps took %.2f CPU s, %d steps "
+                         "%.2f CPU s); try a larger --delta" % (spec, s_a, cpu[s_a], s_a + delta,
+                                                                cpu[s_a + delta]))
+    rate = delta / (cpu[s_a + delta] - cpu[s_a])
+    fixed = max(0.0, cpu[s_a] - s_a / rate)
+    how = "CPU time of %d and %d steps" % (s_a, s_a + delta)
     shutil.rmtree(os.path.join(scratch, name), ignore_errors=True)
     counts = [point_steps(sp, steps, spec) for _, sp in sps]
     return {"spec": spec, "points": len(sps), "steps": counts, "rate": rate, "fixed": fixed,

@@ -89,7 +89,10 @@ def group(jobs, keys):
     out = {}
     for j in jobs:
         out.setdefault(tuple(j.sp.get(k) for k in keys), []).append(j)
-    return dict(sorted(out.items(), key=lambda kv: [str(type(v)) + repr(v) for v in kv[0]]))
+    def order(kv):  # numbers numerically, before strings
+        return [(0, float(v), "") if isinstance(v, (int, float)) else (1, 0.0, str(v))
+                for v in kv[0]]
+    return dict(sorted(out.items(), key=order))
 
 
 def steadiness(job, column="A_t"):
