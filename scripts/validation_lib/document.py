@@ -81,7 +81,7 @@ trend only when it has the right sign within 2 errors, and disagrees otherwise. 
 few points for the number (always the case at the CI size for fits); *not testable*: the
 paper compares with data we do not have.
 
-**CI.** `tests/validation/validation_tiny.sh` (CTest `validation_pipeline_tiny`) runs every
+**CI.** `tests/analysis/validation_tiny.sh` (CTest `validation_pipeline_tiny`, about 75 s at 2 jobs) runs every
 campaign sweep file at its CI size (`invasim sweep init SPEC --tiny`: each file's
 `tiny = {...}`, two values per axis, one seed, a few hundred steps), then every figure command,
 the plan from the done points and this document, so that no part of the pipeline can rot.
@@ -163,6 +163,11 @@ def render(fig_dir, plan_entries, out_path, ci_size=False):
     L += [", ".join("%d %s" % (n, v) for v, n in counts.items()), "",
           "| figure | statement | verdict |", "|---|---|---|"]
     L += ["| %s | `%s` | %s |" % (r["figure"], r["id"], r["verdict"]) for r in all_rows]
+    bad = [r for r in all_rows if r["verdict"] == DISAGREES]
+    if bad:
+        L += ["", "Disagreements, each with what we get and the criterion it fails:", ""]
+        L += ["- `%s` (%s): %s. Ours: %s. Criterion: %s." % (
+            r["id"], r["figure"], r["paper"], r["ours"], r["why"]) for r in bad]
     L += ["", CONTRADICTIONS, METHOD]
     with open(out_path, "w") as f:
         f.write("\n".join(L))
