@@ -9,7 +9,7 @@ import sys
 import numpy as np
 
 from . import runs, verdict
-from .figures_tissue import x_measured, pressure
+from .figures_tissue import x_measured
 from .plotting import T_PAPER, figure, label, log_if_spans, save, state
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
