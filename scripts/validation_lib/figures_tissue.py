@@ -51,12 +51,19 @@ def an_over_time(jobs, keys, xfun, fractions):
     return table, extremes
 
 
-def plot_an_times(ax, table, xlabel):
+def run_time(jobs, fraction):
+    """The time at the end of the window `fraction` of the first job's production."""
+    t = jobs[0].series["time"]
+    return float(t[max(0, int(round(fraction * len(t))) - 1)])
+
+
+def plot_an_times(ax, table, xlabel, jobs):
     for f, pts in sorted(table.items()):
         pts = sorted(pts, key=lambda p: p["x"])
         ax.errorbar([p["x"] for p in pts], [p["A_n"] for p in pts],
                     yerr=[p["A_n_error"] if verdict.finite(p["A_n_error"]) else 0 for p in pts],
-                    marker="o", capsize=2, label="$t$ = %.0f%% of the run" % (100 * f))
+                    marker="o", capsize=2,
+                    label=r"$t$ = %.4g $\tau$ (%.0f%% of the run)" % (run_time(jobs, f), 100 * f))
     xs = [p["x"] for pts in table.values() for p in pts]
     log_if_spans(ax, xs)
     if xs and min(xs) > 0:
@@ -125,7 +132,7 @@ def fig5a(jobs, out, invasim):
     fractions = (0.25, 0.5, 1.0)
     table, extremes = an_over_time(jobs, ["kT"], lambda j, f: x_bath(j), fractions)
     fig, (ax,) = figure()
-    plot_an_times(ax, table, T_BATH)
+    plot_an_times(ax, table, T_BATH, jobs)
     images = [save(fig, out, "fig5a_An.png")]
     mids = {f: runs.crossing([p["x"] for p in pts], [p["A_n"] for p in pts])
             for f, pts in table.items()}
@@ -151,7 +158,7 @@ def fig5b(jobs, out, invasim, inset_jobs=None):
     fractions = (0.25, 0.5, 1.0)
     table, extremes = an_over_time(jobs, ["f0"], x_measured, fractions)
     fig, axes = figure(2 if inset_jobs else 1)
-    plot_an_times(axes[0], table, T_PAPER)
+    plot_an_times(axes[0], table, T_PAPER, jobs)
     end = sorted(table[1.0], key=lambda p: p["x"])
     st = verdict.paper()["fig5b_An_at_0.3"]
     an03 = runs.interpolate_log([p["x"] for p in end], [p["A_n"] for p in end], st["at"])
