@@ -97,20 +97,21 @@ def lf_row(ws, runs, verdict):
 
 
 def figure(name, workspaces, out, invasim, argv):
-    from validation_lib import figures_other, figures_tissue, runs, verdict
-    funcs = {"fig3": figures_tissue.fig3, "fig5a": figures_tissue.fig5a,
-             "fig5b": figures_tissue.fig5b, "fig8a": figures_tissue.fig8a,
-             "fig6": figures_other.fig6, "fig7": figures_other.fig7,
-             "fig10": figures_other.fig10, "fig11": figures_other.fig11}
-    if name not in funcs:
+    from validation_lib import runs
+    if name not in FIGURES:
         raise runs.InputError("unknown figure '%s'; figures: %s" % (name, ", ".join(FIGURES)))
     most, least = len(FIGURES[name]), REQUIRED.get(name, len(FIGURES[name]))
     if not least <= len(workspaces) <= most:
         raise runs.InputError("figure %s reads %s workspace%s (%s); got %d" % (
             name, least if least == most else "%d or %d" % (least, most),
             "" if most == 1 else "s", ", ".join(FIGURES[name]), len(workspaces)))
-    os.makedirs(out, exist_ok=True)
     sets = [runs.load(ws) for ws in workspaces]
+    from validation_lib import figures_other, figures_tissue, verdict  # matplotlib: slow import
+    funcs = {"fig3": figures_tissue.fig3, "fig5a": figures_tissue.fig5a,
+             "fig5b": figures_tissue.fig5b, "fig8a": figures_tissue.fig8a,
+             "fig6": figures_other.fig6, "fig7": figures_other.fig7,
+             "fig10": figures_other.fig10, "fig11": figures_other.fig11}
+    os.makedirs(out, exist_ok=True)
     rec = funcs[name](sets[0], out, invasim, *sets[1:])
     if name == "fig3":
         row = lf_row(workspaces[0], runs, verdict)

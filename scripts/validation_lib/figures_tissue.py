@@ -136,18 +136,24 @@ def fig5a(jobs, out, invasim):
     images = [save(fig, out, "fig5a_An.png")]
     mids = {f: runs.crossing([p["x"] for p in pts], [p["A_n"] for p in pts])
             for f, pts in table.items()}
+    errs = {f: runs.crossing_log_error([p["x"] for p in pts], [p["A_n"] for p in pts],
+                                       [p["A_n_error"] for p in pts]) for f, pts in table.items()}
     st = verdict.paper()["fig5a_Tg"]
     moves = mids[0.25] > mids[1.0] if verdict.finite(mids[0.25], mids[1.0]) else None
+    shift = math.log10(mids[0.25] / mids[1.0]) if moves is not None else math.nan
+    shift_err = math.hypot(errs[0.25], errs[1.0])
+    end_err = mids[1.0] * math.log(10) * errs[1.0] if verdict.finite(mids[1.0], errs[1.0]) else math.nan
     rows = [
         verdict.row("fig5a_moves_left",
                     "midpoint (A_n = 1/2) at %s" % ", ".join(
                         "%s (t = %.0f%%)" % (verdict.fmt(mids[f]), 100 * f) for f in fractions),
-                    verdict.trend_verdict(math.log10(mids[0.25] / mids[1.0]), 0.0)
-                    if verdict.finite(mids[0.25], mids[1.0]) else verdict.NO_DATA,
-                    "log10 of the midpoint's ratio, first quarter over the end (> 0: left)"),
-        verdict.row("fig5a_Tg", "midpoint at the end: %s" % verdict.fmt(mids[1.0]),
-                    verdict.log_verdict(mids[1.0], math.nan, st["value"], st["log_factor"], moves),
-                    "within a factor %g of %g" % (st["log_factor"], st["value"]))]
+                    verdict.trend_verdict(shift, shift_err),
+                    "log10 of the midpoint's ratio, first quarter over the end: %s (> 2 errors; "
+                    "the error from the A_n errors and the slope at the crossing)"
+                    % verdict.fmt(shift, shift_err)),
+        verdict.row("fig5a_Tg", "midpoint at the end: %s" % verdict.fmt(mids[1.0], end_err),
+                    verdict.log_verdict(mids[1.0], end_err, st["value"], st["log_factor"], moves),
+                    "within a factor %g of %g (+ 2 errors)" % (st["log_factor"], st["value"]))]
     return {"images": images, "rows": rows,
             "numbers": {"midpoints": {str(f): m for f, m in mids.items()},
                         "normalisation": extremes, "points": table},

@@ -190,6 +190,18 @@ def crossing(x, y, level=0.5):
     return math.nan
 
 
+def crossing_log_error(x, y, err, level=0.5):
+    """The error of log10 of crossing(x, y): the larger A_n error of the two bracketing points
+    over the slope dA_n/dlog10 x between them (nan without a crossing or errors)."""
+    order = np.argsort(x)
+    x, y, err = (np.asarray(v, float)[order] for v in (x, y, err))
+    for k in range(len(x) - 1):
+        if y[k] < level <= y[k + 1] and x[k] > 0 and x[k + 1] > 0:
+            slope = (y[k + 1] - y[k]) / (math.log10(x[k + 1]) - math.log10(x[k]))
+            return float(max(err[k], err[k + 1]) / slope)
+    return math.nan
+
+
 def interpolate_log(x, y, at):
     """y at x = `at`, linear in log10 x between the nearest points, or nan outside."""
     order = np.argsort(x)

@@ -60,6 +60,9 @@ for p, want in zip(pts, [(x - 0.2) / 0.6 for x in r]):
 other = runs.scale_like({"A_t": 650.0, "A_t_max": 1000.0, "A_t_error": 0.0}, ext)
 assert abs(other["A_n"] - (0.65 - 0.2) / 0.6) < 1e-12
 assert abs(runs.crossing([0.01, 0.1, 1.0], [0.0, 0.25, 0.75]) - 10 ** -0.5) < 1e-12
+# its error in log10: the larger bracketing error over the slope (0.5 per decade)
+assert abs(runs.crossing_log_error([0.01, 0.1, 1.0], [0.0, 0.25, 0.75], [0.1, 0.02, 0.05])
+           - 0.05 / 0.5) < 1e-12
 
 # Steadiness on a hand-made run: 40 rows, the last half flat (steady) or rising (not).
 def fake_job(path, last_half, error):
