@@ -15,4 +15,7 @@ return {
   seeds = { 1, 2 },
   -- the compression only: the points skip it (--from)
   prep = { set = { quench_steps = 0, steps = 0 } },
+  -- the CI size (invasim sweep init --tiny): two temperatures, one seed, a few hundred steps
+  tiny = { set = { quench_steps = 100, steps = 400, every = 100, checkpoint_every = 0 },
+           take = 2 },
 }

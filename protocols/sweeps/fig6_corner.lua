@@ -16,4 +16,6 @@ return {
               f0 = { 0.002, 0.003, 0.0045, 0.0065, 0.0095, 0.011, 0.0125, 0.014, 0.02 } },
   seeds = { 1, 2, 3 },
   prep = { set = { quench_steps = 0, steps = 0 } },
+  tiny = { set = { quench_steps = 100, steps = 400, every = 100, checkpoint_every = 0 },
+           take = 2 },
 }

@@ -20,6 +20,7 @@
 #include "sweep/collect.hpp"
 #include "sweep/job_record.hpp"
 #include "sweep/local_runner.hpp"
+#include "sweep/overrides.hpp"
 #include "sweep/slurm.hpp"
 #include "sweep/status.hpp"
 
@@ -31,9 +32,11 @@ std::string sweep_help_text() {
   return R"(invasim sweep: parameter sweeps of a protocol (docs/sweeps.md)
 
 Usage:
-  invasim sweep init SPEC.lua [--workspace DIR]
+  invasim sweep init SPEC.lua [--workspace DIR] [--tiny] [--set KEY=VALUE]... [--take N]
         check the sweep spec and create (or grow) its signac-compatible workspace
-        (default DIR: out/<spec name>)
+        (default DIR: out/<spec name>, with --tiny out/tiny/<spec name>); --tiny uses the
+        spec's CI size (its tiny = {...}), --set replaces a fixed parameter, --take N keeps
+        the first N values of every axis and one seed
   invasim sweep run WS [--jobs N] [--threads T]
         run the points that are not done, N at a time with T threads each (default: fill
         the cores, N x T <= cores); interrupted points continue from their checkpoints;
@@ -97,7 +100,8 @@ Parsed parse(const std::string& verb, const std::vector<std::string>& args,
       if (i + 1 >= args.size()) throw UsageError(name + " needs a value");
       value = args[++i];
     }
-    if (name != "--sbatch-arg" && p.values.count(name)) throw UsageError(name + " given twice");
+    if (name != "--sbatch-arg" && name != "--set" && p.values.count(name))
+      throw UsageError(name + " given twice");
     p.values[name].push_back(value);
   }
   return p;
@@ -144,11 +148,18 @@ std::string executable() {
 }
 
 int init(const std::vector<std::string>& args) {
-  const Parsed p = parse("init", args, {"--workspace"}, {});
+  const Parsed p = parse("init", args, {"--workspace", "--set", "--take"}, {"--tiny"});
   const auto spec_path = words("init", p, 1, "SPEC.lua")[0];
-  const sweep::SweepSpec spec = sweep::load_spec(spec_path);
+  sweep::SpecOverrides overrides;
+  overrides.tiny = p.flags.count("--tiny") > 0;
+  if (p.values.count("--set"))
+    for (const auto& s : p.values.at("--set")) overrides.set.push_back(lua::parse_override(s));
+  if (auto take = value(p, "--take")) overrides.take = positive("--take", *take, 1000000);
+  sweep::SweepSpec spec = sweep::load_spec(spec_path);
+  sweep::apply_spec_overrides(spec, overrides);
+  const fs::path default_ws = overrides.tiny ? fs::path("out") / "tiny" : fs::path("out");
   const std::string ws =
-      value(p, "--workspace").value_or((fs::path("out") / fs::path(spec_path).stem()).string());
+      value(p, "--workspace").value_or((default_ws / fs::path(spec_path).stem()).string());
   const auto report = sweep::init_workspace(spec, ws);
   std::cout << "sweep init: " << ws << ": " << report.added << " new points, " << report.kept
             << " kept (" << report.added + report.kept << " in " << spec_path << ")"

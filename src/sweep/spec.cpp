@@ -216,21 +216,45 @@ class SpecReader {
     return out;
   }
 
+  // tiny = { set = { name = value }, take = N }: the CI size (sweep/overrides.hpp applies it).
+  void read_tiny(int at) {
+    lua_getfield(L_, -1, "tiny");
+    if (!lua_istable(L_, -1))
+      fail(at, "tiny", "expected { set = { ... }, take = N } (the CI size); got a " + type_at(-1));
+    for (const auto& key : keys("tiny", at))
+      if (key != "set" && key != "take")
+        fail(source_.find(key, at), "tiny." + key,
+             "unknown key" + lua::did_you_mean(key, {"set", "take"}) + "; tiny has: set, take");
+    spec_.has_tiny = true;
+    lua_getfield(L_, -1, "take");
+    if (!lua_isnil(L_, -1)) {
+      if (!lua_isinteger(L_, -1) || lua_tointeger(L_, -1) < 1)
+        fail(source_.find("take", at), "tiny.take",
+             "expected an integer >= 1 (values kept per axis); got a " + type_at(-1) + " (" +
+                 luaL_tolstring(L_, -1, nullptr) + ")");
+      spec_.tiny_take = static_cast<int>(lua_tointeger(L_, -1));
+    }
+    lua_pop(L_, 1);
+    lua_getfield(L_, -1, "set");
+    if (!lua_isnil(L_, -1)) parameters("tiny.set", at, spec_.tiny_set);
+    lua_pop(L_, 2);
+  }
+
   SweepSpec read() {
     if (!lua_istable(L_, -1))
       fail_input(path_,
                  ": a sweep spec must return a table { protocol = ..., set = ..., product = "
                  "..., zip = ..., seeds = ..., prep = ... }; it returned a ",
                  type_at(-1));
-    static const std::set<std::string> known = {"protocol", "set",   "product",
-                                                "zip",      "seeds", "prep"};
+    static const std::set<std::string> known = {"protocol", "set",  "product", "zip",
+                                                "seeds",    "prep", "tiny"};
     std::map<std::string, int> line;
     for (const auto& key : keys("the spec", 1)) {
       line[key] = source_.find(key, 1);
       if (!known.count(key))
         fail(line[key], key,
              "unknown key" + lua::did_you_mean(key, {known.begin(), known.end()}) +
-                 "; a sweep spec has: protocol, set, product, zip, seeds, prep");
+                 "; a sweep spec has: protocol, set, product, zip, seeds, prep, tiny");
     }
     spec_.path = path_;
     if (!line.count("protocol")) fail_input(path_, ": missing protocol = \"PROTOCOL.lua\"");
@@ -315,9 +339,13 @@ class SpecReader {
       spec_.has_prep = true;
       spec_.prep_set = spec_.fixed;
       lua_getfield(L_, -1, "set");
-      if (!lua_isnil(L_, -1)) parameters("prep.set", at, spec_.prep_set);
+      if (!lua_isnil(L_, -1)) {
+        parameters("prep.set", at, spec_.prep_set);
+        parameters("prep.set", at, spec_.prep_own);
+      }
       lua_pop(L_, 2);
     }
+    if (line.count("tiny")) read_tiny(line["tiny"]);
     return spec_;
   }
 

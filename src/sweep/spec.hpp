@@ -5,7 +5,8 @@
 //     product = { key = { v1, v2, ... }, ... },  -- every combination of these lists
 //     zip = { { key1 = {...}, key2 = {...} } },  -- lists that move together (equal lengths)
 //     seeds = { 1, 2, 3 },                       -- replicates (the parameter `seed`)
-//     prep = { set = { ... } } }                 -- optional shared preparation run
+//     prep = { set = { ... } },                  -- optional shared preparation run
+//     tiny = { set = { ... }, take = 2 } }       -- the CI size (`sweep init --tiny`)
 // checked against the parameters the protocol declares (its invasim.params{...} table, read
 // the way `invasim params` reads it): an unknown key, an undeclared parameter, a value of the
 // wrong type or outside its range is an InputError naming "spec.lua:LINE: key", before
@@ -31,6 +32,10 @@ struct SweepSpec {
   std::vector<std::vector<Axis>> zips;
   bool has_prep = false;
   Json prep_set = Json::object();  // the preparation's parameters: fixed, then prep.set
+  Json prep_own = Json::object();  // prep.set alone (what an override of `set` leaves alone)
+  bool has_tiny = false;           // tiny = { set = {...}, take = N }
+  Json tiny_set = Json::object();  // the tiny size's parameters (checked like `set`)
+  int tiny_take = 2;               // values kept per axis at the tiny size (seeds: 1)
 
   // The state points: fixed parameters plus one value of every axis (the product of the
   // product axes and zip groups), in a fixed order.

@@ -1,0 +1,21 @@
+-- The paper's Fig. 10 at reduced scale: the adipocyte packing-fraction scan
+-- (protocols/packing.lua: rescale to phi_a, minimise, tether with K_ecm = 0.04 and lambda, run
+-- under the pressure wall) at phi_a = 0.45 to 0.85 and lambda in {0, 0.3, 1}; beta = 1e-2,
+-- tau_p = 25, f0 = 0.012 (k_B T_c/(P sigma^3) ~ 0.37 in the paper's convention). The
+-- compression is shared; the rescale is per point. Two seeds.
+--   invasim sweep init protocols/sweeps/fig10_packing.lua
+--   invasim sweep run out/fig10_packing --jobs 2
+return {
+  protocol = "../packing.lua",
+  set = { system = "reduced", beta = 1e-2, tau_p = 25.0, kT = 0.0, P = 1.3e-3, f0 = 0.012,
+          K_ecm = 0.04, quench_steps = 20000, steps = 250000, every = 1000,
+          snapshot_every = 0, checkpoint_every = 20000 },
+  -- descending, so that the CI size (take = 2) gets the quick ones: expanding to 0.45 takes
+  -- about 6e5 FIRE steps (110 s) before the run
+  product = { phi_a = { 0.85, 0.75, 0.65, 0.55, 0.45 }, lambda = { 0.0, 0.3, 1.0 } },
+  seeds = { 1, 2 },
+  -- the compression only (packing.lua needs one measurement to finish: 100 steps)
+  prep = { set = { quench_steps = 0, steps = 100, every = 100 } },
+  tiny = { set = { quench_steps = 100, steps = 400, every = 100, checkpoint_every = 0 },
+           take = 2 },
+}

@@ -1,0 +1,17 @@
+-- The passive curve of the paper's Fig. 6: cohesive (beta = 1e-2), passive (f0 = 0) cancer
+-- cells in a bath at k_B T/(P sigma^3) = 0.01 to 3, two seeds, from one compressed tissue.
+--   invasim sweep init protocols/sweeps/fig6_passive.lua
+--   invasim sweep run out/fig6_passive --jobs 2
+return {
+  protocol = "../invasion.lua",
+  set = { system = "reduced", P = 1.3e-3, beta = 1e-2, f0 = 0.0,
+          quench_steps = 20000, steps = 250000, every = 1000,
+          snapshot_every = 0, checkpoint_every = 20000 },
+  -- kT/(P sigma^3) = 0.01, 0.03, 0.1, 0.3, 1, 3
+  product = { kT = { 1.3e-5, 3.9e-5, 1.3e-4, 3.9e-4, 1.3e-3, 3.9e-3 } },
+  seeds = { 1, 2 },
+  prep = { set = { quench_steps = 0, steps = 0 } },
+  -- the CI size: three values per axis, so that the sigmoid fits run in CI too
+  tiny = { set = { quench_steps = 100, steps = 400, every = 100, checkpoint_every = 0 },
+           take = 3 },
+}

@@ -1,0 +1,209 @@
+#!/usr/bin/env python3
+"""The validation campaign's analysis and document generator (docs/validation.md).
+
+Usage:
+  validation.py figure NAME WS [WS2] -o DIR [--invasim PATH]
+      one figure from its sweep workspace(s): DIR/NAME.json (rows of the side-by-side
+      table, verdicts, steady-state evidence, numbers, the command) and the images.
+      NAME and workspaces: fig3 WS | fig5a WS | fig5b WS [INSET_WS] | fig6 ACTIVE_WS
+      [PASSIVE_WS] | fig7 WS | fig8a WS | fig10 WS | fig11 WS
+  validation.py all ROOT -o DIR [--invasim PATH]
+      every figure from the standard workspaces ROOT/<sweep file name> (out, out/tiny)
+  validation.py plan SPEC... [--jobs N] [--delta STEPS] [-o plan.json] [--invasim PATH]
+  validation.py plan --workspace WS... [--jobs N] [-o plan.json]
+      points x steps x measured rate = core-hours and wall time with N jobs, by timing two
+      short runs of each spec's first point, or from the wall_seconds of done points
+  validation.py document DIR [--plan plan.json] -o docs/validation.md [--ci-size]
+      assembles the page from DIR/*.json and the plan (--ci-size: the tiny-CI banner)
+
+Needs numpy, scipy and matplotlib; if the python3 running it lacks them, it re-runs itself
+with /usr/bin/python3. Exit status 0; 1 on bad input (named); 2 on a bad command line."""
+
+import argparse
+import json
+import math
+import os
+import re
+import sys
+
+SYSTEM_PYTHON = "/usr/bin/python3"
+NO_REEXEC = "INVASIM_ANALYSIS_NO_REEXEC"
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(HERE)
+
+# figure -> the sweep files (workspace names) it reads, in argument order
+FIGURES = {
+    "fig3": ["fig3_passive_slices"], "fig5a": ["fig5a_passive"],
+    "fig5b": ["fig5b_cohesive", "fig5b_inset"], "fig6": ["fig6_active", "fig6_passive"],
+    "fig7": ["fig7_cells_only"], "fig8a": ["fig8a_tethered"], "fig10": ["fig10_packing"],
+    "fig11": ["fig11_shapes"],
+}
+REQUIRED = {"fig5b": 1, "fig6": 1}  # the others need all their workspaces
+
+
+def ensure_modules():
+    missing = []
+    for m in ("numpy", "scipy", "matplotlib"):
+        try:
+            __import__(m)
+        except ImportError:
+            missing.append(m)
+    if not missing:
+        return
+    if os.environ.get(NO_REEXEC) or os.path.realpath(sys.executable) == os.path.realpath(SYSTEM_PYTHON) \
+            or not os.path.exists(SYSTEM_PYTHON):
+        sys.exit("validation.py: error: missing Python modules %s (Debian: apt-get install %s)"
+                 % (", ".join(missing), " ".join("python3-" + m for m in missing)))
+    os.environ[NO_REEXEC] = "1"
+    os.execv(SYSTEM_PYTHON, [SYSTEM_PYTHON, os.path.abspath(__file__)] + sys.argv[1:])
+
+
+def default_invasim():
+    return os.path.join(REPO, "build", "invasim")
+
+
+def command_text(argv):
+    return " ".join(["scripts/validation.py"] + argv)
+
+
+def lf_row(ws, runs, verdict):
+    """The L_f contradiction from the workspace's shared preparation (the compressed box)."""
+    path = os.path.join(ws, "prep", "summary.json")
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        comp = json.load(f).get("compression", {})
+    box, phi = comp.get("box"), comp.get("phi")
+    with open(os.path.join(REPO, "protocols", "lib", "presets.lua")) as f:
+        presets = {m.group(1): (int(m.group(2)), int(m.group(3))) for m in re.finditer(
+            r"(\w+) = \{ N_a = (\d+), N_c = (\d+)", f.read())}
+    with open(os.path.join(ws, "invasim_sweep.json")) as f:
+        system = json.load(f).get("prep", {}).get("set", {}).get("system", "reduced")
+    if not box or system not in presets:
+        return None
+    n_a, n_c = presets[system]
+    p_a, p_c = presets["paper"]
+    volume = phi * box[0] * box[1] * box[2]
+    v_cell = math.pi / 6
+    v_adipocyte = (volume - n_c * v_cell) / n_a
+    l_paper = ((p_a * v_adipocyte + p_c * v_cell) / phi) ** (1 / 3)
+    st = verdict.paper()["L_f"]
+    return verdict.row(
+        "L_f", "L = %.3g at phi = %.3g (%s system, %d + %d bodies); the paper-size system with "
+        "the same bodies: %.3g" % (box[0], phi, system, n_a, n_c, l_paper),
+        verdict.value_verdict(l_paper, 0.0, st["value"], st["tolerance"]),
+        "we stop at phi = 0.72, as the paper's other numbers say; its 34 sigma would be phi = "
+        "%.3g" % (phi * (l_paper / st["value"]) ** 3))
+
+
+def figure(name, workspaces, out, invasim, argv):
+    from validation_lib import runs
+    if name not in FIGURES:
+        raise runs.InputError("unknown figure '%s'; figures: %s" % (name, ", ".join(FIGURES)))
+    most, least = len(FIGURES[name]), REQUIRED.get(name, len(FIGURES[name]))
+    if not least <= len(workspaces) <= most:
+        raise runs.InputError("figure %s reads %s workspace%s (%s); got %d" % (
+            name, least if least == most else "%d or %d" % (least, most),
+            "" if most == 1 else "s", ", ".join(FIGURES[name]), len(workspaces)))
+    sets = [runs.load(ws) for ws in workspaces]
+    from validation_lib import figures_other, figures_tissue, verdict  # matplotlib: slow import
+    funcs = {"fig3": figures_tissue.fig3, "fig5a": figures_tissue.fig5a,
+             "fig5b": figures_tissue.fig5b, "fig8a": figures_tissue.fig8a,
+             "fig6": figures_other.fig6, "fig7": figures_other.fig7,
+             "fig10": figures_other.fig10, "fig11": figures_other.fig11}
+    os.makedirs(out, exist_ok=True)
+    rec = funcs[name](sets[0], out, invasim, *sets[1:])
+    if name == "fig3":
+        row = lf_row(workspaces[0], runs, verdict)
+        if row:
+            rec["rows"].append(row)
+    specs = []
+    for ws in workspaces:
+        with open(os.path.join(ws, "invasim_sweep.json")) as f:
+            specs.append(os.path.relpath(json.load(f)["spec"], REPO))
+    jobs = [j for s in sets for j in s]
+    steps = sorted(int(j.sp.get("steps", j.scalar("steps"))) for j in jobs)
+    rec.update({"figure": name, "command": command_text(argv), "specs": specs,
+                "runs": len(jobs), "steps_range": "%d" % steps[0] if steps[0] == steps[-1]
+                else "%d-%d" % (steps[0], steps[-1])})
+    with open(os.path.join(out, name + ".json"), "w") as f:
+        json.dump(rec, f, indent=1, default=float)
+    for r in rec["rows"]:
+        print("%s: %s: %s (%s)" % (name, r["id"], r["verdict"], r["ours"]))
+    return rec
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(prog="validation.py", description=__doc__,
+                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = ap.add_subparsers(dest="verb", required=True)
+    f = sub.add_parser("figure")
+    f.add_argument("name")
+    f.add_argument("workspaces", nargs="+")
+    f.add_argument("-o", dest="out", required=True)
+    f.add_argument("--invasim", default=default_invasim())
+    a = sub.add_parser("all")
+    a.add_argument("root")
+    a.add_argument("-o", dest="out", required=True)
+    a.add_argument("--invasim", default=default_invasim())
+    p = sub.add_parser("plan")
+    p.add_argument("specs", nargs="*")
+    p.add_argument("--workspace", nargs="+", default=[])
+    p.add_argument("--jobs", type=int, default=2)
+    p.add_argument("--delta", type=int, default=10000)
+    p.add_argument("--scratch", default="out/plan")
+    p.add_argument("-o", dest="out")
+    p.add_argument("--invasim", default=default_invasim())
+    d = sub.add_parser("document")
+    d.add_argument("dir")
+    d.add_argument("--plan")
+    d.add_argument("-o", dest="out", required=True)
+    d.add_argument("--ci-size", action="store_true")
+    args = ap.parse_args(argv)
+
+    sys.path.insert(0, HERE)
+    from validation_lib import runs
+    try:
+        if args.verb == "figure":
+            figure(args.name, args.workspaces, args.out, args.invasim, argv)
+        elif args.verb == "all":
+            for name, names in FIGURES.items():
+                wss = [os.path.join(args.root, n) for n in names]
+                wss = [w for w in wss if os.path.exists(os.path.join(w, "invasim_sweep.json"))]
+                if len(wss) < REQUIRED.get(name, len(names)):
+                    print("%s: skipped (no workspace %s)" % (name, ", ".join(
+                        os.path.join(args.root, n) for n in names)))
+                    continue
+                figure(name, wss, args.out, args.invasim, ["figure", name] + wss + ["-o", args.out])
+        elif args.verb == "plan":
+            from validation_lib import plan
+            if args.jobs < 1:
+                ap.error("--jobs must be >= 1")
+            if not args.specs and not args.workspace:
+                ap.error("plan needs sweep files (timing) or --workspace WS (done points)")
+            entries = [plan.finish(plan.time_spec(args.invasim, s, args.scratch, args.delta), args.jobs)
+                       for s in args.specs]
+            entries += [plan.finish(plan.from_workspace(args.invasim, w), args.jobs)
+                        for w in args.workspace]
+            print(plan.table(entries))
+            if args.out:
+                os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
+                with open(args.out, "w") as fh:
+                    json.dump(entries, fh, indent=1)
+        elif args.verb == "document":
+            from validation_lib import document
+            entries = None
+            if args.plan:
+                with open(args.plan) as fh:
+                    entries = json.load(fh)
+            counts = document.render(args.dir, entries, args.out, args.ci_size)
+            print("document: %s (%s)" % (args.out, ", ".join("%d %s" % (n, v) for v, n in counts.items())))
+    except runs.InputError as e:
+        print("validation.py: error: %s" % e, file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    ensure_modules()
+    sys.exit(main(sys.argv[1:]))

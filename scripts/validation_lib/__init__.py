@@ -1,0 +1,1 @@
+"""The validation campaign's analysis (scripts/validation.py, docs/validation.md)."""

@@ -1,0 +1,174 @@
+"""Assembles docs/validation.md from the figure records (DIR/<figure>.json, written by
+`scripts/validation.py figure`) and the plan (plan.json, `scripts/validation.py plan`).
+Prose lives here (the template); every number comes from the records."""
+
+import json
+import os
+
+from . import plan as plan_mod
+from .verdict import AGREES, DISAGREES, NO_DATA, TREND, UNTESTABLE
+
+ORDER = ["fig3", "fig5a", "fig5b", "fig6", "fig7", "fig8a", "fig10", "fig11"]
+TITLES = {
+    "fig3": "Fig. 3: passive repulsive cells, A_t(t) and slices",
+    "fig5a": "Fig. 5a: passive repulsive cells, A_n against temperature at several times",
+    "fig5b": "Fig. 5b: cohesive active cells (beta = 1e-2, tau_p = 25), with the mixed-start inset",
+    "fig6": "Fig. 6: the master curve over beta x tau_p, plus the passive curve",
+    "fig7": "Fig. 7: cells only, tau_d against tau_p",
+    "fig8a": "Fig. 8a: tethered tissue, K_ecm",
+    "fig10": "Fig. 10: the adipocyte packing-fraction scan",
+    "fig11": "Fig. 11: slice shape distributions",
+}
+
+CONTRADICTIONS = """\
+## Where the paper contradicts itself
+
+MODEL.md lists four statements of the paper that cannot all hold. We do not tune towards any
+of them; the rows marked below show what we get, computed from the runs:
+
+- **`L_f`** (row `L_f`): the paper's final box `L_f = 34 sigma` contradicts its own
+  `L_0 = 70`, `phi: 0.01 -> 0.72`, which give 16.8 sigma. Our compression stops at the target
+  `phi = 0.72`; the row gives the box it reached and, from the body volumes of our run, the
+  box the paper-size system would reach.
+- **`A_t^min`/`A_t^max`** (row `fig3_At_min_over_max`): 470 (text) or 610 (Fig. 3 caption)
+  against 2000 cannot both hold under the paper's definition of `A_t^max` (both walls fully
+  covered plus the adipocytes' Voronoi surfaces). We follow the definition; the ratio at the
+  lowest temperature is what we compare, `A_n` does not depend on it.
+- **The factor 2 in `k_B T`** (row `fig6_factor2`): the paper's temperature formula has an
+  extra factor 2. A passive bath shows it directly: the equipartition `T_c` equals the bath
+  `kT`; the paper's convention `kT_c_paper = 2 T_c` is what the active figures' axes use.
+- **`T_c/T_a`** (row `fig6_Tc_over_Ta`): the paper reports `1 < T_c/T_a < 1.2` in active
+  runs. With active cells and adipocyte vertices in a bath at `kT = 0` (its Fig. 6 knob is
+  `f_0`), the vertices are heated only through contacts, and the ratio is what the row shows.
+"""
+
+METHOD = """\
+## Method: how the campaign is run and this page regenerated
+
+Every figure below comes from one sweep file in `protocols/sweeps/` (its header says how to
+run it) and one analysis command (printed under the figure). The whole campaign:
+
+```sh
+scripts/validation.py plan protocols/sweeps/{fig3_passive_slices,fig5a_passive,fig5b_cohesive,fig5b_inset,fig6_active,fig6_passive,fig7_cells_only,fig8a_tethered,fig10_packing,fig11_shapes}.lua --jobs 2 -o out/validation/plan.json
+for s in fig3_passive_slices fig5a_passive fig5b_cohesive fig5b_inset fig6_active fig6_passive \\
+         fig7_cells_only fig8a_tethered fig10_packing fig11_shapes; do
+  build/invasim sweep init protocols/sweeps/$s.lua && build/invasim sweep run out/$s --jobs 2
+done
+scripts/validation.py all out -o docs/validation     # every figure command below, then:
+scripts/validation.py plan --workspace out/fig3_passive_slices ... -o out/validation/plan_done.json
+scripts/validation.py document docs/validation --plan out/validation/plan.json -o docs/validation.md
+```
+
+The analysis reads the run directories of each workspace (`summary.json`: block-averaged
+means and errors over the last half of the production; `series.csv`; `shapes.csv`;
+`snapshots/`). `A_n` is the paper's Appendix C normalisation over the state points of the
+figure (replicate means; docs/sweeps_analysis.md), its error the replicate scatter (standard
+error) where there are replicates, else the run's block error of `A_t` propagated. Curves
+are fitted with `scripts/master_curve_lib/fits.py`.
+
+**Steady state.** For every run, `A_t` over the last half of the production: the mean of its
+last quarter minus that of its third quarter (the drift) against the block error of the
+last-half mean; a run is steady when `|drift| <= 4 x error` (the difference of two quarter
+means has about twice the error of the half mean: a 2-sigma test). Each figure says how many
+of its runs pass.
+
+**Verdicts** (`scripts/validation_lib/verdict.py`). The paper's statements and their stated
+precision are in `scripts/validation_paper.json` (each citing MODEL.md). A number agrees when
+`|ours - paper| <= tolerance + 2 errors` (or within the stated factor on a log scale); it
+*agrees in trend only* when the number is off but the trend the figure is about holds; a
+trend (a difference the paper says is positive) agrees when it exceeds 2 errors, agrees in
+trend only when it has the right sign within 2 errors, and disagrees otherwise. *No data*: too
+few points for the number (always the case at the CI size for fits); *not testable*: the
+paper compares with data we do not have.
+
+**CI.** `tests/analysis/validation_tiny.sh` (CTest `validation_pipeline_tiny`, about 75 s at 2 jobs) runs every
+campaign sweep file at its CI size (`invasim sweep init SPEC --tiny`: each file's
+`tiny = {...}`, two values per axis, one seed, a few hundred steps), then every figure command,
+the plan from the done points and this document, so that no part of the pipeline can rot.
+"""
+
+
+def _load(dir_):
+    recs = {}
+    for name in ORDER:
+        p = os.path.join(dir_, name + ".json")
+        if os.path.exists(p):
+            with open(p) as f:
+                recs[name] = json.load(f)
+    return recs
+
+
+def _cell(text):
+    """Table-cell text: a '|' (as in |drift|) would end the cell."""
+    return str(text).replace("|", "\\|")
+
+
+def _rel(path, base):
+    return os.path.relpath(path, base)
+
+
+def render(fig_dir, plan_entries, out_path, ci_size=False):
+    recs = _load(fig_dir)
+    base = os.path.dirname(os.path.abspath(out_path))
+    L = ["# Validation: the paper's figures at reduced scale", ""]
+    if ci_size:
+        L += ["> **CI size, not the campaign.** The numbers and figures on this page come from "
+              "the tiny CI runs (a few hundred steps, two state points per axis, one seed); "
+              "they only show that the pipeline works. The campaign's results replace them "
+              "when the lead runs it (Method, below). Verdicts here mean nothing physical.", ""]
+    L += ["This page is generated by `scripts/validation.py document` from the figure records "
+          "in `%s/` (relative to this page); do not edit it by hand."
+          % _rel(os.path.abspath(fig_dir), base), ""]
+    L += ["## The plan", ""]
+    if plan_entries:
+        L += ["Produced by `scripts/validation.py plan` (the command is under Method): state "
+              "points x steps x the measured rate, per sweep file; the rate and the fixed cost "
+              "per point (start-up, compression or rescale) come from two short timing runs of "
+              "the file's first point in CPU time, or from the recorded wall times of done "
+              "points (column 'from'). One thread per point, %d points at a time. The tissue "
+              "figures use the reduced system (8 adipocytes, 400 cells); Fig. 7 has 500 cells "
+              "and no adipocytes. The paper's size (28, 1500) is about four times the cost per "
+              "step and does not fit the budget (about 6 core-hours)."
+              % plan_entries[0]["jobs"], "", plan_mod.table(plan_entries), ""]
+    else:
+        L += ["(no plan given: `scripts/validation.py document ... --plan plan.json`)", ""]
+    all_rows = []
+    for name in ORDER:
+        rec = recs.get(name)
+        L += ["## %s" % TITLES[name], ""]
+        if not rec:
+            L += ["Not generated yet (`scripts/validation.py figure %s ...`)." % name, ""]
+            continue
+        L += ["Sweep%s: %s; %d runs, %s steps per run." % (
+            "s" if len(rec["specs"]) > 1 else "", ", ".join("`%s`" % s for s in rec["specs"]),
+            rec["runs"], rec["steps_range"]), ""]
+        for img in rec["images"]:
+            L += ["![%s](%s)" % (name, _rel(os.path.join(os.path.abspath(fig_dir), img), base))]
+        L += ["", "Regenerate: `%s`" % rec["command"], ""]
+        st = rec.get("steadiness")
+        if st:
+            L += ["Steady state: %d of %d runs steady by the criterion (%d judged); largest "
+                  "|drift|/error %s." % (st["steady"], st["jobs"], st["judged"],
+                                         "%.2g" % st["max_drift_over_error"]
+                                         if st["max_drift_over_error"] is not None else "n/a"), ""]
+        L += ["| paper | ours | verdict | criterion |", "|---|---|---|---|"]
+        for r in rec["rows"]:
+            all_rows.append(r)
+            L.append("| %s | %s | **%s** | %s |" % tuple(
+                _cell(r[k]) for k in ("paper", "ours", "verdict", "why")))
+        L.append("")
+    L += ["## Verdicts", ""]
+    counts = {v: sum(1 for r in all_rows if r["verdict"] == v)
+              for v in (AGREES, TREND, DISAGREES, NO_DATA, UNTESTABLE)}
+    L += [", ".join("%d %s" % (n, v) for v, n in counts.items()), "",
+          "| figure | statement | verdict |", "|---|---|---|"]
+    L += ["| %s | `%s` | %s |" % (r["figure"], r["id"], r["verdict"]) for r in all_rows]
+    bad = [r for r in all_rows if r["verdict"] == DISAGREES]
+    if bad:
+        L += ["", "Disagreements, each with what we get and the criterion it fails:", ""]
+        L += ["- `%s` (%s): %s. Ours: %s. Criterion: %s." % (
+            r["id"], r["figure"], r["paper"], r["ours"], r["why"]) for r in bad]
+    L += ["", CONTRADICTIONS, METHOD]
+    with open(out_path, "w") as f:
+        f.write("\n".join(L))
+    return counts

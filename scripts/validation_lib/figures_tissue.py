@@ -1,0 +1,268 @@
+"""The validation figures of the invasion sweeps (Figs. 3, 5a, 5b, 8a): each function takes
+the done jobs of its workspace(s) and the output directory, draws the figure and returns the
+figure's record (images, rows of the side-by-side table, steady-state evidence, numbers)."""
+
+import math
+import os
+import re
+import subprocess
+
+import numpy as np
+
+from . import runs, verdict
+from .plotting import T_BATH, T_PAPER, figure, label, log_if_spans, save, state
+
+P_DEFAULT = 1.3e-3
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def pressure(job):
+    return float(job.sp.get("P", P_DEFAULT))
+
+
+def x_bath(job):
+    """k_B T/(P sigma^3) of the bath (set)."""
+    return float(job.sp.get("kT", 0.0)) / pressure(job)
+
+
+def x_measured(job, end_fraction=None):
+    """2 k_B T_c/(P sigma^3), measured (over the averaging window, or a window of series)."""
+    if end_fraction is None:
+        return job.mean("kT_c_paper")[0] / pressure(job)
+    return runs.window_mean(job, "kT_c_paper", end_fraction) / pressure(job)
+
+
+def an_over_time(jobs, keys, xfun, fractions):
+    """A_n of every state point (keys) at several times (fractions of the run), normalised
+    together (one set of extremes over all points and times, so that curves at different
+    times compare). Returns {fraction: [points]}, extremes."""
+    table, flat = {}, []
+    for f in fractions:
+        table[f] = []
+        for key, reps in runs.group(jobs, keys).items():
+            p = runs.state_point(reps, lambda j: {
+                "x": xfun(j, f), "A_t": runs.window_mean(j, "A_t", f),
+                "A_t_max": runs.window_mean(j, "A_t_max", f),
+                "A_t_error": j.mean("A_t")[1]})
+            p["key"] = list(key)
+            table[f].append(p)
+            flat.append(p)
+    extremes = runs.normalise(flat)
+    return table, extremes
+
+
+def run_time(jobs, fraction):
+    """The time at the end of the window `fraction` of the first job's production."""
+    t = jobs[0].series["time"]
+    return float(t[max(0, int(round(fraction * len(t))) - 1)])
+
+
+def plot_an_times(ax, table, xlabel, jobs):
+    for f, pts in sorted(table.items()):
+        pts = sorted(pts, key=lambda p: p["x"])
+        ax.errorbar([p["x"] for p in pts], [p["A_n"] for p in pts],
+                    yerr=[p["A_n_error"] if verdict.finite(p["A_n_error"]) else 0 for p in pts],
+                    marker="o", capsize=2,
+                    label=r"$t$ = %.4g $\tau$ (%.0f%% of the run)" % (run_time(jobs, f), 100 * f))
+    xs = [p["x"] for pts in table.values() for p in pts]
+    log_if_spans(ax, xs)
+    if xs and min(xs) > 0:
+        ax.set_xscale("log")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(label("A_n", ""))
+    ax.axhline(0.5, color="0.7", lw=0.8, ls=":")
+    ax.legend(fontsize=8)
+
+
+def fig3(jobs, out, invasim):
+    fig, (ax,) = figure()
+    ends = []
+    for (kT,), reps in runs.group(jobs, ["kT"]).items():
+        j = reps[0]
+        s = j.series
+        ax.plot(s["time"], s["A_ratio"], label=r"$k_B T/(P\sigma^3)$ = %.3g" % x_bath(j))
+        ends.append((x_bath(j),) + j.mean("A_ratio") + j.mean("A_t") + j.mean("A_t_max"))
+    ax.set_xlabel(label("time", "tau"))
+    ax.set_ylabel(label("A_ratio", ""))
+    ax.legend(fontsize=8)
+    images = [save(fig, out, "fig3_At.png")]
+    for (kT,), reps in runs.group(jobs, ["kT"]).items():
+        images += render_slice(reps[0], out, "fig3_slice_T%.3g.svg" % x_bath(reps[0]), invasim)
+    ends.sort()
+    rows = []
+    if len(ends) >= 2:
+        d = ends[-1][1] - ends[0][1]
+        e = math.hypot(ends[-1][2], ends[0][2])
+        rows.append(verdict.row(
+            "fig3_invasion_grows",
+            "A_t/A_t^max = %s at %.3g, %s at %.3g" % (verdict.fmt(ends[0][1], ends[0][2]),
+                                                     ends[0][0], verdict.fmt(ends[-1][1], ends[-1][2]), ends[-1][0]),
+            verdict.trend_verdict(d, e),
+            "difference %s (criterion: > 2 errors)" % verdict.fmt(d, e)))
+        lo = ends[0]
+        st = verdict.paper()["fig3_At_min_over_max"]
+        rows.append(verdict.row(
+            "fig3_At_min_over_max",
+            "A_t = %s, A_t^max = %s at the lowest temperature: ratio %s" % (
+                verdict.fmt(lo[3], lo[4]), verdict.fmt(lo[5], lo[6]), verdict.fmt(lo[1], lo[2])),
+            verdict.value_verdict(lo[1], lo[2], st["value"], st["tolerance"]),
+            "the paper's 470 (or 610) and 2000 cannot both hold under its definition of A_t^max "
+            "(walls counted fully covered plus the adipocytes' Voronoi surfaces); ours follows "
+            "the definition"))
+    return {"images": images, "rows": rows, "numbers": {"end_points": ends},
+            "steadiness": runs.steadiness_summary(jobs)}
+
+
+def render_slice(job, out, name, invasim):
+    """`invasim render` of the job's last snapshot at z = L_z/2 (none without snapshots)."""
+    snap_dir = os.path.join(job.path, "snapshots")
+    if not os.path.isdir(snap_dir):
+        return []
+    frames = sorted(f for f in os.listdir(snap_dir) if re.match(r"cells_\d+\.xyz$", f))
+    if not frames:
+        return []
+    z = job.summary.get("box", [0, 0, 0])[2] / 2
+    subprocess.run([invasim, "render", os.path.join(snap_dir, frames[-1]), "--slice",
+                    "z=%g" % z, "-o", os.path.join(out, name)], check=True,
+                   stdout=subprocess.DEVNULL)
+    return [name]
+
+
+def fig5a(jobs, out, invasim):
+    fractions = (0.25, 0.5, 1.0)
+    table, extremes = an_over_time(jobs, ["kT"], lambda j, f: x_bath(j), fractions)
+    fig, (ax,) = figure()
+    plot_an_times(ax, table, T_BATH, jobs)
+    images = [save(fig, out, "fig5a_An.png")]
+    mids = {f: runs.crossing([p["x"] for p in pts], [p["A_n"] for p in pts])
+            for f, pts in table.items()}
+    errs = {f: runs.crossing_log_error([p["x"] for p in pts], [p["A_n"] for p in pts],
+                                       [p["A_n_error"] for p in pts]) for f, pts in table.items()}
+    st = verdict.paper()["fig5a_Tg"]
+    moves = mids[0.25] > mids[1.0] if verdict.finite(mids[0.25], mids[1.0]) else None
+    shift = math.log10(mids[0.25] / mids[1.0]) if moves is not None else math.nan
+    shift_err = math.hypot(errs[0.25], errs[1.0])
+    end_err = mids[1.0] * math.log(10) * errs[1.0] if verdict.finite(mids[1.0], errs[1.0]) else math.nan
+    rows = [
+        verdict.row("fig5a_moves_left",
+                    "midpoint (A_n = 1/2) at %s" % ", ".join(
+                        "%s (t = %.0f%%)" % (verdict.fmt(mids[f]), 100 * f) for f in fractions),
+                    verdict.trend_verdict(shift, shift_err),
+                    "log10 of the midpoint's ratio, first quarter over the end: %s (> 2 errors; "
+                    "the error from the A_n errors and the slope at the crossing)"
+                    % verdict.fmt(shift, shift_err)),
+        verdict.row("fig5a_Tg", "midpoint at the end: %s" % verdict.fmt(mids[1.0], end_err),
+                    verdict.log_verdict(mids[1.0], end_err, st["value"], st["log_factor"], moves),
+                    "within a factor %g of %g (+ 2 errors)" % (st["log_factor"], st["value"]))]
+    return {"images": images, "rows": rows,
+            "numbers": {"midpoints": {str(f): m for f, m in mids.items()},
+                        "normalisation": extremes, "points": table},
+            "steadiness": runs.steadiness_summary(jobs)}
+
+
+def fig5b(jobs, out, invasim, inset_jobs=None):
+    fractions = (0.25, 0.5, 1.0)
+    table, extremes = an_over_time(jobs, ["f0"], x_measured, fractions)
+    fig, axes = figure(2 if inset_jobs else 1)
+    plot_an_times(axes[0], table, T_PAPER, jobs)
+    end = sorted(table[1.0], key=lambda p: p["x"])
+    st = verdict.paper()["fig5b_An_at_0.3"]
+    an03 = runs.interpolate_log([p["x"] for p in end], [p["A_n"] for p in end], st["at"])
+    err03 = float(np.nanmax([p["A_n_error"] for p in end])) if end else math.nan
+    mids = {f: runs.crossing([p["x"] for p in pts], [p["A_n"] for p in pts])
+            for f, pts in table.items()}
+    sw = verdict.paper()["fig5b_weak_time"]
+    ratio = mids[0.5] / mids[1.0] if verdict.finite(mids[0.5], mids[1.0]) else math.nan
+    rows = [verdict.row("fig5b_An_at_0.3", "A_n = %s at %g (interpolated, end of the run)" % (
+                            verdict.fmt(an03, err03), st["at"]),
+                        verdict.value_verdict(an03, err03, st["value"], st["tolerance"]),
+                        "|ours - 0.55| <= 0.1 + 2 errors"),
+            verdict.row("fig5b_weak_time", "midpoint at half time / at the end = %s" %
+                        verdict.fmt(ratio),
+                        verdict.log_verdict(ratio, math.nan, 1.0, sw["log_factor"]),
+                        "within a factor %g" % sw["log_factor"])]
+    numbers = {"midpoints": {str(f): m for f, m in mids.items()}, "normalisation": extremes,
+               "A_n_at_0.3": an03, "points": table}
+    images_extra = []
+    steady = runs.steadiness_summary(jobs + (inset_jobs or []))
+    if inset_jobs:
+        by_start = {}
+        for (start,), reps in runs.group(inset_jobs, ["start"]).items():
+            pts = [runs.scale_like({"A_t": j.mean("A_t")[0], "A_t_max": j.mean("A_t_max")[0],
+                                    "A_t_error": j.mean("A_t")[1]}, extremes) for j in reps]
+            vals = np.array([p["A_n"] for p in pts])
+            by_start[start] = (float(vals.mean()),
+                               float(vals.std(ddof=1) / math.sqrt(len(vals))) if len(vals) > 1
+                               else pts[0]["A_n_error"], float(np.mean([x_measured(j) for j in reps])))
+            axes[1].plot([start] * len(vals), vals, "o", alpha=0.6)
+            axes[1].errorbar([start], [by_start[start][0]], yerr=[by_start[start][1]], fmt="s",
+                             color="k", capsize=3)
+        axes[1].set_ylabel(label("A_n", ""))
+        axes[1].set_xlabel("initial placement (start)")
+        axes[1].set_title("inset: de-mixed vs mixed start", fontsize=9)
+        if "demixed" in by_start and "mixed" in by_start:
+            d = by_start["mixed"][0] - by_start["demixed"][0]
+            e = math.hypot(by_start["mixed"][1], by_start["demixed"][1])
+            si = verdict.paper()["fig5b_inset_starts"]
+            rows.append(verdict.row(
+                "fig5b_inset_starts", "A_n = %s (de-mixed), %s (mixed) at %s" % (
+                    verdict.fmt(*by_start["demixed"][:2]), verdict.fmt(*by_start["mixed"][:2]),
+                    verdict.fmt(by_start["demixed"][2])),
+                verdict.value_verdict(d, e, si["value"], si["tolerance"]),
+                "difference %s; |difference| <= 0.1 + 2 errors" % verdict.fmt(d, e)))
+        numbers["inset"] = by_start
+    images = [save(fig, out, "fig5b_An.png")] + images_extra
+    return {"images": images, "rows": rows, "numbers": numbers, "steadiness": steady}
+
+
+def fig8a(jobs, out, invasim):
+    """A_n per K_ecm, normalised by the K_ecm = 0 sweep; the plateau A_n^max vs K_ecm."""
+    pts = []
+    for (k, f0), reps in runs.group(jobs, ["K_ecm", "f0"]).items():
+        p = runs.state_point(reps, lambda j: {"x": x_measured(j), "A_t": j.mean("A_t")[0],
+                                              "A_t_max": j.mean("A_t_max")[0],
+                                              "A_t_error": j.mean("A_t")[1]})
+        p["K_ecm"] = float(k)
+        pts.append(p)
+    free = [p for p in pts if p["K_ecm"] == 0.0]
+    if not free:
+        raise runs.InputError("fig8a: no K_ecm = 0 points to normalise by")
+    extremes = runs.normalise(free)
+    for p in pts:
+        if p["K_ecm"] != 0.0:
+            runs.scale_like(p, extremes)
+    fig, axes = figure(2)
+    plateau, onset = [], []
+    for k in sorted({p["K_ecm"] for p in pts}):
+        c = sorted((p for p in pts if p["K_ecm"] == k), key=lambda p: p["x"])
+        axes[0].errorbar([p["x"] for p in c], [p["A_n"] for p in c],
+                         yerr=[p["A_n_error"] if verdict.finite(p["A_n_error"]) else 0 for p in c],
+                         marker="o", capsize=2, label=state({"K_ecm": "%g" % k}))
+        top = max(c, key=lambda p: p["A_n"])
+        plateau.append((k, top["A_n"], top["A_n_error"]))
+        onset.append((k, runs.crossing([p["x"] for p in c], [p["A_n"] for p in c], 0.25)))
+    axes[0].set_xscale("log")
+    axes[0].set_xlabel(T_PAPER)
+    axes[0].set_ylabel(label("A_n", "") + r", normalised by $K_\mathrm{ecm}$ = 0")
+    axes[0].legend(fontsize=8)
+    axes[1].errorbar([k for k, _, _ in plateau], [v for _, v, _ in plateau],
+                     yerr=[e if verdict.finite(e) else 0 for _, _, e in plateau], marker="s")
+    axes[1].set_xlabel(label("K_ecm", "eps_c/sigma^2"))
+    axes[1].set_ylabel(r"plateau $A_n^\mathrm{max}$ (dimensionless)")
+    images = [save(fig, out, "fig8a_An.png")]
+    d = plateau[0][1] - plateau[-1][1]
+    e = math.hypot(*(x if verdict.finite(x) else 0 for x in (plateau[0][2], plateau[-1][2])))
+    so = verdict.paper()["fig8a_onset"]
+    ratio = onset[-1][1] / onset[0][1] if verdict.finite(onset[-1][1], onset[0][1]) else math.nan
+    rows = [verdict.row("fig8a_plateau_falls", "A_n^max = " + ", ".join(
+                "%s (K_ecm = %g)" % (verdict.fmt(v, e_), k) for k, v, e_ in plateau),
+                verdict.trend_verdict(d, e) if len(plateau) > 1 else verdict.NO_DATA,
+                "A_n^max(K_ecm = 0) - A_n^max(largest K_ecm) = %s (> 2 errors)" % verdict.fmt(d, e)),
+            verdict.row("fig8a_onset", "A_n = 0.25 at " + ", ".join(
+                "%s (K_ecm = %g)" % (verdict.fmt(x), k) for k, x in onset),
+                verdict.log_verdict(ratio, math.nan, 1.0, so["log_factor"]),
+                "onset(largest K_ecm)/onset(0) = %s, within a factor %g" % (
+                    verdict.fmt(ratio), so["log_factor"]))]
+    return {"images": images, "rows": rows,
+            "numbers": {"plateau": plateau, "onset": onset, "normalisation": extremes,
+                        "points": pts}, "steadiness": runs.steadiness_summary(jobs)}

@@ -1,0 +1,111 @@
+#!/usr/bin/env python3
+"""Unit checks of scripts/validation_lib (docs/validation.md, "Method"): the verdict criteria
+on hand-picked numbers, the A_n normalisation and the steady-state test on a hand-made run,
+the plan's cost model and its replay of `sweep run --jobs N`, and the figure command's errors.
+Usage: check_validation.py SCRIPTS_DIR WORKDIR. Exit 77 without numpy/scipy/matplotlib."""
+
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+try:
+    import matplotlib  # noqa: F401
+    import numpy as np
+    import scipy  # noqa: F401
+except ImportError:
+    sys.exit(77)
+
+scripts, work = sys.argv[1], sys.argv[2]
+sys.path.insert(0, scripts)
+from validation_lib import plan, runs, verdict as v  # noqa: E402
+
+# Verdicts: numbers against the paper's value +- tolerance (+ 2 errors).
+assert v.value_verdict(0.60, 0.01, 0.55, 0.1) == v.AGREES
+assert v.value_verdict(0.70, 0.03, 0.55, 0.1) == v.AGREES           # 0.15 <= 0.1 + 0.06
+assert v.value_verdict(0.70, 0.01, 0.55, 0.1) == v.DISAGREES        # 0.15 > 0.12
+assert v.value_verdict(0.70, 0.01, 0.55, 0.1, trend_holds=True) == v.TREND
+assert v.value_verdict(math.nan, 0.01, 0.55, 0.1) == v.NO_DATA
+# Trends: d > 2e agrees, 0 < d <= 2e trend only, d <= 0 disagrees.
+assert v.trend_verdict(0.3, 0.1) == v.AGREES
+assert v.trend_verdict(0.15, 0.1) == v.TREND
+assert v.trend_verdict(-0.01, 0.1) == v.DISAGREES
+# Log scale: within a factor 3 of 0.03.
+assert v.log_verdict(0.08, 0.0, 0.03, 3.0) == v.AGREES
+assert v.log_verdict(0.2, 0.0, 0.03, 3.0) == v.DISAGREES
+assert v.log_verdict(0.2, 0.0, 0.03, 3.0, trend_holds=True) == v.TREND
+# Ranges: all inside, some, none.
+assert v.range_verdict([(1.0, 0.1), (2.4, 0.0)], 0.5, 2.5) == v.AGREES
+assert v.range_verdict([(1.0, 0.1), (3.4, 0.1)], 0.5, 2.5) == v.TREND
+assert v.range_verdict([(13.0, 0.1)], 1.0, 1.2) == v.DISAGREES
+# Every statement the figures use is in the paper file, with a source.
+ids = v.paper()
+for needed in ["fig3_invasion_grows", "fig5a_Tg", "fig5b_An_at_0.3", "fig6_b_range", "fig6_c1",
+               "fig6_Tc_over_Ta", "fig6_factor2", "fig7_free_formula", "fig8a_onset",
+               "fig10_dphi_1", "fig11_tissue", "L_f"]:
+    assert needed in ids and ids[needed]["source"].startswith("MODEL.md"), needed
+
+# Normalisation by hand: A_t_max 1000, 1100; A_t 200, 500, 800.
+pts = [{"A_t": 200.0, "A_t_max": 1000.0, "A_t_error": 10.0},
+       {"A_t": 500.0, "A_t_max": 1100.0, "A_t_error": 10.0},
+       {"A_t": 800.0, "A_t_max": 1000.0, "A_t_error": 10.0}]
+ext = runs.normalise(pts)
+r = [1 - (1000 - 200) / 1000, 1 - (1100 - 500) / 1000, 1 - (1000 - 800) / 1000]  # .2 .4 .8
+assert ext["min_A_t_max"] == 1000.0
+for p, want in zip(pts, [(x - 0.2) / 0.6 for x in r]):
+    assert abs(p["A_n"] - want) < 1e-12, (p, want)
+    assert abs(p["A_n_error"] - 10.0 / 1000 / 0.6) < 1e-12
+other = runs.scale_like({"A_t": 650.0, "A_t_max": 1000.0, "A_t_error": 0.0}, ext)
+assert abs(other["A_n"] - (0.65 - 0.2) / 0.6) < 1e-12
+assert abs(runs.crossing([0.01, 0.1, 1.0], [0.0, 0.25, 0.75]) - 10 ** -0.5) < 1e-12
+# its error in log10: the larger bracketing error over the slope (0.5 per decade)
+assert abs(runs.crossing_log_error([0.01, 0.1, 1.0], [0.0, 0.25, 0.75], [0.1, 0.02, 0.05])
+           - 0.05 / 0.5) < 1e-12
+
+# Steadiness on a hand-made run: 40 rows, the last half flat (steady) or rising (not).
+def fake_job(path, last_half, error):
+    os.makedirs(path, exist_ok=True)
+    y = [500.0] * 20 + list(last_half)
+    with open(os.path.join(path, "series.csv"), "w") as f:
+        f.write("step,time [tau],A_t [sigma^2]\n")
+        f.writelines("%d,%d,%r\n" % (i, i, a) for i, a in enumerate(y))
+    json.dump({"a": 1}, open(os.path.join(path, "signac_statepoint.json"), "w"))
+    json.dump({"status": "done"}, open(os.path.join(path, "signac_job_document.json"), "w"))
+    json.dump({"averages": {"A_t": {"mean": float(np.mean(last_half)), "error": error}}},
+              open(os.path.join(path, "summary.json"), "w"))
+    return runs.Job(path)
+
+shutil.rmtree(work, ignore_errors=True)
+flat = fake_job(os.path.join(work, "flat"), [600.0 + (1 if i % 2 else -1) for i in range(20)], 1.0)
+rising = fake_job(os.path.join(work, "rising"), [600.0 + 2 * i for i in range(20)], 1.0)
+s = runs.steadiness(flat)
+assert s["steady"] is True and abs(s["drift"]) < 1e-12, s
+s = runs.steadiness(rising)
+assert s["steady"] is False and abs(s["drift"] - 20.0) < 1e-12, s   # 10 rows x 2 apart
+summary = runs.steadiness_summary([flat, rising])
+assert summary["steady"] == 1 and summary["jobs"] == 2 and summary["max_drift_over_error"] == 20.0
+assert abs(runs.window_mean(rising, "A_t", 1.0, 0.1) - np.mean([600.0 + 2 * i for i in range(16, 20)])) < 1e-12
+
+# The plan: sweep run's order on N slots after the preparation.
+assert plan.wall_time(5.0, [10, 10, 10], 2) == 25.0
+assert plan.wall_time(5.0, [10, 1, 1, 1], 2) == 15.0
+assert plan.wall_time(5.0, [], 2) == 5.0
+assert plan.point_steps({"quench_steps": 10, "steps": 100}, {"quench_steps": 5, "steps": 1,
+                                                             "equilibrate_steps": 7}, "x") == 117
+try:
+    plan.point_steps({"steps": -1}, {"steps": 1}, "x.lua")
+    raise AssertionError("steps = -1 accepted")
+except runs.InputError as e:
+    assert "x.lua: steps = -1 (automatic)" in str(e), e
+
+# The command line: a wrong number of workspaces and a non-workspace are named.
+cmd = [sys.executable, os.path.join(scripts, "validation.py"), "figure"]
+out = subprocess.run(cmd + ["fig7", work, work, "-o", work + "/o"], capture_output=True, text=True)
+assert out.returncode == 1 and "figure fig7 reads 1 workspace (fig7_cells_only); got 2" in out.stderr, out.stderr
+out = subprocess.run(cmd + ["fig7", work, "-o", work + "/o"], capture_output=True, text=True)
+assert out.returncode == 1 and "is not a sweep workspace (no invasim_sweep.json)" in out.stderr, out.stderr
+out = subprocess.run(cmd + ["fig9", work, "-o", work + "/o"], capture_output=True, text=True)
+assert out.returncode == 1 and "unknown figure 'fig9'" in out.stderr, out.stderr
+print("check_validation: all checks passed")

@@ -1,0 +1,59 @@
+#!/bin/bash
+# The validation pipeline at the CI size (docs/validation.md, "CI"): every sweep file in
+# protocols/sweeps/ is initialised with --tiny and run, then every figure of
+# scripts/validation.py, the plan from the done points and the document. Fails if a sweep file,
+# a protocol parameter, an analysis step or the generator breaks.
+# Usage: validation_tiny.sh INVASIM REPO WORKDIR
+set -euo pipefail
+invasim=$1 repo=$2 work=$3
+rm -rf "$work" && mkdir -p "$work"
+cd "$work"
+fail() { echo "validation_tiny: FAIL: $*" >&2; exit 1; }
+
+for spec in "$repo"/protocols/sweeps/*.lua; do
+  name=$(basename "$spec" .lua)
+  grep -q "tiny = {" "$spec" || fail "$spec has no tiny = { ... } (the CI size)"
+  "$invasim" sweep init "$spec" --tiny --workspace "ws/$name" > "ws_$name.log" \
+    || { cat "ws_$name.log"; fail "sweep init --tiny $spec"; }
+  "$invasim" sweep run "ws/$name" --jobs 2 --threads 1 >> "ws_$name.log" 2>&1 \
+    || { cat "ws_$name.log"; tail -n 20 ws/"$name"/*/*/run.log ws/"$name"/prep/run.log 2>/dev/null; fail "sweep run $name"; }
+  echo "ok: $name ($(grep -c . ws/$name/invasim_sweep.json >/dev/null; ls ws/$name/workspace | wc -l) points)"
+done
+
+"$repo/scripts/validation.py" all ws -o figures --invasim "$invasim" | tee figures.log
+for fig in fig3 fig5a fig5b fig6 fig7 fig8a fig10 fig11; do
+  [ -s "figures/$fig.json" ] || fail "figure $fig was not made"
+done
+"$repo/scripts/validation.py" plan --workspace ws/* --jobs 2 -o plan.json --invasim "$invasim" | tee plan.log
+"$repo/scripts/validation.py" document figures --plan plan.json -o validation.md --ci-size
+
+/usr/bin/python3 - "$work" <<'PY' || fail "the generated document or figure records are incomplete"
+import json, os, sys
+work = sys.argv[1]
+doc = open(os.path.join(work, "validation.md")).read()
+allowed = {"agrees", "agrees in trend only", "disagrees", "no data", "not testable"}
+problems = []
+for fig in ["fig3", "fig5a", "fig5b", "fig6", "fig7", "fig8a", "fig10", "fig11"]:
+    rec = json.load(open(os.path.join(work, "figures", fig + ".json")))
+    if not rec["rows"]:
+        problems.append(fig + ": no rows")
+    for r in rec["rows"]:
+        if r["verdict"] not in allowed:
+            problems.append("%s: verdict %r" % (r["id"], r["verdict"]))
+    for img in rec["images"]:
+        if not os.path.getsize(os.path.join(work, "figures", img)) > 1000:
+            problems.append("%s: image %s is empty" % (fig, img))
+    if "Regenerate: `%s`" % rec["command"] not in doc:
+        problems.append(fig + ": its command is not under it")
+    if "scripts/validation.py figure " + fig not in rec["command"]:
+        problems.append(fig + ": command " + rec["command"])
+for text in ["CI size, not the campaign", "## The plan", "| **total** |", "## Verdicts",
+             "## Where the paper contradicts itself", "| L_f |" if False else "L_f"]:
+    if text not in doc:
+        problems.append("document lacks: " + text)
+if problems:
+    print("\n".join(problems))
+    sys.exit(1)
+print("validation_tiny: document and %d figure records complete" % 8)
+PY
+echo "validation_tiny: PASS"
