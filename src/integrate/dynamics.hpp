@@ -45,13 +45,20 @@ class Method {
   const std::optional<Ramp>& f0_ramp() const { return f0_ramp_; }
   // Sets kT and f0 from their ramps for time step `step` (no-op without ramps).
   void apply_ramps(std::uint64_t step);
+  // The parameters apply_ramps(step) would set, without setting them (a ramp used for the
+  // first time is anchored at `step`, as apply_ramps would).
+  MethodParams params_at(std::uint64_t step);
   // Gives every site of the group a random orientation (for active methods).
   void randomize_orientations(System& sys, std::uint64_t stream_step = 0) const;
 
-  // v_h = v + dt/2 F/m; x += v_h dt (positions wrapped).
-  void drift(System& sys, double dt) const;
-  // Orientation update and drive at step `step`; then v = v_h + dt/2 F/m.
-  void kick(System& sys, double dt) const;
+  // The two halves of a step, called by every thread of a parallel region (ForceField's
+  // TeamHooks): the group's sites shared with an orphaned `omp for nowait` (groups of different
+  // methods are disjoint), so the caller adds the barrier.
+  // v_h = v + dt/2 F/m; x += v_h dt (positions wrapped); then F = 0 (the next evaluation adds
+  // into it).
+  void drift_team(System& sys, double dt) const;
+  // Orientation update and drive of step `step` with parameters p; then v = v_h + dt/2 F/m.
+  void kick_team(System& sys, double dt, std::uint64_t step, const MethodParams& p) const;
   // Adds -gamma v + drive to the site forces (used to start a run from the current v).
   void add_drive(System& sys, double dt) const;
 
@@ -86,7 +93,10 @@ class Dynamics {
   explicit Dynamics(double dt);
   double dt() const { return dt_; }
   void set_dt(double dt);
-  void add(std::shared_ptr<Method> method) { methods_.push_back(std::move(method)); }
+  void add(std::shared_ptr<Method> method) {
+    methods_.push_back(std::move(method));
+    free_sites_valid_ = false;
+  }
   const std::vector<std::shared_ptr<Method>>& methods() const { return methods_; }
   void set_pressure_wall(std::shared_ptr<PressureWall> wall) { wall_ = std::move(wall); }
   std::shared_ptr<PressureWall> pressure_wall() const { return wall_; }
@@ -116,6 +126,12 @@ class Dynamics {
   std::shared_ptr<PressureWall> wall_;
   bool prepared_ = false;
   BlowupGuard blowup_guard_;
+  std::vector<MethodParams> next_params_;  // each method's parameters for the step being made
+  // Sites in no method (their forces are zeroed next to the drift), for free_sites_n_ sites.
+  void update_free_sites(const System& sys);
+  std::vector<int> free_sites_;
+  std::size_t free_sites_n_ = 0;
+  bool free_sites_valid_ = false;
 };
 
 }  // namespace invasim
