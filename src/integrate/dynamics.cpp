@@ -138,14 +138,6 @@ void Method::kick_team(System& sys, double dt, std::uint64_t step, const MethodP
   }
 }
 
-void PressureWall::validate() const {
-  require_non_negative("pressure", pressure);
-  require_positive("wall mass", mass);
-  require_non_negative("wall gamma", gamma);
-  require_non_negative("wall kT", kT);
-  if (!walls) fail_input("pressure wall: no wall force to couple to");
-}
-
 namespace {
 
 // A time step must be finite and > 0: an infinite one (dyn:set_dt(math.huge)) would turn the
@@ -203,16 +195,6 @@ void Dynamics::apply_ramps(std::uint64_t step) {
   if (wall_ && wall_->pressure_ramp) wall_->pressure = wall_->pressure_ramp->value(step);
 }
 
-void Dynamics::update_wall_force(System& sys) {
-  if (!wall_) return;
-  wall_->force = wall_->walls->left_wall_force() + wall_->pressure * sys.box().wall_area() -
-                 wall_->gamma * wall_->velocity;
-  if (wall_->kT > 0.0) {
-    const double noise = std::sqrt(2.0 * wall_->gamma * wall_->kT / dt_);
-    wall_->force += noise * RandomKey(sys.seed(), sys.step, 0u, RngStream::kPiston).normal3()[0];
-  }
-}
-
 void Dynamics::prepare(System& sys, ForceField& ff) {
   std::vector<char> owner(sys.n_sites(), 0);
   for (const auto& m : methods_)
@@ -225,7 +207,7 @@ void Dynamics::prepare(System& sys, ForceField& ff) {
   apply_ramps(sys.step);
   ff.compute(sys);
   for (const auto& m : methods_) m->add_drive(sys, dt_);
-  update_wall_force(sys);
+  if (wall_) wall_->update_force(sys, dt_);
   prepared_ = true;
 }
 
@@ -250,8 +232,8 @@ void Dynamics::step(System& sys, ForceField& ff) {
   // The piston's half kick and move first: the sites' drift does not read the wall (it wraps
   // periodic axes only), and a failing move (Box refuses it) throws before any site moved.
   if (wall_) {
-    wall_->velocity += 0.5 * dt_ / wall_->mass * wall_->force;
-    sys.box().set_wall(0, false, sys.box().lo()[0] + dt_ * wall_->velocity);
+    wall_->half_kick(dt_);
+    wall_->move(sys.box(), dt_);
   }
   if (!free_sites_valid_ || free_sites_n_ != sys.n_sites()) update_free_sites(sys);
   const std::uint64_t next = sys.step + 1;
@@ -278,8 +260,8 @@ void Dynamics::step(System& sys, ForceField& ff) {
   sys.time += dt_;
   apply_ramps(sys.step);
   if (wall_) {
-    update_wall_force(sys);
-    wall_->velocity += 0.5 * dt_ / wall_->mass * wall_->force;
+    wall_->update_force(sys, dt_);
+    wall_->half_kick(dt_);
   }
 }
 

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "forces/force.hpp"
-#include "forces/wall_force.hpp"
 #include "integrate/blowup_guard.hpp"
+#include "integrate/pressure_wall.hpp"
 #include "integrate/ramp.hpp"
 
 namespace invasim {
@@ -72,22 +72,6 @@ class Method {
 // angle of variance 2 dt / tau_p, so E[n'.n] = exp(-dt/tau_p) for any dt (u: 4 uniforms).
 Vec3 rotate_orientation(const Vec3& n, double dt, double tau_p, const std::array<double, 4>& u);
 
-// The left wall as a massive piston: M x'' = F_sites_on_wall + P A - gamma_w x' + xi, with
-// xi the fluctuation-dissipation random force at temperature kT (variance 2 gamma_w kT / dt per
-// step; kT = 0: no noise), drawn from the counter-based RNG (stream kPiston), so that it does
-// not depend on the thread count and a restored run repeats it bit for bit.
-struct PressureWall {
-  double pressure = 0.0;
-  double mass = 1.0;
-  double gamma = 0.2;
-  double kT = 0.0;  // temperature of the piston's bath
-  double velocity = 0.0;
-  double force = 0.0;  // total force on the wall at the last step
-  std::shared_ptr<WallForce> walls;
-  std::optional<Ramp> pressure_ramp;  // if set, `pressure` follows it step by step
-  void validate() const;
-};
-
 class Dynamics {
  public:
   explicit Dynamics(double dt);
@@ -119,7 +103,6 @@ class Dynamics {
   void set_check_every(std::uint64_t n) { blowup_guard_.set_every(n); }
 
  private:
-  void update_wall_force(System& sys);
   void apply_ramps(std::uint64_t step);
   double dt_;
   std::vector<std::shared_ptr<Method>> methods_;
