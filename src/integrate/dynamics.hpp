@@ -14,6 +14,7 @@
 #include "integrate/blowup_guard.hpp"
 #include "integrate/pressure_wall.hpp"
 #include "integrate/ramp.hpp"
+#include "integrate/step_threads.hpp"
 
 namespace invasim {
 
@@ -100,6 +101,9 @@ class Dynamics {
   // steps and at the end; throws SimulationError naming the first blown-up site.
   void run(System& sys, ForceField& ff, std::uint64_t n_steps);
   std::uint64_t check_every() const { return blowup_guard_.every(); }
+  // How many threads each step uses (integrate/step_threads.hpp): measured by default.
+  StepThreads& step_threads() { return step_threads_; }
+  const StepThreads& step_threads() const { return step_threads_; }
   void set_check_every(std::uint64_t n) { blowup_guard_.set_every(n); }
 
  private:
@@ -109,6 +113,7 @@ class Dynamics {
   std::shared_ptr<PressureWall> wall_;
   bool prepared_ = false;
   BlowupGuard blowup_guard_;
+  StepThreads step_threads_;
   std::vector<MethodParams> next_params_;  // each method's parameters for the step being made
   // Sites in no method (their forces are zeroed next to the drift), for free_sites_n_ sites.
   void update_free_sites(const System& sys);

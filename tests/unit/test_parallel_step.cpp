@@ -213,7 +213,9 @@ TEST_CASE(
 
   omp_set_num_threads(2);
   auto two = make_mixed();
+  two->dyn.step_threads().set_mode(StepThreads::Mode::kAll);  // every step on both threads
   two->dyn.run(two->sys, two->ff, steps);
+  CHECK(two->dyn.step_threads().team_steps() == std::uint64_t(steps));
   // The step used two regions (walls before contacts; shape, tethers and the kick after).
   CHECK(two->ff.team_regions() == 2);
   CHECK(two->contacts->neighbor_list().builds() > 1);
@@ -225,4 +227,93 @@ TEST_CASE(
   for (int k = 0; k < steps; ++k) unfused_step(*ref);
   CHECK(ref->sys.step == two->sys.step);
   CHECK(same_state(*ref, *two));
+}
+
+namespace {
+
+// Feeds `n` steps of `seconds` each to a StepThreads; returns how many ran with 2 threads.
+int feed(StepThreads& st, int n, double seconds) {
+  int team = 0;
+  for (int k = 0; k < n; ++k) {
+    team += st.begin_step() == 2;
+    st.end_step(seconds);
+  }
+  return team;
+}
+
+}  // namespace
+
+TEST_CASE("StepThreads: each step on 1 thread or all, whichever measured faster") {
+  ThreadGuard guard;
+  omp_set_num_threads(2);
+  // Steps of t = 2^-10 s (~1 ms; powers of two keep the sums exact): a window is the first
+  // step count whose time reaches StepThreads::kWindowSeconds.
+  const double t = std::ldexp(1.0, -10);
+  const int window = int(std::ceil(StepThreads::kWindowSeconds / t));
+  REQUIRE(window == 52);
+  const int hold = int(StepThreads::kMinHold) * window;
+
+  SECTION("the team is chosen when its window is faster, and measured again later") {
+    StepThreads st;
+    CHECK(feed(st, window, t) == 0);           // the 1-thread window
+    CHECK(feed(st, window, t / 2) == window);  // the team's window: faster
+    CHECK(feed(st, hold, t / 2) == hold);      // held
+    CHECK(feed(st, window, t) == 0);           // measured again: 1 thread first
+    CHECK(feed(st, window, t / 2) == window);
+    CHECK(feed(st, 2 * hold, t / 2) == 2 * hold);  // the same choice: held twice as long
+    CHECK(st.begin_step() == 1);
+  }
+  SECTION("a team slower than 1 thread (next to a busy core) is dropped within one window") {
+    StepThreads st;
+    CHECK(feed(st, window, t) == 0);
+    // 3 t per step with 2 threads: the trial stops as soon as it has taken longer than the
+    // whole 1-thread window (18 steps), not after 52.
+    CHECK(feed(st, 18, 3 * t) == 18);
+    CHECK(feed(st, hold, t) == 0);
+  }
+  SECTION("a team that becomes slow while held is measured again after one window") {
+    StepThreads st;
+    feed(st, window, t);
+    feed(st, window, t / 2);
+    CHECK(feed(st, window, 2 * t) == window);  // one slow window with the team
+    CHECK(feed(st, window, t) == 0);           // measured again at once
+    CHECK(feed(st, 27, 2 * t) == 27);          // the team's trial, abandoned after 27 steps
+    CHECK(feed(st, hold, t) == 0);
+  }
+  SECTION("light steps never try the team") {
+    StepThreads st;
+    CHECK(feed(st, 200000, 20e-6) == 0);  // below kMinTeamStepSeconds
+  }
+  SECTION("Mode::kAll and a single thread: no measuring") {
+    StepThreads st;
+    st.set_mode(StepThreads::Mode::kAll);
+    CHECK(feed(st, 1000, 20e-6) == 1000);
+    omp_set_num_threads(1);
+    StepThreads one;
+    CHECK(feed(one, 1000, t) == 0);
+    CHECK(one.begin_step() == 1);
+  }
+}
+
+TEST_CASE("Dynamics: a light step runs on the calling thread alone; the thread count is restored") {
+  ThreadGuard guard;
+  omp_set_num_threads(2);
+  System sys = test::free_particles(20, 1.0, 3);
+  ForceField ff;
+  Dynamics dyn(0.05);
+  dyn.add(Method::active(test::all_sites(sys), 0.2, 0.02, 25.0, 1e-3));
+  int inside = 0;  // threads seen by a region inside the step
+  dyn.run(sys, ff, 3000);
+  CHECK(dyn.step_threads().team_steps() == 0);
+  CHECK(dyn.step_threads().serial_steps() == 3000);
+  CHECK(omp_get_max_threads() == 2);
+  {
+    const ThreadCountScope scope(1);
+#pragma omp parallel
+    {
+      if (omp_get_thread_num() == 0) inside = omp_get_num_threads();
+    }
+  }
+  CHECK(inside == 1);
+  CHECK(omp_get_max_threads() == 2);
 }
