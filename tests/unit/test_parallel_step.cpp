@@ -5,6 +5,7 @@
 #include <omp.h>
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -295,25 +296,43 @@ TEST_CASE("StepThreads: each step on 1 thread or all, whichever measured faster"
   }
 }
 
+namespace {
+
+// A term without forces that records the OpenMP thread count a step gives its regions.
+class ThreadsSeen : public Force {
+ public:
+  std::string name() const override { return "threads seen"; }
+  ForceResult add_forces(System&, const ForceFlags&) override {
+    seen.push_back(omp_get_max_threads());
+    return {};
+  }
+  std::vector<int> seen;
+};
+
+}  // namespace
+
 TEST_CASE("Dynamics: a light step runs on the calling thread alone; the thread count is restored") {
   ThreadGuard guard;
   omp_set_num_threads(2);
   System sys = test::free_particles(20, 1.0, 3);
   ForceField ff;
+  auto probe = std::make_shared<ThreadsSeen>();
+  ff.add(probe);
   Dynamics dyn(0.05);
   dyn.add(Method::active(test::all_sites(sys), 0.2, 0.02, 25.0, 1e-3));
-  int inside = 0;  // threads seen by a region inside the step
   dyn.run(sys, ff, 3000);
   CHECK(dyn.step_threads().team_steps() == 0);
   CHECK(dyn.step_threads().serial_steps() == 3000);
+  REQUIRE(probe->seen.size() == 3001);  // prepare, then every step
+  CHECK(probe->seen[0] == 2);           // (prepare is not a step)
+  CHECK(std::count(probe->seen.begin() + 1, probe->seen.end(), 1) == 3000);
   CHECK(omp_get_max_threads() == 2);
-  {
-    const ThreadCountScope scope(1);
-#pragma omp parallel
-    {
-      if (omp_get_thread_num() == 0) inside = omp_get_num_threads();
-    }
-  }
-  CHECK(inside == 1);
+
+  // Mode::kAll: every step with both threads.
+  probe->seen.clear();
+  dyn.step_threads().set_mode(StepThreads::Mode::kAll);
+  dyn.run(sys, ff, 10);
+  CHECK(std::count(probe->seen.begin(), probe->seen.end(), 2) == 10);
+  CHECK(dyn.step_threads().team_steps() == 10);
   CHECK(omp_get_max_threads() == 2);
 }
