@@ -19,7 +19,9 @@ inline constexpr std::size_t kParallelHeavyItems = 1024;
 // A time step's team regions (ForceField::compute with the integrator's drift and kick inside,
 // docs/performance.md "Round 2"): one region carries the whole step's light work (drift,
 // zeroing, wall and shape forces, Langevin kick with its random numbers: ~0.1 microsecond
-// per site), so it pays from the same size as a heavy loop.
+// per site), so it pays from the same size as a heavy loop on an idle machine. Whether a time
+// step gets more than one thread at all is measured by Dynamics (integrate/step_threads.hpp):
+// next to a busy core a region this light can wait for a time slice.
 inline constexpr std::size_t kParallelTeamItems = 1024;
 
 inline bool parallel_light(std::size_t n) {

@@ -68,11 +68,12 @@ void StepThreads::end_step(double seconds) {
         choose(team_time_ < kTeamGain * serial_time_);
       break;
     case Phase::kHold:
-      // With the team: a window slower than the last 1-thread window (the machine got busier)
-      // measures again at once.
+      // With the team: a window clearly slower than the last 1-thread window (the machine got
+      // busier) measures again at once.
       hold_time_ += seconds;
       if (++hold_n_ == window_) {
-        if (team_chosen_ && hold_time_ > serial_time_ / double(serial_n_) * double(window_)) {
+        if (team_chosen_ &&
+            hold_time_ > kRecheckFactor * serial_time_ / double(serial_n_) * double(window_)) {
           start_measuring();
           break;
         }

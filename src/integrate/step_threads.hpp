@@ -25,6 +25,9 @@ class StepThreads {
   // The team is chosen if its window takes less than this fraction of the 1-thread window's
   // time (1 thread leaves the other cores to other work).
   static constexpr double kTeamGain = 0.95;
+  // A held team window slower than this factor times the last 1-thread window measures again
+  // at once (the machine got busier; the margin keeps ordinary noise from triggering it).
+  static constexpr double kRecheckFactor = 1.25;
   // Windows between two measurements: from kMinHold, doubling while the choice stays the same.
   static constexpr std::uint64_t kMinHold = 8, kMaxHold = 512;
 
