@@ -5,20 +5,38 @@
 // thresholds run on the calling thread (`#pragma omp parallel for if (parallel_light(n))`).
 // Results never depend on this choice (every parallel loop in invasim writes per item or
 // reduces in a fixed order).
+#include <omp.h>
+
 #include <cstddef>
 
 namespace invasim {
 
-// Loops with trivial work per item (a few flops: drift, kick, zeroing, FIRE updates).
+// Loops with trivial work per item (a few flops: drift, kick, zeroing, FIRE updates) that open
+// a parallel region of their own.
 inline constexpr std::size_t kParallelLightItems = 16384;
 // Loops with ~0.1-1 microsecond per item (pair forces of one site, neighbour-list rows).
 inline constexpr std::size_t kParallelHeavyItems = 1024;
+// A time step's team regions (ForceField::compute with the integrator's drift and kick inside,
+// docs/performance.md "Round 2"): one region carries the whole step's light work (drift,
+// zeroing, wall and shape forces, Langevin kick with its random numbers: ~0.1 microsecond
+// per site), so it pays from the same size as a heavy loop on an idle machine. Whether a time
+// step gets more than one thread at all is measured by Dynamics (integrate/step_threads.hpp):
+// next to a busy core a region this light can wait for a time slice.
+inline constexpr std::size_t kParallelTeamItems = 1024;
 
 inline bool parallel_light(std::size_t n) {
   return n >= kParallelLightItems;
 }
 inline bool parallel_heavy(std::size_t n) {
   return n >= kParallelHeavyItems;
+}
+inline bool parallel_team(std::size_t n) {
+  return n >= kParallelTeamItems;
+}
+
+// True on the thread of a team (or a serial caller) that writes the team's shared results.
+inline bool team_leader() {
+  return omp_get_thread_num() == 0;
 }
 
 }  // namespace invasim

@@ -3,6 +3,7 @@
 // sites().force, and, when asked, returns its potential energy and virial. Integrators and
 // the minimiser see forces only through a ForceField (a list of terms), so adding a term
 // touches no integrator.
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -32,6 +33,31 @@ class Force {
   // Drops cached state derived from positions (neighbour lists), e.g. after the System was
   // replaced by a checkpoint.
   virtual void invalidate_caches() {}
+
+  // Team evaluation: a term with light per-site work can be evaluated inside a parallel region
+  // that ForceField::compute shares with other terms and the integrator (one region per step
+  // instead of one per loop). prepare_team runs on one thread before the region (validates,
+  // throws on bad input, sizes scratch) and returns true if the term supports it; then every
+  // thread of the region calls add_forces_team, which shares its loops with orphaned
+  // `omp for`, must not throw and ends with a barrier (all its forces added); the team leader's
+  // return value is the term's result. Default: not supported (add_forces runs between regions).
+  virtual bool prepare_team(System& sys, const ForceFlags& flags);
+  virtual ForceResult add_forces_team(System& sys, const ForceFlags& flags);
+
+ protected:
+  // add_forces of a team-capable term: prepare_team, then add_forces_team in a region of its own.
+  ForceResult add_forces_in_own_region(System& sys, const ForceFlags& flags);
+};
+
+// Work of the integrator done by every thread of ForceField::compute's parallel regions (its
+// loops shared with orphaned `omp for`, no exceptions; ForceField adds the barriers around
+// them). `before` runs in the first region before the forces are zeroed; if `zeroes_forces`,
+// it zeroes every site's force itself (each after its last read) and ForceField does not.
+// `after` runs after the last term has added its forces (in the last term's region when that
+// term supports team evaluation).
+struct TeamHooks {
+  std::function<void()> before, after;
+  bool zeroes_forces = false;
 };
 
 // An ordered list of force terms, evaluated together.
@@ -40,13 +66,21 @@ class ForceField {
   void add(std::shared_ptr<Force> force) { terms_.push_back(std::move(force)); }
   const std::vector<std::shared_ptr<Force>>& terms() const { return terms_; }
   // Zeroes all site forces, then adds every term; result per term in `per_term` if given.
+  // Consecutive team-capable terms share one parallel region, together with the zeroing (if
+  // they lead) and the hooks; every other term runs on its own between them. The forces on
+  // each site are summed in term order whatever the grouping and the thread count.
   ForceResult compute(System& sys, const ForceFlags& flags = {},
-                      std::vector<ForceResult>* per_term = nullptr);
+                      std::vector<ForceResult>* per_term = nullptr, const TeamHooks& hooks = {});
   // Total potential energy (forces are recomputed as a side effect).
   double energy(System& sys) { return compute(sys, {true, false}).energy; }
+  // Parallel regions opened by the last compute (for tests and benchmarks; regions opened by
+  // the terms' own add_forces are not counted).
+  int team_regions() const { return team_regions_; }
 
  private:
   std::vector<std::shared_ptr<Force>> terms_;
+  std::vector<ForceResult> results_;
+  int team_regions_ = 0;
 };
 
 }  // namespace invasim

@@ -40,38 +40,44 @@ double body_shape_energy(const MeshBody& body, const Vec3* x, double eps_v, doub
 }
 
 ForceResult ShapeForce::add_forces(System& sys, const ForceFlags& flags) {
+  return add_forces_in_own_region(sys, flags);
+}
+
+bool ShapeForce::prepare_team(System& sys, const ForceFlags&) {
+  per_body_.resize(sys.bodies().size());
+  return true;
+}
+
+ForceResult ShapeForce::add_forces_team(System& sys, const ForceFlags& flags) {
   const auto& bodies = sys.bodies();
   const int nb = int(bodies.size());
-  per_body_.resize(nb);
   Sites& s = sys.sites();
-  // Bodies are ~42 vertices each: parallel only when there are enough of them.
-  const std::size_t body_sites = nb > 0 ? std::size_t(nb) * bodies[0].n_vertices() : 0;
-#pragma omp parallel if (parallel_heavy(body_sites))
-  {
-    std::vector<Vec3> x, grad;
-#pragma omp for schedule(static)
-    for (int b = 0; b < nb; ++b) {
-      const MeshBody& body = bodies[b];
-      const int nv = body.n_vertices();
-      x.resize(nv);
-      grad.assign(nv, Vec3::Zero());
-      sys.body_vertices(b, x.data());
-      ForceResult r;
-      r.energy = body_shape_energy(body, x.data(), eps_v_, eps_a_, grad.data());
-      const Vec3 c = vertex_centroid(nv, x.data());
-      for (int v = 0; v < nv; ++v) {
-        s.force[body.first_site + v] -= grad[v];
-        r.virial -= (x[v] - c).cwiseProduct(grad[v]);
-      }
-      per_body_[b] = r;
+  thread_local std::vector<Vec3> x, grad;  // one body's vertices and energy gradient
+  // Bodies are independent (each writes only its own vertices); dynamic, so that a thread
+  // slowed by another process on its core takes fewer.
+#pragma omp for schedule(dynamic, 1)
+  for (int b = 0; b < nb; ++b) {
+    const MeshBody& body = bodies[b];
+    const int nv = body.n_vertices();
+    x.resize(nv);
+    grad.assign(nv, Vec3::Zero());
+    sys.body_vertices(b, x.data());
+    ForceResult r;
+    r.energy = body_shape_energy(body, x.data(), eps_v_, eps_a_, grad.data());
+    const Vec3 c = vertex_centroid(nv, x.data());
+    for (int v = 0; v < nv; ++v) {
+      s.force[body.first_site + v] -= grad[v];
+      r.virial -= (x[v] - c).cwiseProduct(grad[v]);
     }
+    per_body_[b] = r;
   }
   ForceResult out;
+  if (!team_leader()) return out;
   if (flags.energy)
-    out.energy = deterministic_sum(nb, 0.0, [&](std::size_t b) { return per_body_[b].energy; });
+    out.energy = block_sum(nb, 0.0, [&](std::size_t b) { return per_body_[b].energy; });
   if (flags.virial)
-    out.virial = deterministic_sum(nb, Vec3(Vec3::Zero()),
-                                   [&](std::size_t b) { return per_body_[b].virial; });
+    out.virial =
+        block_sum(nb, Vec3(Vec3::Zero()), [&](std::size_t b) { return per_body_[b].virial; });
   return out;
 }
 

@@ -12,6 +12,8 @@ class ShapeForce : public Force {
   ShapeForce(double eps_v, double eps_a);
   std::string name() const override { return "shape"; }
   ForceResult add_forces(System& sys, const ForceFlags& flags) override;
+  bool prepare_team(System& sys, const ForceFlags& flags) override;
+  ForceResult add_forces_team(System& sys, const ForceFlags& flags) override;
   double eps_v() const { return eps_v_; }
   double eps_a() const { return eps_a_; }
 

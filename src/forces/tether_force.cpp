@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/errors.hpp"
+#include "core/parallel.hpp"
 #include "mesh/geometry.hpp"
 
 namespace invasim {
@@ -72,26 +73,72 @@ void TetherForce::apply_heterogeneity(const System& sys, double lambda) {
   }
 }
 
+Vec3 TetherForce::tether_force(const Box& box, const Tether& t, double* stretch) const {
+  const Vec3 d = box.minimum_image(centres_[t.a] - centres_[t.b]);
+  const double r = d.norm();
+  *stretch = r - t.rest_length;
+  return r > 0.0 ? Vec3(-stiffness_ * *stretch / r * d) : Vec3(Vec3::Zero());
+}
+
 ForceResult TetherForce::add_forces(System& sys, const ForceFlags& flags) {
+  return add_forces_in_own_region(sys, flags);
+}
+
+bool TetherForce::prepare_team(System& sys, const ForceFlags&) {
+  const std::size_t nb = sys.bodies().size();
+  centres_.resize(nb);
+  body_start_.assign(nb + 1, 0);
+  for (const Tether& t : tethers_) {
+    ++body_start_[t.a + 1];
+    ++body_start_[t.b + 1];
+  }
+  for (std::size_t b = 0; b < nb; ++b) body_start_[b + 1] += body_start_[b];
+  body_tethers_.resize(body_start_[nb]);
+  std::vector<int> fill(body_start_.begin(), body_start_.end() - 1);
+  for (std::size_t k = 0; k < tethers_.size(); ++k) {
+    body_tethers_[fill[tethers_[k].a]++] = int(k) + 1;
+    body_tethers_[fill[tethers_[k].b]++] = -(int(k) + 1);
+  }
+  return true;
+}
+
+ForceResult TetherForce::add_forces_team(System& sys, const ForceFlags& flags) {
   ForceResult out;
-  if (tethers_.empty()) return out;
-  const std::vector<Vec3> c = body_centres(sys);
-  std::vector<Vec3> body_force(c.size(), Vec3::Zero());
+  if (tethers_.empty()) return out;  // no forces written: no barrier needed
+  const auto& bodies = sys.bodies();
+  const int nb = int(bodies.size());
+  thread_local std::vector<Vec3> x;
+#pragma omp for schedule(static)
+  for (int b = 0; b < nb; ++b) {
+    x.resize(bodies[b].n_vertices());
+    sys.body_vertices(b, x.data());
+    centres_[b] = vertex_centroid(int(x.size()), x.data());
+  }
+  // Each body sums the forces of its tethers in tether order (as a serial loop over the
+  // tethers would) and shares the total equally among its vertices.
+  Sites& s = sys.sites();
+#pragma omp for schedule(static)
+  for (int b = 0; b < nb; ++b) {
+    Vec3 body_force = Vec3::Zero();
+    for (int q = body_start_[b]; q < body_start_[b + 1]; ++q) {
+      const int k = body_tethers_[q];
+      double stretch;
+      const Vec3 f = tether_force(sys.box(), tethers_[std::abs(k) - 1], &stretch);
+      if (k > 0)
+        body_force += f;
+      else
+        body_force -= f;
+    }
+    const Vec3 share = body_force / double(bodies[b].n_vertices());
+    for (int v = 0; v < bodies[b].n_vertices(); ++v) s.force[bodies[b].first_site + v] += share;
+  }
+  if (!team_leader() || !(flags.energy || flags.virial)) return out;
   for (const Tether& t : tethers_) {  // few tethers: a serial, fixed-order loop
-    const Vec3 d = sys.box().minimum_image(c[t.a] - c[t.b]);
-    const double r = d.norm();
-    const double stretch = r - t.rest_length;
-    const Vec3 f = r > 0.0 ? Vec3(-stiffness_ * stretch / r * d) : Vec3(Vec3::Zero());
-    body_force[t.a] += f;
-    body_force[t.b] -= f;
+    double stretch;
+    const Vec3 f = tether_force(sys.box(), t, &stretch);
+    const Vec3 d = sys.box().minimum_image(centres_[t.a] - centres_[t.b]);
     out.energy += 0.5 * stiffness_ * stretch * stretch;
     out.virial += d.cwiseProduct(f);
-  }
-  Sites& s = sys.sites();
-  const auto& bodies = sys.bodies();
-  for (std::size_t b = 0; b < bodies.size(); ++b) {
-    const Vec3 share = body_force[b] / double(bodies[b].n_vertices());
-    for (int v = 0; v < bodies[b].n_vertices(); ++v) s.force[bodies[b].first_site + v] += share;
   }
   if (!flags.energy) out.energy = 0.0;
   if (!flags.virial) out.virial.setZero();

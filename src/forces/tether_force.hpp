@@ -16,6 +16,8 @@ class TetherForce : public Force {
   explicit TetherForce(double stiffness);
   std::string name() const override { return "tether"; }
   ForceResult add_forces(System& sys, const ForceFlags& flags) override;
+  bool prepare_team(System& sys, const ForceFlags& flags) override;
+  ForceResult add_forces_team(System& sys, const ForceFlags& flags) override;
 
   double stiffness() const { return stiffness_; }
   void set_stiffness(double k);
@@ -36,8 +38,14 @@ class TetherForce : public Force {
   static std::vector<Vec3> body_centres(const System& sys);
 
  private:
+  // Force on body a's centre from tether t (minus it on body b's), and its stretch.
+  Vec3 tether_force(const Box& box, const Tether& t, double* stretch) const;
   double stiffness_;
   std::vector<Tether> tethers_;
+  // Team scratch: body centres, and each body's tethers in tether order (CSR; index + 1 for
+  // end a, -(index + 1) for end b), so that every body sums its forces in the serial order.
+  std::vector<Vec3> centres_;
+  std::vector<int> body_start_, body_tethers_;
 };
 
 }  // namespace invasim

@@ -11,14 +11,22 @@ WallForce::WallForce(double eps, bool left, bool right) : eps_(eps), left_(left)
 }
 
 ForceResult WallForce::add_forces(System& sys, const ForceFlags& flags) {
+  return add_forces_in_own_region(sys, flags);
+}
+
+bool WallForce::prepare_team(System& sys, const ForceFlags&) {
   if (sys.box().periodic(0))
     fail_input("walls: the box is periodic in x; walls need a walled x axis");
+  partial_.resize(sum_blocks(sys.n_sites()));
+  return true;
+}
+
+ForceResult WallForce::add_forces_team(System& sys, const ForceFlags& flags) {
   Sites& s = sys.sites();
   const std::size_t n = s.size();
   const double xl = sys.box().lo()[0], xr = sys.box().hi()[0];
-  per_site_.resize(n);
-#pragma omp parallel for schedule(static) if (parallel_light(n))
-  for (std::size_t i = 0; i < n; ++i) {
+  // Each site's push and its share of the wall forces, energy and virial, summed in fixed blocks.
+  const PerSite total = team_deterministic_sum(n, PerSite{}, partial_, [&](std::size_t i) {
     PerSite p;
     const double x = s.pos[i][0], sig = s.diameter[i];
     if (left_ && x - xl <= sig) {
@@ -37,12 +45,12 @@ ForceResult WallForce::add_forces(System& sys, const ForceFlags& flags) {
       p.energy += 0.5 * eps_ * u * u;
       p.virial += (x - xr) * f;
     }
-    per_site_[i] = p;
+    return p;
+  });
+  if (team_leader()) {
+    left_force_ = total.left;
+    right_force_ = total.right;
   }
-  const PerSite total =
-      deterministic_sum(n, PerSite{}, [&](std::size_t i) { return per_site_[i]; });
-  left_force_ = total.left;
-  right_force_ = total.right;
   ForceResult out;
   if (flags.energy) out.energy = total.energy;
   if (flags.virial) out.virial = Vec3(total.virial, 0.0, 0.0);

@@ -12,6 +12,8 @@ class WallForce : public Force {
   explicit WallForce(double eps = 1.0, bool left = true, bool right = true);
   std::string name() const override { return "wall"; }
   ForceResult add_forces(System& sys, const ForceFlags& flags) override;
+  bool prepare_team(System& sys, const ForceFlags& flags) override;
+  ForceResult add_forces_team(System& sys, const ForceFlags& flags) override;
   // x component of the force the sites exert on the left / right wall (last evaluation).
   double left_wall_force() const { return left_force_; }
   double right_wall_force() const { return right_force_; }
@@ -33,7 +35,7 @@ class WallForce : public Force {
       return *this;
     }
   };
-  std::vector<PerSite> per_site_;
+  std::vector<PerSite> partial_;  // block sums (team_deterministic_sum)
 };
 
 }  // namespace invasim

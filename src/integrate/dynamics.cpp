@@ -1,6 +1,7 @@
 #include "integrate/dynamics.hpp"
 #include "core/parallel.hpp"
 
+#include <chrono>
 #include <cmath>
 
 #include "core/errors.hpp"
@@ -77,16 +78,17 @@ void Method::randomize_orientations(System& sys, std::uint64_t stream_step) cons
   }
 }
 
-void Method::drift(System& sys, double dt) const {
+void Method::drift_team(System& sys, double dt) const {
   Sites& s = sys.sites();
   const Box& box = sys.box();
   const int n = int(group_.size());
-#pragma omp parallel for schedule(static) if (parallel_light(std::size_t(n)))
+#pragma omp for schedule(static) nowait
   for (int k = 0; k < n; ++k) {
     const int i = group_[k];
     s.vel[i] += 0.5 * dt / s.mass[i] * s.force[i];
     s.pos[i] += dt * s.vel[i];
     box.wrap(s.pos[i], s.image[i]);
+    s.force[i].setZero();
   }
 }
 
@@ -118,13 +120,14 @@ void Method::add_drive(System& sys, double dt) const {
   }
 }
 
-void Method::kick(System& sys, double dt) const {
+void Method::kick_team(System& sys, double dt, std::uint64_t step, const MethodParams& p) const {
   Sites& s = sys.sites();
-  const MethodParams& p = params_;
   const double noise = noise_amplitude(p, dt);
-  const std::uint64_t seed = sys.seed(), step = sys.step;
+  const std::uint64_t seed = sys.seed();
   const int n = int(group_.size());
-#pragma omp parallel for schedule(static) if (parallel_light(std::size_t(n)))
+  // Dynamic: the random numbers make this the heaviest of the light loops, and a thread
+  // slowed by another process on its core takes fewer chunks.
+#pragma omp for schedule(dynamic, 128) nowait
   for (int k = 0; k < n; ++k) {
     const int i = group_[k];
     if (p.f0 > 0.0) {
@@ -134,14 +137,6 @@ void Method::kick(System& sys, double dt) const {
     s.force[i] += drive_force(p, noise, s, i, seed, step);
     s.vel[i] += 0.5 * dt / s.mass[i] * s.force[i];
   }
-}
-
-void PressureWall::validate() const {
-  require_non_negative("pressure", pressure);
-  require_positive("wall mass", mass);
-  require_non_negative("wall gamma", gamma);
-  require_non_negative("wall kT", kT);
-  if (!walls) fail_input("pressure wall: no wall force to couple to");
 }
 
 namespace {
@@ -185,24 +180,20 @@ void Method::set_f0_ramp(std::optional<Ramp> ramp) {
   f0_ramp_ = std::move(ramp);
 }
 
+MethodParams Method::params_at(std::uint64_t step) {
+  MethodParams p = params_;
+  if (kT_ramp_) p.kT = kT_ramp_->value(step);
+  if (f0_ramp_) p.f0 = f0_ramp_->value(step);
+  return p;
+}
+
 void Method::apply_ramps(std::uint64_t step) {
-  if (kT_ramp_) params_.kT = kT_ramp_->value(step);
-  if (f0_ramp_) params_.f0 = f0_ramp_->value(step);
+  params_ = params_at(step);
 }
 
 void Dynamics::apply_ramps(std::uint64_t step) {
   for (const auto& m : methods_) m->apply_ramps(step);
   if (wall_ && wall_->pressure_ramp) wall_->pressure = wall_->pressure_ramp->value(step);
-}
-
-void Dynamics::update_wall_force(System& sys) {
-  if (!wall_) return;
-  wall_->force = wall_->walls->left_wall_force() + wall_->pressure * sys.box().wall_area() -
-                 wall_->gamma * wall_->velocity;
-  if (wall_->kT > 0.0) {
-    const double noise = std::sqrt(2.0 * wall_->gamma * wall_->kT / dt_);
-    wall_->force += noise * RandomKey(sys.seed(), sys.step, 0u, RngStream::kPiston).normal3()[0];
-  }
 }
 
 void Dynamics::prepare(System& sys, ForceField& ff) {
@@ -217,26 +208,67 @@ void Dynamics::prepare(System& sys, ForceField& ff) {
   apply_ramps(sys.step);
   ff.compute(sys);
   for (const auto& m : methods_) m->add_drive(sys, dt_);
-  update_wall_force(sys);
+  if (wall_) wall_->update_force(sys, dt_);
   prepared_ = true;
+}
+
+void Dynamics::update_free_sites(const System& sys) {
+  // (The groups are checked as in prepare: the drift of different groups runs concurrently.)
+  std::vector<char> owned(sys.n_sites(), 0);
+  for (const auto& m : methods_)
+    for (int i : m->group()) {
+      if (i < 0 || std::size_t(i) >= sys.n_sites())
+        fail_input("integrator: site ", i, " of a group is outside [0, ", sys.n_sites(), ")");
+      if (owned[i]++) fail_input("integrator: site ", i, " belongs to two integration methods");
+    }
+  free_sites_.clear();
+  for (std::size_t i = 0; i < owned.size(); ++i)
+    if (!owned[i]) free_sites_.push_back(int(i));
+  free_sites_n_ = sys.n_sites();
+  free_sites_valid_ = true;
 }
 
 void Dynamics::step(System& sys, ForceField& ff) {
   if (!prepared_) prepare(sys, ff);
-  for (const auto& m : methods_) m->drift(sys, dt_);
+  // 1 thread or all, as measured to be faster (integrate/step_threads.hpp); same results.
+  const ThreadCountScope threads(step_threads_.begin_step());
+  const auto start = std::chrono::steady_clock::now();
+  // The piston's half kick and move first: the sites' drift does not read the wall (it wraps
+  // periodic axes only), and a failing move (Box refuses it) throws before any site moved.
   if (wall_) {
-    wall_->velocity += 0.5 * dt_ / wall_->mass * wall_->force;
-    sys.box().set_wall(0, false, sys.box().lo()[0] + dt_ * wall_->velocity);
+    wall_->half_kick(dt_);
+    wall_->move(sys.box(), dt_);
   }
-  ff.compute(sys);
+  if (!free_sites_valid_ || free_sites_n_ != sys.n_sites()) update_free_sites(sys);
+  const std::uint64_t next = sys.step + 1;
+  next_params_.clear();
+  for (const auto& m : methods_) next_params_.push_back(m->params_at(next));
+  // Drift and kick run inside the force field's parallel regions (one region per run of
+  // team-capable terms, docs/performance.md "Round 2"), not in regions of their own.
+  TeamHooks hooks;
+  // The drift zeroes the forces of its sites; the sites of no method are zeroed alongside.
+  hooks.zeroes_forces = true;
+  hooks.before = [&] {
+    for (const auto& m : methods_) m->drift_team(sys, dt_);
+    auto& f = sys.sites().force;
+    const int n_free = int(free_sites_.size());
+#pragma omp for schedule(static) nowait
+    for (int k = 0; k < n_free; ++k) f[free_sites_[k]].setZero();
+  };
+  hooks.after = [&] {
+    for (std::size_t k = 0; k < methods_.size(); ++k)
+      methods_[k]->kick_team(sys, dt_, next, next_params_[k]);
+  };
+  ff.compute(sys, {}, nullptr, hooks);
   ++sys.step;
   sys.time += dt_;
   apply_ramps(sys.step);
-  for (const auto& m : methods_) m->kick(sys, dt_);
   if (wall_) {
-    update_wall_force(sys);
-    wall_->velocity += 0.5 * dt_ / wall_->mass * wall_->force;
+    wall_->update_force(sys, dt_);
+    wall_->half_kick(dt_);
   }
+  step_threads_.end_step(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
 void Dynamics::run(System& sys, ForceField& ff, std::uint64_t n_steps) {

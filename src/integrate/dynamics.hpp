@@ -11,9 +11,10 @@
 #include <vector>
 
 #include "forces/force.hpp"
-#include "forces/wall_force.hpp"
 #include "integrate/blowup_guard.hpp"
+#include "integrate/pressure_wall.hpp"
 #include "integrate/ramp.hpp"
+#include "integrate/step_threads.hpp"
 
 namespace invasim {
 
@@ -45,13 +46,20 @@ class Method {
   const std::optional<Ramp>& f0_ramp() const { return f0_ramp_; }
   // Sets kT and f0 from their ramps for time step `step` (no-op without ramps).
   void apply_ramps(std::uint64_t step);
+  // The parameters apply_ramps(step) would set, without setting them (a ramp used for the
+  // first time is anchored at `step`, as apply_ramps would).
+  MethodParams params_at(std::uint64_t step);
   // Gives every site of the group a random orientation (for active methods).
   void randomize_orientations(System& sys, std::uint64_t stream_step = 0) const;
 
-  // v_h = v + dt/2 F/m; x += v_h dt (positions wrapped).
-  void drift(System& sys, double dt) const;
-  // Orientation update and drive at step `step`; then v = v_h + dt/2 F/m.
-  void kick(System& sys, double dt) const;
+  // The two halves of a step, called by every thread of a parallel region (ForceField's
+  // TeamHooks): the group's sites shared with an orphaned `omp for nowait` (groups of different
+  // methods are disjoint), so the caller adds the barrier.
+  // v_h = v + dt/2 F/m; x += v_h dt (positions wrapped); then F = 0 (the next evaluation adds
+  // into it).
+  void drift_team(System& sys, double dt) const;
+  // Orientation update and drive of step `step` with parameters p; then v = v_h + dt/2 F/m.
+  void kick_team(System& sys, double dt, std::uint64_t step, const MethodParams& p) const;
   // Adds -gamma v + drive to the site forces (used to start a run from the current v).
   void add_drive(System& sys, double dt) const;
 
@@ -65,28 +73,15 @@ class Method {
 // angle of variance 2 dt / tau_p, so E[n'.n] = exp(-dt/tau_p) for any dt (u: 4 uniforms).
 Vec3 rotate_orientation(const Vec3& n, double dt, double tau_p, const std::array<double, 4>& u);
 
-// The left wall as a massive piston: M x'' = F_sites_on_wall + P A - gamma_w x' + xi, with
-// xi the fluctuation-dissipation random force at temperature kT (variance 2 gamma_w kT / dt per
-// step; kT = 0: no noise), drawn from the counter-based RNG (stream kPiston), so that it does
-// not depend on the thread count and a restored run repeats it bit for bit.
-struct PressureWall {
-  double pressure = 0.0;
-  double mass = 1.0;
-  double gamma = 0.2;
-  double kT = 0.0;  // temperature of the piston's bath
-  double velocity = 0.0;
-  double force = 0.0;  // total force on the wall at the last step
-  std::shared_ptr<WallForce> walls;
-  std::optional<Ramp> pressure_ramp;  // if set, `pressure` follows it step by step
-  void validate() const;
-};
-
 class Dynamics {
  public:
   explicit Dynamics(double dt);
   double dt() const { return dt_; }
   void set_dt(double dt);
-  void add(std::shared_ptr<Method> method) { methods_.push_back(std::move(method)); }
+  void add(std::shared_ptr<Method> method) {
+    methods_.push_back(std::move(method));
+    free_sites_valid_ = false;
+  }
   const std::vector<std::shared_ptr<Method>>& methods() const { return methods_; }
   void set_pressure_wall(std::shared_ptr<PressureWall> wall) { wall_ = std::move(wall); }
   std::shared_ptr<PressureWall> pressure_wall() const { return wall_; }
@@ -106,16 +101,25 @@ class Dynamics {
   // steps and at the end; throws SimulationError naming the first blown-up site.
   void run(System& sys, ForceField& ff, std::uint64_t n_steps);
   std::uint64_t check_every() const { return blowup_guard_.every(); }
+  // How many threads each step uses (integrate/step_threads.hpp): measured by default.
+  StepThreads& step_threads() { return step_threads_; }
+  const StepThreads& step_threads() const { return step_threads_; }
   void set_check_every(std::uint64_t n) { blowup_guard_.set_every(n); }
 
  private:
-  void update_wall_force(System& sys);
   void apply_ramps(std::uint64_t step);
   double dt_;
   std::vector<std::shared_ptr<Method>> methods_;
   std::shared_ptr<PressureWall> wall_;
   bool prepared_ = false;
   BlowupGuard blowup_guard_;
+  StepThreads step_threads_;
+  std::vector<MethodParams> next_params_;  // each method's parameters for the step being made
+  // Sites in no method (their forces are zeroed next to the drift), for free_sites_n_ sites.
+  void update_free_sites(const System& sys);
+  std::vector<int> free_sites_;
+  std::size_t free_sites_n_ = 0;
+  bool free_sites_valid_ = false;
 };
 
 }  // namespace invasim

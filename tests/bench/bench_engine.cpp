@@ -10,6 +10,8 @@
 // the CPU rate at 1 thread is the one to compare):
 //   bench_engine single N STEPS [beta=0] [kT=1e-3]   workload (a) (list builds on stderr)
 //   bench_engine full N_CELLS STEPS                  workload (b), N_CELLS = 1500 or 7000
+//   bench_engine free N STEPS                        N free active particles, no forces (a light
+//                                                    step, like test_dynamics' orientation runs)
 #include <omp.h>
 #include <time.h>
 
@@ -43,13 +45,29 @@ struct Rate {
   double wall = 0.0, cpu = 0.0;
 };
 
-// Times `steps` steps of dyn on sys.
+// BENCH_STEP_THREADS=all: every step with all threads (integrate/step_threads.hpp), instead of
+// the measured choice between 1 thread and all.
+void apply_step_threads_env(Dynamics& dyn) {
+  const char* v = std::getenv("BENCH_STEP_THREADS");
+  if (!v || std::string(v) == "auto") return;
+  if (std::string(v) != "all") {
+    std::fprintf(stderr, "BENCH_STEP_THREADS = '%s': expected 'auto' or 'all'\n", v);
+    std::exit(2);
+  }
+  dyn.step_threads().set_mode(StepThreads::Mode::kAll);
+}
+
+// Times `steps` steps of dyn on sys (prints the steps run with all threads on stderr).
 Rate time_steps(System& sys, ForceField& ff, Dynamics& dyn, int steps) {
   const auto t0 = std::chrono::steady_clock::now();
   const double c0 = cpu_seconds();
   dyn.run(sys, ff, steps);
   const double cpu = cpu_seconds() - c0, wall = seconds_since(t0);
   const double work = double(sys.n_sites()) * steps;
+  std::fprintf(
+      stderr, "steps with all threads: %llu of %llu\n",
+      (unsigned long long)dyn.step_threads().team_steps(),
+      (unsigned long long)(dyn.step_threads().team_steps() + dyn.step_threads().serial_steps()));
   return {work / wall, work / cpu};
 }
 
@@ -71,6 +89,7 @@ Rate time_cancer(int n, double beta, int steps, std::uint64_t* builds = nullptr,
   ff.add(contacts);
   relax(sys, ff);
   Dynamics dyn(0.05);
+  apply_step_threads_env(dyn);
   dyn.add(Method::langevin(sys.sites_of_kind(SiteKind::kCancer), 0.2, kT));
   dyn.run(sys, ff, 50);  // warm up
   const auto builds0 = contacts->neighbor_list().builds();
@@ -95,11 +114,25 @@ Rate time_full(int nx, int nyz, int n_cells, int steps, int* n_bodies = nullptr,
   ForceField ff = test::standard_forces(1e-2, 1000.0, 1.0);
   relax(sys, ff);
   Dynamics dyn(0.05);
+  apply_step_threads_env(dyn);
   dyn.add(Method::active(sys.sites_of_kind(SiteKind::kCancer), 0.2, 0.05, 25.0, 1e-3));
   dyn.add(Method::damped(sys.sites_of_kind(SiteKind::kVertex), 0.2));
   dyn.run(sys, ff, 50);
   if (n_bodies) *n_bodies = int(sys.bodies().size());
   if (n_sites) *n_sites = int(sys.n_sites());
+  return time_steps(sys, ff, dyn, steps);
+}
+
+// Times N free active particles (no force terms: the step is the drift and the kick alone).
+Rate time_free(int n, int steps) {
+  System sys = test::free_particles(n, 1.0, 5);
+  ForceField ff;
+  Dynamics dyn(0.05);
+  apply_step_threads_env(dyn);
+  auto method = Method::active(test::all_sites(sys), 0.2, 0.02, 25.0);
+  method->randomize_orientations(sys);
+  dyn.add(method);
+  dyn.run(sys, ff, 50);
   return time_steps(sys, ff, dyn, steps);
 }
 
@@ -157,6 +190,11 @@ int main(int argc, char** argv) {
     }
     const Rate r = n_cells == 1500 ? time_full(7, 2, 1500, std::atoi(argv[3]))
                                    : time_full(8, 4, 7000, std::atoi(argv[3]));
+    std::printf("%.3e %.3e\n", r.wall, r.cpu);
+    return 0;
+  }
+  if (argc == 4 && std::string(argv[1]) == "free") {  // free particles, for scripts
+    const Rate r = time_free(std::atoi(argv[2]), std::atoi(argv[3]));
     std::printf("%.3e %.3e\n", r.wall, r.cpu);
     return 0;
   }

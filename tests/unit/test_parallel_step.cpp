@@ -1,0 +1,338 @@
+// The parallel time step (docs/performance.md, "Round 2: parallel step"): ForceField::compute
+// runs consecutive team-capable terms, the zeroing and the integrator's drift and kick in
+// shared parallel regions; the results are bit-identical to the unfused sequence of loops and
+// do not depend on the thread count.
+#include <omp.h>
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/parallel.hpp"
+#include "core/rng.hpp"
+#include "integrate/dynamics.hpp"
+#include "test_support.hpp"
+
+using namespace invasim;
+
+namespace {
+
+// Restores the OpenMP thread count when a test ends (even by an exception).
+struct ThreadGuard {
+  int saved = omp_get_max_threads();
+  ~ThreadGuard() { omp_set_num_threads(saved); }
+};
+
+// Where a call ran: inside a parallel region, and with how many threads.
+struct Call {
+  std::string who;
+  bool in_parallel;
+  int threads;
+};
+
+void record(std::vector<Call>& log, const std::string& who) {
+  if (omp_get_thread_num() == 0)
+    log.push_back({who, bool(omp_in_parallel()), omp_get_num_threads()});
+}
+
+// A term that adds `push` to every site's x force; team-capable or not.
+class Probe : public Force {
+ public:
+  Probe(std::string name, double push, bool team, std::vector<Call>& log)
+      : name_(std::move(name)), push_(push), team_(team), log_(log) {}
+  std::string name() const override { return name_; }
+  ForceResult add_forces(System& sys, const ForceFlags& flags) override {
+    if (team_) return add_forces_in_own_region(sys, flags);
+    record(log_, name_);
+    for (Vec3& f : sys.sites().force) f[0] += push_;
+    return {push_, Vec3::Zero()};
+  }
+  bool prepare_team(System&, const ForceFlags&) override { return team_; }
+  ForceResult add_forces_team(System& sys, const ForceFlags&) override {
+    record(log_, name_);
+    auto& f = sys.sites().force;
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < f.size(); ++i) f[i][0] += push_;
+    return {push_, Vec3::Zero()};
+  }
+
+ private:
+  std::string name_;
+  double push_;
+  bool team_;
+  std::vector<Call>& log_;
+};
+
+System spheres(int n) {
+  System sys(Box(Vec3::Zero(), Vec3(40, 40, 40), {true, true, true}), 3);
+  for (int i = 0; i < n; ++i)
+    sys.add_sphere(Vec3(0.5 + i % 30, 0.5 + (i / 30) % 30, 0.5 + i / 900), 1.0);
+  return sys;
+}
+
+}  // namespace
+
+TEST_CASE("ForceField: consecutive team terms share one parallel region with the step's hooks") {
+  ThreadGuard guard;
+  omp_set_num_threads(2);
+  std::vector<Call> log;
+  ForceField ff;
+  // Powers of two: the sums are exact, so the expected values are exact too.
+  ff.add(std::make_shared<Probe>("A", 1.0, true, log));
+  ff.add(std::make_shared<Probe>("S", 2.0, false, log));
+  ff.add(std::make_shared<Probe>("B", 4.0, true, log));
+  ff.add(std::make_shared<Probe>("C", 8.0, true, log));
+  TeamHooks hooks;
+  hooks.before = [&] { record(log, "before"); };
+  hooks.after = [&] { record(log, "after"); };
+
+  System sys = spheres(1100);  // above kParallelTeamItems: the regions get both threads
+  for (Vec3& f : sys.sites().force) f = Vec3(100, 100, 100);
+  const ForceResult r = ff.compute(sys, {}, nullptr, hooks);
+  CHECK(r.energy == 15.0);
+  for (const Vec3& f : sys.sites().force) REQUIRE(f == Vec3(15, 0, 0));  // zeroed, then summed
+  // Region 1: before, zeroing, A; then S on its own; region 2: B, C, after.
+  CHECK(ff.team_regions() == 2);
+  const std::vector<std::string> order = {"before", "A", "S", "B", "C", "after"};
+  REQUIRE(log.size() == order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    INFO(order[k]);
+    CHECK(log[k].who == order[k]);
+    CHECK(log[k].in_parallel == (order[k] != "S"));
+    CHECK(log[k].threads == (order[k] == "S" ? 1 : 2));
+  }
+
+  // A solo term last: the hook `after` gets a region of its own.
+  log.clear();
+  ForceField solo;
+  solo.add(std::make_shared<Probe>("S", 2.0, false, log));
+  solo.compute(sys, {}, nullptr, hooks);
+  CHECK(solo.team_regions() == 2);
+  REQUIRE(log.size() == 3);
+  CHECK((log[0].who == "before" && log[1].who == "S" && log[2].who == "after"));
+  CHECK(log[2].in_parallel);
+
+  // Below the threshold the same structure runs on the calling thread alone.
+  log.clear();
+  System small = spheres(100);
+  ff.compute(small, {}, nullptr, hooks);
+  REQUIRE(log.size() == order.size());
+  for (const Call& c : log) CHECK(c.threads == 1);
+  for (const Vec3& f : small.sites().force) REQUIRE(f == Vec3(15, 0, 0));
+}
+
+namespace {
+
+// The mixed system above the team threshold (27 adipocytes, 1000 cells: 2134 sites):
+// cohesive contacts, walls, shape, heterogeneous tethers, active cells with thermal noise and
+// ramps of kT and f0, damped vertices, and a pressure-controlled left wall with its own bath
+// under a pressure ramp.
+struct Mixed {
+  explicit Mixed(System s) : sys(std::move(s)) {}
+  System sys;
+  ForceField ff;
+  Dynamics dyn{0.05};
+  std::shared_ptr<ContactForce> contacts;
+  std::shared_ptr<PressureWall> wall;
+  std::vector<std::shared_ptr<Method>> methods;
+};
+
+std::unique_ptr<Mixed> make_mixed() {
+  auto m = std::make_unique<Mixed>(test::mixed_system(3, 1000, 7.0, 0.2, 91));
+  ContactParams cp;
+  cp.beta = 1e-2;
+  m->contacts = std::make_shared<ContactForce>(cp);
+  auto walls = std::make_shared<WallForce>();
+  auto tethers = std::make_shared<TetherForce>(0.5);
+  m->ff.add(walls);  // the protocols' order: walls, contacts, shape, tethers
+  m->ff.add(m->contacts);
+  m->ff.add(std::make_shared<ShapeForce>(100.0, 1.0));
+  m->ff.add(tethers);
+  tethers->connect_by_mean_degree(m->sys, 4.0);
+  tethers->apply_heterogeneity(m->sys, 0.3);
+  // The first 10 cells in no method: they stay put, and their forces must still be zeroed
+  // at every step (the drift zeroes only its own sites').
+  std::vector<int> cells = m->sys.sites_of_kind(SiteKind::kCancer);
+  cells.erase(cells.begin(), cells.begin() + 10);
+  auto active = Method::active(cells, 0.2, 0.1, 2.0, 1e-2);
+  active->randomize_orientations(m->sys);
+  active->set_kT_ramp(Ramp{1e-2, 2e-2, 100, {}});
+  active->set_f0_ramp(Ramp{0.1, 0.05, 150, {}});
+  m->methods = {active, Method::damped(m->sys.sites_of_kind(SiteKind::kVertex), 0.2)};
+  for (const auto& method : m->methods) m->dyn.add(method);
+  m->wall = std::make_shared<PressureWall>();
+  m->wall->pressure = 1e-3;
+  m->wall->kT = 1e-3;
+  m->wall->walls = walls;
+  m->wall->pressure_ramp = Ramp{1e-3, 2e-3, 120, {}};
+  m->dyn.set_pressure_wall(m->wall);
+  return m;
+}
+
+// One step as the separate loops of the step before its fusion (drift, piston, forces, kick,
+// piston), each loop outside any region: the reference the fused step must reproduce. The
+// piston's arithmetic is PressureWall's own (not a copy here: GCC contracts a copy to FMA or
+// not depending on its surroundings, which made this reference differ from the step by 1 ulp
+// in the piston's velocity at step 36; see integrate/pressure_wall.hpp).
+void unfused_step(Mixed& m) {
+  System& sys = m.sys;
+  const double dt = m.dyn.dt();
+  for (const auto& method : m.methods) method->drift_team(sys, dt);
+  PressureWall& w = *m.wall;
+  w.half_kick(dt);
+  w.move(sys.box(), dt);
+  m.ff.compute(sys);
+  ++sys.step;
+  sys.time += dt;
+  for (const auto& method : m.methods) method->apply_ramps(sys.step);
+  w.pressure = w.pressure_ramp->value(sys.step);
+  for (const auto& method : m.methods) method->kick_team(sys, dt, sys.step, method->params());
+  w.update_force(sys, dt);
+  w.half_kick(dt);
+}
+
+bool same_state(const Mixed& a, const Mixed& b) {
+  const Sites &s = a.sys.sites(), &t = b.sys.sites();
+  return s.pos == t.pos && s.vel == t.vel && s.orient == t.orient && s.image == t.image &&
+         s.force == t.force && a.sys.box().lo() == b.sys.box().lo() &&
+         a.wall->velocity == b.wall->velocity && a.wall->force == b.wall->force;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "parallel step of the full mixed system: bit-identical to the unfused loops, 1 and 2 threads") {
+  ThreadGuard guard;
+  const int steps = 200;
+  omp_set_num_threads(1);
+  auto one = make_mixed();
+  REQUIRE(one->sys.n_sites() >= kParallelTeamItems);
+  one->dyn.run(one->sys, one->ff, steps);
+
+  omp_set_num_threads(2);
+  auto two = make_mixed();
+  two->dyn.step_threads().set_mode(StepThreads::Mode::kAll);  // every step on both threads
+  two->dyn.run(two->sys, two->ff, steps);
+  CHECK(two->dyn.step_threads().team_steps() == std::uint64_t(steps));
+  // The step used two regions (walls before contacts; shape, tethers and the kick after).
+  CHECK(two->ff.team_regions() == 2);
+  CHECK(two->contacts->neighbor_list().builds() > 1);
+  CHECK(two->sys.box().lo()[0] != 0.0);
+  CHECK(same_state(*one, *two));
+
+  auto ref = make_mixed();
+  ref->dyn.prepare(ref->sys, ref->ff);
+  for (int k = 0; k < steps; ++k) unfused_step(*ref);
+  CHECK(ref->sys.step == two->sys.step);
+  CHECK(same_state(*ref, *two));
+}
+
+namespace {
+
+// Feeds `n` steps of `seconds` each to a StepThreads; returns how many ran with 2 threads.
+int feed(StepThreads& st, int n, double seconds) {
+  int team = 0;
+  for (int k = 0; k < n; ++k) {
+    team += st.begin_step() == 2;
+    st.end_step(seconds);
+  }
+  return team;
+}
+
+}  // namespace
+
+TEST_CASE("StepThreads: each step on 1 thread or all, whichever measured faster") {
+  ThreadGuard guard;
+  omp_set_num_threads(2);
+  // Steps of t = 2^-10 s (~1 ms; powers of two keep the sums exact): a window is the first
+  // step count whose time reaches StepThreads::kWindowSeconds.
+  const double t = std::ldexp(1.0, -10);
+  const int window = int(std::ceil(StepThreads::kWindowSeconds / t));
+  REQUIRE(window == 52);
+  const int hold = int(StepThreads::kMinHold) * window;
+
+  SECTION("the team is chosen when its window is faster, and measured again later") {
+    StepThreads st;
+    CHECK(feed(st, window, t) == 0);           // the 1-thread window
+    CHECK(feed(st, window, t / 2) == window);  // the team's window: faster
+    CHECK(feed(st, hold, t / 2) == hold);      // held
+    CHECK(feed(st, window, t) == 0);           // measured again: 1 thread first
+    CHECK(feed(st, window, t / 2) == window);
+    CHECK(feed(st, 2 * hold, t / 2) == 2 * hold);  // the same choice: held twice as long
+    CHECK(st.begin_step() == 1);
+  }
+  SECTION("a team slower than 1 thread (next to a busy core) is dropped within one window") {
+    StepThreads st;
+    CHECK(feed(st, window, t) == 0);
+    // 3 t per step with 2 threads: the trial stops as soon as it has taken longer than the
+    // whole 1-thread window (18 steps), not after 52.
+    CHECK(feed(st, 18, 3 * t) == 18);
+    CHECK(feed(st, hold, t) == 0);
+  }
+  SECTION("a team that becomes slow while held is measured again after one window") {
+    StepThreads st;
+    feed(st, window, t);
+    feed(st, window, t / 2);
+    CHECK(feed(st, window, 2 * t) == window);  // one slow window with the team
+    CHECK(feed(st, window, t) == 0);           // measured again at once
+    CHECK(feed(st, 27, 2 * t) == 27);          // the team's trial, abandoned after 27 steps
+    CHECK(feed(st, hold, t) == 0);
+  }
+  SECTION("light steps never try the team") {
+    StepThreads st;
+    CHECK(feed(st, 200000, 20e-6) == 0);  // below kMinTeamStepSeconds
+  }
+  SECTION("Mode::kAll and a single thread: no measuring") {
+    StepThreads st;
+    st.set_mode(StepThreads::Mode::kAll);
+    CHECK(feed(st, 1000, 20e-6) == 1000);
+    omp_set_num_threads(1);
+    StepThreads one;
+    CHECK(feed(one, 1000, t) == 0);
+    CHECK(one.begin_step() == 1);
+  }
+}
+
+namespace {
+
+// A term without forces that records the OpenMP thread count a step gives its regions.
+class ThreadsSeen : public Force {
+ public:
+  std::string name() const override { return "threads seen"; }
+  ForceResult add_forces(System&, const ForceFlags&) override {
+    seen.push_back(omp_get_max_threads());
+    return {};
+  }
+  std::vector<int> seen;
+};
+
+}  // namespace
+
+TEST_CASE("Dynamics: a light step runs on the calling thread alone; the thread count is restored") {
+  ThreadGuard guard;
+  omp_set_num_threads(2);
+  System sys = test::free_particles(20, 1.0, 3);
+  ForceField ff;
+  auto probe = std::make_shared<ThreadsSeen>();
+  ff.add(probe);
+  Dynamics dyn(0.05);
+  dyn.add(Method::active(test::all_sites(sys), 0.2, 0.02, 25.0, 1e-3));
+  dyn.run(sys, ff, 3000);
+  CHECK(dyn.step_threads().team_steps() == 0);
+  CHECK(dyn.step_threads().serial_steps() == 3000);
+  REQUIRE(probe->seen.size() == 3001);  // prepare, then every step
+  CHECK(probe->seen[0] == 2);           // (prepare is not a step)
+  CHECK(std::count(probe->seen.begin() + 1, probe->seen.end(), 1) == 3000);
+  CHECK(omp_get_max_threads() == 2);
+
+  // Mode::kAll: every step with both threads.
+  probe->seen.clear();
+  dyn.step_threads().set_mode(StepThreads::Mode::kAll);
+  dyn.run(sys, ff, 10);
+  CHECK(std::count(probe->seen.begin(), probe->seen.end(), 2) == 10);
+  CHECK(dyn.step_threads().team_steps() == 10);
+  CHECK(omp_get_max_threads() == 2);
+}
