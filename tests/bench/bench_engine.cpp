@@ -61,6 +61,14 @@ void relax(System& sys, ForceField& ff) {
   Fire(fp).minimize(sys, ff);
 }
 
+// Candidates tested and entries kept per site by the last list build (on stderr).
+void print_list_stats(const System& sys, const VerletList& list) {
+  double entries = 0.0;
+  for (std::size_t i = 0; i < sys.n_sites(); ++i) entries += list.count(i);
+  std::fprintf(stderr, "list: %.1f candidates, %.1f entries per site\n",
+               double(list.candidates()) / double(sys.n_sites()), entries / double(sys.n_sites()));
+}
+
 // Times workload (a) at temperature kT.
 Rate time_cancer(int n, double beta, int steps, std::uint64_t* builds = nullptr, double kT = 1e-3) {
   System sys = test::random_spheres(n, 0.65, false, 7);
@@ -76,6 +84,7 @@ Rate time_cancer(int n, double beta, int steps, std::uint64_t* builds = nullptr,
   const auto builds0 = contacts->neighbor_list().builds();
   const Rate rate = time_steps(sys, ff, dyn, steps);
   if (builds) *builds = contacts->neighbor_list().builds() - builds0;
+  if (builds) print_list_stats(sys, contacts->neighbor_list());
   return rate;
 }
 
@@ -100,7 +109,9 @@ Rate time_full(int nx, int nyz, int n_cells, int steps, int* n_bodies = nullptr,
   dyn.run(sys, ff, 50);
   if (n_bodies) *n_bodies = int(sys.bodies().size());
   if (n_sites) *n_sites = int(sys.n_sites());
-  return time_steps(sys, ff, dyn, steps);
+  const Rate rate = time_steps(sys, ff, dyn, steps);
+  if (!n_sites) print_list_stats(sys, static_cast<ContactForce&>(*ff.terms()[0]).neighbor_list());
+  return rate;
 }
 
 void bench_full(int nx, int nyz, int n_cells, int steps, int threads) {
