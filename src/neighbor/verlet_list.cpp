@@ -1,6 +1,8 @@
 #include "neighbor/verlet_list.hpp"
 #include "core/parallel.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -13,6 +15,10 @@ VerletList::VerletList(double skin) : skin_(skin) {
 }
 
 void VerletList::set_cutoff_rule(const CutoffRule& rule) {
+  if (rule.factor[0][1] != rule.factor[1][0])
+    fail_input("neighbour list: cutoff factor cancer-vertex = ", rule.factor[0][1],
+               " differs from vertex-cancer = ", rule.factor[1][0],
+               " (pair cutoffs are symmetric)");
   rule_ = rule;
   valid_ = false;
 }
@@ -101,16 +107,18 @@ void VerletList::build(const System& sys) {
     cell_kind_[p] = s.kind[j];
   }
 
+  // Each pair is tested once, from the site that comes first in the binned order (the
+  // stencils are symmetric): the partner after it goes to the site's row ("upper" entries),
+  // then every upper entry (i, j) is mirrored into row j, and the rows are sorted.
   counts_.assign(n, 0);
+  upper_.assign(n, 0);
   const MinimumImage image(box);
-  bool overflow = true;
-  while (overflow) {
-    overflow = false;
+  for (;;) {
     list_.resize(n * stride_);
-    int max_count = 0;
+    int max_upper = 0;
     std::uint64_t candidates = 0;
     // Bin by bin: the candidate runs are found once per bin and its sites scanned while hot.
-#pragma omp parallel reduction(max : max_count) reduction(+ : candidates) if (parallel_heavy(n))
+#pragma omp parallel reduction(max : max_upper) reduction(+ : candidates) if (parallel_heavy(n))
     {
       std::vector<std::array<int, 2>> runs;
 #pragma omp for schedule(dynamic, 64)
@@ -118,12 +126,10 @@ void VerletList::build(const System& sys) {
         if (cell_start_[bin] == cell_start_[bin + 1]) continue;
         const int ca = bin / n_cells, c = bin % n_cells;
         runs.clear();
-        std::uint64_t n_cand = 0;
         for (int cb = 0; cb < kClasses; ++cb)
           grid_.for_each_run(c, ca, cb, [&](int c0, int c1) {
             const int p0 = cell_start_[cb * n_cells + c0], p1 = cell_start_[cb * n_cells + c1 + 1];
             if (p0 < p1) runs.push_back({p0, p1});
-            n_cand += std::uint64_t(p1 - p0);
           });
         for (int q = cell_start_[bin]; q < cell_start_[bin + 1]; ++q) {
           const int i = cell_sites_[q];
@@ -133,10 +139,11 @@ void VerletList::build(const System& sys) {
           const double di = cell_diam_[q];
           int* out = &list_[std::size_t(i) * stride_];
           int m = 0;
-          candidates += n_cand;
-          for (const auto& run : runs)
-            for (int p = run[0]; p < run[1]; ++p) {
-              if (p == q || (bi >= 0 && cell_body_[p] == bi)) continue;
+          for (const auto& run : runs) {
+            const int p0 = std::max(run[0], q + 1);  // partners after q only
+            candidates += std::uint64_t(std::max(run[1] - p0, 0));
+            for (int p = p0; p < run[1]; ++p) {
+              if (bi >= 0 && cell_body_[p] == bi) continue;
               const double dx = image.x(ri[0] - cell_pos_[p][0]),
                            dy = image.y(ri[1] - cell_pos_[p][1]),
                            dz = image.z(ri[2] - cell_pos_[p][2]);
@@ -146,20 +153,46 @@ void VerletList::build(const System& sys) {
                 ++m;
               }
             }
-          // Rows in index order: the force sums then do not depend on when the list was built
-          // (a run restarted from a checkpoint rebuilds at another step).
-          if (m <= int(stride_)) std::sort(out, out + m);
-          counts_[i] = m;
-          max_count = std::max(max_count, m);
+          }
+          upper_[i] = m;
+          max_upper = std::max(max_upper, m);
         }
       }
     }
-    if (max_count > int(stride_)) {
-      stride_ = std::size_t(max_count) + 16;
-      overflow = true;
+    candidates_ = candidates;
+    if (max_upper > int(stride_)) {  // room for the mirrored entries too
+      stride_ = 2 * std::size_t(max_upper) + 16;
+      continue;
+    }
+    // Mirror: (i, j) into row j after its upper entries. Each thread fills the rows of its own
+    // range of sites, scanning all upper entries in index order (no two threads write a row).
+    int max_count = 0;
+#pragma omp parallel reduction(max : max_count) if (parallel_heavy(n))
+    {
+      const int nt = omp_get_num_threads(), t = omp_get_thread_num();
+      const int lo = int(n * t / nt), hi = int(n * (t + 1) / nt);
+      for (int j = lo; j < hi; ++j) counts_[j] = upper_[j];
+      for (std::size_t i = 0; i < n; ++i) {
+        const int* row = &list_[i * stride_];
+        for (int k = 0; k < upper_[i]; ++k) {
+          const int j = row[k];
+          if (j < lo || j >= hi) continue;
+          const int pos = counts_[j]++;
+          if (pos < int(stride_)) list_[std::size_t(j) * stride_ + pos] = int(i);
+        }
+      }
+      for (int j = lo; j < hi; ++j) max_count = std::max(max_count, counts_[j]);
     }
     max_count_ = std::size_t(max_count);
-    candidates_ = candidates;
+    if (max_count <= int(stride_)) break;
+    stride_ = std::size_t(max_count) + 16;
+  }
+  // Rows in index order: the force sums then do not depend on when the list was built (a run
+  // restarted from a checkpoint rebuilds at another step).
+#pragma omp parallel for schedule(static) if (parallel_heavy(n))
+  for (std::size_t i = 0; i < n; ++i) {
+    int* row = &list_[i * stride_];
+    std::sort(row, row + counts_[i]);
   }
   pos_at_build_ = s.pos;
   box_version_ = box.version();

@@ -7,6 +7,8 @@
 // or sites were added. The build sorts the sites by class (kind) and cell, with their data
 // copied in that order, and scans for each site only the cells of its class pair's stencil
 // (cell_stencil.hpp): contiguous runs of candidates, about the volume of the pair's reach.
+// Each pair is tested once, from the site first in that order, and entered in both rows
+// (the cutoff rule must be symmetric); then the rows are sorted.
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -16,7 +18,7 @@
 
 namespace invasim {
 
-// Cutoff of a pair = factor[kind_i][kind_j] * (d_i + d_j) / 2.
+// Cutoff of a pair = factor[kind_i][kind_j] * (d_i + d_j) / 2 (factor symmetric).
 struct CutoffRule {
   std::array<std::array<double, 2>, 2> factor{{{1.0, 1.0}, {1.0, 1.0}}};
   double of(SiteKind a, SiteKind b, double da, double db) const {
@@ -57,7 +59,7 @@ class VerletList {
   std::size_t stride_ = 64;
   std::size_t max_count_ = 0;
   std::uint64_t candidates_ = 0;
-  std::vector<int> counts_;
+  std::vector<int> counts_, upper_;
   std::vector<int> list_;
   std::vector<Vec3> pos_at_build_;
   // Cell list scratch: the grid, the (class, cell) bin of each site, sites sorted by bin
