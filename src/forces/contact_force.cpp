@@ -54,15 +54,24 @@ void ContactForce::set_params(const ContactParams& params) {
 
 namespace {
 
-// The constants of pair (i, j) read from the class table (few distinct (kind, diameter)).
+// The constants of pair (i, j) on the branch of separation^2 r2 (repulsive unless the pair is
+// cohesive and r2 > rb2), with the pair's cutoff^2 and coincidence threshold^2.
+struct PairBranch {
+  double rc2, tiny2, c, d, r0, e0;
+};
+
+// The constants of pair (i, j) read from the class table (few distinct (kind, diameter)); the
+// branch's constants are loaded at a computed index (see PairTable).
 struct TablePairs {
   const PairTable& t;
   const int* cls;
   int row;  // class of site i times the number of classes
-  PairCoefficients operator()(int j) const {
+  template <bool kCohesive>
+  PairBranch branch(int j, double r2) const {
     const int k = row + cls[j];
-    return {t.rc2[k],   t.rb2[k],    t.c_rep[k],  t.d_rep[k], t.c_att[k],
-            t.d_att[k], t.r0_rep[k], t.r0_att[k], t.e0[k],    t.tiny2[k]};
+    const bool rep = !kCohesive || r2 <= t.rb2[k];
+    const int b = 2 * k + (rep ? 0 : 1);
+    return {t.rc2[k], t.tiny2[k], t.c[b], t.d[b], t.r0[b], t.e0[b]};
   }
 };
 
@@ -73,10 +82,18 @@ struct DirectPairs {
   const double* eps;  // the energies of site i's kind with kinds 0 and 1
   double alpha, beta, di;
   int ki;
-  PairCoefficients operator()(int j) const {
+  template <bool kCohesive>
+  PairBranch branch(int j, double r2) const {
     const int kj = kind[j];
     const double cc = (ki | kj) == 0 ? 1.0 : 0.0;  // cohesion between cancer cells only
-    return pair_coefficients(0.5 * (di + diam[j]), eps[kj], alpha, cc * beta);
+    const PairCoefficients c = pair_coefficients(0.5 * (di + diam[j]), eps[kj], alpha, cc * beta);
+    const bool rep = !kCohesive || r2 <= c.rb2;
+    return {c.rc2,
+            c.tiny2,
+            rep ? c.c_rep : c.c_att,
+            rep ? c.d_rep : c.d_att,
+            rep ? c.r0_rep : c.r0_att,
+            rep ? c.e0 : 0.0};
   }
 };
 
@@ -130,10 +147,9 @@ void site_contacts(int i, const double* pos, const int* nb, int m, const Minimum
       const double dx = wrap(xi - pos[3 * j], hx, lx), dy = wrap(yi - pos[3 * j + 1], hy, ly),
                    dz = wrap(zi - pos[3 * j + 2], hz, lz);
       const double r2 = dx * dx + dy * dy + dz * dz;
-      const PairCoefficients c = pairs(j);
+      const PairBranch c = pairs.template branch<kCohesive>(j, r2);
       const bool in = r2 < c.rc2 && j != i;
-      const bool rep = !kCohesive || r2 <= c.rb2;
-      const double cf = rep ? c.c_rep : c.c_att, df = rep ? c.d_rep : c.d_att;
+      const double cf = c.c, df = c.d;
       const double r = std::sqrt(r2);
       const double inv_r = 1.0 / r;
       // Coincident sites: the force at r along a fixed direction, opposite for the partners.
@@ -147,8 +163,7 @@ void site_contacts(int i, const double* pos, const int* nb, int m, const Minimum
       gy[k] = in ? fy : 0.0;
       gz[k] = in ? fz : 0.0;
       if constexpr (kEnergy) {
-        const double r0 = rep ? c.r0_rep : c.r0_att;
-        const double u = 0.5 * df * (r - r0) * (r - r0) + (rep ? c.e0 : 0.0);
+        const double u = 0.5 * df * (r - c.r0) * (r - c.r0) + c.e0;
         ge[k] = in ? 0.5 * u : 0.0;
       }
       if constexpr (kVirial) {

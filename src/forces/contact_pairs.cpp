@@ -32,22 +32,23 @@ bool PairTable::build(const Sites& s, const ContactParams& p) {
   }
   n_classes_ = int(kinds.size());
   const std::size_t nt = std::size_t(n_classes_) * n_classes_;
-  for (auto* v : {&rc2, &rb2, &c_rep, &d_rep, &c_att, &d_att, &r0_rep, &r0_att, &e0, &tiny2})
-    v->resize(nt);
+  for (auto* v : {&rc2, &rb2, &tiny2}) v->resize(nt);
+  for (auto* v : {&c, &d, &r0, &e0}) v->resize(2 * nt);
   for (int a = 0; a < n_classes_; ++a)
     for (int b = 0; b < n_classes_; ++b) {
-      const PairCoefficients c = pair_coefficients(p, kinds[a], kinds[b], diams[a], diams[b]);
+      const PairCoefficients k = pair_coefficients(p, kinds[a], kinds[b], diams[a], diams[b]);
       const std::size_t t = std::size_t(a) * n_classes_ + b;
-      rc2[t] = c.rc2;
-      rb2[t] = c.rb2;
-      c_rep[t] = c.c_rep;
-      d_rep[t] = c.d_rep;
-      c_att[t] = c.c_att;
-      d_att[t] = c.d_att;
-      r0_rep[t] = c.r0_rep;
-      r0_att[t] = c.r0_att;
-      e0[t] = c.e0;
-      tiny2[t] = c.tiny2;
+      rc2[t] = k.rc2;
+      rb2[t] = k.rb2;
+      tiny2[t] = k.tiny2;
+      c[2 * t] = k.c_rep;
+      c[2 * t + 1] = k.c_att;
+      d[2 * t] = k.d_rep;
+      d[2 * t + 1] = k.d_att;
+      r0[2 * t] = k.r0_rep;
+      r0[2 * t + 1] = k.r0_att;
+      e0[2 * t] = k.e0;
+      e0[2 * t + 1] = 0.0;
     }
   usable_ = true;
   return true;

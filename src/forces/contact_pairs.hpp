@@ -57,7 +57,11 @@ PairCoefficients pair_coefficients(const ContactParams& p, SiteKind ka, SiteKind
                                    double db);
 
 // Classes of sites with equal (kind, diameter) and the constants of every class pair, stored
-// field by field (structure of arrays, entry ci * n_classes + cj) for the kernel's gathers.
+// field by field (structure of arrays, entry t = ci * n_classes + cj) for the kernel's gathers.
+// The constants of the two branches are interleaved (entry 2 t for the repulsive branch,
+// 2 t + 1 for the attractive one), so the kernel loads a pair's branch with one gather at a
+// computed index: a select between two loads made GCC keep the loop scalar (it turns
+// `rep ? a[t] : b[t]` into a load through a selected pointer, which it cannot vectorise).
 class PairTable {
  public:
   static constexpr int kMaxClasses = 16;
@@ -70,7 +74,8 @@ class PairTable {
   // The sites' kinds as ints (for the gathers of the fallback path without a table).
   const int* site_kind() const { return kind_.data(); }
 
-  std::vector<double> rc2, rb2, c_rep, d_rep, c_att, d_att, r0_rep, r0_att, e0, tiny2;
+  std::vector<double> rc2, rb2, tiny2;  // per class pair
+  std::vector<double> c, d, r0, e0;     // per class pair and branch (2 t + attractive)
 
  private:
   bool usable_ = false;

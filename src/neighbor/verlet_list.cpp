@@ -1,6 +1,8 @@
 #include "neighbor/verlet_list.hpp"
 #include "core/parallel.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -13,6 +15,10 @@ VerletList::VerletList(double skin) : skin_(skin) {
 }
 
 void VerletList::set_cutoff_rule(const CutoffRule& rule) {
+  if (rule.factor[0][1] != rule.factor[1][0])
+    fail_input("neighbour list: cutoff factor cancer-vertex = ", rule.factor[0][1],
+               " differs from vertex-cancer = ", rule.factor[1][0],
+               " (pair cutoffs are symmetric)");
   rule_ = rule;
   valid_ = false;
 }
@@ -40,81 +46,50 @@ bool VerletList::update(const System& sys) {
   return true;
 }
 
-namespace {
-
-// The cells around cell (cx, cy, cz), deduplicated (an axis with fewer than 3 cells wraps
-// onto itself) and sorted; returns their number.
-int stencil(int cx, int cy, int cz, const std::array<int, 3>& nc, const std::array<bool, 3>& per,
-            int* cells) {
-  int n_nb = 0;
-  for (int dx = -1; dx <= 1; ++dx) {
-    int x = cx + dx;
-    if (x < 0 || x >= nc[0]) {
-      if (!per[0]) continue;
-      x = (x + nc[0]) % nc[0];
-    }
-    for (int dy = -1; dy <= 1; ++dy) {
-      int y = cy + dy;
-      if (y < 0 || y >= nc[1]) {
-        if (!per[1]) continue;
-        y = (y + nc[1]) % nc[1];
-      }
-      for (int dz = -1; dz <= 1; ++dz) {
-        int z = cz + dz;
-        if (z < 0 || z >= nc[2]) {
-          if (!per[2]) continue;
-          z = (z + nc[2]) % nc[2];
-        }
-        const int c = (x * nc[1] + y) * nc[2] + z;
-        if (std::find(cells, cells + n_nb, c) == cells + n_nb) cells[n_nb++] = c;
-      }
-    }
-  }
-  std::sort(cells, cells + n_nb);
-  return n_nb;
-}
-
-}  // namespace
-
 void VerletList::build(const System& sys) {
   const Sites& s = sys.sites();
   const Box& box = sys.box();
   const std::size_t n = s.size();
-  double max_d = 0.0;
-  for (double d : s.diameter) max_d = std::max(max_d, d);
-  double max_factor = 0.0;
-  for (const auto& row : rule_.factor)
-    for (double f : row) max_factor = std::max(max_factor, f);
-  const double reach = max_factor * max_d + skin_;  // largest list radius of any pair
-
-  // Cell grid: cells at least `reach` wide. On periodic axes the minimum image must be unique.
-  std::array<int, 3> nc;
-  Vec3 cell_len;
-  for (int a = 0; a < 3; ++a) {
-    const double len = box.length(a);
-    if (box.periodic(a) && len < 2.0 * reach)
-      fail_input("box length along ", "xyz"[a], " = ", len, " is shorter than twice the ",
-                 "largest pair cutoff + skin (", reach, "); enlarge the box or reduce the skin");
-    nc[a] = std::max(1, int(std::floor(len / std::max(reach, 1e-12))));
-    nc[a] = std::min(nc[a], 1024);
-    cell_len[a] = len / nc[a];
-  }
-  const int n_cells = nc[0] * nc[1] * nc[2];
-  cell_of_.resize(n);
-  auto axis_cell = [&](double x, int a) {
-    int c = int(std::floor((x - box.lo()[a]) / cell_len[a]));
-    return std::clamp(c, 0, nc[a] - 1);  // sites slightly beyond a wall join the edge cell
-  };
-#pragma omp parallel for schedule(static) if (parallel_light(n))
+  // Classes of the grid: the site kinds. The reach of a class pair is its largest list radius.
+  constexpr int kClasses = 2;
+  std::array<double, kClasses> max_d{0.0, 0.0};
+  std::array<bool, kClasses> present{false, false};
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec3& r = s.pos[i];
-    cell_of_[i] = (axis_cell(r[0], 0) * nc[1] + axis_cell(r[1], 1)) * nc[2] + axis_cell(r[2], 2);
+    const int k = int(s.kind[i]);
+    max_d[k] = std::max(max_d[k], s.diameter[i]);
+    present[k] = true;
   }
-  // Counting sort (stable: sites in a cell keep increasing index order), and the sites' data
-  // in cell order.
-  cell_start_.assign(n_cells + 1, 0);
+  std::vector<double> reach(kClasses * kClasses, 0.0);
+  double reach_max = skin_, reach_min = INFINITY;
+  for (int a = 0; a < kClasses; ++a)
+    for (int b = 0; b < kClasses; ++b) {
+      if (!present[a] || !present[b]) continue;
+      const double r = rule_.of(SiteKind(a), SiteKind(b), max_d[a], max_d[b]) + skin_;
+      reach[a * kClasses + b] = r;
+      reach_max = std::max(reach_max, r);
+      reach_min = std::min(reach_min, r);
+    }
+  // On periodic axes the minimum image must be unique.
+  for (int a = 0; a < 3; ++a)
+    if (box.periodic(a) && box.length(a) < 2.0 * reach_max)
+      fail_input("box length along ", "xyz"[a], " = ", box.length(a),
+                 " is shorter than twice the largest pair cutoff + skin (", reach_max,
+                 "); enlarge the box or reduce the skin");
+  // Cells half the smallest reach wide: the stencils then follow the spheres of reach closely;
+  // at most ~4 cells per site (empty cells cost little: a strip is one contiguous run).
+  grid_.setup(box, 0.5 * reach_min, reach, kClasses,
+              int(std::min<std::size_t>(4 * n + 64, std::size_t(1) << 24)));
+  const int n_cells = grid_.n_cells();
+  cell_of_.resize(n);
+#pragma omp parallel for schedule(static) if (parallel_light(n))
+  for (std::size_t i = 0; i < n; ++i)
+    cell_of_[i] = int(s.kind[i]) * n_cells + grid_.cell_of(s.pos[i]);
+  // Counting sort by (class, cell) (stable: sites in a bin keep increasing index order), and
+  // the sites' data in that order.
+  const int n_bins = kClasses * n_cells;
+  cell_start_.assign(n_bins + 1, 0);
   for (std::size_t i = 0; i < n; ++i) ++cell_start_[cell_of_[i] + 1];
-  for (int c = 0; c < n_cells; ++c) cell_start_[c + 1] += cell_start_[c];
+  for (int c = 0; c < n_bins; ++c) cell_start_[c + 1] += cell_start_[c];
   cell_sites_.resize(n);
   {
     std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
@@ -132,52 +107,92 @@ void VerletList::build(const System& sys) {
     cell_kind_[p] = s.kind[j];
   }
 
+  // Each pair is tested once, from the site that comes first in the binned order (the
+  // stencils are symmetric): the partner after it goes to the site's row ("upper" entries),
+  // then every upper entry (i, j) is mirrored into row j, and the rows are sorted.
   counts_.assign(n, 0);
-  const std::array<bool, 3> per = box.periodic();
+  upper_.assign(n, 0);
   const MinimumImage image(box);
-  bool overflow = true;
-  while (overflow) {
-    overflow = false;
+  for (;;) {
     list_.resize(n * stride_);
-    int max_count = 0;
-    // Cell by cell: the stencil is found once per cell and its sites are scanned while hot.
-#pragma omp parallel for schedule(dynamic, 16) reduction(max : max_count) if (parallel_heavy(n))
-    for (int c = 0; c < n_cells; ++c) {
-      if (cell_start_[c] == cell_start_[c + 1]) continue;
-      int cells[27];
-      const int n_nb = stencil(c / (nc[1] * nc[2]), (c / nc[2]) % nc[1], c % nc[2], nc, per, cells);
-      for (int q = cell_start_[c]; q < cell_start_[c + 1]; ++q) {
-        const int i = cell_sites_[q];
-        const Vec3 ri = cell_pos_[q];
-        const int bi = cell_body_[q];
-        const SiteKind ki = cell_kind_[q];
-        const double di = cell_diam_[q];
-        int* out = &list_[std::size_t(i) * stride_];
-        int m = 0;
-        for (int k = 0; k < n_nb; ++k)
-          for (int p = cell_start_[cells[k]]; p < cell_start_[cells[k] + 1]; ++p) {
-            if (p == q || (bi >= 0 && cell_body_[p] == bi)) continue;
-            const double dx = image.x(ri[0] - cell_pos_[p][0]),
-                         dy = image.y(ri[1] - cell_pos_[p][1]),
-                         dz = image.z(ri[2] - cell_pos_[p][2]);
-            const double rc = rule_.of(ki, cell_kind_[p], di, cell_diam_[p]) + skin_;
-            if (dx * dx + dy * dy + dz * dz < rc * rc) {
-              if (m < int(stride_)) out[m] = cell_sites_[p];
-              ++m;
+    int max_upper = 0;
+    std::uint64_t candidates = 0;
+    // Bin by bin: the candidate runs are found once per bin and its sites scanned while hot.
+#pragma omp parallel reduction(max : max_upper) reduction(+ : candidates) if (parallel_heavy(n))
+    {
+      std::vector<std::array<int, 2>> runs;
+#pragma omp for schedule(dynamic, 64)
+      for (int bin = 0; bin < n_bins; ++bin) {
+        if (cell_start_[bin] == cell_start_[bin + 1]) continue;
+        const int ca = bin / n_cells, c = bin % n_cells;
+        runs.clear();
+        for (int cb = 0; cb < kClasses; ++cb)
+          grid_.for_each_run(c, ca, cb, [&](int c0, int c1) {
+            const int p0 = cell_start_[cb * n_cells + c0], p1 = cell_start_[cb * n_cells + c1 + 1];
+            if (p0 < p1) runs.push_back({p0, p1});
+          });
+        for (int q = cell_start_[bin]; q < cell_start_[bin + 1]; ++q) {
+          const int i = cell_sites_[q];
+          const Vec3 ri = cell_pos_[q];
+          const int bi = cell_body_[q];
+          const SiteKind ki = cell_kind_[q];
+          const double di = cell_diam_[q];
+          int* out = &list_[std::size_t(i) * stride_];
+          int m = 0;
+          for (const auto& run : runs) {
+            const int p0 = std::max(run[0], q + 1);  // partners after q only
+            candidates += std::uint64_t(std::max(run[1] - p0, 0));
+            for (int p = p0; p < run[1]; ++p) {
+              if (bi >= 0 && cell_body_[p] == bi) continue;
+              const double dx = image.x(ri[0] - cell_pos_[p][0]),
+                           dy = image.y(ri[1] - cell_pos_[p][1]),
+                           dz = image.z(ri[2] - cell_pos_[p][2]);
+              const double rc = rule_.of(ki, cell_kind_[p], di, cell_diam_[p]) + skin_;
+              if (dx * dx + dy * dy + dz * dz < rc * rc) {
+                if (m < int(stride_)) out[m] = cell_sites_[p];
+                ++m;
+              }
             }
           }
-        // Rows in index order: the force sums then do not depend on when the list was built
-        // (a run restarted from a checkpoint rebuilds at another step).
-        if (m <= int(stride_)) std::sort(out, out + m);
-        counts_[i] = m;
-        max_count = std::max(max_count, m);
+          upper_[i] = m;
+          max_upper = std::max(max_upper, m);
+        }
       }
     }
-    if (max_count > int(stride_)) {
-      stride_ = std::size_t(max_count) + 16;
-      overflow = true;
+    candidates_ = candidates;
+    if (max_upper > int(stride_)) {  // room for the mirrored entries too
+      stride_ = 2 * std::size_t(max_upper) + 16;
+      continue;
+    }
+    // Mirror: (i, j) into row j after its upper entries. Each thread fills the rows of its own
+    // range of sites, scanning all upper entries in index order (no two threads write a row).
+    int max_count = 0;
+#pragma omp parallel reduction(max : max_count) if (parallel_heavy(n))
+    {
+      const int nt = omp_get_num_threads(), t = omp_get_thread_num();
+      const int lo = int(n * t / nt), hi = int(n * (t + 1) / nt);
+      for (int j = lo; j < hi; ++j) counts_[j] = upper_[j];
+      for (std::size_t i = 0; i < n; ++i) {
+        const int* row = &list_[i * stride_];
+        for (int k = 0; k < upper_[i]; ++k) {
+          const int j = row[k];
+          if (j < lo || j >= hi) continue;
+          const int pos = counts_[j]++;
+          if (pos < int(stride_)) list_[std::size_t(j) * stride_ + pos] = int(i);
+        }
+      }
+      for (int j = lo; j < hi; ++j) max_count = std::max(max_count, counts_[j]);
     }
     max_count_ = std::size_t(max_count);
+    if (max_count <= int(stride_)) break;
+    stride_ = std::size_t(max_count) + 16;
+  }
+  // Rows in index order: the force sums then do not depend on when the list was built (a run
+  // restarted from a checkpoint rebuilds at another step).
+#pragma omp parallel for schedule(static) if (parallel_heavy(n))
+  for (std::size_t i = 0; i < n; ++i) {
+    int* row = &list_[i * stride_];
+    std::sort(row, row + counts_[i]);
   }
   pos_at_build_ = s.pos;
   box_version_ = box.version();

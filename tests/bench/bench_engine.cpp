@@ -12,6 +12,7 @@
 //   bench_engine full N_CELLS STEPS                  workload (b), N_CELLS = 1500 or 7000
 //   bench_engine free N STEPS                        N free active particles, no forces (a light
 //                                                    step, like test_dynamics' orientation runs)
+// `single` also prints the last list build's candidates and entries per site on stderr.
 #include <omp.h>
 #include <time.h>
 
@@ -79,6 +80,14 @@ void relax(System& sys, ForceField& ff) {
   Fire(fp).minimize(sys, ff);
 }
 
+// Candidates tested and entries kept per site by the last list build (on stderr).
+void print_list_stats(const System& sys, const VerletList& list) {
+  double entries = 0.0;
+  for (std::size_t i = 0; i < sys.n_sites(); ++i) entries += list.count(i);
+  std::fprintf(stderr, "list: %.1f candidates, %.1f entries per site\n",
+               double(list.candidates()) / double(sys.n_sites()), entries / double(sys.n_sites()));
+}
+
 // Times workload (a) at temperature kT.
 Rate time_cancer(int n, double beta, int steps, std::uint64_t* builds = nullptr, double kT = 1e-3) {
   System sys = test::random_spheres(n, 0.65, false, 7);
@@ -95,6 +104,7 @@ Rate time_cancer(int n, double beta, int steps, std::uint64_t* builds = nullptr,
   const auto builds0 = contacts->neighbor_list().builds();
   const Rate rate = time_steps(sys, ff, dyn, steps);
   if (builds) *builds = contacts->neighbor_list().builds() - builds0;
+  if (builds) print_list_stats(sys, contacts->neighbor_list());
   return rate;
 }
 

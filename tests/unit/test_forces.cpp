@@ -429,6 +429,42 @@ TEST_CASE(
   }
 }
 
+TEST_CASE(
+    "PairTable: the branches' constants interleaved per class pair (2t repulsive, 2t+1 "
+    "attractive) equal pair_coefficients") {
+  // The kernel loads a pair's branch at index 2t + attractive (one gather, vectorised); this
+  // layout is what it relies on.
+  System sys = mixed_system(2, 40, 4.6, 0.4, 12);
+  ContactParams p = cohesive_params();
+  p.eps_cv = 0.7;
+  p.eps_vv = 1.3;
+  PairTable table;
+  REQUIRE(table.build(sys.sites(), p));
+  const int nc = table.n_classes();
+  REQUIRE(nc == 3);
+  const Sites& s = sys.sites();
+  int checked = 0;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    for (std::size_t j = 0; j < s.size(); j += 7) {
+      const std::size_t t = std::size_t(table.site_class()[i] * nc + table.site_class()[j]);
+      const PairCoefficients c =
+          pair_coefficients(p, s.kind[i], s.kind[j], s.diameter[i], s.diameter[j]);
+      CHECK(table.rc2[t] == c.rc2);
+      CHECK(table.rb2[t] == c.rb2);
+      CHECK(table.tiny2[t] == c.tiny2);
+      CHECK(table.c[2 * t] == c.c_rep);
+      CHECK(table.c[2 * t + 1] == c.c_att);
+      CHECK(table.d[2 * t] == c.d_rep);
+      CHECK(table.d[2 * t + 1] == c.d_att);
+      CHECK(table.r0[2 * t] == c.r0_rep);
+      CHECK(table.r0[2 * t + 1] == c.r0_att);
+      CHECK(table.e0[2 * t] == c.e0);
+      CHECK(table.e0[2 * t + 1] == 0.0);
+      ++checked;
+    }
+  CHECK(checked > 1000);
+}
+
 TEST_CASE("contact forces are minus the gradient of the contact energy (finite differences)") {
   SECTION("cancer-cancer with cohesion, all three branches, periodic box") {
     const ContactParams p = cohesive_params();

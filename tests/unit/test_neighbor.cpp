@@ -378,3 +378,52 @@ TEST_CASE("Verlet list refuses a periodic box shorter than twice the cutoff + sk
   shrink.scale(Vec3::Constant(2.7 / L), false);
   CHECK_THROWS_AS(l2.update(shrink), InputError);
 }
+
+TEST_CASE(
+    "Verlet list: per-class-pair stencils scan about the reach's volume, rows exact, in mixed "
+    "systems") {
+  // Cancer cells (cohesive: list radius 1.2 s + skin) next to adipocyte vertices (diameter 2):
+  // the largest reach is the vertex-vertex one (2.3), the cells' own is 1.62. Cells of half
+  // the smallest reach and stencils per class pair scan ~5.7 candidates per listed pair here,
+  // and testing each pair once (from the site first in the binned order) halves that; cells as
+  // wide as the largest reach (the former grid), every pair tested from both sides, scan ~29.
+  const CutoffRule rule = rule_of(1.2, 1.0, 1.0);
+  SECTION("slab of 2 x 2 x 2 adipocytes and 1500 cells") {
+    System sys = test::slab_system(2, 2, 1500, 5.2, 0.6, 11);
+    VerletList list(0.3);
+    list.set_cutoff_rule(rule);
+    list.update(sys);
+    require_exact(sys, list, rule);
+    double entries = 0.0;
+    for (std::size_t i = 0; i < sys.n_sites(); ++i) entries += list.count(i);
+    const double per_entry = double(list.candidates()) / entries;
+    INFO("candidates per listed pair " << per_entry);
+    CHECK(per_entry < 4.0);
+  }
+  SECTION("one adipocyte in a small box: the vertex stencils wrap onto themselves") {
+    // L = 6: 7 cells per axis of width 0.86, the vertex-vertex stencil spans 7 offsets.
+    System sys = test::mixed_system(1, 40, 6.0, 0.3, 5);
+    VerletList list(0.3);
+    list.set_cutoff_rule(rule);
+    list.update(sys);
+    require_exact(sys, list, rule);
+  }
+  SECTION("8 adipocytes and 100 cells in a box of side 10") {
+    System sys = test::mixed_system(2, 100, 5.0, 0.5, 6);
+    VerletList list(0.3);
+    list.set_cutoff_rule(rule);
+    list.update(sys);
+    require_exact(sys, list, rule);
+  }
+}
+
+TEST_CASE("Verlet list refuses an asymmetric cutoff rule, naming both factors") {
+  // Each pair is tested once for both rows, which needs cutoff(i, j) = cutoff(j, i).
+  VerletList list(0.3);
+  CHECK_NOTHROW(list.set_cutoff_rule(rule_of(1.2, 1.05, 0.95)));
+  CutoffRule rule = rule_of(1.2, 1.0, 1.0);
+  rule.factor[1][0] = 1.1;
+  CHECK_THROWS_AS(list.set_cutoff_rule(rule), InputError);
+  CHECK_THROWS_WITH(list.set_cutoff_rule(rule),
+                    Contains("cancer-vertex = 1") && Contains("vertex-cancer = 1.1"));
+}
