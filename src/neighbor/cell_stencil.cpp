@@ -45,12 +45,20 @@ void CellStencils::setup(const Box& box, double width, const std::vector<double>
   // distance of two sites in them); a tiny margin covers the rounding of the cell assignment.
   const double margin = 1e-9 * max_len;
   auto gap = [&](int d, int a) { return std::max(0, std::abs(d) - 1) * cell_len_[a]; };
+  // Offsets along axis a that a reach r needs: never more than the grid has (a periodic axis
+  // wraps within n offsets, a wall axis has n - 1), whatever r / cell length is. A tissue that
+  // blows up can squeeze a wall axis to a sliver, where r / cell length reaches 1e9 and more.
+  auto reach_in_cells = [&](double r, int a) {
+    const int limit = periodic_[a] ? nc_[a] : nc_[a] - 1;
+    const double k = std::ceil(r / cell_len_[a]);
+    return k <= double(limit) ? int(k) : limit;  // also for NaN
+  };
   for (int ca = 0; ca < n_classes; ++ca)
     for (int cb = 0; cb < n_classes; ++cb) {
       const double r = reach[std::size_t(ca) * n_classes + cb] + margin;
       if (!(r > 0.0)) continue;
       std::array<int, 3> k;
-      for (int a = 0; a < 3; ++a) k[a] = int(std::ceil(r / cell_len_[a]));
+      for (int a = 0; a < 3; ++a) k[a] = reach_in_cells(r, a);
       auto& st = stencil_[std::size_t(ca) * n_classes + cb];
       for (int dx = -k[0]; dx <= k[0]; ++dx) {
         if (!canonical(dx, k[0], nc_[0], periodic_[0])) continue;

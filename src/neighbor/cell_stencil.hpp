@@ -23,6 +23,10 @@ class CellStencils {
              int max_cells);
   int n_cells() const { return nc_[0] * nc_[1] * nc_[2]; }
   const std::array<int, 3>& cells_per_axis() const { return nc_; }
+  // Strips in the stencil of class pair (a, b) (bounded by the grid, not by the reach).
+  std::size_t strips(int a, int b) const {
+    return stencil_[std::size_t(a) * n_classes_ + b].size();
+  }
   // Cell of a position (sites slightly beyond a wall join the edge cell).
   int cell_of(const Vec3& r) const;
   // Calls f(c0, c1) for every run of contiguous cells [c0, c1] of the stencil of class pair

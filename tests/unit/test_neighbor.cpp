@@ -10,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "mesh/geometry.hpp"
+#include "neighbor/cell_stencil.hpp"
 #include "neighbor/verlet_list.hpp"
 #include "test_support.hpp"
 
@@ -426,4 +427,27 @@ TEST_CASE("Verlet list refuses an asymmetric cutoff rule, naming both factors") 
   CHECK_THROWS_AS(list.set_cutoff_rule(rule), InputError);
   CHECK_THROWS_WITH(list.set_cutoff_rule(rule),
                     Contains("cancer-vertex = 1") && Contains("vertex-cancer = 1.1"));
+}
+
+TEST_CASE(
+    "Cell stencils stay within the grid when the reach is many cell lengths (squeezed axis)") {
+  // A blown-up tissue can squeeze the walls' axis to a sliver: the reach is then ~1e9 cell
+  // lengths along x. The stencil must still hold only offsets the grid has (it used to loop
+  // over every offset up to the reach: minutes per list build).
+  for (const bool periodic_x : {false, true}) {
+    const Box box(Vec3(0.0, 0.0, 0.0), Vec3(1e-9, 8.0, 8.0), {periodic_x, true, true});
+    CellStencils grid;
+    grid.setup(box, 1e-10, {1.7, 1.7, 1.7, 2.3}, 2, 4096);
+    const auto& nc = grid.cells_per_axis();
+    INFO("periodic x " << periodic_x << ", cells " << nc[0] << " x " << nc[1] << " x " << nc[2]);
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        CHECK(grid.strips(a, b) <= std::size_t((2 * nc[0] + 1) * (2 * nc[1] + 1)));
+        std::vector<int> seen(std::size_t(grid.n_cells()), 0);
+        grid.for_each_run(0, a, b, [&](int c0, int c1) {
+          for (int c = c0; c <= c1; ++c) ++seen[std::size_t(c)];
+        });
+        CHECK(*std::max_element(seen.begin(), seen.end()) == 1);  // every cell once
+      }
+  }
 }
