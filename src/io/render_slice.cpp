@@ -27,10 +27,6 @@ RenderCounts count_shapes(const Slice& slice) {
 
 namespace {
 
-void num(std::string& out, double v) {
-  svg_number(out, v);
-}
-
 // Periodic copies to draw for a shape spanning [min, max] along an in-plane axis: the shape
 // itself and its image one period away if it sticks out of [lo, hi).
 std::vector<double> image_shifts(bool periodic, double lo, double hi, double min, double max) {
@@ -75,11 +71,11 @@ void draw_cells(std::string& out, const SliceCanvas& cv, const Slice& s) {
     const char* style = two && d.active == 0 ? slice_style::kCellPassive : slice_style::kCellActive;
     each_image(cv, s, u - r, u + r, w - r, w + r, [&](double du, double dw) {
       out += "    <circle data-cell=\"" + std::to_string(d.cell) + "\" cx=\"";
-      num(out, cv.x(u + du));
+      svg_number(out, cv.x(u + du));
       out += "\" cy=\"";
-      num(out, cv.y(w + dw));
+      svg_number(out, cv.y(w + dw));
       out += "\" r=\"";
-      num(out, r * cv.scale);
+      svg_number(out, r * cv.scale);
       out += "\" ";
       out += style;
       out += "/>\n";
@@ -93,9 +89,9 @@ std::string path_data(const SliceCanvas& cv, const std::vector<OutlineLoop>& loo
                       double dw) {
   std::string d;
   auto point = [&](const Point2& p) {
-    num(d, cv.x(p[0] + du));
+    svg_number(d, cv.x(p[0] + du));
     d += ' ';
-    num(d, cv.y(p[1] + dw));
+    svg_number(d, cv.y(p[1] + dw));
   };
   for (const OutlineLoop& loop : loops) {
     d += d.empty() ? "M " : " M ";
@@ -103,9 +99,9 @@ std::string path_data(const SliceCanvas& cv, const std::vector<OutlineLoop>& loo
     for (const OutlineStep& step : loop.steps) {
       if (step.radius > 0.0) {
         d += " A ";
-        num(d, step.radius * cv.scale);
+        svg_number(d, step.radius * cv.scale);
         d += ' ';
-        num(d, step.radius * cv.scale);
+        svg_number(d, step.radius * cv.scale);
         d += step.large_arc ? " 0 1 0 " : " 0 0 0 ";
       } else {
         d += " L ";
@@ -153,9 +149,9 @@ void draw_adipocytes(std::string& out, const SliceCanvas& cv, const Slice& s) {
       out += p.closed ? "    <polygon" : "    <polyline";
       out += " data-body=\"" + std::to_string(p.body) + "\" points=\"";
       for (const Point2& q : p.points) {
-        num(out, cv.x(q[0] + du));
+        svg_number(out, cv.x(q[0] + du));
         out += ',';
-        num(out, cv.y(q[1] + dw));
+        svg_number(out, cv.y(q[1] + dw));
         out += ' ';
       }
       out += "\" ";
@@ -200,13 +196,13 @@ std::string slice_svg(const Slice& s, double size_px) {
   std::string out;
   out += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" ";
   out += "width=\"";
-  num(out, cv.width());
+  svg_number(out, cv.width());
   out += "\" height=\"";
-  num(out, cv.height());
+  svg_number(out, cv.height());
   out += "\" viewBox=\"0 0 ";
-  num(out, cv.width());
+  svg_number(out, cv.width());
   out += ' ';
-  num(out, cv.height());
+  svg_number(out, cv.height());
   out += "\">\n";
   const std::string caption = slice_caption(s);
   out += "  <title>" + xml_escape(caption) + "</title>\n";
@@ -215,17 +211,17 @@ std::string slice_svg(const Slice& s, double size_px) {
       "time in tau = sqrt(m sigma^2/eps_c).</desc>\n";
   out += "  <rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   out += "  <text x=\"";
-  num(out, cv.left);
+  svg_number(out, cv.left);
   out += "\" y=\"26\" font-family=\"DejaVu Sans, Arial, sans-serif\" font-size=\"16\">" +
          xml_escape(caption) + "</text>\n";
   out += "  <defs><clipPath id=\"box\"><rect x=\"";
-  num(out, cv.x(cv.lo_u));
+  svg_number(out, cv.x(cv.lo_u));
   out += "\" y=\"";
-  num(out, cv.y(cv.hi_w));
+  svg_number(out, cv.y(cv.hi_w));
   out += "\" width=\"";
-  num(out, box.length(u) * cv.scale);
+  svg_number(out, box.length(u) * cv.scale);
   out += "\" height=\"";
-  num(out, box.length(w) * cv.scale);
+  svg_number(out, box.length(w) * cv.scale);
   out += "\"/></clipPath></defs>\n  <g clip-path=\"url(#box)\">\n";
   draw_adipocytes(out, cv, s);
   draw_cells(out, cv, s);

@@ -17,10 +17,6 @@ constexpr double kLegendRow = 22.0;     // px per legend row
 constexpr double kLegendSample = 26.0;  // px, width of a legend entry's sample
 constexpr double kLegendGap = 18.0;     // px between legend entries
 
-void num(std::string& out, double v) {
-  svg_number(out, v);
-}
-
 // Short decimal form for captions and tick labels: 10 significant digits hide the round-off
 // that summing dt accumulates (6000.000000013062 -> 6000).
 std::string short_number(double v) {
@@ -47,13 +43,13 @@ std::vector<std::pair<double, int>> legend_layout(const std::vector<LegendEntry>
 void text_at(std::string& out, double x, double y, const char* anchor, const std::string& s,
              const char* extra = "") {
   out += "  <text x=\"";
-  num(out, x);
+  svg_number(out, x);
   out += "\" y=\"";
-  num(out, y);
+  svg_number(out, y);
   out += "\" text-anchor=\"";
   out += anchor;
   out += "\" font-family=\"DejaVu Sans, Arial, sans-serif\" font-size=\"";
-  num(out, kFont);
+  svg_number(out, kFont);
   out += "\"";
   out += extra;
   out += '>';  // appended piecewise: GCC 12 warns (-Wrestrict) on "..." + std::string&&
@@ -123,9 +119,9 @@ void append_axes(std::string& out, const SliceCanvas& cv, const Slice& s) {
           axis_title(s.box, s.u_axis), " data-axis=\"u\"");
   const double ym = 0.5 * (cv.y(cv.lo_w) + cv.y(cv.hi_w));
   std::string rotate = " data-axis=\"w\" transform=\"rotate(-90 ";
-  num(rotate, 18.0);
+  svg_number(rotate, 18.0);
   rotate += ' ';
-  num(rotate, ym);
+  svg_number(rotate, ym);
   rotate += ")\"";
   text_at(out, 18.0, ym, "middle", axis_title(s.box, s.w_axis), rotate.c_str());
   out += "  </g>\n";
@@ -145,7 +141,7 @@ void append_legend(std::string& out, const SliceCanvas& cv,
       sample += ' ';
       sample += name;
       sample += "=\"";
-      num(sample, v);
+      svg_number(sample, v);
       sample += '"';
     };
     if (e.kind.rfind("cell", 0) == 0) {

@@ -401,20 +401,18 @@ TEST_CASE(
     INFO("candidates per listed pair " << per_entry);
     CHECK(per_entry < 4.0);
   }
+  auto build_and_require_exact = [&](const System& sys) {
+    VerletList list(0.3);
+    list.set_cutoff_rule(rule);
+    list.update(sys);
+    require_exact(sys, list, rule);
+  };
   SECTION("one adipocyte in a small box: the vertex stencils wrap onto themselves") {
     // L = 6: 7 cells per axis of width 0.86, the vertex-vertex stencil spans 7 offsets.
-    System sys = test::mixed_system(1, 40, 6.0, 0.3, 5);
-    VerletList list(0.3);
-    list.set_cutoff_rule(rule);
-    list.update(sys);
-    require_exact(sys, list, rule);
+    build_and_require_exact(test::mixed_system(1, 40, 6.0, 0.3, 5));
   }
   SECTION("8 adipocytes and 100 cells in a box of side 10") {
-    System sys = test::mixed_system(2, 100, 5.0, 0.5, 6);
-    VerletList list(0.3);
-    list.set_cutoff_rule(rule);
-    list.update(sys);
-    require_exact(sys, list, rule);
+    build_and_require_exact(test::mixed_system(2, 100, 5.0, 0.5, 6));
   }
 }
 
