@@ -80,8 +80,13 @@ FireResult Fire::minimize(System& sys, ForceField& ff, PressureWall* wall,
       fail_simulation("FIRE iteration ", iteration, ": ", e.what());
     }
   };
+  StepThreads own_threads;
+  StepThreads& threads = control && control->threads ? *control->threads : own_threads;
   ff.compute(sys);
   for (result.steps = resume ? resume->steps : 0;; ++result.steps) {
+    // 1 thread or all for this iteration, as measured (next to a busy core a team can be
+    // several times slower than one thread); the same results either way.
+    const MeasuredStep measured(threads);
     if (control && control->stop && control->stop()) {  // an iteration boundary
       result.stopped = true;
       result.state = FireState{dt, alpha, n_positive, result.steps, wall_v};

@@ -35,11 +35,16 @@ struct FireState {
   double wall_velocity = 0.0;  // the piston's velocity (0 without a pressure wall)
 };
 
-// Optional control of a minimisation: a stop request polled before every iteration, and the
-// state of a stopped minimisation to continue from.
+// Optional control of a minimisation: a stop request polled before every iteration, the
+// state of a stopped minimisation to continue from, and the measured thread count to share
+// between the minimisations of one protocol stage.
 struct FireControl {
   std::function<bool()> stop;       // true: return before the next iteration, stopped
   std::optional<FireState> resume;  // continue from this state (velocities as left)
+  // Each iteration runs on 1 thread or all, as measured to be faster (StepThreads; the
+  // results do not depend on it). Null: the minimisation measures on its own. A compression
+  // runs a short minimisation per step, so it keeps one measurement across them.
+  StepThreads* threads = nullptr;
 };
 
 struct FireResult {

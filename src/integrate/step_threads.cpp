@@ -93,4 +93,12 @@ ThreadCountScope::~ThreadCountScope() {
   if (omp_get_max_threads() != saved_) omp_set_num_threads(saved_);
 }
 
+MeasuredStep::MeasuredStep(StepThreads& threads)
+    : threads_(threads), scope_(threads.begin_step()), start_(std::chrono::steady_clock::now()) {}
+
+MeasuredStep::~MeasuredStep() {
+  threads_.end_step(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
+}
+
 }  // namespace invasim

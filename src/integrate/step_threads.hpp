@@ -7,6 +7,7 @@
 // times windows of steps with 1 thread and with all threads and runs the faster, checking
 // again from time to time. The results never depend on the choice (every step is bit-identical
 // for any thread count); only the speed does.
+#include <chrono>
 #include <cstdint>
 
 namespace invasim {
@@ -66,6 +67,22 @@ class ThreadCountScope {
 
  private:
   int saved_;
+};
+
+// One measured step for the lifetime of the object: the thread count StepThreads chose, and
+// the step's wall time handed back to it on destruction (whichever way the step's scope ends).
+// FIRE's iterations use it (a minimisation's loop has several exits).
+class MeasuredStep {
+ public:
+  explicit MeasuredStep(StepThreads& threads);
+  ~MeasuredStep();
+  MeasuredStep(const MeasuredStep&) = delete;
+  MeasuredStep& operator=(const MeasuredStep&) = delete;
+
+ private:
+  StepThreads& threads_;
+  ThreadCountScope scope_;
+  std::chrono::steady_clock::time_point start_;
 };
 
 }  // namespace invasim

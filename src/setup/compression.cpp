@@ -22,8 +22,10 @@ CompressionReport compress_to_phi(System& sys, ForceField& ff, const Compression
   CompressionReport report = so_far;
   report.stopped = false;
   report.fire_state.reset();
+  StepThreads threads;  // one measured thread count for all the steps' minimisations
   FireControl control;
   control.stop = stop;
+  control.threads = &threads;
   control.resume = so_far.fire_state;  // a step's FIRE to finish first (scaling done)
   double phi = packing_fractions(sys).total;
   if (!control.resume && phi > params.target_phi)

@@ -229,3 +229,36 @@ TEST_CASE("FIRE stopped at an iteration boundary and resumed equals an uninterru
   CHECK(a.box().lo()[0] == b.box().lo()[0]);
   for (std::size_t i = 0; i < a.n_sites(); ++i) REQUIRE(a.sites().pos[i] == b.sites().pos[i]);
 }
+
+TEST_CASE("FIRE runs each iteration on the measured thread count, with identical results") {
+  // Large enough for the contact kernel's parallel region (parallel_heavy).
+  auto run = [](int threads, StepThreads* st) {
+    System sys = test::random_spheres(1500, 0.7, true, 11);
+    ForceField ff = spheres_forces(true);
+    FireParams fp;
+    fp.ftol = 1e-12;  // not reached: every run does max_steps iterations
+    fp.max_steps = 300;
+    FireControl control;
+    control.threads = st;
+    const ThreadCountScope scope(threads);
+    const FireResult r = Fire(fp).minimize(sys, ff, nullptr, &control);
+    return std::make_pair(r, sys.sites().pos);
+  };
+  StepThreads all;
+  all.set_mode(StepThreads::Mode::kAll);
+  const auto [r_all, pos_all] = run(2, &all);
+  // Every iteration (and the final check that ends the loop) went through the measured choice.
+  CHECK(all.team_steps() == r_all.steps + 1);
+  CHECK(all.serial_steps() == 0);
+  StepThreads measured;
+  const auto [r_auto, pos_auto] = run(2, &measured);
+  CHECK(measured.team_steps() + measured.serial_steps() == r_auto.steps + 1);
+  const auto [r_one, pos_one] = run(1, nullptr);
+  CHECK(r_all.steps == 300);
+  CHECK(r_auto.energy == r_all.energy);
+  CHECK(r_one.energy == r_all.energy);
+  for (std::size_t i = 0; i < pos_all.size(); ++i) {
+    REQUIRE(pos_auto[i] == pos_all[i]);
+    REQUIRE(pos_one[i] == pos_all[i]);
+  }
+}
