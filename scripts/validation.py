@@ -169,11 +169,13 @@ def main(argv):
         elif args.verb == "all":
             for name, names in FIGURES.items():
                 wss = [os.path.join(args.root, n) for n in names]
-                wss = [w for w in wss if os.path.exists(os.path.join(w, "invasim_sweep.json"))]
-                if len(wss) < REQUIRED.get(name, len(names)):
+                present = [os.path.exists(os.path.join(w, "invasim_sweep.json")) for w in wss]
+                # The first workspace is the figure's own; the others are optional extras.
+                if not present[0] or sum(present) < REQUIRED.get(name, len(names)):
                     print("%s: skipped (no workspace %s)" % (name, ", ".join(
                         os.path.join(args.root, n) for n in names)))
                     continue
+                wss = [w for w, ok in zip(wss, present) if ok]
                 figure(name, wss, args.out, args.invasim, ["figure", name] + wss + ["-o", args.out])
         elif args.verb == "plan":
             from validation_lib import plan

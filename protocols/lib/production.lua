@@ -67,6 +67,17 @@ local function shapes(sys, per_body)
     local mean2 = 0
     for _, a in ipairs(a2) do mean2 = mean2 + a / #a2 end
     result.shape_2d_mean = mean2
+    -- The median as well: a plane grazing a fold of a wrinkled body (A_0 > 1) cuts off a
+    -- sliver region whose p^2/(4 pi s) runs into the hundreds, and a few of them dominate the
+    -- mean; the median is the robust location of the distribution.
+    if #a2 > 0 then
+      local sorted = {}
+      for i, a in ipairs(a2) do sorted[i] = a end
+      table.sort(sorted)
+      local h = #sorted // 2
+      result.shape_2d_median = #sorted % 2 == 1 and sorted[h + 1] or 0.5 * (sorted[h] + sorted[h + 1])
+    end
+    result.shape_2d_profiles = #a2
     result.shape_2d_histogram = iv.histogram(a2, { lo = 1.0, hi = 1.5, bins = 25 })
   end
   return result
@@ -180,6 +191,8 @@ return function(tissue, opts)
   summary.shape_3d_mean = shape.shape_3d_mean
   summary.shape_3d = shape.shape_3d   -- per adipocyte, at the end of the run
   summary.shape_2d_mean = shape.shape_2d_mean
+  summary.shape_2d_median = shape.shape_2d_median
+  summary.shape_2d_profiles = shape.shape_2d_profiles
   if o.out and shape.shape_2d_histogram then
     local h = shape.shape_2d_histogram
     local lines = { "A2_lo,A2_hi,count,density" }

@@ -44,8 +44,9 @@ function M.final(tissue, p, result, seconds, out, extra)
             s.correlation_window)
   end
   if s.shape_3d_mean then
-    log.say("summary", "shape parameter: 3D mean %.4f, 2D slices mean %s", s.shape_3d_mean,
-            optional(s.shape_2d_mean, "%.4f"))
+    log.say("summary", "shape parameter: 3D mean %.4f, 2D slices mean %s, median %s (%s profiles)",
+            s.shape_3d_mean, optional(s.shape_2d_mean, "%.4f"), optional(s.shape_2d_median, "%.4f"),
+            optional(s.shape_2d_profiles, "%d"))
   end
   if out then
     local doc = {

@@ -64,6 +64,12 @@ local summary = table.concat(lines(out .. "/summary.json"), "\n")
 assert(summary:find('"A_t": {') and summary:find('"wall_clock_seconds"'), "summary.json")
 assert(summary:find('"T_c_over_T_a": {') and summary:find('"kT_c_paper": {') and
        summary:find('"kT_c_paper_over_P": '), "summary.json: T_c/T_a and the paper's kT_c")
+-- The slices' median A_2D (robust to sliver profiles) next to the mean, and the profile count.
+local median = tonumber(summary:match('"shape_2d_median": ([%d%.eE+-]+)'))
+local profiles = tonumber(summary:match('"shape_2d_profiles": (%d+)'))
+local mean2 = tonumber(summary:match('"shape_2d_mean": ([%d%.eE+-]+)'))
+assert(median and median >= 1.0 and profiles and profiles > 0 and mean2,
+       "summary.json: shape_2d_median and shape_2d_profiles")
 local log_text = table.concat(lines(out .. "/log.txt"), "\n")
 assert(log_text:find("summary: T_c_over_T_a = ") and log_text:find("summary: kT_c_paper = ") and
        log_text:find("paper's convention: "), "the printed summary shows T_c/T_a and kT_c_paper")
