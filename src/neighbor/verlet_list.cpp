@@ -57,25 +57,22 @@ bool VerletList::update_team(const System& sys) {
   return true;
 }
 
-bool VerletList::moved_team(const System& sys) {
+bool VerletList::moved_team(const System& sys) const {
+  // Every thread tests all sites (a few microseconds: one vectorised pass over positions that
+  // are in cache) and so reaches the same answer without a barrier; sharing the loop would
+  // need one to combine the threads' flags, and a barrier at which a thread sleeps costs a
+  // futex wake-up (docs/performance.md, "Round 4").
   const double limit2 = 0.25 * skin_ * skin_;
   const auto& pos = sys.sites().pos;
   const MinimumImage image(sys.box());
   int moved = 0;
-#pragma omp for schedule(static) nowait
   for (std::size_t i = 0; i < pos.size(); ++i) {
     const double dx = image.x(pos[i][0] - pos_at_build_[i][0]),
                  dy = image.y(pos[i][1] - pos_at_build_[i][1]),
                  dz = image.z(pos[i][2] - pos_at_build_[i][2]);
     moved |= dx * dx + dy * dy + dz * dz > limit2;
   }
-  // Every thread reads every thread's flag after the barrier: all take the same branch.
-  // (The slots are written again only after later barriers.)
-  slots_[omp_get_thread_num()].moved = moved;
-#pragma omp barrier
-  for (int t = 0; t < omp_get_num_threads(); ++t)
-    if (slots_[t].moved) return true;
-  return false;
+  return moved != 0;
 }
 
 void VerletList::setup_grid(const System& sys) {

@@ -44,9 +44,10 @@ class VerletList {
   // (ContactForce::add_forces_team). prepare_update runs on one thread before the region: it
   // decides whether a rebuild is forced (first build, sites added, box changed, invalidated)
   // and then sets up the grid and checks the box (throws InputError). Then every thread of the
-  // region calls update_team: the rebuild test (an orphaned `omp for`; skipped when forced)
-  // and, if due, the build (orphaned `omp for` / `omp single` passes); it returns on every
-  // thread whether it rebuilt, must not throw, and ends with a barrier (rows complete).
+  // region calls update_team: the rebuild test (each thread tests all sites, so all agree
+  // without a barrier; skipped when forced) and, if due, the build (orphaned `omp for` / `omp
+  // single` passes); it returns on every thread whether it rebuilt, must not throw, and ends with a
+  // barrier (rows complete).
   void prepare_update(const System& sys);
   bool update_team(const System& sys);
   // True between a prepare_update that forced a rebuild and the end of that build.
@@ -71,14 +72,14 @@ class VerletList {
   // cell grid (serial; throws InputError for a box too short).
   void setup_grid(const System& sys);
   // Team parts: the rebuild test (some site moved more than skin/2), the build.
-  bool moved_team(const System& sys);
+  bool moved_team(const System& sys) const;
   void build_team(const System& sys);
   // Counting sort of the sites by (class, cell) and their data in that order (serial).
   void bin_sites(const Sites& s);
   // Per-thread results of a team pass, read by every thread after the pass's barrier (so all
   // take the same branch); one cache line each.
   struct alignas(64) ThreadSlot {
-    int moved = 0, max_upper = 0, max_count = 0;
+    int max_upper = 0, max_count = 0;
     std::uint64_t candidates = 0;
   };
   double skin_;
