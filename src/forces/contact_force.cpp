@@ -1,6 +1,9 @@
 #include "forces/contact_force.hpp"
 #include "core/parallel.hpp"
 
+#include <omp.h>
+
+#include <algorithm>
 #include <cmath>
 
 #include "core/deterministic_sum.hpp"
@@ -97,21 +100,8 @@ struct DirectPairs {
   }
 };
 
-// Per-thread scratch: the contribution of every entry of one row (zero beyond the cutoff).
-// Vector lanes of the pair loop: 8 doubles fill an AVX-512 register (two AVX2 ones).
-constexpr int kLanes = 8;
-
-// Per-thread scratch: the contribution of every entry of one row (zero beyond the cutoff).
-struct RowScratch {
-  std::vector<int> idx;
-  std::vector<double> fx, fy, fz, e, wx, wy, wz;
-  void reserve(std::size_t m) {
-    m = (m + kLanes - 1) / kLanes * kLanes;
-    if (idx.size() < m) idx.resize(m);
-    for (auto* v : {&fx, &fy, &fz, &e, &wx, &wy, &wz})
-      if (v->size() < m) v->resize(m);
-  }
-};
+constexpr int kLanes = ContactRowScratch::kLanes;
+using RowScratch = ContactRowScratch;
 
 // Force, energy and virial of site i from its neighbour row nb[0..m). The pair terms are
 // computed in a vectorisable loop into the scratch, then summed in row order (increasing
@@ -198,52 +188,68 @@ void site_contacts(int i, const double* pos, const int* nb, int m, const Minimum
 
 }  // namespace
 
+void ContactRowScratch::reserve(std::size_t m) {
+  m = (m + kLanes - 1) / kLanes * kLanes;
+  if (idx.size() < m) idx.resize(m);
+  for (auto* v : {&fx, &fy, &fz, &e, &wx, &wy, &wz})
+    if (v->size() < m) v->resize(m);
+}
+
+// The kernel's rows shared by the team (orphaned `omp for`; its end is the barrier after which
+// every force is added).
 template <bool kCohesive, bool kEnergy, bool kVirial>
-void ContactForce::add_forces_impl(System& sys) {
+void ContactForce::add_forces_impl(System& sys, ContactRowScratch& scratch) {
   Sites& s = sys.sites();
   const std::size_t n = s.size();
   const MinimumImage image(sys.box());
   static_assert(sizeof(Vec3) == 3 * sizeof(double), "positions are read as a flat array");
   const double* pos = s.pos.data()->data();
   const double eps[2][2] = {{params_.eps_cc, params_.eps_cv}, {params_.eps_cv, params_.eps_vv}};
-  const std::size_t width = list_.max_count();
-#pragma omp parallel if (parallel_heavy(n))
-  {
-    RowScratch scratch;
-    scratch.reserve(width);
 #pragma omp for schedule(dynamic, 128)
-    for (std::size_t i = 0; i < n; ++i) {
-      double e = 0.0;
-      Vec3 w = Vec3::Zero();
-      const int* nb = list_.neighbors(i);
-      const int m = list_.count(i);
-      if (table_.usable()) {
-        const TablePairs pairs{table_, table_.site_class(),
-                               table_.site_class()[i] * table_.n_classes()};
-        site_contacts<kCohesive, kEnergy, kVirial>(int(i), pos, nb, m, image, pairs, scratch,
-                                                   s.force[i], e, w);
-      } else {
-        const DirectPairs pairs{s.diameter.data(), table_.site_kind(), eps[int(s.kind[i])],
-                                params_.alpha,     params_.beta,       s.diameter[i],
-                                int(s.kind[i])};
-        site_contacts<kCohesive, kEnergy, kVirial>(int(i), pos, nb, m, image, pairs, scratch,
-                                                   s.force[i], e, w);
-      }
-      if constexpr (kEnergy) site_energy_[i] = e;
-      if constexpr (kVirial) site_virial_[i] = w;
+  for (std::size_t i = 0; i < n; ++i) {
+    double e = 0.0;
+    Vec3 w = Vec3::Zero();
+    const int* nb = list_.neighbors(i);
+    const int m = list_.count(i);
+    if (table_.usable()) {
+      const TablePairs pairs{table_, table_.site_class(),
+                             table_.site_class()[i] * table_.n_classes()};
+      site_contacts<kCohesive, kEnergy, kVirial>(int(i), pos, nb, m, image, pairs, scratch,
+                                                 s.force[i], e, w);
+    } else {
+      const DirectPairs pairs{s.diameter.data(), table_.site_kind(), eps[int(s.kind[i])],
+                              params_.alpha,     params_.beta,       s.diameter[i],
+                              int(s.kind[i])};
+      site_contacts<kCohesive, kEnergy, kVirial>(int(i), pos, nb, m, image, pairs, scratch,
+                                                 s.force[i], e, w);
     }
+    if constexpr (kEnergy) site_energy_[i] = e;
+    if constexpr (kVirial) site_virial_[i] = w;
   }
 }
 
 ForceResult ContactForce::add_forces(System& sys, const ForceFlags& flags) {
-  if (list_.update(sys)) table_.build(sys.sites(), params_);
+  return add_forces_in_own_region(sys, flags);
+}
+
+bool ContactForce::prepare_team(System& sys, const ForceFlags& flags) {
+  list_.prepare_update(sys);  // throws for a periodic box too short for the cutoffs
   const std::size_t n = sys.n_sites();
-  const bool want_e = flags.energy, want_v = flags.virial;
-  if (want_e) site_energy_.assign(n, 0.0);
-  if (want_v) site_virial_.assign(n, Vec3::Zero());
+  if (list_.rebuild_forced() || table_.n_sites() != n) table_.build(sys.sites(), params_);
+  if (flags.energy) site_energy_.resize(n);
+  if (flags.virial) site_virial_.resize(n);
+  scratch_.resize(std::size_t(std::max(omp_get_max_threads(), 1)));
+  return true;
+}
+
+ForceResult ContactForce::add_forces_team(System& sys, const ForceFlags& flags) {
+  list_.update_team(sys);  // (ends with a barrier: the rows are complete)
+  ContactRowScratch& scratch = scratch_[omp_get_thread_num()];
+  scratch.reserve(list_.max_count());
   // One instantiation of the kernel per combination of the flags.
   const bool cohesive = params_.beta > 0.0;
-  using Impl = void (ContactForce::*)(System&);
+  const bool want_e = flags.energy, want_v = flags.virial;
+  using Impl = void (ContactForce::*)(System&, ContactRowScratch&);
   static constexpr Impl impls[8] = {&ContactForce::add_forces_impl<false, false, false>,
                                     &ContactForce::add_forces_impl<false, false, true>,
                                     &ContactForce::add_forces_impl<false, true, false>,
@@ -252,13 +258,14 @@ ForceResult ContactForce::add_forces(System& sys, const ForceFlags& flags) {
                                     &ContactForce::add_forces_impl<true, false, true>,
                                     &ContactForce::add_forces_impl<true, true, false>,
                                     &ContactForce::add_forces_impl<true, true, true>};
-  (this->*impls[4 * cohesive + 2 * want_e + want_v])(sys);
+  (this->*impls[4 * cohesive + 2 * want_e + want_v])(sys, scratch);
+  // The sums in index order on the leader (the same blocks as deterministic_sum).
   ForceResult out;
-  if (want_e)
-    out.energy = deterministic_sum(n, 0.0, [&](std::size_t i) { return site_energy_[i]; });
+  if (!team_leader()) return out;
+  const std::size_t n = sys.n_sites();
+  if (want_e) out.energy = block_sum(n, 0.0, [&](std::size_t i) { return site_energy_[i]; });
   if (want_v)
-    out.virial =
-        deterministic_sum(n, Vec3(Vec3::Zero()), [&](std::size_t i) { return site_virial_[i]; });
+    out.virial = block_sum(n, Vec3(Vec3::Zero()), [&](std::size_t i) { return site_virial_[i]; });
   return out;
 }
 

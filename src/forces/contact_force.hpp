@@ -30,11 +30,28 @@ struct PairEval {
 PairEval linear_spring(double r, double s, double eps);
 PairEval cohesive_spring(double r, double s, double eps, double alpha, double beta);
 
+// Per-thread scratch of the contact kernel: the contribution of every entry of one row (zero
+// beyond the cutoff), padded to whole vectors of kLanes doubles.
+struct ContactRowScratch {
+  // Vector lanes of the pair loop: 8 doubles fill an AVX-512 register (two AVX2 ones).
+  static constexpr int kLanes = 8;
+  std::vector<int> idx;
+  std::vector<double> fx, fy, fz, e, wx, wy, wz;
+  void reserve(std::size_t m);
+};
+
+// Team-capable (Force::prepare_team): inside the time step's one parallel region, the
+// neighbour list's rebuild test and build (VerletList::update_team), then the kernel as an
+// orphaned `omp for`; the class table is rebuilt in prepare_team when the list's rebuild is
+// forced (sites added, checkpoint loaded, new parameters: the only changes of kinds and
+// diameters). add_forces runs the same code in a region of its own.
 class ContactForce : public Force {
  public:
   explicit ContactForce(const ContactParams& params);
   std::string name() const override { return "contact"; }
   ForceResult add_forces(System& sys, const ForceFlags& flags) override;
+  bool prepare_team(System& sys, const ForceFlags& flags) override;
+  ForceResult add_forces_team(System& sys, const ForceFlags& flags) override;
   const ContactParams& params() const { return params_; }
   // Changes the parameters (e.g. cohesion switched on after compression); the neighbour
   // list is rebuilt with the new cutoffs and skin at the next evaluation.
@@ -45,12 +62,13 @@ class ContactForce : public Force {
  private:
   // The kernel, specialised for cohesion and for the requested energy and virial.
   template <bool kCohesive, bool kEnergy, bool kVirial>
-  void add_forces_impl(System& sys);
+  void add_forces_impl(System& sys, ContactRowScratch& scratch);
   ContactParams params_;
   VerletList list_;
   PairTable table_;  // rebuilt with the list (sites added, checkpoint loaded, new parameters)
   std::vector<double> site_energy_;
   std::vector<Vec3> site_virial_;
+  std::vector<ContactRowScratch> scratch_;  // one per thread, sized by prepare_team
 };
 
 }  // namespace invasim

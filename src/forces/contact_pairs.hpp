@@ -70,6 +70,8 @@ class PairTable {
   bool build(const Sites& s, const ContactParams& p);
   bool usable() const { return usable_; }
   int n_classes() const { return n_classes_; }
+  // Sites of the last build.
+  std::size_t n_sites() const { return cls_.size(); }
   const int* site_class() const { return cls_.data(); }
   // The sites' kinds as ints (for the gathers of the fallback path without a table).
   const int* site_kind() const { return kind_.data(); }

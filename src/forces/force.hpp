@@ -34,13 +34,14 @@ class Force {
   // replaced by a checkpoint.
   virtual void invalidate_caches() {}
 
-  // Team evaluation: a term with light per-site work can be evaluated inside a parallel region
-  // that ForceField::compute shares with other terms and the integrator (one region per step
-  // instead of one per loop). prepare_team runs on one thread before the region (validates,
-  // throws on bad input, sizes scratch) and returns true if the term supports it; then every
-  // thread of the region calls add_forces_team, which shares its loops with orphaned
-  // `omp for`, must not throw and ends with a barrier (all its forces added); the team leader's
-  // return value is the term's result. Default: not supported (add_forces runs between regions).
+  // Team evaluation: a term can be evaluated inside a parallel region that ForceField::compute
+  // shares with other terms and the integrator (one region per step instead of one per loop;
+  // every term of the full system supports it, the contacts with their list update). prepare_team
+  // runs on one thread before the region (validates, throws on bad input, sizes scratch) and
+  // returns true if the term supports it; then every thread of the region calls add_forces_team,
+  // which shares its loops with orphaned `omp for`, must not throw and ends with a barrier (all its
+  // forces added); the team leader's return value is the term's result. Default: not supported
+  // (add_forces runs between regions).
   virtual bool prepare_team(System& sys, const ForceFlags& flags);
   virtual ForceResult add_forces_team(System& sys, const ForceFlags& flags);
 

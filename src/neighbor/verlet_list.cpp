@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "core/errors.hpp"
 
@@ -23,14 +24,48 @@ void VerletList::set_cutoff_rule(const CutoffRule& rule) {
   valid_ = false;
 }
 
-bool VerletList::needs_rebuild(const System& sys) const {
-  if (!valid_ || sys.n_sites() != counts_.size() || sys.box().version() != box_version_)
-    return true;
+void VerletList::prepare_update(const System& sys) {
+  forced_ = !valid_ || sys.n_sites() != counts_.size() || sys.box().version() != box_version_;
+  if (forced_) {
+    valid_ = false;  // (stays forced if the region does not run, e.g. another term throws)
+    setup_grid(sys);
+  }
+  slots_.resize(std::size_t(std::max(omp_get_max_threads(), 1)));
+}
+
+bool VerletList::update(const System& sys) {
+  prepare_update(sys);
+  bool rebuilt = false;
+#pragma omp parallel if (parallel_heavy(sys.n_sites()))
+  {
+    const bool r = update_team(sys);
+    if (team_leader()) rebuilt = r;
+  }
+  return rebuilt;
+}
+
+void VerletList::build(const System& sys) {
+  valid_ = false;
+  prepare_update(sys);
+#pragma omp parallel if (parallel_heavy(sys.n_sites()))
+  update_team(sys);
+}
+
+bool VerletList::update_team(const System& sys) {
+  if (!forced_ && !moved_team(sys)) return false;
+  build_team(sys);
+  return true;
+}
+
+bool VerletList::moved_team(const System& sys) const {
+  // Every thread tests all sites (a few microseconds: one vectorised pass over positions that
+  // are in cache) and so reaches the same answer without a barrier; sharing the loop would
+  // need one to combine the threads' flags, and a barrier at which a thread sleeps costs a
+  // futex wake-up (docs/performance.md, "Round 4").
   const double limit2 = 0.25 * skin_ * skin_;
   const auto& pos = sys.sites().pos;
   const MinimumImage image(sys.box());
   int moved = 0;
-#pragma omp parallel for reduction(| : moved) schedule(static) if (parallel_light(pos.size()))
   for (std::size_t i = 0; i < pos.size(); ++i) {
     const double dx = image.x(pos[i][0] - pos_at_build_[i][0]),
                  dy = image.y(pos[i][1] - pos_at_build_[i][1]),
@@ -40,18 +75,11 @@ bool VerletList::needs_rebuild(const System& sys) const {
   return moved != 0;
 }
 
-bool VerletList::update(const System& sys) {
-  if (!needs_rebuild(sys)) return false;
-  build(sys);
-  return true;
-}
-
-void VerletList::build(const System& sys) {
+void VerletList::setup_grid(const System& sys) {
   const Sites& s = sys.sites();
   const Box& box = sys.box();
   const std::size_t n = s.size();
   // Classes of the grid: the site kinds. The reach of a class pair is its largest list radius.
-  constexpr int kClasses = 2;
   std::array<double, kClasses> max_d{0.0, 0.0};
   std::array<bool, kClasses> present{false, false};
   for (std::size_t i = 0; i < n; ++i) {
@@ -79,26 +107,32 @@ void VerletList::build(const System& sys) {
   // at most ~4 cells per site (empty cells cost little: a strip is one contiguous run).
   grid_.setup(box, 0.5 * reach_min, reach, kClasses,
               int(std::min<std::size_t>(4 * n + 64, std::size_t(1) << 24)));
-  const int n_cells = grid_.n_cells();
+  // (The grid, the classes' reach and the site count stay as they are until the next forced
+  // build: the diameters and kinds change only with the sites.)
   cell_of_.resize(n);
-#pragma omp parallel for schedule(static) if (parallel_light(n))
-  for (std::size_t i = 0; i < n; ++i)
-    cell_of_[i] = int(s.kind[i]) * n_cells + grid_.cell_of(s.pos[i]);
-  // Counting sort by (class, cell) (stable: sites in a bin keep increasing index order), and
-  // the sites' data in that order.
-  const int n_bins = kClasses * n_cells;
-  cell_start_.assign(n_bins + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) ++cell_start_[cell_of_[i] + 1];
-  for (int c = 0; c < n_bins; ++c) cell_start_[c + 1] += cell_start_[c];
   cell_sites_.resize(n);
-  {
-    std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) cell_sites_[fill[cell_of_[i]]++] = int(i);
-  }
   cell_pos_.resize(n);
   cell_diam_.resize(n);
   cell_body_.resize(n);
   cell_kind_.resize(n);
+  counts_.assign(n, 0);
+  upper_.assign(n, 0);
+  pos_at_build_.resize(n);
+  list_.resize(n * stride_);
+}
+
+void VerletList::bin_sites(const Sites& s) {
+  const std::size_t n = s.size();
+  // Counting sort by (class, cell) (stable: sites in a bin keep increasing index order), and
+  // the sites' data in that order.
+  const int n_bins = kClasses * grid_.n_cells();
+  cell_start_.assign(n_bins + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) ++cell_start_[cell_of_[i] + 1];
+  for (int c = 0; c < n_bins; ++c) cell_start_[c + 1] += cell_start_[c];
+  {
+    std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) cell_sites_[fill[cell_of_[i]]++] = int(i);
+  }
   for (std::size_t p = 0; p < n; ++p) {
     const int j = cell_sites_[p];
     cell_pos_[p] = s.pos[j];
@@ -106,22 +140,36 @@ void VerletList::build(const System& sys) {
     cell_body_[p] = s.body[j];
     cell_kind_[p] = s.kind[j];
   }
+}
+
+void VerletList::build_team(const System& sys) {
+  const Sites& s = sys.sites();
+  const std::size_t n = s.size();
+  const int n_cells = grid_.n_cells();
+  const int n_bins = kClasses * n_cells;
+  const int me = omp_get_thread_num(), nt = omp_get_num_threads();
+#pragma omp for schedule(static)
+  for (std::size_t i = 0; i < n; ++i)
+    cell_of_[i] = int(s.kind[i]) * n_cells + grid_.cell_of(s.pos[i]);
+#pragma omp single
+  bin_sites(s);
 
   // Each pair is tested once, from the site that comes first in the binned order (the
   // stencils are symmetric): the partner after it goes to the site's row ("upper" entries),
-  // then every upper entry (i, j) is mirrored into row j, and the rows are sorted.
-  counts_.assign(n, 0);
-  upper_.assign(n, 0);
-  const MinimumImage image(box);
+  // then every upper entry (i, j) is mirrored into row j, and the rows are sorted. The
+  // branches below (stride overflow) are taken from shared values read after a barrier, so
+  // every thread takes the same one.
+  const MinimumImage image(sys.box());
+  int max_count = 0;
+  std::uint64_t candidates = 0;
   for (;;) {
-    list_.resize(n * stride_);
+    const std::size_t stride = stride_;  // (read before the barrier at which it may change)
     int max_upper = 0;
-    std::uint64_t candidates = 0;
-    // Bin by bin: the candidate runs are found once per bin and its sites scanned while hot.
-#pragma omp parallel reduction(max : max_upper) reduction(+ : candidates) if (parallel_heavy(n))
+    candidates = 0;
     {
+      // Bin by bin: the candidate runs are found once per bin and its sites scanned while hot.
       std::vector<std::array<int, 2>> runs;
-#pragma omp for schedule(dynamic, 64)
+#pragma omp for schedule(dynamic, 64) nowait
       for (int bin = 0; bin < n_bins; ++bin) {
         if (cell_start_[bin] == cell_start_[bin + 1]) continue;
         const int ca = bin / n_cells, c = bin % n_cells;
@@ -137,7 +185,7 @@ void VerletList::build(const System& sys) {
           const int bi = cell_body_[q];
           const SiteKind ki = cell_kind_[q];
           const double di = cell_diam_[q];
-          int* out = &list_[std::size_t(i) * stride_];
+          int* out = &list_[std::size_t(i) * stride];
           int m = 0;
           for (const auto& run : runs) {
             const int p0 = std::max(run[0], q + 1);  // partners after q only
@@ -149,55 +197,88 @@ void VerletList::build(const System& sys) {
                            dz = image.z(ri[2] - cell_pos_[p][2]);
               const double rc = rule_.of(ki, cell_kind_[p], di, cell_diam_[p]) + skin_;
               if (dx * dx + dy * dy + dz * dz < rc * rc) {
-                if (m < int(stride_)) out[m] = cell_sites_[p];
+                if (m < int(stride)) out[m] = cell_sites_[p];
                 ++m;
               }
             }
           }
           upper_[i] = m;
+          counts_[i] = m;  // the mirrored entries follow
           max_upper = std::max(max_upper, m);
         }
       }
     }
-    candidates_ = candidates;
-    if (max_upper > int(stride_)) {  // room for the mirrored entries too
-      stride_ = 2 * std::size_t(max_upper) + 16;
+    slots_[me].max_upper = max_upper;
+    slots_[me].candidates = candidates;
+#pragma omp barrier
+    max_upper = 0;
+    candidates = 0;
+    for (int t = 0; t < nt; ++t) {
+      max_upper = std::max(max_upper, slots_[t].max_upper);
+      candidates += slots_[t].candidates;
+    }
+    if (max_upper > int(stride)) {  // room for the mirrored entries too
+#pragma omp single
+      {
+        stride_ = 2 * std::size_t(max_upper) + 16;
+        list_.resize(n * stride_);
+      }
       continue;
     }
-    // Mirror: (i, j) into row j after its upper entries. Each thread fills the rows of its own
-    // range of sites, scanning all upper entries in index order (no two threads write a row).
-    int max_count = 0;
-#pragma omp parallel reduction(max : max_count) if (parallel_heavy(n))
-    {
-      const int nt = omp_get_num_threads(), t = omp_get_thread_num();
-      const int lo = int(n * t / nt), hi = int(n * (t + 1) / nt);
-      for (int j = lo; j < hi; ++j) counts_[j] = upper_[j];
+    // Mirror: each thread takes the upper entries (i, j) of its own rows i and appends i to
+    // row j at the position its counter hands out (atomically when other threads share the
+    // rows); the order within a row does not matter, the rows are sorted below. A row's
+    // count is its upper entries plus its mirrored ones, so the longest row is the longest
+    // upper part or the largest position handed out.
+    max_count = max_upper;
+    auto mirror = [&](auto atomic) {
+#pragma omp for schedule(static) nowait
       for (std::size_t i = 0; i < n; ++i) {
-        const int* row = &list_[i * stride_];
+        const int* row = &list_[i * stride];
         for (int k = 0; k < upper_[i]; ++k) {
           const int j = row[k];
-          if (j < lo || j >= hi) continue;
-          const int pos = counts_[j]++;
-          if (pos < int(stride_)) list_[std::size_t(j) * stride_ + pos] = int(i);
+          int pos;
+          if constexpr (decltype(atomic)::value) {
+#pragma omp atomic capture
+            pos = counts_[j]++;
+          } else {
+            pos = counts_[j]++;
+          }
+          if (pos < int(stride)) list_[std::size_t(j) * stride + pos] = int(i);
+          max_count = std::max(max_count, pos + 1);
         }
       }
-      for (int j = lo; j < hi; ++j) max_count = std::max(max_count, counts_[j]);
+    };
+    if (nt > 1)
+      mirror(std::true_type{});
+    else
+      mirror(std::false_type{});
+    slots_[me].max_count = max_count;
+#pragma omp barrier
+    for (int t = 0; t < nt; ++t) max_count = std::max(max_count, slots_[t].max_count);
+    if (max_count <= int(stride)) break;
+#pragma omp single
+    {
+      stride_ = std::size_t(max_count) + 16;
+      list_.resize(n * stride_);
     }
+  }
+  if (me == 0) {  // (read by the caller after the barrier below)
     max_count_ = std::size_t(max_count);
-    if (max_count <= int(stride_)) break;
-    stride_ = std::size_t(max_count) + 16;
+    candidates_ = candidates;
+    box_version_ = sys.box().version();
+    valid_ = true;
+    forced_ = false;
+    ++builds_;
   }
   // Rows in index order: the force sums then do not depend on when the list was built (a run
   // restarted from a checkpoint rebuilds at another step).
-#pragma omp parallel for schedule(static) if (parallel_heavy(n))
+#pragma omp for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     int* row = &list_[i * stride_];
     std::sort(row, row + counts_[i]);
+    pos_at_build_[i] = s.pos[i];
   }
-  pos_at_build_ = s.pos;
-  box_version_ = box.version();
-  valid_ = true;
-  ++builds_;
 }
 
 }  // namespace invasim

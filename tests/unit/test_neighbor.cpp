@@ -1,5 +1,6 @@
 // VerletList against a brute-force O(N^2) pair search: every pair with minimum-image distance
 // below cutoff(i, j) + skin, both directions, vertices of one adipocyte excluded.
+#include <omp.h>
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -448,4 +449,38 @@ TEST_CASE(
         CHECK(*std::max_element(seen.begin(), seen.end()) == 1);  // every cell once
       }
   }
+}
+
+TEST_CASE(
+    "Verlet list at 1 and 2 threads: a row overflowing the stride in the mirror pass is rebuilt "
+    "exactly") {
+  // 1500 spheres of diameter 1 (~14 neighbours each) and one of diameter 4 in the corner cell,
+  // added last: it comes last in the binned order, so all its ~140 neighbours reach its row
+  // through the mirror pass (its own upper part is empty) while no upper part exceeds the
+  // initial stride of 64. The mirror pass overflows, the build is repeated with a wider
+  // stride (max_count + 16), and the rows are exact whatever thread placed which entry.
+  const int saved = omp_get_max_threads();
+  const double L = 10.0;
+  System sys(Box(Vec3::Zero(), Vec3::Constant(L), {true, true, true}), 7);
+  for (int i = 0; i < 1500; ++i)
+    sys.add_sphere(L * Vec3(test::uniform(7, i, 0), test::uniform(7, i, 1), test::uniform(7, i, 2)),
+                   1.0);
+  sys.add_sphere(Vec3::Constant(L - 0.01), 4.0);
+  const CutoffRule rule = rule_of(1.0, 1.0, 1.0);
+  for (int threads : {1, 2}) {
+    CAPTURE(threads);
+    omp_set_num_threads(threads);
+    VerletList list(0.3);
+    list.set_cutoff_rule(rule);
+    REQUIRE(list.stride() == 64);
+    list.update(sys);
+    CHECK(list.count(1500) > 64);
+    CHECK(list.max_count() == std::size_t(list.count(1500)));
+    CHECK(list.stride() == list.max_count() + 16);  // grown by the mirror pass's overflow
+    require_exact(sys, list, rule);
+    list.build(sys);  // the wider stride holds it at once
+    CHECK(list.stride() == list.max_count() + 16);
+    require_exact(sys, list, rule);
+  }
+  omp_set_num_threads(saved);
 }

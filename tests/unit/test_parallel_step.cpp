@@ -1,7 +1,8 @@
-// The parallel time step (docs/performance.md, "Round 2: parallel step"): ForceField::compute
-// runs consecutive team-capable terms, the zeroing and the integrator's drift and kick in
-// shared parallel regions; the results are bit-identical to the unfused sequence of loops and
-// do not depend on the thread count.
+// The parallel time step (docs/performance.md, "Round 2: parallel step", "Round 4: one region
+// per step"): ForceField::compute runs consecutive team-capable terms, the zeroing and the
+// integrator's drift and kick in shared parallel regions (every term of the full system is
+// team-capable: one region per step); the results are bit-identical to the unfused sequence of
+// loops and do not depend on the thread count.
 #include <omp.h>
 #include <catch2/catch.hpp>
 
@@ -217,8 +218,10 @@ TEST_CASE(
   two->dyn.step_threads().set_mode(StepThreads::Mode::kAll);  // every step on both threads
   two->dyn.run(two->sys, two->ff, steps);
   CHECK(two->dyn.step_threads().team_steps() == std::uint64_t(steps));
-  // The step used two regions (walls before contacts; shape, tethers and the kick after).
-  CHECK(two->ff.team_regions() == 2);
+  // One region per step: drift and zeroing, walls, contacts with the list's rebuild test and
+  // builds, shape, tethers and the kick (the contact term used to open its own regions: 2 team
+  // regions around it).
+  CHECK(two->ff.team_regions() == 1);
   CHECK(two->contacts->neighbor_list().builds() > 1);
   CHECK(two->sys.box().lo()[0] != 0.0);
   CHECK(same_state(*one, *two));
@@ -228,6 +231,40 @@ TEST_CASE(
   for (int k = 0; k < steps; ++k) unfused_step(*ref);
   CHECK(ref->sys.step == two->sys.step);
   CHECK(same_state(*ref, *two));
+}
+
+TEST_CASE(
+    "ContactForce: its own region and the force field's team region give the same bits, with "
+    "list rebuilds, at 1 and 2 threads; a compute without hooks is one region") {
+  ThreadGuard guard;
+  // Two copies of the mixed system moved alike: on one the contacts are evaluated by
+  // ContactForce::add_forces (a region of its own, as outside a time step), on the other by
+  // ForceField::compute (the team path: zeroing and the term in one region).
+  for (int threads : {1, 2}) {
+    CAPTURE(threads);
+    omp_set_num_threads(threads);
+    auto a = make_mixed(), b = make_mixed();
+    ForceField team;
+    team.add(b->contacts);
+    for (int round = 0; round < 4; ++round) {
+      CAPTURE(round);
+      for (auto* m : {a.get(), b.get()})  // displacements beyond skin/2: the lists rebuild
+        for (std::size_t i = 0; i < m->sys.n_sites(); ++i)
+          m->sys.sites().pos[i][1] += 0.2 * std::sin(0.37 * double(i) + round);
+      for (Vec3& f : a->sys.sites().force) f.setZero();
+      const ForceResult own = a->contacts->add_forces(a->sys, {true, true});
+      const ForceResult shared = team.compute(b->sys, {true, true});
+      CHECK(team.team_regions() == 1);
+      CHECK(own.energy == shared.energy);
+      CHECK(own.virial == shared.virial);
+      CHECK(a->sys.sites().force == b->sys.sites().force);
+      // All four terms without hooks (FIRE, the measurements): one region too.
+      b->ff.compute(b->sys);
+      CHECK(b->ff.team_regions() == 1);
+    }
+    CHECK(a->contacts->neighbor_list().builds() == 4);
+    CHECK(b->contacts->neighbor_list().builds() == 4);
+  }
 }
 
 namespace {
