@@ -30,6 +30,11 @@ struct PairEval {
 PairEval linear_spring(double r, double s, double eps);
 PairEval cohesive_spring(double r, double s, double eps, double alpha, double beta);
 
+// Which driver of the contact kernel runs. kAuto: the half rows (each pair once, contact_half.hpp)
+// when the kernel runs on one thread, the full rows otherwise. Results are bit-identical either
+// way; the other values force one driver (tests and benchmarks).
+enum class ContactKernel { kAuto, kFullRows, kHalfRows };
+
 class ContactForce : public Force {
  public:
   explicit ContactForce(const ContactParams& params);
@@ -41,6 +46,7 @@ class ContactForce : public Force {
   void set_params(const ContactParams& params);
   void invalidate_caches() override { list_.invalidate(); }
   VerletList& neighbor_list() { return list_; }
+  void set_kernel(ContactKernel kernel) { kernel_ = kernel; }
 
  private:
   // The kernel, specialised for cohesion and for the requested energy and virial.
@@ -51,6 +57,8 @@ class ContactForce : public Force {
   PairTable table_;  // rebuilt with the list (sites added, checkpoint loaded, new parameters)
   std::vector<double> site_energy_;
   std::vector<Vec3> site_virial_;
+  ContactKernel kernel_ = ContactKernel::kAuto;
+  std::vector<Vec3> half_sums_;  // the half-row driver's per-site force accumulators
 };
 
 }  // namespace invasim
