@@ -23,11 +23,10 @@ struct PairBranch {
 // branch's constants are loaded at a computed index (see PairTable).
 struct TablePairs {
   const PairTable& t;
-  const int* cls;
-  int row;  // class of site i times the number of classes
   template <bool kCohesive>
-  PairBranch branch(int j, double r2) const {
-    const int k = row + cls[j];
+  PairBranch branch(int i, int j, double r2) const {
+    const int* cls = t.site_class();
+    const int k = cls[i] * t.n_classes() + cls[j];
     const bool rep = !kCohesive || r2 <= t.rb2[k];
     const int b = 2 * k + (rep ? 0 : 1);
     return {t.rc2[k], t.tiny2[k], t.c[b], t.d[b], t.r0[b], t.e0[b]};
@@ -38,14 +37,14 @@ struct TablePairs {
 struct DirectPairs {
   const double* diam;
   const int* kind;
-  const double* eps;  // the energies of site i's kind with kinds 0 and 1
-  double alpha, beta, di;
-  int ki;
+  const double* eps;  // eps[2 kind_i + kind_j]: the energies of the kind pairs
+  double alpha, beta;
   template <bool kCohesive>
-  PairBranch branch(int j, double r2) const {
-    const int kj = kind[j];
+  PairBranch branch(int i, int j, double r2) const {
+    const int ki = kind[i], kj = kind[j];
     const double cc = (ki | kj) == 0 ? 1.0 : 0.0;  // cohesion between cancer cells only
-    const PairCoefficients c = pair_coefficients(0.5 * (di + diam[j]), eps[kj], alpha, cc * beta);
+    const PairCoefficients c =
+        pair_coefficients(0.5 * (diam[i] + diam[j]), eps[2 * ki + kj], alpha, cc * beta);
     const bool rep = !kCohesive || r2 <= c.rb2;
     return {c.rc2,
             c.tiny2,
@@ -61,25 +60,27 @@ constexpr int kLanes = 8;
 
 // Per-thread scratch: the contribution of every entry of one row (zero beyond the cutoff).
 struct RowScratch {
-  std::vector<int> idx;
+  std::vector<int> idx, ii;  // the entries' partners j and (pair streams) sites i
   std::vector<double> fx, fy, fz, e, wx, wy, wz;
   void reserve(std::size_t m) {
     m = (m + kLanes - 1) / kLanes * kLanes;
     if (idx.size() < m) idx.resize(m);
+    if (ii.size() < m) ii.resize(m);
     for (auto* v : {&fx, &fy, &fz, &e, &wx, &wy, &wz})
       if (v->size() < m) v->resize(m);
   }
 };
 
-// The pair terms of site i with the sites nb[0..m) into the scratch (entry k: the force on i
-// from nb[k], half the pair energy, half the pair virial; zero beyond the cutoff), computed
-// in a vectorisable loop. The term of (j, i) is bitwise minus the term of (i, j) for the force
-// and the same for energy and virial: dx = wrap(xi - xj) is exactly antisymmetric, r2, the
-// class-pair constants and f/r are symmetric, and coincident sites take `sign` from i < j.
-template <bool kCohesive, bool kEnergy, bool kVirial, class Pairs>
-void row_terms(int i, const double* pos, const int* nb, int m, const MinimumImage& image,
-               const Pairs& pairs, RowScratch& b) {
-  const double xi = pos[3 * i], yi = pos[3 * i + 1], zi = pos[3 * i + 2];
+// The pair terms of the entries k < m_pad (a multiple of kLanes) of the scratch: pair
+// (site_of(k), b.idx[k]) into entry k (the force on the site from its partner, half the pair
+// energy, half the pair virial; zero beyond the cutoff and where the partner is the site
+// itself, which pads), computed in a vectorisable loop. The term of (j, i) is bitwise minus the
+// term of (i, j) for the force and the same for energy and virial: dx = wrap(xi - xj) is exactly
+// antisymmetric, r2, the class-pair constants (symmetric in the two classes) and f/r are
+// symmetric, and coincident sites take `sign` from i < j.
+template <bool kCohesive, bool kEnergy, bool kVirial, class Pairs, class SiteOf>
+void pair_terms(SiteOf site_of, int m_pad, const double* pos, const MinimumImage& image,
+                const Pairs& pairs, RowScratch& b) {
   // The minimum image with the box's constants in registers.
   const double hx = image.half(0), hy = image.half(1), hz = image.half(2);
   const double lx = image.length(0), ly = image.length(1), lz = image.length(2);
@@ -93,20 +94,16 @@ void row_terms(int i, const double* pos, const int* nb, int m, const MinimumImag
   double* __restrict wx = b.wx.data();
   double* __restrict wy = b.wy.data();
   double* __restrict wz = b.wz.data();
-  // The row padded to whole vectors with site i itself (masked out below), so that every
-  // entry is computed in vector lanes (rows are short: a remainder loop would dominate).
-  const int m_pad = (m + kLanes - 1) / kLanes * kLanes;
-  int* __restrict idx = b.idx.data();
-  for (int k = 0; k < m; ++k) idx[k] = nb[k];
-  for (int k = m; k < m_pad; ++k) idx[k] = i;
+  const int* __restrict idx = b.idx.data();
   for (int k0 = 0; k0 < m_pad; k0 += kLanes) {
 #pragma omp simd
     for (int k = k0; k < k0 + kLanes; ++k) {
-      const int j = idx[k];
+      const int i = site_of(k), j = idx[k];
+      const double xi = pos[3 * i], yi = pos[3 * i + 1], zi = pos[3 * i + 2];
       const double dx = wrap(xi - pos[3 * j], hx, lx), dy = wrap(yi - pos[3 * j + 1], hy, ly),
                    dz = wrap(zi - pos[3 * j + 2], hz, lz);
       const double r2 = dx * dx + dy * dy + dz * dz;
-      const PairBranch c = pairs.template branch<kCohesive>(j, r2);
+      const PairBranch c = pairs.template branch<kCohesive>(i, j, r2);
       const bool in = r2 < c.rc2 && j != i;
       const double cf = c.c, df = c.d;
       const double r = std::sqrt(r2);
@@ -132,6 +129,18 @@ void row_terms(int i, const double* pos, const int* nb, int m, const MinimumImag
       }
     }
   }
+}
+
+// The pair terms of site i with the sites nb[0..m) into entries 0..m) of the scratch (padded
+// to whole vectors with site i itself: rows are short, a remainder loop would dominate).
+template <bool kCohesive, bool kEnergy, bool kVirial, class Pairs>
+void row_terms(int i, const double* pos, const int* nb, int m, const MinimumImage& image,
+               const Pairs& pairs, RowScratch& b) {
+  const int m_pad = (m + kLanes - 1) / kLanes * kLanes;
+  int* __restrict idx = b.idx.data();
+  for (int k = 0; k < m; ++k) idx[k] = nb[k];
+  for (int k = m; k < m_pad; ++k) idx[k] = i;
+  pair_terms<kCohesive, kEnergy, kVirial>([i](int) { return i; }, m_pad, pos, image, pairs, b);
 }
 
 }  // namespace invasim::contact_detail
