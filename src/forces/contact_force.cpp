@@ -102,7 +102,7 @@ void ContactForce::add_forces_impl(System& sys) {
   const MinimumImage image(sys.box());
   static_assert(sizeof(Vec3) == 3 * sizeof(double), "positions are read as a flat array");
   const double* pos = s.pos.data()->data();
-  const double eps[4] = {params_.eps_cc, params_.eps_cv, params_.eps_cv, params_.eps_vv};
+  const double eps[2][2] = {{params_.eps_cc, params_.eps_cv}, {params_.eps_cv, params_.eps_vv}};
   // One thread: each pair once, the same bits (contact_half.hpp).
   const bool one_thread = omp_get_max_threads() == 1 || !parallel_heavy(n);
   if (kernel_ == ContactKernel::kHalfRows || (kernel_ == ContactKernel::kAuto && one_thread)) {
@@ -122,12 +122,14 @@ void ContactForce::add_forces_impl(System& sys) {
       const int* nb = list_.neighbors(i);
       const int m = list_.count(i);
       if (table_.usable()) {
-        const TablePairs pairs{table_};
+        const TablePairs pairs{table_, table_.site_class(),
+                               table_.site_class()[i] * table_.n_classes()};
         site_contacts<kCohesive, kEnergy, kVirial>(int(i), pos, nb, m, image, pairs, scratch,
                                                    s.force[i], e, w);
       } else {
-        const DirectPairs pairs{s.diameter.data(), table_.site_kind(), eps, params_.alpha,
-                                params_.beta};
+        const DirectPairs pairs{s.diameter.data(), table_.site_kind(), eps[int(s.kind[i])],
+                                params_.alpha,     params_.beta,       s.diameter[i],
+                                int(s.kind[i])};
         site_contacts<kCohesive, kEnergy, kVirial>(int(i), pos, nb, m, image, pairs, scratch,
                                                    s.force[i], e, w);
       }

@@ -60,8 +60,8 @@ void half_rows(std::size_t n, const double* pos, const VerletList& list, const M
     start.push_back(m);
     const int m_pad = (m + kLanes - 1) / kLanes * kLanes;
     for (int k = m; k < m_pad; ++k) idx[k] = ii[k] = int(row - 1);  // j = i: masked out
-    contact_detail::pair_terms<kCohesive, kEnergy, kVirial>([ii](int k) { return ii[k]; }, m_pad,
-                                                            pos, image, pairs, b);
+    contact_detail::stream_terms<kCohesive, kEnergy, kVirial>([ii](int k) { return ii[k]; }, m_pad,
+                                                              pos, image, pairs, b);
     for (std::size_t r = first; r < row; ++r) {
       const int k0 = start[r - first], k1 = start[r - first + 1];
       double fx = sums[r][0], fy = sums[r][1], fz = sums[r][2];
@@ -113,13 +113,13 @@ void contact_half_rows(System& sys, const VerletList& list, const PairTable& tab
   const double* pos = s.pos.data()->data();
   sums.assign(n, Vec3::Zero());
   if (table.usable()) {
-    const contact_detail::TablePairs pairs{table};
+    const contact_detail::TableStreamPairs pairs{table};
     half_rows<kCohesive, kEnergy, kVirial>(n, pos, list, image, pairs, sums.data(), s.force.data(),
                                            site_energy, site_virial);
   } else {
     const double eps[4] = {params.eps_cc, params.eps_cv, params.eps_cv, params.eps_vv};
-    const contact_detail::DirectPairs pairs{s.diameter.data(), table.site_kind(), eps, params.alpha,
-                                            params.beta};
+    const contact_detail::DirectStreamPairs pairs{s.diameter.data(), table.site_kind(), eps,
+                                                  params.alpha, params.beta};
     half_rows<kCohesive, kEnergy, kVirial>(n, pos, list, image, pairs, sums.data(), s.force.data(),
                                            site_energy, site_virial);
   }
