@@ -3,7 +3,7 @@
 // bit-identical to the full-row kernel of ContactForce (docs/performance.md, "Round 4:
 // half-list kernel on one thread"). The full kernel sums site i's pair terms over its whole
 // row in increasing index order. Here the rows are processed in increasing i, each computing
-// only its suffix j > i (contact_kernel.hpp's row_terms, the same bits as the full kernel's
+// only its suffix j > i (contact_kernel.hpp's stream_terms, the same bits as the full kernel's
 // terms): the terms are added in row order to site i's accumulator and subtracted from site
 // j's. Site j thus receives its terms from rows i < j in increasing i, all before its own row,
 // then its own suffix in order: the same additions in the same order as the full row's sum

@@ -1,8 +1,9 @@
 #pragma once
-// The pair terms of the contact kernel, shared by its two drivers: the full-row gather
-// (contact_force.cpp, any thread count) and the half-row scatter on one thread
-// (contact_half.cpp). Both compute every pair term with this one function, so that the terms
-// are the same bits in both (docs/performance.md, "Round 4: half-list kernel on one thread").
+// The pair terms of the contact kernel for its two drivers: the full-row gather
+// (contact_force.cpp, any thread count: row_terms) and the half-row scatter on one thread
+// (contact_half.cpp: stream_terms). The two loops compute every pair term with the same
+// expressions, so that the terms are the same bits in both (docs/performance.md, "Round 4:
+// half-list kernel on one thread"; test unit_contact_half).
 // Translation units including it need -fno-math-errno (CMakeLists.txt), or the square root
 // keeps a scalar call and the loop does not vectorise.
 #include <cmath>
@@ -171,12 +172,13 @@ void row_terms(int i, const double* pos, const int* nb, int m, const MinimumImag
   }
 }
 
-// The pair terms of a stream of pairs (b.ii[k], b.idx[k]), k
-// < m_pad (a multiple of kLanes, padded with pairs (i, i)), into entry k of the scratch: row_terms'
-// loop with site i and its constants looked up per pair, the same operations on the same values, so
-// the same bits (test unit_contact_half). It is a second copy of the loop body because GCC 12
-// vectorises neither driver's loop when one function serves both (a row's broadcast site i and a
-// stream's gathered one): keep the two bodies identical.
+// The pair terms of a stream of pairs (site_of(k), b.idx[k]), k < m_pad (a multiple of
+// kLanes, padded with pairs (i, i)), into entry k of the scratch: row_terms' loop with site i
+// and its constants looked up per pair (TableStreamPairs, DirectStreamPairs), the same
+// operations on the same values, so the same bits (test unit_contact_half). It is a second
+// copy of the loop body because GCC 12 vectorised neither driver's loop when one function
+// served both (site i broadcast for a row, gathered for a stream); site_of must stay a
+// lambda (reading b.ii directly kept this loop scalar). Keep the two bodies identical.
 template <bool kCohesive, bool kEnergy, bool kVirial, class Pairs, class SiteOf>
 void stream_terms(SiteOf site_of, int m_pad, const double* pos, const MinimumImage& image,
                   const Pairs& pairs, RowScratch& b) {
