@@ -4,6 +4,7 @@
 //   cancer-cancer: the same repulsion plus cohesion, attractive from s to r_b = (1+beta)s and
 //   falling linearly to zero at r_a = (1+alpha)s.
 // s is the mean of the two diameters. One pass over one neighbour list serves all kinds.
+#include "forces/contact_kernel.hpp"
 #include "forces/contact_pairs.hpp"
 #include "forces/force.hpp"
 #include "neighbor/verlet_list.hpp"
@@ -30,21 +31,17 @@ struct PairEval {
 PairEval linear_spring(double r, double s, double eps);
 PairEval cohesive_spring(double r, double s, double eps, double alpha, double beta);
 
-// Per-thread scratch of the contact kernel: the contribution of every entry of one row (zero
-// beyond the cutoff), padded to whole vectors of kLanes doubles.
-struct ContactRowScratch {
-  // Vector lanes of the pair loop: 8 doubles fill an AVX-512 register (two AVX2 ones).
-  static constexpr int kLanes = 8;
-  std::vector<int> idx;
-  std::vector<double> fx, fy, fz, e, wx, wy, wz;
-  void reserve(std::size_t m);
-};
+// Which driver of the contact kernel runs. kAuto: the half rows (each pair once, contact_half.hpp)
+// when the kernel runs on one thread, the full rows otherwise. Results are bit-identical either
+// way; the other values force one driver (tests and benchmarks).
+enum class ContactKernel { kAuto, kFullRows, kHalfRows };
 
 // Team-capable (Force::prepare_team): inside the time step's one parallel region, the
-// neighbour list's rebuild test and build (VerletList::update_team), then the kernel as an
-// orphaned `omp for`; the class table is rebuilt in prepare_team when the list's rebuild is
-// forced (sites added, checkpoint loaded, new parameters: the only changes of kinds and
-// diameters). add_forces runs the same code in a region of its own.
+// neighbour list's rebuild test and build (VerletList::update_team), then the kernel: the full
+// rows as an orphaned `omp for`, or the half rows when the team has one thread. The class
+// table is rebuilt in prepare_team when the list's rebuild is forced (sites added, checkpoint
+// loaded, new parameters: the only changes of kinds and diameters). add_forces runs the same
+// code in a region of its own.
 class ContactForce : public Force {
  public:
   explicit ContactForce(const ContactParams& params);
@@ -58,17 +55,20 @@ class ContactForce : public Force {
   void set_params(const ContactParams& params);
   void invalidate_caches() override { list_.invalidate(); }
   VerletList& neighbor_list() { return list_; }
+  void set_kernel(ContactKernel kernel) { kernel_ = kernel; }
 
  private:
   // The kernel, specialised for cohesion and for the requested energy and virial.
   template <bool kCohesive, bool kEnergy, bool kVirial>
-  void add_forces_impl(System& sys, ContactRowScratch& scratch);
+  void add_forces_impl(System& sys, contact_detail::RowScratch& scratch);
   ContactParams params_;
   VerletList list_;
   PairTable table_;  // rebuilt with the list (sites added, checkpoint loaded, new parameters)
   std::vector<double> site_energy_;
   std::vector<Vec3> site_virial_;
-  std::vector<ContactRowScratch> scratch_;  // one per thread, sized by prepare_team
+  std::vector<contact_detail::RowScratch> scratch_;  // one per thread, sized by prepare_team
+  ContactKernel kernel_ = ContactKernel::kAuto;
+  std::vector<Vec3> half_sums_;  // the half-row driver's per-site force accumulators
 };
 
 }  // namespace invasim
