@@ -109,6 +109,51 @@ struct RowScratch {
   }
 };
 
+// Where pair_term writes entry k's terms (the scratch's arrays).
+struct TermOut {
+  double* __restrict gx;
+  double* __restrict gy;
+  double* __restrict gz;
+  double* __restrict ge;
+  double* __restrict wx;
+  double* __restrict wy;
+  double* __restrict wz;
+};
+
+// The terms of pair (i, j) at separation (dx, dy, dz) = x_i - x_j (minimum image), r2 its
+// square, c its branch's constants, into entry k: the force on i (zero beyond the cutoff and
+// for j == i), half the pair energy, half the pair virial. The one expression of the pair law
+// for both drivers' loops (row_terms, stream_terms), so that their terms are the same bits;
+// always inlined, so that each loop still vectorises as a whole.
+template <bool kEnergy, bool kVirial>
+[[gnu::always_inline]] inline void pair_term(int i, int j, double dx, double dy, double dz,
+                                             double r2, const PairBranch c, int k,
+                                             const TermOut& o) {
+  const bool in = r2 < c.rc2 && j != i;
+  const double cf = c.c, df = c.d;
+  const double r = std::sqrt(r2);
+  const double inv_r = 1.0 / r;
+  // Coincident sites: the force at r along a fixed direction, opposite for the partners.
+  const bool coincident = r2 <= c.tiny2;
+  const double f_over_r = cf * inv_r - df;
+  const double sign = i < j ? 1.0 : -1.0;
+  const double fx = coincident ? (cf - df * r) * sign : f_over_r * dx;
+  const double fy = coincident ? 0.0 : f_over_r * dy;
+  const double fz = coincident ? 0.0 : f_over_r * dz;
+  o.gx[k] = in ? fx : 0.0;
+  o.gy[k] = in ? fy : 0.0;
+  o.gz[k] = in ? fz : 0.0;
+  if constexpr (kEnergy) {
+    const double u = 0.5 * df * (r - c.r0) * (r - c.r0) + c.e0;
+    o.ge[k] = in ? 0.5 * u : 0.0;
+  }
+  if constexpr (kVirial) {
+    o.wx[k] = in ? 0.5 * fx * dx : 0.0;
+    o.wy[k] = in ? 0.5 * fy * dy : 0.0;
+    o.wz[k] = in ? 0.5 * fz * dz : 0.0;
+  }
+}
+
 // The pair terms of site i with the sites nb[0..m) into the scratch (entry k: the force on i
 // from nb[k], half the pair energy, half the pair virial; zero beyond the cutoff), computed
 // in a vectorisable loop. The term of (j, i) is bitwise minus the term of (i, j) for the force
@@ -124,13 +169,8 @@ void row_terms(int i, const double* pos, const int* nb, int m, const MinimumImag
   auto wrap = [](double d, double half, double len) {
     return d > half ? d - len : (d < -half ? d + len : d);
   };
-  double* __restrict gx = b.fx.data();
-  double* __restrict gy = b.fy.data();
-  double* __restrict gz = b.fz.data();
-  double* __restrict ge = b.e.data();
-  double* __restrict wx = b.wx.data();
-  double* __restrict wy = b.wy.data();
-  double* __restrict wz = b.wz.data();
+  const TermOut out{b.fx.data(), b.fy.data(), b.fz.data(), b.e.data(),
+                    b.wx.data(), b.wy.data(), b.wz.data()};
   // The row padded to whole vectors with site i itself (masked out below), so that every
   // entry is computed in vector lanes (rows are short: a remainder loop would dominate).
   const int m_pad = (m + kLanes - 1) / kLanes * kLanes;
@@ -144,30 +184,8 @@ void row_terms(int i, const double* pos, const int* nb, int m, const MinimumImag
       const double dx = wrap(xi - pos[3 * j], hx, lx), dy = wrap(yi - pos[3 * j + 1], hy, ly),
                    dz = wrap(zi - pos[3 * j + 2], hz, lz);
       const double r2 = dx * dx + dy * dy + dz * dz;
-      const PairBranch c = pairs.template branch<kCohesive>(j, r2);
-      const bool in = r2 < c.rc2 && j != i;
-      const double cf = c.c, df = c.d;
-      const double r = std::sqrt(r2);
-      const double inv_r = 1.0 / r;
-      // Coincident sites: the force at r along a fixed direction, opposite for the partners.
-      const bool coincident = r2 <= c.tiny2;
-      const double f_over_r = cf * inv_r - df;
-      const double sign = i < j ? 1.0 : -1.0;
-      const double fx = coincident ? (cf - df * r) * sign : f_over_r * dx;
-      const double fy = coincident ? 0.0 : f_over_r * dy;
-      const double fz = coincident ? 0.0 : f_over_r * dz;
-      gx[k] = in ? fx : 0.0;
-      gy[k] = in ? fy : 0.0;
-      gz[k] = in ? fz : 0.0;
-      if constexpr (kEnergy) {
-        const double u = 0.5 * df * (r - c.r0) * (r - c.r0) + c.e0;
-        ge[k] = in ? 0.5 * u : 0.0;
-      }
-      if constexpr (kVirial) {
-        wx[k] = in ? 0.5 * fx * dx : 0.0;
-        wy[k] = in ? 0.5 * fy * dy : 0.0;
-        wz[k] = in ? 0.5 * fz * dz : 0.0;
-      }
+      pair_term<kEnergy, kVirial>(i, j, dx, dy, dz, r2, pairs.template branch<kCohesive>(j, r2), k,
+                                  out);
     }
   }
 }
@@ -175,10 +193,11 @@ void row_terms(int i, const double* pos, const int* nb, int m, const MinimumImag
 // The pair terms of a stream of pairs (site_of(k), b.idx[k]), k < m_pad (a multiple of
 // kLanes, padded with pairs (i, i)), into entry k of the scratch: row_terms' loop with site i
 // and its constants looked up per pair (TableStreamPairs, DirectStreamPairs), the same
-// operations on the same values, so the same bits (test unit_contact_half). It is a second
-// copy of the loop body because GCC 12 vectorised neither driver's loop when one function
-// served both (site i broadcast for a row, gathered for a stream); site_of must stay a
-// lambda (reading b.ii directly kept this loop scalar). Keep the two bodies identical.
+// operations on the same values, so the same bits (test unit_contact_half). The two loops are
+// separate because GCC 12 vectorised neither when one loop served both (site i broadcast for
+// a row, gathered for a stream); the pair law itself is one function, pair_term (its
+// constants passed by value: by reference, this loop stayed scalar). site_of must stay a
+// lambda (reading b.ii directly kept this loop scalar).
 template <bool kCohesive, bool kEnergy, bool kVirial, class Pairs, class SiteOf>
 void stream_terms(SiteOf site_of, int m_pad, const double* pos, const MinimumImage& image,
                   const Pairs& pairs, RowScratch& b) {
@@ -188,13 +207,8 @@ void stream_terms(SiteOf site_of, int m_pad, const double* pos, const MinimumIma
   auto wrap = [](double d, double half, double len) {
     return d > half ? d - len : (d < -half ? d + len : d);
   };
-  double* __restrict gx = b.fx.data();
-  double* __restrict gy = b.fy.data();
-  double* __restrict gz = b.fz.data();
-  double* __restrict ge = b.e.data();
-  double* __restrict wx = b.wx.data();
-  double* __restrict wy = b.wy.data();
-  double* __restrict wz = b.wz.data();
+  const TermOut out{b.fx.data(), b.fy.data(), b.fz.data(), b.e.data(),
+                    b.wx.data(), b.wy.data(), b.wz.data()};
   const int* __restrict idx = b.idx.data();
   for (int k0 = 0; k0 < m_pad; k0 += kLanes) {
 #pragma omp simd
@@ -204,30 +218,8 @@ void stream_terms(SiteOf site_of, int m_pad, const double* pos, const MinimumIma
       const double dx = wrap(xi - pos[3 * j], hx, lx), dy = wrap(yi - pos[3 * j + 1], hy, ly),
                    dz = wrap(zi - pos[3 * j + 2], hz, lz);
       const double r2 = dx * dx + dy * dy + dz * dz;
-      const PairBranch c = pairs.template branch<kCohesive>(i, j, r2);
-      const bool in = r2 < c.rc2 && j != i;
-      const double cf = c.c, df = c.d;
-      const double r = std::sqrt(r2);
-      const double inv_r = 1.0 / r;
-      // Coincident sites: the force at r along a fixed direction, opposite for the partners.
-      const bool coincident = r2 <= c.tiny2;
-      const double f_over_r = cf * inv_r - df;
-      const double sign = i < j ? 1.0 : -1.0;
-      const double fx = coincident ? (cf - df * r) * sign : f_over_r * dx;
-      const double fy = coincident ? 0.0 : f_over_r * dy;
-      const double fz = coincident ? 0.0 : f_over_r * dz;
-      gx[k] = in ? fx : 0.0;
-      gy[k] = in ? fy : 0.0;
-      gz[k] = in ? fz : 0.0;
-      if constexpr (kEnergy) {
-        const double u = 0.5 * df * (r - c.r0) * (r - c.r0) + c.e0;
-        ge[k] = in ? 0.5 * u : 0.0;
-      }
-      if constexpr (kVirial) {
-        wx[k] = in ? 0.5 * fx * dx : 0.0;
-        wy[k] = in ? 0.5 * fy * dy : 0.0;
-        wz[k] = in ? 0.5 * fz * dz : 0.0;
-      }
+      pair_term<kEnergy, kVirial>(i, j, dx, dy, dz, r2, pairs.template branch<kCohesive>(i, j, r2),
+                                  k, out);
     }
   }
 }
