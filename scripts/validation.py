@@ -157,6 +157,7 @@ def main(argv):
     d = sub.add_parser("document")
     d.add_argument("dir")
     d.add_argument("--plan")
+    d.add_argument("--done", help="plan JSON of the done workspaces (plan --workspace): the campaign as run")
     d.add_argument("-o", dest="out", required=True)
     d.add_argument("--ci-size", action="store_true")
     args = ap.parse_args(argv)
@@ -198,7 +199,11 @@ def main(argv):
             if args.plan:
                 with open(args.plan) as fh:
                     entries = json.load(fh)
-            counts = document.render(args.dir, entries, args.out, args.ci_size)
+            done = None
+            if args.done:
+                with open(args.done) as fh:
+                    done = json.load(fh)
+            counts = document.render(args.dir, entries, args.out, args.ci_size, done)
             print("document: %s (%s)" % (args.out, ", ".join("%d %s" % (n, v) for v, n in counts.items())))
     except runs.InputError as e:
         print("validation.py: error: %s" % e, file=sys.stderr)

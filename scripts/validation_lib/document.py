@@ -56,7 +56,7 @@ for s in fig3_passive_slices fig5a_passive fig5b_cohesive fig5b_inset fig6_activ
 done
 scripts/validation.py all out -o docs/validation     # every figure command below, then:
 scripts/validation.py plan --workspace out/fig3_passive_slices ... -o out/validation/plan_done.json
-scripts/validation.py document docs/validation --plan out/validation/plan.json -o docs/validation.md
+scripts/validation.py document docs/validation --plan out/validation/plan.json --done out/validation/plan_done.json -o docs/validation.md
 ```
 
 The analysis reads the run directories of each workspace (`summary.json`: block-averaged
@@ -107,7 +107,7 @@ def _rel(path, base):
     return os.path.relpath(path, base)
 
 
-def render(fig_dir, plan_entries, out_path, ci_size=False):
+def render(fig_dir, plan_entries, out_path, ci_size=False, done_entries=None):
     recs = _load(fig_dir)
     base = os.path.dirname(os.path.abspath(out_path))
     L = ["# Validation: the paper's figures at reduced scale", ""]
@@ -132,6 +132,13 @@ def render(fig_dir, plan_entries, out_path, ci_size=False):
               % plan_entries[0]["jobs"], "", plan_mod.table(plan_entries), ""]
     else:
         L += ["(no plan given: `scripts/validation.py document ... --plan plan.json`)", ""]
+    if done_entries:
+        L += ["### As run", "",
+              "The campaign as it ran (`scripts/validation.py plan --workspace ...`: the points "
+              "of each workspace and their recorded wall times; the rates are wall-clock rates "
+              "of the runs, %d at a time, on a machine shared with the development work, so they "
+              "are lower than the timing runs' CPU rates above)." % done_entries[0]["jobs"], "",
+              plan_mod.table(done_entries), ""]
     all_rows = []
     for name in ORDER:
         rec = recs.get(name)
