@@ -20,6 +20,26 @@ struct PairBranch {
   double rc2, tiny2, c, d, r0, e0;
 };
 
+// The branch of class pair k at separation^2 r2 (both class-table lookups).
+template <bool kCohesive>
+[[gnu::always_inline]] inline PairBranch table_branch(const PairTable& t, int k, double r2) {
+  const bool rep = !kCohesive || r2 <= t.rb2[k];
+  const int b = 2 * k + (rep ? 0 : 1);
+  return {t.rc2[k], t.tiny2[k], t.c[b], t.d[b], t.r0[b], t.e0[b]};
+}
+
+// The branch of a pair's coefficients at separation^2 r2 (both direct lookups).
+template <bool kCohesive>
+[[gnu::always_inline]] inline PairBranch coefficient_branch(const PairCoefficients& c, double r2) {
+  const bool rep = !kCohesive || r2 <= c.rb2;
+  return {c.rc2,
+          c.tiny2,
+          rep ? c.c_rep : c.c_att,
+          rep ? c.d_rep : c.d_att,
+          rep ? c.r0_rep : c.r0_att,
+          rep ? c.e0 : 0.0};
+}
+
 // The constants of pair (i, j) read from the class table (few distinct (kind, diameter)); the
 // branch's constants are loaded at a computed index (see PairTable).
 struct TablePairs {
@@ -28,10 +48,7 @@ struct TablePairs {
   int row;  // class of site i times the number of classes
   template <bool kCohesive>
   PairBranch branch(int j, double r2) const {
-    const int k = row + cls[j];
-    const bool rep = !kCohesive || r2 <= t.rb2[k];
-    const int b = 2 * k + (rep ? 0 : 1);
-    return {t.rc2[k], t.tiny2[k], t.c[b], t.d[b], t.r0[b], t.e0[b]};
+    return table_branch<kCohesive>(t, row + cls[j], r2);
   }
 };
 
@@ -47,13 +64,7 @@ struct DirectPairs {
     const int kj = kind[j];
     const double cc = (ki | kj) == 0 ? 1.0 : 0.0;  // cohesion between cancer cells only
     const PairCoefficients c = pair_coefficients(0.5 * (di + diam[j]), eps[kj], alpha, cc * beta);
-    const bool rep = !kCohesive || r2 <= c.rb2;
-    return {c.rc2,
-            c.tiny2,
-            rep ? c.c_rep : c.c_att,
-            rep ? c.d_rep : c.d_att,
-            rep ? c.r0_rep : c.r0_att,
-            rep ? c.e0 : 0.0};
+    return coefficient_branch<kCohesive>(c, r2);
   }
 };
 
@@ -64,10 +75,7 @@ struct TableStreamPairs {
   template <bool kCohesive>
   PairBranch branch(int i, int j, double r2) const {
     const int* cls = t.site_class();
-    const int k = cls[i] * t.n_classes() + cls[j];
-    const bool rep = !kCohesive || r2 <= t.rb2[k];
-    const int b = 2 * k + (rep ? 0 : 1);
-    return {t.rc2[k], t.tiny2[k], t.c[b], t.d[b], t.r0[b], t.e0[b]};
+    return table_branch<kCohesive>(t, cls[i] * t.n_classes() + cls[j], r2);
   }
 };
 
@@ -83,13 +91,7 @@ struct DirectStreamPairs {
     const double cc = (ki | kj) == 0 ? 1.0 : 0.0;  // cohesion between cancer cells only
     const PairCoefficients c =
         pair_coefficients(0.5 * (diam[i] + diam[j]), eps[2 * ki + kj], alpha, cc * beta);
-    const bool rep = !kCohesive || r2 <= c.rb2;
-    return {c.rc2,
-            c.tiny2,
-            rep ? c.c_rep : c.c_att,
-            rep ? c.d_rep : c.d_att,
-            rep ? c.r0_rep : c.r0_att,
-            rep ? c.e0 : 0.0};
+    return coefficient_branch<kCohesive>(c, r2);
   }
 };
 
