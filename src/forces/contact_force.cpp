@@ -52,6 +52,7 @@ void ContactForce::set_params(const ContactParams& params) {
   params.validate();
   params_ = params;
   list_ = VerletList(params_.skin);
+  plan_builds_ = ~std::uint64_t(0);  // (the new list counts its builds from 0 again)
   CutoffRule rule;
   rule.factor[0][0] = params_.beta > 0.0 ? 1.0 + params_.alpha : 1.0;
   list_.set_cutoff_rule(rule);
@@ -108,14 +109,25 @@ void ContactForce::add_forces_impl(System& sys, RowScratch& scratch) {
   static_assert(sizeof(Vec3) == 3 * sizeof(double), "positions are read as a flat array");
   const double* pos = s.pos.data()->data();
   const double eps[2][2] = {{params_.eps_cc, params_.eps_cv}, {params_.eps_cv, params_.eps_vv}};
-  // A team of one thread: each pair once, the same bits (contact_half.hpp). The half rows
-  // are sequential: forced on a larger team, one thread runs them (the single's end is the
-  // barrier after which every force is added, as the omp for's below).
-  const bool one_thread = omp_get_num_threads() == 1;
-  if (kernel_ == ContactKernel::kHalfRows || (kernel_ == ContactKernel::kAuto && one_thread)) {
+  if (kernel_ == ContactKernel::kHalfRows) {
+    const int threads = omp_get_num_threads(), me = omp_get_thread_num();
+    // Re-plan after a list build or a change of the team's size (all threads agree: both are
+    // known to every thread, and planned_* are not written in the region).
+    if (planned_builds_ != list_.builds() || planned_threads_ != threads) {
 #pragma omp single
-    contact_half_rows<kCohesive, kEnergy, kVirial>(sys, list_, table_, params_, half_sums_,
-                                                   site_energy_.data(), site_virial_.data());
+      {
+        partition_sites(sys, list_, threads, owner_);
+        if (plans_.size() < std::size_t(threads)) plans_.resize(std::size_t(threads));
+        rank_.resize(n);
+        plan_builds_ = list_.builds();
+        plan_threads_ = threads;
+      }
+      plan_half_rows(list_, owner_, me, rank_, plans_[std::size_t(me)]);
+    }
+    contact_half_rows<kCohesive, kEnergy, kVirial>(sys, plans_[std::size_t(me)], list_.max_count(),
+                                                   table_, params_, site_energy_.data(),
+                                                   site_virial_.data(), scratch);
+#pragma omp barrier
     return;
   }
 #pragma omp for schedule(dynamic, 128)
@@ -149,10 +161,11 @@ bool ContactForce::prepare_team(System& sys, const ForceFlags& flags) {
   list_.prepare_update(sys);  // throws for a periodic box too short for the cutoffs
   const std::size_t n = sys.n_sites();
   if (list_.rebuild_forced() || table_.n_sites() != n) table_.build(sys.sites(), params_);
-  // (zeroed: the half-row driver accumulates into them)
-  if (flags.energy) site_energy_.assign(n, 0.0);
-  if (flags.virial) site_virial_.assign(n, Vec3::Zero());
+  if (flags.energy) site_energy_.resize(n);
+  if (flags.virial) site_virial_.resize(n);
   scratch_.resize(std::size_t(std::max(omp_get_max_threads(), 1)));
+  planned_builds_ = plan_builds_;
+  planned_threads_ = plan_threads_;
   return true;
 }
 

@@ -4,6 +4,7 @@
 //   cancer-cancer: the same repulsion plus cohesion, attractive from s to r_b = (1+beta)s and
 //   falling linearly to zero at r_a = (1+alpha)s.
 // s is the mean of the two diameters. One pass over one neighbour list serves all kinds.
+#include "forces/contact_half.hpp"
 #include "forces/contact_kernel.hpp"
 #include "forces/contact_pairs.hpp"
 #include "forces/force.hpp"
@@ -31,17 +32,17 @@ struct PairEval {
 PairEval linear_spring(double r, double s, double eps);
 PairEval cohesive_spring(double r, double s, double eps, double alpha, double beta);
 
-// Which driver of the contact kernel runs. kAuto: the half rows (each pair once, contact_half.hpp)
-// when the kernel runs on one thread, the full rows otherwise. Results are bit-identical either
-// way; the other values force one driver (tests and benchmarks).
-enum class ContactKernel { kAuto, kFullRows, kHalfRows };
+// Which driver of the contact kernel runs: the half rows (each pair once, on any number of
+// threads, contact_half.hpp; the default) or the full rows (each pair twice, for tests and
+// benchmarks). Results are bit-identical either way.
+enum class ContactKernel { kHalfRows, kFullRows };
 
 // Team-capable (Force::prepare_team): inside the time step's one parallel region, the
-// neighbour list's rebuild test and build (VerletList::update_team), then the kernel: the full
-// rows as an orphaned `omp for`, or the half rows when the team has one thread. The class
-// table is rebuilt in prepare_team when the list's rebuild is forced (sites added, checkpoint
-// loaded, new parameters: the only changes of kinds and diameters). add_forces runs the same
-// code in a region of its own.
+// neighbour list's rebuild test and build (VerletList::update_team), then the kernel: each
+// thread its half rows (re-planned after every list build and when the team's size changes),
+// or the full rows as an orphaned `omp for`. The class table is rebuilt in prepare_team when
+// the list's rebuild is forced (sites added, checkpoint loaded, new parameters: the only
+// changes of kinds and diameters). add_forces runs the same code in a region of its own.
 class ContactForce : public Force {
  public:
   explicit ContactForce(const ContactParams& params);
@@ -67,8 +68,14 @@ class ContactForce : public Force {
   std::vector<double> site_energy_;
   std::vector<Vec3> site_virial_;
   std::vector<contact_detail::RowScratch> scratch_;  // one per thread, sized by prepare_team
-  ContactKernel kernel_ = ContactKernel::kAuto;
-  std::vector<Vec3> half_sums_;  // the half-row driver's per-site force accumulators
+  ContactKernel kernel_ = ContactKernel::kHalfRows;
+  // The half-row driver: the owner and the rank among its owner's sites of each site, each
+  // thread's plan, and the list build and team size the plans are for (planned_* as of
+  // prepare_team: read in the region, never written there).
+  std::vector<int> owner_, rank_;
+  std::vector<HalfRowsPlan> plans_;
+  std::uint64_t plan_builds_ = ~std::uint64_t(0), planned_builds_ = ~std::uint64_t(0);
+  int plan_threads_ = 0, planned_threads_ = 0;
 };
 
 }  // namespace invasim

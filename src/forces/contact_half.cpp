@@ -1,9 +1,9 @@
 #include "forces/contact_half.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "forces/contact_force.hpp"
-#include "forces/contact_kernel.hpp"
 
 namespace invasim {
 
@@ -12,27 +12,130 @@ namespace {
 using contact_detail::kLanes;
 using contact_detail::RowScratch;
 
-// Pairs per batch: the suffixes of consecutive rows are computed together, so that the vector
+// Pairs per batch: the entries of consecutive rows are computed together, so that the vector
 // lanes are padded once per batch instead of once per row (half rows hold ~6-8 entries).
 constexpr int kBatchPairs = 512;
 
-// Number of entries of the sorted row nb[0..m) below i (the start of the suffix j > i).
-inline int lower_entries(const int* nb, int m, int i) {
-  int lo = 0;
-  for (int k = 0; k < m; ++k) lo += nb[k] < i;
-  return lo;
+// The extent of the sites along each axis: the box length on a periodic axis, else the span
+// of the positions (walls), with its lower end.
+struct Extent {
+  double lo[3], len[3];
+};
+Extent site_extent(const System& sys) {
+  const auto& pos = sys.sites().pos;
+  Extent e{};
+  for (int a = 0; a < 3; ++a) {
+    if (sys.box().periodic(a)) {
+      e.lo[a] = sys.box().lo()[a];
+      e.len[a] = sys.box().length(a);
+      continue;
+    }
+    double lo = pos.empty() ? 0.0 : pos[0][a], hi = lo;
+    for (const Vec3& r : pos) {
+      lo = std::min(lo, r[a]);
+      hi = std::max(hi, r[a]);
+    }
+    e.lo[a] = lo;
+    e.len[a] = hi - lo;
+  }
+  return e;
 }
 
-// Rows 0..n-1 in order, in batches: the suffixes (j > i) of a batch's rows are computed into
-// the scratch as one stream of pairs, then each row's terms are added to its site's
-// accumulator (sequentially, in row order) and subtracted from each partner's.
+}  // namespace
+
+void partition_sites(const System& sys, const VerletList& list, int parts,
+                     std::vector<int>& owner) {
+  const std::size_t n = sys.n_sites();
+  owner.assign(n, 0);
+  if (parts <= 1 || n == 0) return;
+  // The axis whose cuts cross the least area: parts - 1 cuts between walls, parts cuts around
+  // a periodic axis (the last slab meets the first).
+  const Extent e = site_extent(sys);
+  int axis = 0;
+  double best = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    const double cuts = sys.box().periodic(a) ? parts : parts - 1;
+    const double area = cuts * e.len[(a + 1) % 3] * e.len[(a + 2) % 3];
+    if (a == 0 || area < best) {
+      best = area;
+      axis = a;
+    }
+  }
+  // Slabs of equal work: a histogram of the row lengths (each row's pairs are computed once,
+  // its half) along the axis, cut at the quantiles.
+  const int bins = int(std::clamp<std::size_t>(n / 4, 16, 4096));
+  const double scale = e.len[axis] > 0.0 ? bins / e.len[axis] : 0.0;
+  const auto& pos = sys.sites().pos;
+  auto bin_of = [&](std::size_t i) {
+    return std::clamp(int((pos[i][axis] - e.lo[axis]) * scale), 0, bins - 1);
+  };
+  std::vector<double> weight(std::size_t(bins), 0.0);
+  double total = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double w = 1.0 + list.count(i);
+    weight[std::size_t(bin_of(i))] += w;
+    total += w;
+  }
+  std::vector<int> part_of_bin(static_cast<std::size_t>(bins));
+  double before = 0.0;
+  for (int b = 0; b < bins; ++b) {
+    const double mid = before + 0.5 * weight[std::size_t(b)];
+    part_of_bin[std::size_t(b)] = std::min(parts - 1, int(parts * mid / total));
+    before += weight[std::size_t(b)];
+  }
+  for (std::size_t i = 0; i < n; ++i) owner[i] = part_of_bin[std::size_t(bin_of(i))];
+}
+
+void plan_half_rows(const VerletList& list, const std::vector<int>& owner, int thread,
+                    std::vector<int>& rank, HalfRowsPlan& plan) {
+  const std::size_t n = owner.size();
+  plan.rows.clear();
+  plan.owned.clear();
+  plan.start.assign(1, 0);
+  plan.partner.clear();
+  plan.target.clear();
+  plan.halo.resize(n, 0);
+  // This thread's sites' ranks, and the halo rows: other threads' sites i < j in the rows of
+  // this thread's sites j.
+  int n_owned = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    if (owner[j] != thread) continue;
+    rank[j] = n_owned++;
+    const int* nb = list.neighbors(j);
+    for (int k = 0, m = list.count(j); k < m && nb[k] < int(j); ++k)
+      if (owner[std::size_t(nb[k])] != thread) plan.halo[std::size_t(nb[k])] = 1;
+  }
+  plan.n_owned = std::size_t(n_owned);
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool own = owner[i] == thread;
+    if (!own && !plan.halo[i]) continue;
+    plan.halo[i] = 0;
+    const int* nb = list.neighbors(i);
+    const int m = list.count(i);
+    const int lo = int(std::upper_bound(nb, nb + m, int(i)) - nb);  // the suffix j > i
+    for (int k = lo; k < m; ++k) {
+      const int j = nb[k];
+      const bool own_j = owner[std::size_t(j)] == thread;
+      if (!own && !own_j) continue;  // a halo row serves this thread's partners only
+      plan.partner.push_back(j);
+      plan.target.push_back(own_j ? rank[std::size_t(j)] : n_owned);
+    }
+    plan.rows.push_back(int(i));
+    plan.owned.push_back(own ? 1 : 0);
+    plan.start.push_back(int(plan.partner.size()));
+  }
+}
+
+namespace {
+
+// The plan's rows in order, in batches: the entries of a batch's rows are computed into the
+// scratch as one stream of pairs, then each owned row's terms are added to its accumulator
+// (sequentially, in row order) and its force written, and every entry's term is subtracted
+// from its target's accumulator.
 template <bool kCohesive, bool kEnergy, bool kVirial, class Pairs>
-void half_rows(std::size_t n, const double* pos, const VerletList& list, const MinimumImage& image,
-               const Pairs& pairs, Vec3* __restrict sums, Vec3* __restrict force,
-               double* __restrict site_energy, Vec3* __restrict site_virial) {
-  RowScratch b;
-  b.reserve(std::size_t(kBatchPairs) + list.max_count() + kLanes);
-  std::vector<int> start;  // the batch's rows' first entries (and the end)
+void half_rows(HalfRowsPlan& plan, const double* pos, const MinimumImage& image, const Pairs& pairs,
+               RowScratch& b, Vec3* __restrict force, double* __restrict site_energy,
+               Vec3* __restrict site_virial) {
   const double* __restrict gx = b.fx.data();
   const double* __restrict gy = b.fy.data();
   const double* __restrict gz = b.fz.data();
@@ -42,59 +145,77 @@ void half_rows(std::size_t n, const double* pos, const VerletList& list, const M
   const double* __restrict wz = b.wz.data();
   int* __restrict idx = b.idx.data();
   int* __restrict ii = b.ii.data();
+  const int* __restrict partner = plan.partner.data();
+  const int* __restrict start = plan.start.data();
+  Vec3* __restrict sums = plan.sums.data();
+  double* __restrict energy = plan.energy.data();
+  Vec3* __restrict virial = plan.virial.data();
+  const std::size_t n_rows = plan.rows.size();
   std::size_t row = 0;
-  while (row < n) {
+  int rank = 0;  // of the next owned row's site
+  while (row < n_rows) {
     const std::size_t first = row;
-    start.clear();
+    const int base = start[first];
     int m = 0;
-    for (; row < n && m < kBatchPairs; ++row) {
-      const int* nb = list.neighbors(row);
-      const int count = list.count(row);
-      const int lo = lower_entries(nb, count, int(row));
-      start.push_back(m);
-      for (int k = lo; k < count; ++k, ++m) {
-        idx[m] = nb[k];
-        ii[m] = int(row);
+    for (; row < n_rows && m < kBatchPairs; ++row) {
+      const int i = plan.rows[row];
+      for (int k = start[row]; k < start[row + 1]; ++k, ++m) {
+        idx[m] = partner[k];
+        ii[m] = i;
       }
     }
-    start.push_back(m);
     const int m_pad = (m + kLanes - 1) / kLanes * kLanes;
-    for (int k = m; k < m_pad; ++k) idx[k] = ii[k] = int(row - 1);  // j = i: masked out
+    const int last = plan.rows[row - 1];
+    for (int k = m; k < m_pad; ++k) idx[k] = ii[k] = last;  // j = i: masked out
     contact_detail::stream_terms<kCohesive, kEnergy, kVirial>([ii](int k) { return ii[k]; }, m_pad,
                                                               pos, image, pairs, b);
+    const int* __restrict to = plan.target.data() + base;
     for (std::size_t r = first; r < row; ++r) {
-      const int k0 = start[r - first], k1 = start[r - first + 1];
-      double fx = sums[r][0], fy = sums[r][1], fz = sums[r][2];
+      const int k0 = start[r] - base, k1 = start[r + 1] - base;
+      if (!plan.owned[r]) {  // a halo row: site i is another thread's, its partners are ours
+        for (int k = k0; k < k1; ++k) {
+          sums[to[k]][0] -= gx[k];
+          sums[to[k]][1] -= gy[k];
+          sums[to[k]][2] -= gz[k];
+          if constexpr (kEnergy) energy[to[k]] += ge[k];
+          if constexpr (kVirial) {
+            virial[to[k]][0] += wx[k];
+            virial[to[k]][1] += wy[k];
+            virial[to[k]][2] += wz[k];
+          }
+        }
+        continue;
+      }
+      const int i = plan.rows[r], me = rank++;
+      double fx = sums[me][0], fy = sums[me][1], fz = sums[me][2];
       for (int k = k0; k < k1; ++k) {
-        const int j = idx[k];
         fx += gx[k];
         fy += gy[k];
         fz += gz[k];
-        sums[j][0] -= gx[k];
-        sums[j][1] -= gy[k];
-        sums[j][2] -= gz[k];
+        sums[to[k]][0] -= gx[k];
+        sums[to[k]][1] -= gy[k];
+        sums[to[k]][2] -= gz[k];
       }
-      force[r] += Vec3(fx, fy, fz);
+      force[i] += Vec3(fx, fy, fz);
       if constexpr (kEnergy) {
-        double e = site_energy[r];
+        double e = energy[me];
         for (int k = k0; k < k1; ++k) {
           e += ge[k];
-          site_energy[idx[k]] += ge[k];
+          energy[to[k]] += ge[k];
         }
-        site_energy[r] = e;
+        site_energy[i] = e;
       }
       if constexpr (kVirial) {
-        double ax = site_virial[r][0], ay = site_virial[r][1], az = site_virial[r][2];
+        double ax = virial[me][0], ay = virial[me][1], az = virial[me][2];
         for (int k = k0; k < k1; ++k) {
-          const int j = idx[k];
           ax += wx[k];
           ay += wy[k];
           az += wz[k];
-          site_virial[j][0] += wx[k];
-          site_virial[j][1] += wy[k];
-          site_virial[j][2] += wz[k];
+          virial[to[k]][0] += wx[k];
+          virial[to[k]][1] += wy[k];
+          virial[to[k]][2] += wz[k];
         }
-        site_virial[r] = Vec3(ax, ay, az);
+        site_virial[i] = Vec3(ax, ay, az);
       }
     }
   }
@@ -103,32 +224,33 @@ void half_rows(std::size_t n, const double* pos, const VerletList& list, const M
 }  // namespace
 
 template <bool kCohesive, bool kEnergy, bool kVirial>
-void contact_half_rows(System& sys, const VerletList& list, const PairTable& table,
-                       const ContactParams& params, std::vector<Vec3>& sums, double* site_energy,
-                       Vec3* site_virial) {
+void contact_half_rows(System& sys, HalfRowsPlan& plan, std::size_t max_count,
+                       const PairTable& table, const ContactParams& params, double* site_energy,
+                       Vec3* site_virial, RowScratch& scratch) {
   Sites& s = sys.sites();
-  const std::size_t n = s.size();
   const MinimumImage image(sys.box());
   static_assert(sizeof(Vec3) == 3 * sizeof(double), "positions are read as a flat array");
   const double* pos = s.pos.data()->data();
-  sums.assign(n, Vec3::Zero());
+  plan.sums.assign(plan.n_owned + 1, Vec3::Zero());
+  if constexpr (kEnergy) plan.energy.assign(plan.n_owned + 1, 0.0);
+  if constexpr (kVirial) plan.virial.assign(plan.n_owned + 1, Vec3::Zero());
+  scratch.reserve(std::size_t(kBatchPairs) + max_count + kLanes);
   if (table.usable()) {
     const contact_detail::TableStreamPairs pairs{table};
-    half_rows<kCohesive, kEnergy, kVirial>(n, pos, list, image, pairs, sums.data(), s.force.data(),
+    half_rows<kCohesive, kEnergy, kVirial>(plan, pos, image, pairs, scratch, s.force.data(),
                                            site_energy, site_virial);
   } else {
     const double eps[4] = {params.eps_cc, params.eps_cv, params.eps_cv, params.eps_vv};
     const contact_detail::DirectStreamPairs pairs{s.diameter.data(), table.site_kind(), eps,
                                                   params.alpha, params.beta};
-    half_rows<kCohesive, kEnergy, kVirial>(n, pos, list, image, pairs, sums.data(), s.force.data(),
+    half_rows<kCohesive, kEnergy, kVirial>(plan, pos, image, pairs, scratch, s.force.data(),
                                            site_energy, site_virial);
   }
 }
 
-#define INVASIM_HALF_ROWS(C, E, V)                                                            \
-  template void contact_half_rows<C, E, V>(System&, const VerletList&, const PairTable&,      \
-                                           const ContactParams&, std::vector<Vec3>&, double*, \
-                                           Vec3*);
+#define INVASIM_HALF_ROWS(C, E, V)                                                                \
+  template void contact_half_rows<C, E, V>(System&, HalfRowsPlan&, std::size_t, const PairTable&, \
+                                           const ContactParams&, double*, Vec3*, RowScratch&);
 INVASIM_HALF_ROWS(false, false, false)
 INVASIM_HALF_ROWS(false, false, true)
 INVASIM_HALF_ROWS(false, true, false)

@@ -58,6 +58,18 @@ void apply_step_threads_env(Dynamics& dyn) {
   dyn.step_threads().set_mode(StepThreads::Mode::kAll);
 }
 
+// BENCH_CONTACT_KERNEL=full: the contact kernel's full rows (each pair twice) instead of the
+// half rows (forces/contact_force.hpp), for A/B comparisons of the two drivers.
+void apply_contact_kernel_env(ContactForce& contacts) {
+  const char* v = std::getenv("BENCH_CONTACT_KERNEL");
+  if (!v || std::string(v) == "half") return;
+  if (std::string(v) != "full") {
+    std::fprintf(stderr, "BENCH_CONTACT_KERNEL = '%s': expected 'half' or 'full'\n", v);
+    std::exit(2);
+  }
+  contacts.set_kernel(ContactKernel::kFullRows);
+}
+
 // Times `steps` steps of dyn on sys (prints the steps run with all threads on stderr).
 Rate time_steps(System& sys, ForceField& ff, Dynamics& dyn, int steps) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -95,6 +107,7 @@ Rate time_cancer(int n, double beta, int steps, std::uint64_t* builds = nullptr,
   ContactParams cp;
   cp.beta = beta;
   auto contacts = std::make_shared<ContactForce>(cp);
+  apply_contact_kernel_env(*contacts);
   ff.add(contacts);
   relax(sys, ff);
   Dynamics dyn(0.05);
@@ -122,6 +135,7 @@ Rate time_full(int nx, int nyz, int n_cells, int steps, int* n_bodies = nullptr,
                int* n_sites = nullptr) {
   System sys = test::slab_system(nx, nyz, n_cells, 5.2, 0.6, 11);
   ForceField ff = test::standard_forces(1e-2, 1000.0, 1.0);
+  apply_contact_kernel_env(dynamic_cast<ContactForce&>(*ff.terms().front()));
   relax(sys, ff);
   Dynamics dyn(0.05);
   apply_step_threads_env(dyn);

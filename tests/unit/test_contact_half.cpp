@@ -1,10 +1,12 @@
 // The contact kernel's two drivers (docs/performance.md, "Round 4: half-list kernel on one
-// thread"): the half rows on one thread (each pair once, scattered) and the full rows (any
-// thread count) give exactly the same forces, energy and virial, bit for bit.
+// thread", "Round 5: half rows on every thread"): the half rows (each pair once, scattered, on
+// any number of threads and for any owner of the sites) and the full rows give exactly the
+// same forces, energy and virial, bit for bit.
 #include <omp.h>
 #include <catch2/catch.hpp>
 
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -58,29 +60,70 @@ void check_drivers_agree(const System& sys, const ContactParams& p) {
     CAPTURE(flags.energy, flags.virial);
     const Outcome full2 = evaluate(sys, p, ContactKernel::kFullRows, 2, flags);
     const Outcome full1 = evaluate(sys, p, ContactKernel::kFullRows, 1, flags);
-    const Outcome half = evaluate(sys, p, ContactKernel::kHalfRows, 1, flags);
-    const Outcome automatic1 = evaluate(sys, p, ContactKernel::kAuto, 1, flags);
-    const Outcome automatic2 = evaluate(sys, p, ContactKernel::kAuto, 2, flags);
-    std::size_t differ = 0;
-    for (std::size_t i = 0; i < sys.n_sites(); ++i) differ += half.force[i] != full2.force[i];
-    CHECK(differ == 0);
-    CHECK(half.force == full2.force);
-    CHECK(half.force == full1.force);
-    CHECK(automatic1.force == full2.force);
-    CHECK(automatic2.force == full2.force);
-    CHECK(half.energy == full2.energy);
-    CHECK(half.virial == full2.virial);
-    CHECK(automatic1.energy == full2.energy);
-    CHECK(automatic1.virial == full2.virial);
-    if (flags.energy) CHECK(half.energy != 0.0);
-    if (flags.virial) CHECK(half.virial.norm() > 0.0);
+    CHECK(full1.force == full2.force);
+    // The half rows on 1, 2, 3 and 4 threads (slabs along different axes and numbers of cuts).
+    for (const int threads : {1, 2, 3, 4}) {
+      CAPTURE(threads);
+      const Outcome half = evaluate(sys, p, ContactKernel::kHalfRows, threads, flags);
+      std::size_t differ = 0;
+      for (std::size_t i = 0; i < sys.n_sites(); ++i) differ += half.force[i] != full2.force[i];
+      CHECK(differ == 0);
+      CHECK(half.energy == full2.energy);
+      CHECK(half.virial == full2.virial);
+      if (flags.energy) CHECK(half.energy != 0.0);
+      if (flags.virial) CHECK(half.virial.norm() > 0.0);
+    }
   }
+}
+
+// The contact forces of sys from half-row plans of an arbitrary owner assignment, each
+// thread's plan run in turn on the calling thread (the partition is free to be anything).
+std::vector<Vec3> forces_of_owners(const System& start, const ContactParams& p,
+                                   const std::vector<int>& owner, int parts) {
+  System sys = start;
+  VerletList list(p.skin);
+  CutoffRule rule;
+  rule.factor[0][0] = p.beta > 0.0 ? 1.0 + p.alpha : 1.0;
+  list.set_cutoff_rule(rule);
+  list.build(sys);
+  PairTable table;
+  table.build(sys.sites(), p);
+  const std::size_t n = sys.n_sites();
+  std::vector<int> rank(n);
+  contact_detail::RowScratch scratch;
+  for (auto& f : sys.sites().force) f = Vec3(0.25, -0.5, 1.0);
+  for (int t = 0; t < parts; ++t) {
+    HalfRowsPlan plan;
+    plan_half_rows(list, owner, t, rank, plan);
+    contact_half_rows<true, false, false>(sys, plan, list.max_count(), table, p, nullptr, nullptr,
+                                          scratch);
+  }
+  return sys.sites().force;
+}
+
+// Entries of the plans of `parts` threads (pairs computed, halo rows included) over the
+// pairs of the list (each counted once).
+double entries_over_pairs(const System& start, const ContactParams& p, int parts) {
+  System sys = start;
+  VerletList list(p.skin);
+  list.build(sys);
+  std::vector<int> owner;
+  partition_sites(sys, list, parts, owner);
+  std::vector<int> rank(sys.n_sites());
+  std::size_t entries = 0, pairs = 0;
+  for (std::size_t i = 0; i < sys.n_sites(); ++i) pairs += std::size_t(list.count(i));
+  for (int t = 0; t < parts; ++t) {
+    HalfRowsPlan plan;
+    plan_half_rows(list, owner, t, rank, plan);
+    entries += plan.partner.size();
+  }
+  return double(entries) / (0.5 * double(pairs));
 }
 
 }  // namespace
 
 TEST_CASE(
-    "contact kernel: the half rows on one thread and the full rows on 1 and 2 threads give "
+    "contact kernel: the half rows on 1 to 4 threads and the full rows on 1 and 2 threads give "
     "bit-identical forces, energy and virial") {
   ContactParams repulsive;
   ContactParams cohesive;
@@ -125,5 +168,70 @@ TEST_CASE(
     REQUIRE_FALSE(table.build(sys.sites(), cohesive));
     CHECK(count_pairs(sys, cohesive).first > 50);
     check_drivers_agree(sys, cohesive);
+  }
+}
+
+TEST_CASE("contact kernel: the half rows give the same bits for any owner of the sites") {
+  ContactParams cohesive;
+  cohesive.beta = 1e-2;
+  const System sys = mixed_system(3, 400, 4.6, 0.4, 13);
+  const std::size_t n = sys.n_sites();
+  const Outcome full = evaluate(sys, cohesive, ContactKernel::kFullRows, 1, {false, false});
+  std::mt19937 rng(5);
+  for (const int parts : {1, 2, 5}) {
+    CAPTURE(parts);
+    std::vector<int> owner(n);
+    for (auto& o : owner) o = int(rng() % unsigned(parts));  // scattered: most pairs cross
+    CHECK(forces_of_owners(sys, cohesive, owner, parts) == full.force);
+  }
+}
+
+TEST_CASE("contact kernel: a team whose size changes between steps re-plans its half rows") {
+  System sys = random_spheres(2000, 0.65, false, 43);
+  ContactParams p;
+  const Outcome full = evaluate(sys, p, ContactKernel::kFullRows, 1, {true, true});
+  ContactForce contact(p);
+  for (const int threads : {2, 1, 3, 2}) {  // no site moves: the list is built once
+    CAPTURE(threads);
+    const ThreadCountScope scope(threads);
+    for (auto& f : sys.sites().force) f = Vec3(0.25, -0.5, 1.0);
+    const ForceResult r = contact.add_forces(sys, {true, true});
+    CHECK(sys.sites().force == full.force);
+    CHECK(r.energy == full.energy);
+    CHECK(r.virial == full.virial);
+  }
+  CHECK(contact.neighbor_list().builds() == 1);
+}
+
+TEST_CASE("contact kernel: the slabs of the half rows leave few pairs to compute twice") {
+  // Dense spheres, periodic cube of ~13.5 sigma: two slabs cut 2 x 13.5^2 sigma^2; the pairs
+  // within the list's reach of a cut are computed by both threads.
+  const System sys = random_spheres(2000, 0.65, false, 44);
+  ContactParams p;
+  CHECK(entries_over_pairs(sys, p, 1) == 1.0);
+  const double two = entries_over_pairs(sys, p, 2);
+  CHECK(two > 1.0);
+  CHECK(two < 1.2);  // a scattered partition: ~1.5
+}
+
+TEST_CASE("contact kernel: new parameters (a new list) re-plan the half rows") {
+  // Cohesion switched on after one evaluation: the new list's first build must not be taken
+  // for the old list's (both are the first build of their list).
+  const System start = random_spheres(2000, 0.65, false, 45);
+  ContactParams repulsive, cohesive;
+  repulsive.skin = 0.05;  // its list lacks the cohesive pairs beyond 1.05 s
+  cohesive.beta = 1e-2;
+  const Outcome want = evaluate(start, cohesive, ContactKernel::kFullRows, 1, {true, false});
+  for (const int threads : {1, 2}) {
+    CAPTURE(threads);
+    System sys = start;
+    const ThreadCountScope scope(threads);
+    ContactForce contact(repulsive);
+    contact.add_forces(sys, {false, false});
+    contact.set_params(cohesive);
+    for (auto& f : sys.sites().force) f = Vec3(0.25, -0.5, 1.0);
+    const ForceResult r = contact.add_forces(sys, {true, false});
+    CHECK(sys.sites().force == want.force);
+    CHECK(r.energy == want.energy);
   }
 }
