@@ -14,12 +14,13 @@ base=(run ../../protocols/invasion.lua --set N_a=4 --set N_c=60 --set L0=32.0 --
 "$invasim" "${base[@]}" --set quench_steps=200 --set steps=200 --out "$work/first" > "$work/first.log" 2>&1 ||
   fail "first run" "$work/first.log"
 first=$(cd "$work/first" && pwd -P)
-second=("${base[@]}" --seed 7 --set P=2e-3 --set quench_steps=3000 --set steps=400 --from "$work/first")
+second=("${base[@]}" --seed 7 --set P=2e-3 --set quench_steps=20000 --set steps=400 --from "$work/first")
 "$invasim" "${second[@]}" --out "$work/straight" > "$work/straight.log" 2>&1 || fail "straight run" "$work/straight.log"
 
 "$invasim" "${second[@]}" --out "$work/killed" > "$work/killed.log" 2>&1 &
 pid=$!
-# The quench's first line is logged before its steps: the signal lands in the quench.
+# The quench's first line is logged before its steps, and its 20000 steps last ~1 s (3000
+# were over before the signal on a fast machine): the signal lands in the quench.
 wait_for "$pid" "the start of the quench (its 'quench: P =' line in log.txt)" \
   grep -qs "^quench: P = " "$work/killed/log.txt" || { cat "$work/killed.log"; exit 1; }
 stop_with_sigterm "$pid" "$work/killed.log" "the killed run"
