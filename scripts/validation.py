@@ -6,7 +6,8 @@ Usage:
       one figure from its sweep workspace(s): DIR/NAME.json (rows of the side-by-side
       table, verdicts, steady-state evidence, numbers, the command) and the images.
       NAME and workspaces: fig3 WS | fig5a WS | fig5b WS [INSET_WS] | fig6 ACTIVE_WS
-      [PASSIVE_WS] | fig7 WS | fig8a WS | fig10 WS | fig11 WS
+      [PASSIVE_WS [LONG_WS]] | fig7 WS | fig8a WS | fig10 WS | fig11 WS (LONG_WS: curves run
+      longer, each replacing ACTIVE_WS's curve of the same beta and tau_p)
   validation.py all ROOT -o DIR [--invasim PATH]
       every figure from the standard workspaces ROOT/<sweep file name> (out, out/tiny)
   validation.py plan SPEC... [--jobs N] [--delta STEPS] [-o plan.json] [--invasim PATH]
@@ -34,7 +35,7 @@ REPO = os.path.dirname(HERE)
 # figure -> the sweep files (workspace names) it reads, in argument order
 FIGURES = {
     "fig3": ["fig3_passive_slices"], "fig5a": ["fig5a_passive"],
-    "fig5b": ["fig5b_cohesive", "fig5b_inset"], "fig6": ["fig6_active", "fig6_passive"],
+    "fig5b": ["fig5b_cohesive", "fig5b_inset"], "fig6": ["fig6_active", "fig6_passive", "fig6_long"],
     "fig7": ["fig7_cells_only"], "fig8a": ["fig8a_tethered"], "fig10": ["fig10_packing"],
     "fig11": ["fig11_shapes"],
 }
@@ -176,7 +177,8 @@ def main(argv):
                     print("%s: skipped (no workspace %s)" % (name, ", ".join(
                         os.path.join(args.root, n) for n in names)))
                     continue
-                wss = [w for w, ok in zip(wss, present) if ok]
+                # (optional ones are positional: those after a missing one are left out)
+                wss = wss[:present.index(False)] if False in present else wss
                 figure(name, wss, args.out, args.invasim, ["figure", name] + wss + ["-o", args.out])
         elif args.verb == "plan":
             from validation_lib import plan

@@ -69,6 +69,22 @@ def fit_sigmoid(x, y, sigma, name):
             "dof": dof, "error_scale": scale, "fit_note": note}
 
 
+def midpoint_not_located(a, a_err, b, b_err, xs):
+    """Why a curve's fitted midpoint a cannot enter the fit of a = c1 (1 + c2 q) r, or None.
+    a is the temperature at A_n = 1/2 only for a rising sigmoid (b > 0 by more than 2 errors:
+    with b ~ 0 any a fits, with b < 0 A_n falls with T) whose midpoint the data bracket, up
+    to a factor 2 beyond the measured temperatures on either side."""
+    if not all(math.isfinite(v) for v in (a, a_err, b, b_err)):
+        return "the sigmoid fit has no finite a, b and errors"
+    if not b > 2 * b_err:
+        return "not a rising sigmoid (b = %.3g +- %.2g): a is not a midpoint" % (b, b_err)
+    lo, hi = min(xs), max(xs)
+    if not lo / 2 <= a <= 2 * hi:
+        return ("the midpoint a = %.3g lies outside the measured temperatures %.3g-%.3g "
+                "(a factor 2 either side allowed)" % (a, lo, hi))
+    return None
+
+
 def _scale_model(qr, c1, c2):
     q, r = qr
     return c1 * (1.0 + c2 * q) * r

@@ -30,14 +30,37 @@ def _curve_points(jobs, keys):
     return out
 
 
-def fig6(jobs, out, invasim, passive_jobs=None):
+def _run_time(jobs):
+    """The production run's length t of jobs (their longest), for labels."""
+    return max(int(j.sp.get("steps", j.scalar("steps"))) * float(j.sp.get("dt", 0.05))
+               for j in jobs)
+
+
+def fig6(jobs, out, invasim, passive_jobs=None, long_jobs=None):
+    """long_jobs (fig6_long.lua): curves run longer; each replaces the curve of the same beta
+    and tau_p of jobs, which is drawn for comparison (hollow markers) but not fitted."""
     curves = _curve_points(jobs, ["beta", "tau_p"])
+    replaced = {}
+    if long_jobs:
+        for key, pts in _curve_points(long_jobs, ["beta", "tau_p"]).items():
+            if key in curves:
+                replaced[key] = curves[key]
+            curves[key] = pts
     if passive_jobs:
         for key, pts in _curve_points(passive_jobs, ["beta"]).items():
             curves[("passive", key[0])] = pts
     extremes = runs.normalise([p for pts in curves.values() for p in pts])
+    for pts in replaced.values():
+        for p in pts:
+            p.update(runs.scale_like(p, extremes))
     fig, axes = figure(2)
     fitted, rows = [], []
+    short_t, long_t = _run_time(jobs), _run_time(long_jobs) if long_jobs else None
+    for key, pts in replaced.items():
+        pts.sort(key=lambda p: p["x"])
+        axes[0].plot([p["x"] for p in pts], [p["A_n"] for p in pts], marker="o", ls="none",
+                     mfc="none", color="0.5", label=state({"beta": "%g" % key[0], "tau_p": "%g"
+                                                           % key[1]}) + ", t = %g" % short_t)
     for key, pts in curves.items():
         pts.sort(key=lambda p: p["x"])
         name = (state({"beta": "%g" % key[1]}) + ", passive" if key[0] == "passive"
@@ -48,7 +71,10 @@ def fig6(jobs, out, invasim, passive_jobs=None):
                              marker="o", ls="none", capsize=2, label=name)
         plain = ("beta = %g, passive" % key[1] if key[0] == "passive"
                  else "beta = %g, tau_p = %g" % (key[0], key[1]))
-        entry = {"curve": plain, "key": list(key), "points": len(pts)}
+        if key in replaced:
+            name += ", t = %g" % long_t
+            plain += " (t = %g)" % long_t
+        entry = {"curve": plain, "key": list(key), "points": len(pts), "xs": [p["x"] for p in pts]}
         try:
             if min(p["x"] for p in pts) <= 0:
                 raise FitError("a non-positive temperature")
@@ -86,10 +112,26 @@ def fig6(jobs, out, invasim, passive_jobs=None):
         "%s (%s)" % (verdict.fmt(f["b"], f["b_error"]), f["curve"]) for f in fitted if "b" in f)
         or "n/a: " + "; ".join(f.get("why_no_fit", "") for f in fitted)),
         verdict.range_verdict(bs, sb["low"], sb["high"]), "every b in [0.5, 2.5] within 2 errors"))
-    usable = [f for f in fitted if "a" in f and verdict.finite(f["tau_d"], f["a_error"])
-              and f["key"][0] != "passive"]
+    # The curves whose midpoint a enters the fit of a (the same rule as master_curve.py).
+    for f in fitted:
+        if f["key"][0] == "passive":
+            f["excluded_from_scale_fit"] = "passive (no tau_d of self-propulsion)"
+        elif "a" not in f:
+            f["excluded_from_scale_fit"] = "no sigmoid fit: " + f.get("why_no_fit", "")
+        elif not verdict.finite(f["tau_d"]):
+            f["excluded_from_scale_fit"] = "no finite tau_d"
+        else:
+            f["excluded_from_scale_fit"] = fits.midpoint_not_located(
+                f["a"], f["a_error"], f["b"], f["b_error"], f.pop("xs"))
+        f.pop("xs", None)
+    usable = [f for f in fitted if f["excluded_from_scale_fit"] is None]
+    excluded = "; ".join("%s: %s" % (f["curve"], f["excluded_from_scale_fit"])
+                         for f in fitted if f["key"][0] != "passive" and f["excluded_from_scale_fit"])
     scale = None
-    if len(usable) >= 2:
+    if len(usable) < 2:
+        scale = {"why": "%d curve%s with a located midpoint (needs 2)%s" % (
+            len(usable), "" if len(usable) == 1 else "s", ": " + excluded if excluded else "")}
+    else:
         tau_g = 5.0
         try:
             scale = fits.fit_scale([f["a"] for f in usable], [f["a_error"] for f in usable],
@@ -102,8 +144,13 @@ def fig6(jobs, out, invasim, passive_jobs=None):
         s = verdict.paper()[sid]
         v = scale.get(name) if scale else None
         e_ = scale.get(name + "_error") if scale else None
+        how = ""
+        if v is not None:
+            how = " (fit of a over %d curves, chi2/dof = %s%s)" % (
+                scale["n_curves"], verdict.fmt(scale.get("chi2_dof")),
+                "; left out: " + excluded if excluded else "")
         rows.append(verdict.row(
-            sid, "%s = %s" % (name, verdict.fmt(v, e_)) if v is not None else
+            sid, "%s = %s%s" % (name, verdict.fmt(v, e_), how) if v is not None else
             "n/a (%s)" % (scale.get("why") if scale else "fewer than two fitted curves with tau_d"),
             verdict.log_verdict(v, e_, s["value"], s["log_factor"]) if v is not None
             else verdict.NO_DATA, "within a factor %g of %g" % (s["log_factor"], s["value"])))
@@ -116,7 +163,11 @@ def fig6(jobs, out, invasim, passive_jobs=None):
             verdict.fmt(min(vals)) if vals else "n/a", verdict.fmt(max(vals)) if vals else "n/a",
             len(vals)), verdict.range_verdict(ratios, st["low"], st["high"]),
         "every state point's T_c/T_a in [1, 1.2]"))
-    numbers = {"curves": fitted, "scale_fit": scale, "normalisation": extremes}
+    numbers = {"curves": fitted, "scale_fit": scale, "normalisation": extremes,
+               "replaced_by_longer_runs": [
+                   {"key": list(k), "t": short_t, "replaced_by_t": long_t,
+                    "A_n": [p["A_n"] for p in sorted(v, key=lambda p: p["x"])]}
+                   for k, v in replaced.items()]}
     if passive_jobs:
         eq = [j.mean("T_c")[0] / float(j.sp["kT"]) for j in passive_jobs if float(j.sp.get("kT", 0)) > 0]
         s2 = verdict.paper()["fig6_factor2"]
@@ -129,8 +180,9 @@ def fig6(jobs, out, invasim, passive_jobs=None):
             "the equipartition T_c equals the bath kT (|T_c/kT - 1| <= 0.05 + 2 errors); the "
             "paper's formula would read twice that"))
         numbers["passive_Tc_over_kT"] = eq
+    kept = [j for j in jobs if (float(j.sp["beta"]), float(j.sp["tau_p"])) not in replaced]
     return {"images": images, "rows": rows, "numbers": numbers,
-            "steadiness": runs.steadiness_summary(jobs + (passive_jobs or []))}
+            "steadiness": runs.steadiness_summary(kept + (passive_jobs or []) + (long_jobs or []))}
 
 
 def fig7(jobs, out, invasim):

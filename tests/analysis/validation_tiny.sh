@@ -24,6 +24,19 @@ done
 for fig in fig3 fig5a fig5b fig6 fig7 fig8a fig10 fig11; do
   [ -s "figures/$fig.json" ] || fail "figure $fig was not made"
 done
+# Fig. 6 with longer runs (fig6_long.lua): given as its own third workspace, each of its
+# curves replaces the same curve of the first, which is kept for comparison but not fitted.
+"$repo/scripts/validation.py" figure fig6 ws/fig6_long ws/fig6_passive ws/fig6_long -o fig6_self \
+  --invasim "$invasim" > fig6_self.log
+/usr/bin/python3 - fig6_self/fig6.json <<'PY' || fail "fig6: the longer runs did not replace the curves"
+import json, sys
+n = json.load(open(sys.argv[1]))["numbers"]
+replaced = {tuple(r["key"]) for r in n["replaced_by_longer_runs"]}
+active = [c for c in n["curves"] if c["key"][0] != "passive"]
+assert replaced and replaced == {tuple(c["key"]) for c in active}, (replaced, active)
+assert all("(t = " in c["curve"] for c in active), [c["curve"] for c in active]
+assert all("excluded_from_scale_fit" in c for c in n["curves"])
+PY
 "$repo/scripts/validation.py" plan --workspace ws/* --jobs 2 -o plan.json --invasim "$invasim" | tee plan.log
 "$repo/scripts/validation.py" document figures --plan plan.json --done plan.json -o validation.md --ci-size
 

@@ -1,0 +1,21 @@
+-- The paper's Fig. 6, tau_p = 2500 curves run four times longer than in fig6_active.lua:
+-- production t = 50000 = 20 tau_p (there: 12500 = 5 tau_p, too short for curves that were
+-- not yet rising sigmoids). The same beta, f0 and seeds; validation.py's fig6 takes this
+-- workspace as its third and uses these curves instead of fig6_active's (which it draws
+-- hollow for comparison).
+--   invasim sweep init protocols/sweeps/fig6_long.lua
+--   invasim sweep run out/fig6_long --jobs 2
+--   scripts/validation.py figure fig6 out/fig6_active out/fig6_passive out/fig6_long -o docs/validation
+return {
+  protocol = "../invasion.lua",
+  set = { system = "reduced", P = 1.3e-3, kT = 0.0, tau_p = 2500.0,
+          quench_steps = 20000, steps = 1000000, every = 1000,
+          snapshot_every = 0, checkpoint_every = 20000 },
+  product = { beta = { 1e-3, 1e-2 },
+              f0 = { 0.003, 0.0045, 0.0065, 0.0095, 0.0115, 0.02 } },
+  seeds = { 1, 2 },
+  prep = { set = { quench_steps = 0, steps = 0 } },
+  -- the CI size: three values per axis, so that the sigmoid fits run in CI too
+  tiny = { set = { quench_steps = 100, steps = 400, every = 100, checkpoint_every = 0 },
+           take = 3 },
+}
