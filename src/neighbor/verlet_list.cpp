@@ -111,10 +111,11 @@ void VerletList::setup_grid(const System& sys) {
   // build: the diameters and kinds change only with the sites.)
   cell_of_.resize(n);
   cell_sites_.resize(n);
-  cell_pos_.resize(n);
+  cell_x_.resize(n);
+  cell_y_.resize(n);
+  cell_z_.resize(n);
   cell_diam_.resize(n);
   cell_body_.resize(n);
-  cell_kind_.resize(n);
   counts_.assign(n, 0);
   upper_.assign(n, 0);
   pos_at_build_.resize(n);
@@ -135,10 +136,11 @@ void VerletList::bin_sites(const Sites& s) {
   }
   for (std::size_t p = 0; p < n; ++p) {
     const int j = cell_sites_[p];
-    cell_pos_[p] = s.pos[j];
+    cell_x_[p] = s.pos[j][0];
+    cell_y_[p] = s.pos[j][1];
+    cell_z_[p] = s.pos[j][2];
     cell_diam_[p] = s.diameter[j];
     cell_body_[p] = s.body[j];
-    cell_kind_[p] = s.kind[j];
   }
 }
 
@@ -167,8 +169,23 @@ void VerletList::build_team(const System& sys) {
     int max_upper = 0;
     candidates = 0;
     {
-      // Bin by bin: the candidate runs are found once per bin and its sites scanned while hot.
-      std::vector<std::array<int, 2>> runs;
+      // Bin by bin: the candidate runs (of one class each) are found once per bin and its
+      // sites scanned while hot. A run's candidates are tested in a vectorisable loop into
+      // flags, then compacted without branches (the slot at the row's count is written and
+      // overwritten: it lies inside the row, and a row that overflows its stride is redone).
+      std::vector<std::array<int, 3>> runs;
+      std::vector<unsigned char> flags;
+      const double hx = image.half(0), hy = image.half(1), hz = image.half(2);
+      const double lx = image.length(0), ly = image.length(1), lz = image.length(2);
+      auto wrap = [](double d, double half, double len) {
+        return d > half ? d - len : (d < -half ? d + len : d);
+      };
+      const double* __restrict px = cell_x_.data();
+      const double* __restrict py = cell_y_.data();
+      const double* __restrict pz = cell_z_.data();
+      const double* __restrict pd = cell_diam_.data();
+      const int* __restrict pb = cell_body_.data();
+      const double skin = skin_;
 #pragma omp for schedule(dynamic, 64) nowait
       for (int bin = 0; bin < n_bins; ++bin) {
         if (cell_start_[bin] == cell_start_[bin + 1]) continue;
@@ -177,29 +194,32 @@ void VerletList::build_team(const System& sys) {
         for (int cb = 0; cb < kClasses; ++cb)
           grid_.for_each_run(c, ca, cb, [&](int c0, int c1) {
             const int p0 = cell_start_[cb * n_cells + c0], p1 = cell_start_[cb * n_cells + c1 + 1];
-            if (p0 < p1) runs.push_back({p0, p1});
+            if (p0 < p1) runs.push_back({p0, p1, cb});
           });
         for (int q = cell_start_[bin]; q < cell_start_[bin + 1]; ++q) {
           const int i = cell_sites_[q];
-          const Vec3 ri = cell_pos_[q];
-          const int bi = cell_body_[q];
-          const SiteKind ki = cell_kind_[q];
-          const double di = cell_diam_[q];
+          const double xi = px[q], yi = py[q], zi = pz[q], di = pd[q];
+          const int bi = pb[q];
           int* out = &list_[std::size_t(i) * stride];
+          const int last = int(stride) - 1;
           int m = 0;
           for (const auto& run : runs) {
-            const int p0 = std::max(run[0], q + 1);  // partners after q only
-            candidates += std::uint64_t(std::max(run[1] - p0, 0));
-            for (int p = p0; p < run[1]; ++p) {
-              if (bi >= 0 && cell_body_[p] == bi) continue;
-              const double dx = image.x(ri[0] - cell_pos_[p][0]),
-                           dy = image.y(ri[1] - cell_pos_[p][1]),
-                           dz = image.z(ri[2] - cell_pos_[p][2]);
-              const double rc = rule_.of(ki, cell_kind_[p], di, cell_diam_[p]) + skin_;
-              if (dx * dx + dy * dy + dz * dz < rc * rc) {
-                if (m < int(stride)) out[m] = cell_sites_[p];
-                ++m;
-              }
+            const int p0 = std::max(run[0], q + 1), p1 = run[1];  // partners after q only
+            if (p0 >= p1) continue;
+            candidates += std::uint64_t(p1 - p0);
+            if (flags.size() < std::size_t(p1 - p0)) flags.resize(std::size_t(p1 - p0));
+            unsigned char* __restrict near = flags.data() - p0;
+            const double half_factor = 0.5 * rule_.factor[int(ca)][run[2]];
+#pragma omp simd
+            for (int p = p0; p < p1; ++p) {
+              const double dx = wrap(xi - px[p], hx, lx), dy = wrap(yi - py[p], hy, ly),
+                           dz = wrap(zi - pz[p], hz, lz);
+              const double rc = half_factor * (di + pd[p]) + skin;
+              near[p] = (dx * dx + dy * dy + dz * dz < rc * rc) & (bi < 0 || pb[p] != bi);
+            }
+            for (int p = p0; p < p1; ++p) {
+              out[std::min(m, last)] = cell_sites_[p];
+              m += near[p];
             }
           }
           upper_[i] = m;

@@ -100,10 +100,9 @@ class VerletList {
   static constexpr int kClasses = 2;  // the site kinds
   CellStencils grid_;
   std::vector<int> cell_of_, cell_start_, cell_sites_;
-  std::vector<Vec3> cell_pos_;
+  std::vector<double> cell_x_, cell_y_, cell_z_;
   std::vector<double> cell_diam_;
   std::vector<int> cell_body_;
-  std::vector<SiteKind> cell_kind_;
 };
 
 }  // namespace invasim
