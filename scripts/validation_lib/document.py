@@ -13,7 +13,8 @@ TITLES = {
     "fig3": "Fig. 3: passive repulsive cells, A_t(t) and slices",
     "fig5a": "Fig. 5a: passive repulsive cells, A_n against temperature at several times",
     "fig5b": "Fig. 5b: cohesive active cells (beta = 1e-2, tau_p = 25), with the mixed-start inset",
-    "fig6": "Fig. 6: the master curve over beta x tau_p, plus the passive curve",
+    "fig6": "Fig. 6: the master curve over beta x tau_p, plus the passive curve (tau_p = 2500: "
+            "the longer runs of fig6_long)",
     "fig7": "Fig. 7: cells only, tau_d against tau_p",
     "fig8a": "Fig. 8a: tethered tissue, K_ecm",
     "fig10": "Fig. 10: the adipocyte packing-fraction scan",
@@ -49,9 +50,9 @@ Every figure below comes from one sweep file in `protocols/sweeps/` (its header 
 run it) and one analysis command (printed under the figure). The whole campaign:
 
 ```sh
-scripts/validation.py plan protocols/sweeps/{fig3_passive_slices,fig5a_passive,fig5b_cohesive,fig5b_inset,fig6_active,fig6_passive,fig7_cells_only,fig8a_tethered,fig10_packing,fig11_shapes}.lua --jobs 2 -o out/validation/plan.json
+scripts/validation.py plan protocols/sweeps/{fig3_passive_slices,fig5a_passive,fig5b_cohesive,fig5b_inset,fig6_active,fig6_passive,fig6_long,fig7_cells_only,fig8a_tethered,fig10_packing,fig11_shapes}.lua --jobs 2 -o out/validation/plan.json
 for s in fig3_passive_slices fig5a_passive fig5b_cohesive fig5b_inset fig6_active fig6_passive \\
-         fig7_cells_only fig8a_tethered fig10_packing fig11_shapes; do
+         fig6_long fig7_cells_only fig8a_tethered fig10_packing fig11_shapes; do
   build/invasim sweep init protocols/sweeps/$s.lua && build/invasim sweep run out/$s --jobs 2
 done
 scripts/validation.py all out -o docs/validation     # every figure command below, then:
