@@ -46,28 +46,28 @@ struct Rate {
   double wall = 0.0, cpu = 0.0;
 };
 
+// True if the environment variable `name` is set to `other`, false if unset or `usual`;
+// any other value stops the benchmark with a message naming both.
+bool env_choice(const char* name, const std::string& usual, const std::string& other) {
+  const char* v = std::getenv(name);
+  if (!v || v == usual) return false;
+  if (v == other) return true;
+  std::fprintf(stderr, "%s = '%s': expected '%s' or '%s'\n", name, v, usual.c_str(), other.c_str());
+  std::exit(2);
+}
+
 // BENCH_STEP_THREADS=all: every step with all threads (integrate/step_threads.hpp), instead of
 // the measured choice between 1 thread and all.
 void apply_step_threads_env(Dynamics& dyn) {
-  const char* v = std::getenv("BENCH_STEP_THREADS");
-  if (!v || std::string(v) == "auto") return;
-  if (std::string(v) != "all") {
-    std::fprintf(stderr, "BENCH_STEP_THREADS = '%s': expected 'auto' or 'all'\n", v);
-    std::exit(2);
-  }
-  dyn.step_threads().set_mode(StepThreads::Mode::kAll);
+  if (env_choice("BENCH_STEP_THREADS", "auto", "all"))
+    dyn.step_threads().set_mode(StepThreads::Mode::kAll);
 }
 
 // BENCH_CONTACT_KERNEL=full: the contact kernel's full rows (each pair twice) instead of the
 // half rows (forces/contact_force.hpp), for A/B comparisons of the two drivers.
 void apply_contact_kernel_env(ContactForce& contacts) {
-  const char* v = std::getenv("BENCH_CONTACT_KERNEL");
-  if (!v || std::string(v) == "half") return;
-  if (std::string(v) != "full") {
-    std::fprintf(stderr, "BENCH_CONTACT_KERNEL = '%s': expected 'half' or 'full'\n", v);
-    std::exit(2);
-  }
-  contacts.set_kernel(ContactKernel::kFullRows);
+  if (env_choice("BENCH_CONTACT_KERNEL", "half", "full"))
+    contacts.set_kernel(ContactKernel::kFullRows);
 }
 
 // Times `steps` steps of dyn on sys (prints the steps run with all threads on stderr).
