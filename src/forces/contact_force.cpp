@@ -99,8 +99,8 @@ void site_contacts(int i, const double* pos, const int* nb, int m, const Minimum
 
 }  // namespace
 
-// The kernel's rows shared by the team (orphaned `omp for`; its end is the barrier after which
-// every force is added).
+// The kernel on the team: each thread its half rows (contact_half.hpp), or the full rows as an
+// orphaned `omp for`; either ends with the barrier after which every force is added.
 template <bool kCohesive, bool kEnergy, bool kVirial>
 void ContactForce::add_forces_impl(System& sys, RowScratch& scratch) {
   Sites& s = sys.sites();
