@@ -163,7 +163,7 @@ def fig5a(jobs, out, invasim):
 def fig5b(jobs, out, invasim, inset_jobs=None):
     fractions = (0.25, 0.5, 1.0)
     table, extremes = an_over_time(jobs, ["f0"], x_measured, fractions)
-    fig, axes = figure(2 if inset_jobs else 1)
+    fig, axes = figure(3 if inset_jobs else 1)
     plot_an_times(axes[0], table, T_PAPER, jobs)
     end = sorted(table[1.0], key=lambda p: p["x"])
     st = verdict.paper()["fig5b_An_at_0.3"]
@@ -200,6 +200,23 @@ def fig5b(jobs, out, invasim, inset_jobs=None):
         axes[1].set_ylabel(label("A_n", ""))
         axes[1].set_xlabel("initial placement (start)")
         axes[1].set_title("inset: de-mixed vs mixed start", fontsize=9)
+        # The paper's inset: A_n(t) from both starts (each run's series, normalised like the
+        # state points; the dashed line marks the start of the averaged last half).
+        colours = {"demixed": "C0", "mixed": "C3"}
+        for j in inset_jobs:
+            ser = j.series
+            trace = [runs.scale_like({"A_t": a, "A_t_max": m}, extremes)["A_n"]
+                     for a, m in zip(ser["A_t"], ser["A_t_max"])]
+            start = str(j.sp.get("start"))
+            axes[2].plot(ser["time"], trace, lw=0.8, color=colours.get(start, "k"),
+                         label=start if start not in axes[2].get_legend_handles_labels()[1] else None)
+        t_end = max(float(j.series["time"][-1]) for j in inset_jobs)
+        t_prod = min(float(j.series["time"][0]) for j in inset_jobs)
+        axes[2].axvline(t_prod + 0.5 * (t_end - t_prod), color="0.6", ls="--", lw=0.8)
+        axes[2].set_xlabel(label("time", "tau"))
+        axes[2].set_ylabel(label("A_n", ""))
+        axes[2].set_title("inset: A_n(t) from both starts", fontsize=9)
+        axes[2].legend(fontsize=7)
         if "demixed" in by_start and "mixed" in by_start:
             d = by_start["mixed"][0] - by_start["demixed"][0]
             e = math.hypot(by_start["mixed"][1], by_start["demixed"][1])
