@@ -221,7 +221,8 @@ def analyse(table, opts):
         curve.update(curve_scale_inputs(keys, table, [rows[i] for i in idx], opts.tau_g))
         if curve["excluded_from_scale_fit"] is None:
             curve["excluded_from_scale_fit"] = fits.midpoint_not_located(
-                fit["a"], fit["a_error"], fit["b"], fit["b_error"], [p["x"] for p in points])
+                fit["a"], fit["a_error"], fit["b"], fit["b_error"], [p["x"] for p in points],
+                [p["A_n"] for p in points], [p["A_n_error"] for p in points])
         curves.append(curve)
     scale = scale_fit(curves, fits)
     return {"rows": rows, "x": x, "rA_t": r_a, "A_n": a_n, "curves": curves,

@@ -69,19 +69,24 @@ def fit_sigmoid(x, y, sigma, name):
             "dof": dof, "error_scale": scale, "fit_note": note}
 
 
-def midpoint_not_located(a, a_err, b, b_err, xs):
+def midpoint_not_located(a, a_err, b, b_err, xs, ys, errs):
     """Why a curve's fitted midpoint a cannot enter the fit of a = c1 (1 + c2 q) r, or None.
-    a is the temperature at A_n = 1/2 only for a rising sigmoid (b > 0 by more than 2 errors:
-    with b ~ 0 any a fits, with b < 0 A_n falls with T) whose midpoint the data bracket, up
-    to a factor 2 beyond the measured temperatures on either side."""
+    a is the temperature at A_n = 1/2 only for a rising sigmoid: b > 0, and the data rise
+    (A_n at the highest temperature above that at the lowest by more than 2 combined errors;
+    with b ~ 0 any a fits, with b < 0 A_n falls with T). The data must also bracket the
+    midpoint, up to a factor 2 beyond the measured temperatures on either side."""
     if not all(math.isfinite(v) for v in (a, a_err, b, b_err)):
         return "the sigmoid fit has no finite a, b and errors"
-    if not b > 2 * b_err:
+    if not b > 0:
         return "not a rising sigmoid (b = %.3g +- %.2g): a is not a midpoint" % (b, b_err)
-    lo, hi = min(xs), max(xs)
-    if not lo / 2 <= a <= 2 * hi:
+    lo, hi = int(np.argmin(xs)), int(np.argmax(xs))
+    rise, e = ys[hi] - ys[lo], math.hypot(errs[hi], errs[lo])
+    if not rise > 2 * e:
+        return ("A_n does not rise across the measured temperatures (%.3g to %.3g, +- %.2g): "
+                "a is not a midpoint" % (ys[lo], ys[hi], e))
+    if not xs[lo] / 2 <= a <= 2 * xs[hi]:
         return ("the midpoint a = %.3g lies outside the measured temperatures %.3g-%.3g "
-                "(a factor 2 either side allowed)" % (a, lo, hi))
+                "(a factor 2 either side allowed)" % (a, xs[lo], xs[hi]))
     return None
 
 

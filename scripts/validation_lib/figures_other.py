@@ -14,9 +14,11 @@ from .plotting import T_PAPER, figure, label, log_if_spans, save, state
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from master_curve_lib import fits  # noqa: E402
+from master_curve_lib.analysis import build_points  # noqa: E402
 from master_curve_lib.table import InputError as FitError  # noqa: E402
 
 MIN_ERROR = 1e-3  # floor of a state point's A_n error in the fits (as master_curve.py)
+POOL = 1  # neighbours on each side whose replicate variance is pooled (master_curve.py --pool)
 
 
 def _curve_points(jobs, keys):
@@ -28,6 +30,27 @@ def _curve_points(jobs, keys):
             "T_c_over_T_a": j.mean("T_c_over_T_a")[0]})
         out.setdefault(key[:len(keys)], []).append(p)
     return out
+
+
+def _pooled_errors(pts, jobs_by_id, extremes):
+    """The A_n errors of a curve's state points as master_curve.py computes them
+    (analysis.build_points): the replicate variance pooled with POOL neighbours on each side
+    along x, so that two replicates give usable weights (the standard error of two values
+    alone can be near zero by chance and then dominates a fit), floored at MIN_ERROR."""
+    groups = [[jobs_by_id[i] for i in p["jobs"]] for p in pts]
+    rows = [j for g in groups for j in g]
+    scaled = [runs.scale_like({"A_t": j.mean("A_t")[0], "A_t_max": j.mean("A_t_max")[0],
+                               "A_t_error": j.mean("A_t")[1]}, extremes) for j in rows]
+    idx, k = [], 0
+    for g in groups:
+        idx.append(np.arange(k, k + len(g)))
+        k += len(g)
+    out = build_points(idx, np.array([x_measured(j) for j in rows]),
+                       np.array([q["A_n"] for q in scaled]),
+                       np.array([q["A_n_error"] for q in scaled]),
+                       [(math.nan, math.nan)] * len(rows), MIN_ERROR, POOL)
+    error_of = {tuple(o["rows"]): o["A_n_error"] for o in out}
+    return [error_of[tuple(ix)] for ix in idx]
 
 
 def _run_time(jobs):
@@ -53,6 +76,7 @@ def fig6(jobs, out, invasim, passive_jobs=None, long_jobs=None):
     for pts in replaced.values():
         for p in pts:
             p.update(runs.scale_like(p, extremes))
+    jobs_by_id = {j.id: j for j in jobs + (passive_jobs or []) + (long_jobs or [])}
     fig, axes = figure(2)
     fitted, rows = [], []
     short_t, long_t = _run_time(jobs), _run_time(long_jobs) if long_jobs else None
@@ -65,8 +89,9 @@ def fig6(jobs, out, invasim, passive_jobs=None, long_jobs=None):
         pts.sort(key=lambda p: p["x"])
         name = (state({"beta": "%g" % key[1]}) + ", passive" if key[0] == "passive"
                 else state({"beta": "%g" % key[0], "tau_p": "%g" % key[1]}))
-        sig = [max(MIN_ERROR, p["A_n_error"] if verdict.finite(p["A_n_error"]) else MIN_ERROR)
-               for p in pts]
+        sig = _pooled_errors(pts, jobs_by_id, extremes)
+        for p, e in zip(pts, sig):
+            p["A_n_error"] = e
         h = axes[0].errorbar([p["x"] for p in pts], [p["A_n"] for p in pts], yerr=sig,
                              marker="o", ls="none", capsize=2, label=name)
         plain = ("beta = %g, passive" % key[1] if key[0] == "passive"
@@ -74,7 +99,8 @@ def fig6(jobs, out, invasim, passive_jobs=None, long_jobs=None):
         if key in replaced:
             name += ", t = %g" % long_t
             plain += " (t = %g)" % long_t
-        entry = {"curve": plain, "key": list(key), "points": len(pts), "xs": [p["x"] for p in pts]}
+        entry = {"curve": plain, "key": list(key), "points": len(pts),
+                 "data": ([p["x"] for p in pts], [p["A_n"] for p in pts], sig)}
         try:
             if min(p["x"] for p in pts) <= 0:
                 raise FitError("a non-positive temperature")
@@ -82,8 +108,9 @@ def fig6(jobs, out, invasim, passive_jobs=None, long_jobs=None):
             entry.update(f)
             xs = np.logspace(math.log10(pts[0]["x"]), math.log10(pts[-1]["x"]), 100)
             axes[0].plot(xs, fits.sigmoid(xs, f["a"], f["b"]), color=h[0].get_color(), lw=1)
-            axes[1].plot([(p["x"] / f["a"]) ** f["b"] for p in pts], [p["A_n"] for p in pts],
-                         "o", color=h[0].get_color())
+            if f["a"] > 0:
+                axes[1].plot([(p["x"] / f["a"]) ** f["b"] for p in pts],
+                             [p["A_n"] for p in pts], "o", color=h[0].get_color())
         except FitError as e:
             entry["why_no_fit"] = str(e)
         taus = [p["tau_d"] for p in pts if verdict.finite(p["tau_d"]) and p["tau_d"] > 0]
@@ -122,8 +149,8 @@ def fig6(jobs, out, invasim, passive_jobs=None, long_jobs=None):
             f["excluded_from_scale_fit"] = "no finite tau_d"
         else:
             f["excluded_from_scale_fit"] = fits.midpoint_not_located(
-                f["a"], f["a_error"], f["b"], f["b_error"], f.pop("xs"))
-        f.pop("xs", None)
+                f["a"], f["a_error"], f["b"], f["b_error"], *f["data"])
+        f.pop("data")
     usable = [f for f in fitted if f["excluded_from_scale_fit"] is None]
     excluded = "; ".join("%s: %s" % (f["curve"], f["excluded_from_scale_fit"])
                          for f in fitted if f["key"][0] != "passive" and f["excluded_from_scale_fit"])

@@ -48,16 +48,19 @@ for needed in ["fig3_invasion_grows", "fig5a_Tg", "fig5b_An_at_0.3", "fig6_b_ran
     assert needed in ids and ids[needed]["source"].startswith("MODEL.md"), needed
 
 # The midpoint a of a sigmoid enters the fit of a = c1 (1 + c2 beta/P) tau_g/tau_d only for a
-# rising curve (b > 2 errors) whose midpoint the temperatures bracket (a factor 2 either side).
+# rising curve (b > 0 and the data rising by more than 2 errors) whose midpoint the
+# temperatures bracket (a factor 2 either side).
 from master_curve_lib import fits  # noqa: E402
-xs = [0.01, 0.1, 1.0]
-assert fits.midpoint_not_located(0.1, 0.01, 1.2, 0.1, xs) is None
-assert fits.midpoint_not_located(1.9, 0.5, 1.2, 0.1, xs) is None                  # <= 2 x_max
-assert "rising" in fits.midpoint_not_located(0.1, 0.01, -0.8, 0.02, xs)           # falls with T
-assert "rising" in fits.midpoint_not_located(0.1, 0.01, 1.7e-5, 0.4, xs)          # flat: b ~ 0
-assert "outside" in fits.midpoint_not_located(2.8e10, 1.9e11, 0.086, 0.022, xs)   # far beyond
-assert "outside" in fits.midpoint_not_located(0.004, 0.001, 1.0, 0.1, xs)         # < x_min / 2
-assert "finite" in fits.midpoint_not_located(math.inf, math.inf, 1e-5, 0.4, xs)
+xs, up, flat, e = [0.01, 0.1, 1.0], [0.1, 0.5, 0.9], [0.1, 0.12, 0.09], [0.02, 0.02, 0.02]
+assert fits.midpoint_not_located(0.1, 0.01, 1.2, 0.1, xs, up, e) is None
+assert fits.midpoint_not_located(0.1, 0.05, 2.2, 1.2, xs, up, e) is None          # b uncertain
+assert fits.midpoint_not_located(1.9, 0.5, 1.2, 0.1, xs, up, e) is None           # <= 2 x_max
+assert "rising" in fits.midpoint_not_located(0.1, 0.01, -0.8, 0.02, xs, up[::-1], e)  # falls
+assert "rising" in fits.midpoint_not_located(0.0, 0.0, -2.6e-6, 0.08, xs, flat, e)    # b ~ 0
+assert "rise" in fits.midpoint_not_located(2.8e10, 1.9e11, 0.086, 0.022, xs, flat, e)  # flat data
+assert "outside" in fits.midpoint_not_located(5.0, 1.0, 1.0, 0.1, xs, up, e)       # > 2 x_max
+assert "outside" in fits.midpoint_not_located(0.004, 0.001, 1.0, 0.1, xs, up, e)   # < x_min / 2
+assert "finite" in fits.midpoint_not_located(math.inf, math.inf, 1e-5, 0.4, xs, up, e)
 
 # Normalisation by hand: A_t_max 1000, 1100; A_t 200, 500, 800.
 pts = [{"A_t": 200.0, "A_t_max": 1000.0, "A_t_error": 10.0},
