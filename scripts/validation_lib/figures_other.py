@@ -92,12 +92,13 @@ def fig6(jobs, out, invasim, passive_jobs=None, long_jobs=None):
         sig = _pooled_errors(pts, jobs_by_id, extremes)
         for p, e in zip(pts, sig):
             p["A_n_error"] = e
+        if key in replaced:
+            name += ", t = %g" % long_t
         h = axes[0].errorbar([p["x"] for p in pts], [p["A_n"] for p in pts], yerr=sig,
                              marker="o", ls="none", capsize=2, label=name)
         plain = ("beta = %g, passive" % key[1] if key[0] == "passive"
                  else "beta = %g, tau_p = %g" % (key[0], key[1]))
         if key in replaced:
-            name += ", t = %g" % long_t
             plain += " (t = %g)" % long_t
         entry = {"curve": plain, "key": list(key), "points": len(pts),
                  "data": ([p["x"] for p in pts], [p["A_n"] for p in pts], sig)}
