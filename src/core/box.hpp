@@ -92,8 +92,11 @@ class MinimumImage {
       half_[a] = box.periodic(a) ? 0.5 * box.length(a) : std::numeric_limits<double>::infinity();
     }
   }
-  double axis(int a, double d) const {
-    return d > half_[a] ? d - len_[a] : (d < -half_[a] ? d + len_[a] : d);
+  double axis(int a, double d) const { return wrap(d, half_[a], len_[a]); }
+  // The same with an axis's half period and period passed in (kept in registers by the
+  // vectorised pair loops: contact kernel, neighbour-list build).
+  static double wrap(double d, double half, double len) {
+    return d > half ? d - len : (d < -half ? d + len : d);
   }
   double x(double d) const { return axis(0, d); }
   double y(double d) const { return axis(1, d); }

@@ -168,9 +168,7 @@ void row_terms(int i, const double* pos, const int* nb, int m, const MinimumImag
   // The minimum image with the box's constants in registers.
   const double hx = image.half(0), hy = image.half(1), hz = image.half(2);
   const double lx = image.length(0), ly = image.length(1), lz = image.length(2);
-  auto wrap = [](double d, double half, double len) {
-    return d > half ? d - len : (d < -half ? d + len : d);
-  };
+  const auto wrap = MinimumImage::wrap;
   const TermOut out{b.fx.data(), b.fy.data(), b.fz.data(), b.e.data(),
                     b.wx.data(), b.wy.data(), b.wz.data()};
   // The row padded to whole vectors with site i itself (masked out below), so that every
@@ -206,9 +204,7 @@ void stream_terms(SiteOf site_of, int m_pad, const double* pos, const MinimumIma
   // The minimum image with the box's constants in registers.
   const double hx = image.half(0), hy = image.half(1), hz = image.half(2);
   const double lx = image.length(0), ly = image.length(1), lz = image.length(2);
-  auto wrap = [](double d, double half, double len) {
-    return d > half ? d - len : (d < -half ? d + len : d);
-  };
+  const auto wrap = MinimumImage::wrap;
   const TermOut out{b.fx.data(), b.fy.data(), b.fz.data(), b.e.data(),
                     b.wx.data(), b.wy.data(), b.wz.data()};
   const int* __restrict idx = b.idx.data();

@@ -177,9 +177,7 @@ void VerletList::build_team(const System& sys) {
       std::vector<unsigned char> flags;
       const double hx = image.half(0), hy = image.half(1), hz = image.half(2);
       const double lx = image.length(0), ly = image.length(1), lz = image.length(2);
-      auto wrap = [](double d, double half, double len) {
-        return d > half ? d - len : (d < -half ? d + len : d);
-      };
+      const auto wrap = MinimumImage::wrap;
       const double* __restrict px = cell_x_.data();
       const double* __restrict py = cell_y_.data();
       const double* __restrict pz = cell_z_.data();
