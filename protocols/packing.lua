@@ -6,7 +6,11 @@
 -- tissue move away from the target phi_a: the run reports the measured phi_a (mean over
 -- production and final value) beside the target, and says so in the log when it drifts by
 -- more than 0.05 (lib/packing_drift.lua; docs/model.md gives the numbers).
+-- box = "fixed" keeps both walls where the rescale put them instead (the paper's text, "by
+-- changing the length of the simulation box", read literally): phi_a then stays at the
+-- target and the wall pressure is measured, not set (docs/model.md, "Packing-fraction scan").
 --   invasim run protocols/packing.lua --set phi_a=0.6
+--   invasim run protocols/packing.lua --set phi_a=0.85 --set box=fixed
 local iv = require("invasim")
 local parameters = require("lib.parameters")
 local stage = require("lib.stages")
@@ -16,6 +20,7 @@ local p = iv.params(parameters.merge{
   phi_a = { 0.6, range = "(0, 1)", help = "adipocyte packing fraction of this scan point (0.4-0.9)" },
   K_ecm = { 0.04, range = "[0, inf)", unit = "eps_c/sigma^2", help = "ECM tether stiffness (0: no tethers)" },
   lambda = { 0.0, range = "[0, 1]", help = "tether heterogeneity" },
+  box = { "pressure", choices = { "pressure", "fixed" }, help = "after the rescale: pressure (the left wall a piston at P, MODEL.md step 6) or fixed (both walls stay: the box keeps the rescaled size)" },
   f0 = { 0.012, range = "[0, inf)", unit = "eps_c/sigma", help = "self-propulsion force (0.012: k_B T_c/(P sigma^3) ~ 0.37 in the paper's convention, docs/model.md)" },
 })
 parameters.validate(p)
@@ -43,10 +48,12 @@ end
 -- Quench, production and report, as in invasion.lua; then the measured phi_a beside the target.
 stage.quench(tissue, { P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p, gamma = p.gamma,
                        vertex_bath = p.vertex_bath, vertex_gamma = p.vertex_gamma, dt = p.dt,
-                       steps = p.quench_steps })
+                       steps = p.quench_steps, barostat = p.box == "pressure" })
 local result = stage.production(tissue, { steps = p.steps, every = p.every,
                                           correlate_every = p.correlate_every,
                                           snapshot_every = p.snapshot_every,
                                           checkpoint_every = p.checkpoint_every, out = out })
-local packing = require("lib.packing_drift")(p.phi_a, result, { P = p.P })
+local packing = require("lib.packing_drift")(p.phi_a, result,
+                                             { P = p.box == "pressure" and p.P or nil })
+packing.box = p.box
 require("lib.report").final(tissue, p, result, iv.clock() - clock, out, { packing_scan = packing })

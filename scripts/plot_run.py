@@ -40,7 +40,7 @@ GROUPS = [
                          (["T_c_over_T_a"], plot_labels.symbol("T_c_over_T_a"))]),
     ("pressure.png", [(["P_left", "P_right"], "pressure on the walls")]),
     ("box_length.png", [(["L_x"], "box length " + plot_labels.symbol("L_x"))]),
-    ("packing.png", [(["phi", "phi_c", "phi_a"], "packing fraction"),
+    ("packing.png", [(["phi", "phi_c", "phi_a", "phi_a_local_mean"], "packing fraction"),
                      (["phi_a_local_std"], plot_labels.symbol("phi_a_local_std")
                       + r", std of the local $\phi_a$")]),
 ]

@@ -16,18 +16,19 @@ function M.thermo(tissue)
 end
 
 -- Interfacial area from the Voronoi tessellation of cells and vertices: A_t, A_t^max, their
--- ratio, the spread of the local adipocyte packing fraction Delta phi_a, and the adipocytes'
--- area on the walls (A_wall_a, left out of A_t^max's S_i: docs/measurements.md).
+-- ratio, the mean of the local adipocyte packing fraction and its spread Delta phi_a, and the
+-- adipocytes' area on the walls (A_wall_a, left out of A_t^max's S_i: docs/measurements.md).
 function M.interface(tissue, radical)
   local sys = tissue.sys
   return {
-    columns = { "A_t", "A_t_max", "A_ratio", "phi_a_local_std", "A_wall_a" },
-    units = { A_t = "sigma^2", A_t_max = "sigma^2", A_ratio = "1", phi_a_local_std = "1",
-              A_wall_a = "sigma^2" },
+    columns = { "A_t", "A_t_max", "A_ratio", "phi_a_local_mean", "phi_a_local_std", "A_wall_a" },
+    units = { A_t = "sigma^2", A_t_max = "sigma^2", A_ratio = "1", phi_a_local_mean = "1",
+              phi_a_local_std = "1", A_wall_a = "sigma^2" },
     sample = function(row)
       local v = sys:voronoi{ radical = radical }
       row.A_t, row.A_t_max, row.A_ratio = v.A_t, v.A_t_max, v.A_ratio
-      row.phi_a_local_std, row.A_wall_a = v.phi_a_local_std, v.adipocyte_wall
+      row.phi_a_local_mean, row.phi_a_local_std = v.phi_a_local_mean, v.phi_a_local_std
+      row.A_wall_a = v.adipocyte_wall
     end,
   }
 end

@@ -28,7 +28,7 @@ function M.final(tissue, p, result, seconds, out, extra)
   log.say("summary", "averages over the last %d of %d samples (block-averaging errors):", n, s.samples)
   summary_lines.print("summary", s, { "A_t", "A_t_max", "A_ratio", "T_c", "T_a", "T_c_over_T_a",
                                       "kT_c_paper", "P_left", "P_right",
-                                      "L_x", "phi", "phi_c", "phi_a", "phi_a_local_std" },
+                                      "L_x", "phi", "phi_c", "phi_a", "phi_a_local_mean", "phi_a_local_std" },
                       result.series.units)
   local derived = {}
   if s.T_c and s.T_a and p.P > 0 then

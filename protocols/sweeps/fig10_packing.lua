@@ -1,7 +1,10 @@
 -- The paper's Fig. 10 at reduced scale: the adipocyte packing-fraction scan
 -- (protocols/packing.lua: rescale to phi_a, minimise, tether with K_ecm = 0.04 and lambda, run
 -- under the pressure wall) at phi_a = 0.45 to 0.85 and lambda in {0, 0.3, 1}; beta = 1e-2,
--- tau_p = 25, f0 = 0.012 (k_B T_c/(P sigma^3) ~ 0.37 in the paper's convention). The
+-- tau_p = 25, f0 = 0.012 (k_B T_c/(P sigma^3) ~ 0.37 in the paper's convention). Each point
+-- twice: box = "pressure" (MODEL.md step 6: the left wall a piston at P after the rescale; the
+-- tissue drifts back to the packing P sets) and box = "fixed" (the box keeps the rescaled
+-- size, the paper's text read literally; the wall pressure is then measured). The
 -- compression is shared; the rescale is per point. Two seeds.
 --   invasim sweep init protocols/sweeps/fig10_packing.lua
 --   invasim sweep run out/fig10_packing --jobs 2
@@ -12,7 +15,8 @@ return {
           snapshot_every = 0, checkpoint_every = 20000 },
   -- descending, so that the CI size (take = 2) gets the quick ones: expanding to 0.45 takes
   -- about 6e5 FIRE steps (110 s) before the run
-  product = { phi_a = { 0.85, 0.75, 0.65, 0.55, 0.45 }, lambda = { 0.0, 0.3, 1.0 } },
+  product = { phi_a = { 0.85, 0.75, 0.65, 0.55, 0.45 }, lambda = { 0.0, 0.3, 1.0 },
+              box = { "pressure", "fixed" } },
   seeds = { 1, 2 },
   -- the compression only (packing.lua needs one measurement to finish: 100 steps)
   prep = { set = { quench_steps = 0, steps = 100, every = 100 } },

@@ -41,6 +41,13 @@ of them; the rows marked below show what we get, computed from the runs:
 - **`T_c/T_a`** (row `fig6_Tc_over_Ta`): the paper reports `1 < T_c/T_a < 1.2` in active
   runs. With active cells and adipocyte vertices in a bath at `kT = 0` (its Fig. 6 knob is
   `f_0`), the vertices are heated only through contacts, and the ratio is what the row shows.
+- **`phi_a` up to 0.9 under the pressure wall** (Fig. 10): the paper rescales the box to
+  `0.4 < phi_a < 0.9` (with `phi = phi_c + phi_a`, so `phi > 1` at the top) and quotes one
+  `k_B T/(P sigma^3) = 0.37` for the scan; MODEL.md (step 6) runs it under the pressure wall at
+  `P`. Both cannot hold: under the piston the tissue expands back to the packing that `P`
+  sets, whatever the target. `packing.lua` takes `box = pressure` (MODEL.md) or `box = fixed`
+  (the box keeps the rescaled size, the wall pressure is measured, not set); Fig. 10 shows
+  both scans with their own rows.
 """
 
 METHOD = """\
@@ -50,14 +57,14 @@ Every figure below comes from one sweep file in `protocols/sweeps/` (its header 
 run it) and one analysis command (printed under the figure). The whole campaign:
 
 ```sh
-scripts/validation.py plan protocols/sweeps/{fig3_passive_slices,fig5a_passive,fig5b_cohesive,fig5b_inset,fig6_active,fig6_passive,fig6_long,fig7_cells_only,fig8a_tethered,fig10_packing,fig11_shapes}.lua --jobs 2 -o out/validation/plan.json
+scripts/validation.py plan protocols/sweeps/{fig3_passive_slices,fig5a_passive,fig5b_cohesive,fig5b_inset,fig6_active,fig6_passive,fig6_long,fig7_cells_only,fig8a_tethered,fig10_packing,fig11_shapes}.lua --jobs 2 -o docs/validation/plan.json
 for s in fig3_passive_slices fig5a_passive fig5b_cohesive fig5b_inset fig6_active fig6_passive \\
          fig6_long fig7_cells_only fig8a_tethered fig10_packing fig11_shapes; do
   build/invasim sweep init protocols/sweeps/$s.lua && build/invasim sweep run out/$s --jobs 2
 done
 scripts/validation.py all out -o docs/validation     # every figure command below, then:
-scripts/validation.py plan --workspace out/fig3_passive_slices ... -o out/validation/plan_done.json
-scripts/validation.py document docs/validation --plan out/validation/plan.json --done out/validation/plan_done.json -o docs/validation.md
+scripts/validation.py plan --workspace out/fig3_passive_slices ... -o docs/validation/plan_done.json
+scripts/validation.py document docs/validation --plan docs/validation/plan.json --done docs/validation/plan_done.json -o docs/validation.md
 ```
 
 The analysis reads the run directories of each workspace (`summary.json`: block-averaged
@@ -65,7 +72,9 @@ means and errors over the last half of the production; `series.csv`; `shapes.csv
 `snapshots/`). `A_n` is the paper's Appendix C normalisation over the state points of the
 figure (replicate means; docs/sweeps_analysis.md), its error the replicate scatter (standard
 error) where there are replicates, else the run's block error of `A_t` propagated. Curves
-are fitted with `scripts/master_curve_lib/fits.py`.
+are fitted with `scripts/master_curve_lib/fits.py`. The two plan files are kept beside the
+figure records (`docs/validation/plan.json`, `plan_done.json`), so that this page can be
+regenerated without the workspaces; the workspaces themselves (about 1 GB) are not kept.
 
 **Steady state.** For every run, `A_t` over the last half of the production: the mean of its
 last quarter minus that of its third quarter (the drift) against the block error of the
@@ -102,6 +111,17 @@ def _load(dir_):
 def _cell(text):
     """Table-cell text: a '|' (as in |drift|) would end the cell."""
     return str(text).replace("|", "\\|")
+
+
+def _paper_text(row):
+    """The paper's statement, with the variant of the protocol the row tested (e.g. Fig. 10's
+    box) when a figure tests one statement more than once."""
+    return row["paper"] + (" (%s)" % row["variant"] if row.get("variant") else "")
+
+
+def _statement(row):
+    """The statement's id in code font, with the variant."""
+    return "`%s`" % row["id"] + (" (%s)" % row["variant"] if row.get("variant") else "")
 
 
 def _rel(path, base):
@@ -163,19 +183,19 @@ def render(fig_dir, plan_entries, out_path, ci_size=False, done_entries=None):
         for r in rec["rows"]:
             all_rows.append(r)
             L.append("| %s | %s | **%s** | %s |" % tuple(
-                _cell(r[k]) for k in ("paper", "ours", "verdict", "why")))
+                _cell(v) for v in (_paper_text(r), r["ours"], r["verdict"], r["why"])))
         L.append("")
     L += ["## Verdicts", ""]
     counts = {v: sum(1 for r in all_rows if r["verdict"] == v)
               for v in (AGREES, TREND, DISAGREES, NO_DATA, UNTESTABLE)}
     L += [", ".join("%d %s" % (n, v) for v, n in counts.items()), "",
           "| figure | statement | verdict |", "|---|---|---|"]
-    L += ["| %s | `%s` | %s |" % (r["figure"], r["id"], r["verdict"]) for r in all_rows]
+    L += ["| %s | %s | %s |" % (r["figure"], _statement(r), r["verdict"]) for r in all_rows]
     bad = [r for r in all_rows if r["verdict"] == DISAGREES]
     if bad:
         L += ["", "Disagreements, each with what we get and the criterion it fails:", ""]
-        L += ["- `%s` (%s): %s. Ours: %s. Criterion: %s." % (
-            r["id"], r["figure"], r["paper"], r["ours"], r["why"]) for r in bad]
+        L += ["- %s (%s): %s. Ours: %s. Criterion: %s." % (
+            _statement(r), r["figure"], r["paper"], r["ours"], r["why"]) for r in bad]
     L += ["", CONTRADICTIONS, METHOD]
     with open(out_path, "w") as f:
         f.write("\n".join(L))

@@ -37,6 +37,17 @@ assert replaced and replaced == {tuple(c["key"]) for c in active}, (replaced, ac
 assert all("(t = " in c["curve"] for c in active), [c["curve"] for c in active]
 assert all("excluded_from_scale_fit" in c for c in n["curves"])
 PY
+# Fig. 10 scans both boxes of packing.lua (box = pressure, fixed): one figure and one set of
+# rows each, the fixed box holding phi_a at its target.
+/usr/bin/python3 - figures/fig10.json <<'PY' || fail "fig10: the two boxes were not analysed apart"
+import json, sys
+rec = json.load(open(sys.argv[1]))
+assert rec["images"] == ["fig10_An_dphi.png", "fig10_An_dphi_fixed.png"], rec["images"]
+variants = {r.get("variant") for r in rec["rows"]}
+assert variants == {"pressure wall at P", "fixed box"}, variants
+fixed = rec["numbers"]["fixed"]["points"]
+assert fixed and all(abs(p["phi_a_measured"] - p["phi_a_target"]) < 0.01 for p in fixed), fixed
+PY
 "$repo/scripts/validation.py" plan --workspace ws/* --jobs 2 -o plan.json --invasim "$invasim" | tee plan.log
 "$repo/scripts/validation.py" document figures --plan plan.json --done plan.json -o validation.md --ci-size
 

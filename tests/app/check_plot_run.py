@@ -22,7 +22,8 @@ FULL_HEADER = ("step,time [tau],T_c [eps_c],T_a [eps_c],P_left [eps_c/sigma^3],"
 # The header of the main job's series.csv (protocols/invasion.lua).
 MAIN_JOB_HEADER = ("step,time [tau],T_c [eps_c],T_a [eps_c],T_c_over_T_a,kT_c_paper [eps_c],"
                    "P_left [eps_c/sigma^3],P_right [eps_c/sigma^3],L_x [sigma],phi,phi_c,phi_a,"
-                   "A_t [sigma^2],A_t_max [sigma^2],A_ratio,phi_a_local_std,A_wall_a [sigma^2]")
+                   "A_t [sigma^2],A_t_max [sigma^2],A_ratio,phi_a_local_mean,phi_a_local_std,"
+                   "A_wall_a [sigma^2]")
 ALL_PLOTS = ["A_t.png", "temperature.png", "pressure.png", "box_length.png", "packing.png"]
 failures = []
 
@@ -99,9 +100,10 @@ def check_labels(path, script):
               "%s: time axis in tau (%s)" % (name, panels[-1]["xlabel"]))
     packing = figures.get("packing.png", [])
     check(len(packing) == 2 and "packing fraction" in packing[0]["ylabel"]
-          and len(packing[0]["legend"]) == 3
+          and len(packing[0]["legend"]) == 4
           and not [t for t in packing[0]["legend"] if "Delta" in t or "std" in t],
-          "packing.png: phi, phi_c, phi_a share the packing-fraction axis, without the std")
+          "packing.png: phi, phi_c, phi_a and the mean local phi_a share the packing-fraction "
+          "axis, without the std")
     check(len(packing) == 2 and packing[1]["ylabel"].startswith(r"$\Delta\phi_a$"),
           "packing.png: the std of the local phi_a on its own axis")
     temperature = figures.get("temperature.png", [])
@@ -148,9 +150,10 @@ def main():
     # plots/labels.json, are human (no raw column name), carry units, keep the standard
     # deviation off the packing-fraction axis and put T_c next to a much colder T_a on a log
     # scale.
-    rows = ["%d,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g" % (
+    rows = ["%d,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g,%g" % (
         100 * k, 5.0 * k, 1e-4 * (1 + 0.01 * k), 8e-6, 12.5, 2e-4, 1.3e-3, 1.4e-3, 13.3, 0.6,
-        0.13, 0.47, 480 + k, 1300, (480 + k) / 1300, 0.16 - 1e-3 * k, 117) for k in range(20)]
+        0.13, 0.47, 480 + k, 1300, (480 + k) / 1300, 0.62, 0.16 - 1e-3 * k, 117)
+        for k in range(20)]
     main_job = make_run(scratch, "main_job", MAIN_JOB_HEADER + "\n" + "\n".join(rows) + "\n")
     p = run(script, main_job)
     check(p.returncode == 0, "main-job series: exit status 0")
