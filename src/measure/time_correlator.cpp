@@ -6,7 +6,7 @@
 #include "core/errors.hpp"
 #include "core/memory_budget.hpp"
 #include "core/parallel.hpp"
-#include "measure/fast_trig.hpp"
+#include "core/fast_trig.hpp"
 
 namespace invasim {
 

@@ -1,4 +1,4 @@
-// The vectorisable sin, cos and sinc of src/measure/fast_trig.hpp (the correlator's F_s)
+// The vectorisable sin, cos and sinc of src/core/fast_trig.hpp (the correlator's F_s)
 // against libm over their whole range [0, kMaxArg], including the arguments closest to the
 // multiples of pi/2, where the range reduction loses the most.
 #include <catch2/catch.hpp>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "measure/fast_trig.hpp"
+#include "core/fast_trig.hpp"
 
 using namespace invasim;
 
@@ -60,4 +60,41 @@ TEST_CASE("fast sinc: exactly 1 at 0, 1e-15 relative to sin(x)/x elsewhere") {
   }
   INFO("worst relative difference " << worst);
   CHECK(worst <= 1e-15);
+}
+
+TEST_CASE("fast sincos: both from one reduction, odd and even, within 2 ulp of libm") {
+  std::mt19937_64 gen(7);
+  double worst_sin = 0.0, worst_cos = 0.0;
+  auto check = [&](double x) {
+    double s = 0.0, c = 0.0;
+    fast_trig::sincos(x, s, c);
+    // Odd and even exactly: sin(-x) = -sin(x), cos(-x) = cos(x), bit for bit.
+    double s_neg = 0.0, c_neg = 0.0;
+    fast_trig::sincos(-x, s_neg, c_neg);
+    REQUIRE(s_neg == -s);
+    REQUIRE(c_neg == c);
+    worst_sin = std::max(worst_sin, ulps(s, std::sin(x)));
+    worst_cos = std::max(worst_cos, ulps(c, std::cos(x)));
+  };
+  // The orientation update's arguments: [0, 2 pi) for the azimuths, small angles of either
+  // sign for the rotation, and every quadrant around the multiples of pi/2.
+  std::uniform_real_distribution<double> azimuth(0.0, 2.0 * M_PI), small(-0.5, 0.5);
+  for (int i = 0; i < 100000; ++i) {
+    check(azimuth(gen));
+    check(small(gen));
+  }
+  for (int n = -40; n <= 40; ++n) {
+    double x = n * M_PI_2;
+    for (int k = 0; k < 3; ++k, x = std::nextafter(x, INFINITY)) check(x);
+  }
+  INFO("sin " << worst_sin << " ulp, cos " << worst_cos << " ulp");
+  CHECK(worst_sin <= 2.0);
+  CHECK(worst_cos <= 2.0);
+  double s = 1.0, c = 0.0;
+  fast_trig::sincos(0.0, s, c);
+  CHECK(s == 0.0);
+  CHECK(c == 1.0);
+  fast_trig::sincos(M_PI, s, c);
+  CHECK(std::abs(s) < 1e-15);
+  CHECK(c == -1.0);
 }

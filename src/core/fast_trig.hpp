@@ -1,8 +1,10 @@
 #pragma once
 // Branch-free sin, cos and sinc = sin(x)/x for loops the compiler vectorises (`#pragma omp
 // simd`): the correlator's F_s (time_correlator.cpp) evaluates one per (time origin, site)
-// pair, where libm's sin cost ~70 % of all the correlator's time. Plain C++ (no intrinsics):
-// every target gets the same results, vectorised or not, for a given compiler and flags.
+// pair, where libm's sin cost ~70 % of all the correlator's time; the active cells'
+// orientation update (integrate/dynamics.cpp) takes three sine-cosine pairs per cell and step
+// from `sincos`. Plain C++ (no intrinsics): every target gets the same results, vectorised or
+// not, for a given compiler and flags.
 //
 // Method (fdlibm's, without its branches): x = n pi/2 + y with n = round(2x/pi) and the
 // reduction y = (((x - n P1) - n P2) - n P3) - n P4 in four parts of pi/2 (P1, P2, P3 of 33
@@ -36,12 +38,17 @@ inline constexpr double C1 = 4.16666666666666019037e-02, C2 = -1.388888888887410
                         C5 = 2.08757232129817482790e-09, C6 = -1.13596475577881948265e-11;
 }  // namespace detail
 
-// sin(x + q0 pi/2) for 0 <= x <= kMaxArg (q0 = 0: sin, q0 = 1: cos).
-inline double sin_quarter_shifted(double x, std::uint64_t q0) {
+// The reduced argument of 0 <= x <= kMaxArg: x = n pi/2 + y, |y| <= pi/4, with sin(y),
+// cos(y) and n's last bits (q).
+struct Reduced {
+  double sin_y, cos_y;
+  std::uint64_t q;
+};
+inline Reduced reduce(double x) {
   using namespace detail;
   const double t = x * kTwoOverPi + kShifter;
   // t's last mantissa bits hold n (t = 1.5 2^52 + n, spacing 1).
-  const std::uint64_t q = std::bit_cast<std::uint64_t>(t) + q0;
+  const std::uint64_t q = std::bit_cast<std::uint64_t>(t);
   const double n = t - kShifter;
   const double y = (((x - n * kPio2_1) - n * kPio2_2) - n * kPio2_3) - n * kPio2_3t;
   const double z = y * y, w = z * z;
@@ -50,7 +57,14 @@ inline double sin_quarter_shifted(double x, std::uint64_t q0) {
   const double rc = z * (C1 + z * (C2 + z * C3)) + w * w * (C4 + z * (C5 + z * C6));
   const double hz = 0.5 * z, one_hz = 1.0 - hz;
   const double cos_y = one_hz + (((1.0 - one_hz) - hz) + z * rc);
-  const double s = (q & 1) ? cos_y : sin_y;
+  return {sin_y, cos_y, q};
+}
+
+// sin(x + q0 pi/2) for 0 <= x <= kMaxArg (q0 = 0: sin, q0 = 1: cos).
+inline double sin_quarter_shifted(double x, std::uint64_t q0) {
+  const Reduced r = reduce(x);
+  const std::uint64_t q = r.q + q0;
+  const double s = (q & 1) ? r.cos_y : r.sin_y;
   return (q & 2) ? -s : s;
 }
 
@@ -59,6 +73,17 @@ inline double sin(double x) {
 }
 inline double cos(double x) {
   return sin_quarter_shifted(x, 1);
+}
+
+// sin(x) and cos(x) for |x| <= kMaxArg from one reduction (the same values as sin(|x|),
+// cos(|x|) above, sin's sign following x's).
+inline void sincos(double x, double& sin_x, double& cos_x) {
+  const double a = x < 0.0 ? -x : x;
+  const Reduced r = reduce(a);
+  const double s = (r.q & 1) ? r.cos_y : r.sin_y;  // sin(a) up to sign
+  const double c = (r.q & 1) ? r.sin_y : r.cos_y;  // cos(a) up to sign
+  sin_x = ((r.q & 2) ? -s : s) * (x < 0.0 ? -1.0 : 1.0);
+  cos_x = ((r.q + 1) & 2) ? -c : c;
 }
 
 // sin(x)/x for 0 <= x <= kMaxArg, exactly 1 at 0 (Taylor below 1e-4, where the next term is
