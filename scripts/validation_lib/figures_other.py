@@ -302,12 +302,13 @@ def _fig10_scan(jobs, out, box, image, variant):
             "phi_a_measured": j.mean("phi_a")[0], "A_t": j.mean("A_t")[0],
             "A_t_max": j.mean("A_t_max")[0], "A_t_error": j.mean("A_t")[1],
             "phi_a_local_mean": j.mean("phi_a_local_mean")[0],
-            "P_right": j.mean("P_right")[0],
+            "P_right": j.mean("P_right")[0], "T_c": j.mean("T_c")[0],
+            "P": float(j.sp.get("P", math.nan)),
             "dphi": j.mean("phi_a_local_std")[0], "dphi_error": j.mean("phi_a_local_std")[1]})
         p["lambda"], p["phi_a_target"] = float(lam), float(phi_a)
         pts.append(p)
     extremes = runs.normalise(pts)
-    fig, axes = figure(2)
+    fig, axes = figure(3, width=4.4)
     rows, by_lambda = [], {}
     for lam in sorted({p["lambda"] for p in pts}):
         c = sorted((p for p in pts if p["lambda"] == lam), key=lambda p: p["phi_a_measured"])
@@ -319,7 +320,16 @@ def _fig10_scan(jobs, out, box, image, variant):
         axes[1].errorbar([p["phi_a_measured"] for p in c], [p["dphi"] for p in c],
                          yerr=[p["dphi_error"] if verdict.finite(p["dphi_error"]) else 0 for p in c],
                          marker="s", capsize=2, label=name)
+        line = axes[2].errorbar([p["phi_a_measured"] for p in c], [p["A_t"] for p in c],
+                                yerr=[p["A_t_error"] if verdict.finite(p["A_t_error"]) else 0
+                                      for p in c], marker="o", capsize=2, label=name)
+        axes[2].plot([p["phi_a_measured"] for p in c], [p["A_t_max"] for p in c], ls="--",
+                     color=line[0].get_color())
     measured = r"measured $\phi_a$ (dimensionless)"
+    # Raw A_t beside A_t^max (dashed): A_n normalises by the smallest A_t^max of the scan,
+    # which in a scan over box sizes (the fixed box) is the densest point's.
+    axes[2].set_xlabel(measured)
+    axes[2].set_ylabel(r"$A_t$ (solid), $A_t^\mathrm{max}$ (dashed) [$\sigma^2$]")
     axes[0].set_xlabel(measured)
     axes[0].set_ylabel(label("A_n", ""))
     axes[1].set_xlabel(measured)
@@ -340,12 +350,21 @@ def _fig10_scan(jobs, out, box, image, variant):
     s0 = verdict.paper()["fig10_zero_above"]
     if dense:
         m = max(dense, key=lambda p: p["A_n"])
+        raw = [p for p in pts if verdict.finite(p["A_t"])]
+        lo = min(raw, key=lambda p: p["phi_a_measured"]) if raw else m
         add("fig10_zero_above", "largest A_n at target phi_a >= 0.85: %s "
-            "(target %.3g, measured %.3g, lambda = %g)" % (
+            "(target %.3g, measured %.3g, lambda = %g; there A_t = %.0f of A_t^max = %.0f, "
+            "wall pressure %.2g = %.0f P, T_c = %.2g; at the scan's lowest phi_a %.3g: "
+            "A_t = %.0f of %.0f)" % (
                 verdict.fmt(m["A_n"], m["A_n_error"]), m["phi_a_target"],
-                m["phi_a_measured"], m["lambda"]),
+                m["phi_a_measured"], m["lambda"], m["A_t"], m["A_t_max"], m["P_right"],
+                m["P_right"] / m["P"], m["T_c"], lo["phi_a_measured"], lo["A_t"],
+                lo["A_t_max"]),
             verdict.value_verdict(m["A_n"], m["A_n_error"], 0.0, s0["tolerance"]),
-            "A_n <= 0.1 + 2 errors; " + drift)
+            "A_n <= 0.1 + 2 errors; " + drift + ("" if box == "pressure" else
+            "; A_n is normalised with the scan's smallest A_t^max (Appendix C), i.e. the "
+            "densest box's, so where A_t^max shrinks with the box faster than A_t, A_n rises "
+            "though A_t falls (third panel)"))
     else:
         add("fig10_zero_above", "no point with a target phi_a >= 0.85",
             verdict.NO_DATA, "needs a target phi_a >= 0.85")
