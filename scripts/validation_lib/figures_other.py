@@ -355,11 +355,11 @@ def _fig10_scan(jobs, out, box, image, variant):
         add("fig10_zero_above", "largest A_n at target phi_a >= 0.85: %s "
             "(target %.3g, measured %.3g, lambda = %g; there A_t = %.0f of A_t^max = %.0f, "
             "wall pressure %.2g = %.0f P, T_c = %.2g; at the scan's lowest phi_a %.3g: "
-            "A_t = %.0f of %.0f)" % (
+            "A_t = %.0f of %.0f, lambda = %g)" % (
                 verdict.fmt(m["A_n"], m["A_n_error"]), m["phi_a_target"],
                 m["phi_a_measured"], m["lambda"], m["A_t"], m["A_t_max"], m["P_right"],
                 m["P_right"] / m["P"], m["T_c"], lo["phi_a_measured"], lo["A_t"],
-                lo["A_t_max"]),
+                lo["A_t_max"], lo["lambda"]),
             verdict.value_verdict(m["A_n"], m["A_n_error"], 0.0, s0["tolerance"]),
             "A_n <= 0.1 + 2 errors; " + drift + ("" if box == "pressure" else
             "; A_n is normalised with the scan's smallest A_t^max (Appendix C), i.e. the "
