@@ -296,6 +296,8 @@ def fig10(jobs, out, invasim):
 
 
 def _fig10_scan(jobs, out, box, image, variant):
+    """One box's scan: its state points (replicate means), normalised over the scan, its
+    figure and its verdict rows."""
     pts = []
     for (lam, phi_a), reps in runs.group(jobs, ["lambda", "phi_a"]).items():
         p = runs.state_point(reps, lambda j: {
@@ -308,11 +310,19 @@ def _fig10_scan(jobs, out, box, image, variant):
         p["lambda"], p["phi_a_target"] = float(lam), float(phi_a)
         pts.append(p)
     extremes = runs.normalise(pts)
+    by_lambda = {lam: sorted((p for p in pts if p["lambda"] == lam),
+                             key=lambda p: p["phi_a_measured"])
+                 for lam in sorted({p["lambda"] for p in pts})}
+    images = [_fig10_plot(by_lambda, box, out, image)]
+    rows = _fig10_rows(pts, by_lambda, box, variant)
+    return images, rows, {"points": pts, "normalisation": extremes}
+
+
+def _fig10_plot(by_lambda, box, out, image):
+    """A_n, Delta phi_a and the raw A_t (with A_t^max) against the measured phi_a, one curve
+    per lambda; returns the image's name."""
     fig, axes = figure(3, width=4.4)
-    rows, by_lambda = [], {}
-    for lam in sorted({p["lambda"] for p in pts}):
-        c = sorted((p for p in pts if p["lambda"] == lam), key=lambda p: p["phi_a_measured"])
-        by_lambda[lam] = c
+    for lam, c in by_lambda.items():
         name = state({"lambda": "%g" % lam})
         axes[0].errorbar([p["phi_a_measured"] for p in c], [p["A_n"] for p in c],
                          yerr=[p["A_n_error"] if verdict.finite(p["A_n_error"]) else 0 for p in c],
@@ -335,7 +345,12 @@ def _fig10_scan(jobs, out, box, image, variant):
     axes[1].set_xlabel(measured)
     axes[1].set_ylabel(r"$\Delta\phi_a$, std of the local $\phi_a$ (dimensionless)")
     axes[0].legend(fontsize=8, title=BOX_NAMES.get(box, box), title_fontsize=8)
-    images = [save(fig, out, image)]
+    return save(fig, out, image)
+
+
+def _fig10_rows(pts, by_lambda, box, variant):
+    """The verdict rows of one box's scan (variant: the box's name when both are shown)."""
+    rows = []
 
     def add(sid, ours, v, why):
         r = verdict.row(sid, ours, v, why)
@@ -388,7 +403,7 @@ def _fig10_scan(jobs, out, box, image, variant):
             verdict.fmt(m["dphi"], m["dphi_error"]), m["phi_a_measured"]),
             verdict.value_verdict(m["dphi"], m["dphi_error"], s["value"], s["tolerance"]),
             "|ours - %g| <= %g + 2 errors" % (s["value"], s["tolerance"]))
-    return images, rows, {"points": pts, "normalisation": extremes}
+    return rows
 
 
 def read_shapes(job):
