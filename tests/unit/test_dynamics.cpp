@@ -294,6 +294,48 @@ TEST_CASE("rotate_orientation keeps |n| = 1 to 1e-12 over many successive rotati
           .norm() == 0.0);
 }
 
+TEST_CASE("the kick's vectorised orientation pass is rotate_orientation, site by site",
+          "[orientation]") {
+  // 300 cells (two full chunks of 128 and a remainder): one step of the dynamics against
+  // rotate_orientation with each site's own random key, to rounding (the vector loop may
+  // contract into fused multiply-adds where the scalar code does not).
+  for (double tau_p : {0.0, 0.02, 25.0, 2500.0, std::numeric_limits<double>::infinity()}) {
+    System sys = free_particles(300, 1.0, 29);
+    ForceField ff;
+    Dynamics dyn(kDt);
+    auto method = Method::active(all_sites(sys), kGamma, 0.01, tau_p);
+    method->randomize_orientations(sys);
+    dyn.add(method);
+    const std::vector<Vec3> before = sys.sites().orient;
+    const std::uint64_t step = sys.step;
+    dyn.step(sys, ff);
+    double worst = 0.0;
+    for (std::uint32_t i = 0; i < 300; ++i) {
+      const Vec3 expected = rotate_orientation(
+          before[i], kDt, tau_p,
+          RandomKey(sys.seed(), step + 1, i, RngStream::kOrientation).uniform4());
+      worst = std::max(worst, (sys.sites().orient[i] - expected).norm());
+    }
+    INFO("tau_p = " << tau_p << ": largest difference " << worst);
+    CHECK(worst < 1e-14);
+  }
+}
+
+TEST_CASE("active sites without an orientation keep none and stay finite", "[orientation]") {
+  // Sites added without an orientation (n = 0) have no self-propulsion; the orientation
+  // update must leave them at 0 (a zero vector has no perpendicular frame), never NaN.
+  CHECK(rotate_orientation(Vec3::Zero(), kDt, 25.0, {0.3, 0.1, 0.7, 0.5}).norm() == 0.0);
+  System sys = free_particles(200, 1.0, 31);
+  ForceField ff;
+  Dynamics dyn(kDt);
+  dyn.add(Method::active(all_sites(sys), kGamma, 0.01, 25.0));
+  for (int s = 0; s < 10; ++s) dyn.step(sys, ff);
+  for (std::size_t i = 0; i < sys.n_sites(); ++i) {
+    CHECK(sys.sites().orient[i].norm() == 0.0);
+    CHECK(sys.sites().pos[i].allFinite());
+  }
+}
+
 TEST_CASE("one step of rotational diffusion: E[n(t+dt).n(t)] = exp(-dt/tau_p) exactly",
           "[orientation]") {
   // 100000 free active particles in the full dynamics, 10 steps: 1e6 samples per tau_p.
