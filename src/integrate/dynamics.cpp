@@ -161,6 +161,7 @@ namespace {
 // Cells per task of the kick: fixed, so that the SIMD lane a cell's orientation update runs in
 // (and so its rounding) does not depend on the number of threads.
 constexpr int kKickChunk = 128;
+static_assert(kKickChunk <= RandomKey::kBatch, "a kick chunk's thermal draws are one batch");
 
 // The orientation update of the cells idx[0, m), m <= kKickChunk, at `step`: each cell's
 // Philox block, the logarithms (libm), then the rotations, in loops the compiler vectorises
@@ -211,9 +212,17 @@ void Method::kick_team(System& sys, double dt, std::uint64_t step, const MethodP
   for (int c = 0; c < chunks; ++c) {
     const int lo = c * kKickChunk, hi = std::min(n, lo + kKickChunk);
     if (p.f0 > 0.0) rotate_chunk(s, group_.data() + lo, hi - lo, dt, p.tau_p, seed, step);
+    // The thermal draws of the chunk in vector lanes (the numbers drive_force would draw).
+    double g[3][RandomKey::kBatch];
+    if (noise > 0.0)
+      RandomKey::normal3_batch(seed, step, group_.data() + lo, hi - lo, RngStream::kThermal, g);
     for (int k = lo; k < hi; ++k) {
       const int i = group_[k];
-      s.force[i] += drive_force(p, noise, s, i, seed, step);
+      // drive_force's sum, term by term in its order.
+      Vec3 f = -p.gamma * s.vel[i];
+      if (noise > 0.0) f += noise * Vec3(g[0][k - lo], g[1][k - lo], g[2][k - lo]);
+      if (p.f0 > 0.0) f += p.f0 * s.orient[i];
+      s.force[i] += f;
       s.vel[i] += 0.5 * dt / s.mass[i] * s.force[i];
     }
   }
