@@ -94,6 +94,17 @@ class RandomKey {
   }
   // The uniform in (0, 1) of one random word, as uniform4 makes it.
   static double uniform(std::uint32_t w) { return (double(w) + 0.5) * 0x1p-32; }
+  // The Philox block of key (seed, step, site, stream) on plain words: the words uniform4()
+  // and normal3() start from, for loops over sites that vectorise (the counter laid out as
+  // the constructor lays it out, sub-stream 0).
+  [[gnu::always_inline]] static void block_words(std::uint64_t seed, std::uint64_t step,
+                                                 std::uint32_t site, RngStream stream,
+                                                 std::uint32_t& w0, std::uint32_t& w1,
+                                                 std::uint32_t& w2, std::uint32_t& w3) {
+    philox4x32_10_words(std::uint32_t(step), std::uint32_t(step >> 32), site,
+                        std::uint32_t(stream) << 16, std::uint32_t(seed), std::uint32_t(seed >> 32),
+                        w0, w1, w2, w3);
+  }
   // Four independent standard normal numbers (Box-Muller on uniform4()).
   std::array<double, 4> normal4() const {
     const auto u = uniform4();
@@ -127,14 +138,11 @@ class RandomKey {
   static void normal3_batch(std::uint64_t seed, std::uint64_t step, const int* sites, int m,
                             RngStream stream, double (*g)[kBatch]) {
     const ZigguratTables& z = ziggurat_tables();
-    const std::uint32_t stream_word = std::uint32_t(stream) << 16;
     std::uint32_t w[4][kBatch];
     bool slow[kBatch];
 #pragma omp simd
     for (int q = 0; q < m; ++q) {
-      philox4x32_10_words(std::uint32_t(step), std::uint32_t(step >> 32), std::uint32_t(sites[q]),
-                          stream_word, std::uint32_t(seed), std::uint32_t(seed >> 32), w[0][q],
-                          w[1][q], w[2][q], w[3][q]);
+      block_words(seed, step, std::uint32_t(sites[q]), stream, w[0][q], w[1][q], w[2][q], w[3][q]);
       bool any_slow = false;
       for (int c = 0; c < 3; ++c) {
         const double u = signed_uniform(w[c][q]);

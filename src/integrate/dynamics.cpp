@@ -58,8 +58,8 @@ Vec3 uniform_on_sphere(double u0, double u1) {
 // n rotated by the angle theta about the axis at azimuth psi (angle 2 pi u_psi) in the plane
 // perpendicular to n (frame from the axis n is least aligned with). Written so that the
 // orientation pass below vectorises (the ifs become selects); the scalar rotate_orientation
-// runs the same code. The
-// sines and cosines come from fast_trig (within 2 ulp of libm's, one reduction per pair).
+// runs the same code. The sines and cosines come from fast_trig (within 2 ulp of libm's, one
+// reduction per pair).
 [[gnu::always_inline]] inline void rotate_by(double nx, double ny, double nz, double theta,
                                              double u_psi, double& ox, double& oy, double& oz) {
   const double ax = std::abs(nx), ay = std::abs(ny), az = std::abs(nz);
@@ -131,11 +131,10 @@ void Method::drift_team(System& sys, double dt) const {
 
 namespace {
 // Damping, thermal noise and self-propulsion on site i at the system's current step.
-inline Vec3 drive_force(const MethodParams& p, double noise, const Sites& s, int i,
-                        std::uint64_t seed, std::uint64_t step) {
+// g: the site's standard normal thermal draw (read only when noise > 0).
+inline Vec3 drive_force(const MethodParams& p, double noise, const Sites& s, int i, const Vec3& g) {
   Vec3 f = -p.gamma * s.vel[i];
-  if (noise > 0.0)
-    f += noise * RandomKey(seed, step, std::uint32_t(i), RngStream::kThermal).normal3();
+  if (noise > 0.0) f += noise * g;
   if (p.f0 > 0.0) f += p.f0 * s.orient[i];
   return f;
 }
@@ -153,7 +152,10 @@ void Method::add_drive(System& sys, double dt) const {
 #pragma omp parallel for schedule(static) if (parallel_light(std::size_t(n)))
   for (int k = 0; k < n; ++k) {
     const int i = group_[k];
-    s.force[i] += drive_force(params_, noise, s, i, seed, step);
+    const Vec3 g = noise > 0.0
+                       ? RandomKey(seed, step, std::uint32_t(i), RngStream::kThermal).normal3()
+                       : Vec3::Zero();
+    s.force[i] += drive_force(params_, noise, s, i, g);
   }
 }
 
@@ -179,13 +181,11 @@ void rotate_chunk(Sites& s, const int* idx, int m, double dt, double tau_p, std:
   // Structure of arrays for the vector loops: the uniforms, then the orientations.
   double u0[kKickChunk], u1[kKickChunk], u2[kKickChunk], lg[kKickChunk];
   double nx[kKickChunk], ny[kKickChunk], nz[kKickChunk];
-  const std::uint32_t stream_word = std::uint32_t(RngStream::kOrientation) << 16;
 #pragma omp simd
   for (int q = 0; q < m; ++q) {
     std::uint32_t w0, w1, w2, w3;
-    philox4x32_10_words(std::uint32_t(step), std::uint32_t(step >> 32), std::uint32_t(idx[q]),
-                        stream_word, std::uint32_t(seed), std::uint32_t(seed >> 32), w0, w1, w2,
-                        w3);
+    RandomKey::block_words(seed, step, std::uint32_t(idx[q]), RngStream::kOrientation, w0, w1, w2,
+                           w3);
     u0[q] = RandomKey::uniform(w0), u1[q] = RandomKey::uniform(w1), u2[q] = RandomKey::uniform(w2);
   }
   for (int q = 0; q < m; ++q) {
@@ -212,17 +212,14 @@ void Method::kick_team(System& sys, double dt, std::uint64_t step, const MethodP
   for (int c = 0; c < chunks; ++c) {
     const int lo = c * kKickChunk, hi = std::min(n, lo + kKickChunk);
     if (p.f0 > 0.0) rotate_chunk(s, group_.data() + lo, hi - lo, dt, p.tau_p, seed, step);
-    // The thermal draws of the chunk in vector lanes (the numbers drive_force would draw).
+    // The chunk's thermal draws in vector lanes (normal3's numbers).
     double g[3][RandomKey::kBatch];
     if (noise > 0.0)
       RandomKey::normal3_batch(seed, step, group_.data() + lo, hi - lo, RngStream::kThermal, g);
     for (int k = lo; k < hi; ++k) {
       const int i = group_[k];
-      // drive_force's sum, term by term in its order.
-      Vec3 f = -p.gamma * s.vel[i];
-      if (noise > 0.0) f += noise * Vec3(g[0][k - lo], g[1][k - lo], g[2][k - lo]);
-      if (p.f0 > 0.0) f += p.f0 * s.orient[i];
-      s.force[i] += f;
+      const Vec3 gk = noise > 0.0 ? Vec3(g[0][k - lo], g[1][k - lo], g[2][k - lo]) : Vec3::Zero();
+      s.force[i] += drive_force(p, noise, s, i, gk);
       s.vel[i] += 0.5 * dt / s.mass[i] * s.force[i];
     }
   }
