@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
+#include "core/team_barrier.hpp"
 
 namespace invasim {
 
@@ -26,13 +27,14 @@ inline std::size_t sum_blocks(std::size_t n) {
 template <typename T, typename F>
 T team_deterministic_sum(std::size_t n, const T& zero, std::vector<T>& partial, F value) {
   const std::size_t blocks = sum_blocks(n);
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait
   for (std::size_t b = 0; b < blocks; ++b) {
     T s = zero;
     const std::size_t end = std::min(n, (b + 1) * kSumBlock);
     for (std::size_t i = b * kSumBlock; i < end; ++i) s += value(i);
     partial[b] = s;
   }
+  team_barrier();
   T total = zero;
   for (std::size_t b = 0; b < blocks; ++b) total += partial[b];
   return total;

@@ -8,6 +8,7 @@
 
 #include "core/deterministic_sum.hpp"
 #include "core/errors.hpp"
+#include "core/team_barrier.hpp"
 #include "forces/contact_half.hpp"
 #include "forces/contact_kernel.hpp"
 
@@ -114,7 +115,7 @@ void ContactForce::add_forces_impl(System& sys, RowScratch& scratch) {
     // Re-plan after a list build or a change of the team's size (all threads agree: both are
     // known to every thread, and planned_* are not written in the region).
     if (planned_builds_ != list_.builds() || planned_threads_ != threads) {
-#pragma omp single
+#pragma omp single nowait
       {
         partition_sites(sys, list_, threads, owner_);
         if (plans_.size() < std::size_t(threads)) plans_.resize(std::size_t(threads));
@@ -122,15 +123,16 @@ void ContactForce::add_forces_impl(System& sys, RowScratch& scratch) {
         plan_builds_ = list_.builds();
         plan_threads_ = threads;
       }
+      team_barrier();
       plan_half_rows(list_, owner_, me, rank_, plans_[std::size_t(me)]);
     }
     contact_half_rows<kCohesive, kEnergy, kVirial>(sys, plans_[std::size_t(me)], list_.max_count(),
                                                    table_, params_, site_energy_.data(),
                                                    site_virial_.data(), scratch);
-#pragma omp barrier
+    team_barrier();
     return;
   }
-#pragma omp for schedule(dynamic, 128)
+#pragma omp for schedule(dynamic, 128) nowait
   for (std::size_t i = 0; i < n; ++i) {
     double e = 0.0;
     Vec3 w = Vec3::Zero();
@@ -151,6 +153,7 @@ void ContactForce::add_forces_impl(System& sys, RowScratch& scratch) {
     if constexpr (kEnergy) site_energy_[i] = e;
     if constexpr (kVirial) site_virial_[i] = w;
   }
+  team_barrier();
 }
 
 ForceResult ContactForce::add_forces(System& sys, const ForceFlags& flags) {

@@ -49,6 +49,7 @@ class ContactForce : public Force {
   std::string name() const override { return "contact"; }
   ForceResult add_forces(System& sys, const ForceFlags& flags) override;
   bool prepare_team(System& sys, const ForceFlags& flags) override;
+  bool supports_team() const override { return true; }
   ForceResult add_forces_team(System& sys, const ForceFlags& flags) override;
   const ContactParams& params() const { return params_; }
   // Changes the parameters (e.g. cohesion switched on after compression); the neighbour

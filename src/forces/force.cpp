@@ -2,6 +2,9 @@
 
 #include "core/errors.hpp"
 #include "core/parallel.hpp"
+#include "core/team_barrier.hpp"
+
+#include <stdexcept>
 
 namespace invasim {
 
@@ -23,6 +26,55 @@ ForceResult Force::add_forces_in_own_region(System& sys, const ForceFlags& flags
     if (team_leader()) out = r;
   }
   return out;
+}
+
+void ForceField::first_region(System& sys, const ForceFlags& flags, const TeamHooks& hooks,
+                              std::size_t end) {
+  auto& f = sys.sites().force;
+  const bool hook_zeroes = hooks.before && hooks.zeroes_forces;
+  if (hooks.before) {
+    hooks.before();
+    if (!hook_zeroes) team_barrier();  // all reads of the old forces done before any is zeroed
+  }
+  if (!hook_zeroes) {
+#pragma omp for schedule(static) nowait
+    for (std::size_t i = 0; i < f.size(); ++i) f[i].setZero();
+  }
+  const bool more = end > 0 || (end == terms_.size() && hooks.after);
+  if (more) team_barrier();  // (otherwise the region's end is the barrier)
+  for (std::size_t k = 0; k < end; ++k) {
+    const ForceResult r = terms_[k]->add_forces_team(sys, flags);
+    if (team_leader()) results_[k] = r;
+  }
+  if (end == terms_.size() && hooks.after) hooks.after();
+}
+
+bool ForceField::supports_team() const {
+  for (const auto& t : terms_)
+    if (!t->supports_team()) return false;
+  return true;
+}
+
+void ForceField::prepare_team_step(System& sys, const ForceFlags& flags) {
+  results_.assign(terms_.size(), ForceResult{});
+  for (const auto& t : terms_)
+    if (!t->prepare_team(sys, flags))
+      throw std::logic_error("ForceField: the term '" + t->name() +
+                             "' claims team support but its prepare_team refused");
+  team_regions_ = 1;  // (the caller's region)
+}
+
+void ForceField::compute_team(System& sys, const ForceFlags& flags, const TeamHooks& hooks) {
+  first_region(sys, flags, hooks, terms_.size());
+}
+
+ForceResult ForceField::team_result() const {
+  ForceResult total;
+  for (const ForceResult& r : results_) {
+    total.energy += r.energy;
+    total.virial += r.virial;
+  }
+  return total;
 }
 
 ForceResult ForceField::compute(System& sys, const ForceFlags& flags,
@@ -50,25 +102,9 @@ ForceResult ForceField::compute(System& sys, const ForceFlags& flags,
   std::size_t k = team_run_end(0);
   // Zeroing alone is light work: a region of its own only for large systems.
   const bool more_in_first = k > 0 || (k == n_terms && hooks.after);
-  const bool hook_zeroes = hooks.before && hooks.zeroes_forces;
   ++team_regions_;
 #pragma omp parallel if (more_in_first || hooks.before ? parallel : parallel_light(f.size()))
-  {
-    if (hooks.before) {
-      hooks.before();
-      if (!hook_zeroes) {  // all reads of the old forces done before any is zeroed
-#pragma omp barrier
-      }
-    }
-    if (!hook_zeroes) {
-#pragma omp for schedule(static) nowait
-      for (std::size_t i = 0; i < f.size(); ++i) f[i].setZero();
-    }
-    if (more_in_first) {  // (otherwise the region's end is the barrier)
-#pragma omp barrier
-    }
-    team_terms(0, k);
-  }
+  first_region(sys, flags, hooks, k);
   while (k < n_terms) {
     results_[k] = terms_[k]->add_forces(sys, flags);
     const std::size_t from = ++k;
@@ -79,14 +115,8 @@ ForceResult ForceField::compute(System& sys, const ForceFlags& flags,
     team_terms(from, k);
   }
 
-  ForceResult total;
-  if (per_term) per_term->clear();
-  for (const ForceResult& r : results_) {
-    total.energy += r.energy;
-    total.virial += r.virial;
-    if (per_term) per_term->push_back(r);
-  }
-  return total;
+  if (per_term) per_term->assign(results_.begin(), results_.end());
+  return team_result();
 }
 
 }  // namespace invasim

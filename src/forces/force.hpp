@@ -44,6 +44,9 @@ class Force {
   // (add_forces runs between regions).
   virtual bool prepare_team(System& sys, const ForceFlags& flags);
   virtual ForceResult add_forces_team(System& sys, const ForceFlags& flags);
+  // True if prepare_team always returns true (known before the step's serial part runs, so
+  // that Dynamics can keep one region over many steps: ForceField::compute_team).
+  virtual bool supports_team() const { return false; }
 
  protected:
   // add_forces of a team-capable term: prepare_team, then add_forces_team in a region of its own.
@@ -72,6 +75,15 @@ class ForceField {
   // each site are summed in term order whatever the grouping and the thread count.
   ForceResult compute(System& sys, const ForceFlags& flags = {},
                       std::vector<ForceResult>* per_term = nullptr, const TeamHooks& hooks = {});
+  // compute() split for a caller that keeps one parallel region over many time steps
+  // (Dynamics::run, docs/performance.md "Round 7"); only if supports_team(). The team's leader
+  // calls prepare_team_step (it may throw; the other threads wait at a barrier after it), then
+  // every thread of the team calls compute_team, which ends with the hook `after` (no barrier
+  // after it); team_result() then gives the leader the total, as compute returns it.
+  bool supports_team() const;
+  void prepare_team_step(System& sys, const ForceFlags& flags);
+  void compute_team(System& sys, const ForceFlags& flags, const TeamHooks& hooks);
+  ForceResult team_result() const;
   // Total potential energy (forces are recomputed as a side effect).
   double energy(System& sys) { return compute(sys, {true, false}).energy; }
   // Parallel regions opened by the last compute (for tests and benchmarks; regions opened by
@@ -82,6 +94,9 @@ class ForceField {
   std::vector<std::shared_ptr<Force>> terms_;
   std::vector<ForceResult> results_;
   int team_regions_ = 0;
+  // The body of compute's first region: the hook `before`, the zeroing, then terms [0, end)
+  // (and `after` if end is the last term).
+  void first_region(System& sys, const ForceFlags& flags, const TeamHooks& hooks, std::size_t end);
 };
 
 }  // namespace invasim

@@ -3,6 +3,7 @@
 
 #include "core/deterministic_sum.hpp"
 #include "core/errors.hpp"
+#include "core/team_barrier.hpp"
 #include "mesh/geometry.hpp"
 
 namespace invasim {
@@ -55,7 +56,7 @@ ForceResult ShapeForce::add_forces_team(System& sys, const ForceFlags& flags) {
   thread_local std::vector<Vec3> x, grad;  // one body's vertices and energy gradient
   // Bodies are independent (each writes only its own vertices); dynamic, so that a thread
   // slowed by another process on its core takes fewer.
-#pragma omp for schedule(dynamic, 1)
+#pragma omp for schedule(dynamic, 1) nowait
   for (int b = 0; b < nb; ++b) {
     const MeshBody& body = bodies[b];
     const int nv = body.n_vertices();
@@ -71,6 +72,7 @@ ForceResult ShapeForce::add_forces_team(System& sys, const ForceFlags& flags) {
     }
     per_body_[b] = r;
   }
+  team_barrier();
   ForceResult out;
   if (!team_leader()) return out;
   if (flags.energy)

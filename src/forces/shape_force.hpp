@@ -13,6 +13,7 @@ class ShapeForce : public Force {
   std::string name() const override { return "shape"; }
   ForceResult add_forces(System& sys, const ForceFlags& flags) override;
   bool prepare_team(System& sys, const ForceFlags& flags) override;
+  bool supports_team() const override { return true; }
   ForceResult add_forces_team(System& sys, const ForceFlags& flags) override;
   double eps_v() const { return eps_v_; }
   double eps_a() const { return eps_a_; }

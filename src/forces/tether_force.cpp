@@ -4,6 +4,7 @@
 
 #include "core/errors.hpp"
 #include "core/parallel.hpp"
+#include "core/team_barrier.hpp"
 #include "mesh/geometry.hpp"
 
 namespace invasim {
@@ -108,16 +109,17 @@ ForceResult TetherForce::add_forces_team(System& sys, const ForceFlags& flags) {
   const auto& bodies = sys.bodies();
   const int nb = int(bodies.size());
   thread_local std::vector<Vec3> x;
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait
   for (int b = 0; b < nb; ++b) {
     x.resize(bodies[b].n_vertices());
     sys.body_vertices(b, x.data());
     centres_[b] = vertex_centroid(int(x.size()), x.data());
   }
+  team_barrier();
   // Each body sums the forces of its tethers in tether order (as a serial loop over the
   // tethers would) and shares the total equally among its vertices.
   Sites& s = sys.sites();
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait
   for (int b = 0; b < nb; ++b) {
     Vec3 body_force = Vec3::Zero();
     for (int q = body_start_[b]; q < body_start_[b + 1]; ++q) {
@@ -132,6 +134,7 @@ ForceResult TetherForce::add_forces_team(System& sys, const ForceFlags& flags) {
     const Vec3 share = body_force / double(bodies[b].n_vertices());
     for (int v = 0; v < bodies[b].n_vertices(); ++v) s.force[bodies[b].first_site + v] += share;
   }
+  team_barrier();
   if (!team_leader() || !(flags.energy || flags.virial)) return out;
   for (const Tether& t : tethers_) {  // few tethers: a serial, fixed-order loop
     double stretch;

@@ -17,6 +17,7 @@ class TetherForce : public Force {
   std::string name() const override { return "tether"; }
   ForceResult add_forces(System& sys, const ForceFlags& flags) override;
   bool prepare_team(System& sys, const ForceFlags& flags) override;
+  bool supports_team() const override { return true; }
   ForceResult add_forces_team(System& sys, const ForceFlags& flags) override;
 
   double stiffness() const { return stiffness_; }

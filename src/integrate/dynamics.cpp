@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 
 #include "core/errors.hpp"
 #include "core/fast_trig.hpp"
 #include "core/rng.hpp"
+#include "core/team_barrier.hpp"
 
 namespace invasim {
 
@@ -314,11 +316,7 @@ void Dynamics::update_free_sites(const System& sys) {
   free_sites_valid_ = true;
 }
 
-void Dynamics::step(System& sys, ForceField& ff) {
-  if (!prepared_) prepare(sys, ff);
-  // 1 thread or all, as measured to be faster (integrate/step_threads.hpp); same results.
-  const ThreadCountScope threads(step_threads_.begin_step());
-  const auto start = std::chrono::steady_clock::now();
+void Dynamics::begin_step_serial(System& sys) {
   // The piston's half kick and move first: the sites' drift does not read the wall (it wraps
   // periodic axes only), and a failing move (Box refuses it) throws before any site moved.
   if (wall_) {
@@ -326,26 +324,32 @@ void Dynamics::step(System& sys, ForceField& ff) {
     wall_->move(sys.box(), dt_);
   }
   if (!free_sites_valid_ || free_sites_n_ != sys.n_sites()) update_free_sites(sys);
-  const std::uint64_t next = sys.step + 1;
+  next_step_ = sys.step + 1;
   next_params_.clear();
-  for (const auto& m : methods_) next_params_.push_back(m->params_at(next));
-  // Drift and kick run inside the force field's parallel regions (one region per run of
-  // team-capable terms, docs/performance.md "Round 2"), not in regions of their own.
+  for (const auto& m : methods_) next_params_.push_back(m->params_at(next_step_));
+}
+
+TeamHooks Dynamics::step_hooks(System& sys) {
+  // Drift and kick run inside the force field's parallel region (docs/performance.md
+  // "Round 2"), not in regions of their own.
   TeamHooks hooks;
   // The drift zeroes the forces of its sites; the sites of no method are zeroed alongside.
   hooks.zeroes_forces = true;
-  hooks.before = [&] {
+  hooks.before = [this, &sys] {
     for (const auto& m : methods_) m->drift_team(sys, dt_);
     auto& f = sys.sites().force;
     const int n_free = int(free_sites_.size());
 #pragma omp for schedule(static) nowait
     for (int k = 0; k < n_free; ++k) f[free_sites_[k]].setZero();
   };
-  hooks.after = [&] {
+  hooks.after = [this, &sys] {
     for (std::size_t k = 0; k < methods_.size(); ++k)
-      methods_[k]->kick_team(sys, dt_, next, next_params_[k]);
+      methods_[k]->kick_team(sys, dt_, next_step_, next_params_[k]);
   };
-  ff.compute(sys, {}, nullptr, hooks);
+  return hooks;
+}
+
+void Dynamics::end_step_serial(System& sys) {
   ++sys.step;
   sys.time += dt_;
   apply_ramps(sys.step);
@@ -353,13 +357,80 @@ void Dynamics::step(System& sys, ForceField& ff) {
     wall_->update_force(sys, dt_);
     wall_->half_kick(dt_);
   }
+}
+
+void Dynamics::step(System& sys, ForceField& ff) {
+  if (!prepared_) prepare(sys, ff);
+  // 1 thread or all, as measured to be faster (integrate/step_threads.hpp); same results.
+  const ThreadCountScope threads(step_threads_.begin_step());
+  const auto start = std::chrono::steady_clock::now();
+  begin_step_serial(sys);
+  ff.compute(sys, {}, nullptr, step_hooks(sys));
+  end_step_serial(sys);
   step_threads_.end_step(
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
+std::uint64_t Dynamics::run_team(System& sys, ForceField& ff, std::uint64_t max_steps,
+                                 int threads) {
+  using Clock = std::chrono::steady_clock;
+  const TeamHooks hooks = step_hooks(sys);
+  std::uint64_t done = 0;
+  std::exception_ptr error;
+  bool go = true;  // written by the leader, read by all after a barrier
+  Clock::time_point start;
+  ++team_regions_;
+#pragma omp parallel num_threads(threads)
+  for (;;) {
+    // A step's serial parts run on the leader while the others wait at the team barrier;
+    // they may throw, so the leader ends the loop for all and the error leaves the region.
+    if (team_leader()) {
+      try {
+        start = Clock::now();
+        begin_step_serial(sys);
+        ff.prepare_team_step(sys, {});
+      } catch (...) {
+        error = std::current_exception();
+        go = false;
+      }
+    }
+    team_barrier();
+    if (!go) break;
+    ff.compute_team(sys, {}, hooks);
+    team_barrier();
+    if (team_leader()) {
+      try {
+        end_step_serial(sys);
+        step_threads_.end_step(std::chrono::duration<double>(Clock::now() - start).count());
+        ++done;
+        if (blowup_guard_.due(sys.step)) check_blowup(sys);
+        // Go on while the measured choice keeps the team (it may measure 1 thread next).
+        go = done < max_steps && step_threads_.begin_step() == threads;
+      } catch (...) {
+        error = std::current_exception();
+        go = false;
+      }
+    }
+    team_barrier();
+    if (!go) break;
+  }
+  if (error) std::rethrow_exception(error);
+  return done;
+}
+
 void Dynamics::run(System& sys, ForceField& ff, std::uint64_t n_steps) {
-  for (std::uint64_t k = 0; k < n_steps; ++k) {
+  std::uint64_t k = 0;
+  while (k < n_steps) {
+    // Consecutive team steps share one parallel region (docs/performance.md "Round 7").
+    if (prepared_ && parallel_team(sys.n_sites()) && ff.supports_team()) {
+      const int threads = step_threads_.begin_step();
+      if (threads > 1) {
+        k += run_team(sys, ff, n_steps - k, threads);
+        continue;
+      }
+    }
     step(sys, ff);
+    ++k;
     if (blowup_guard_.due(sys.step)) check_blowup(sys);
   }
   if (n_steps > 0 && !blowup_guard_.due(sys.step)) check_blowup(sys);

@@ -105,9 +105,21 @@ class Dynamics {
   StepThreads& step_threads() { return step_threads_; }
   const StepThreads& step_threads() const { return step_threads_; }
   void set_check_every(std::uint64_t n) { blowup_guard_.set_every(n); }
+  // Parallel regions opened by run() for runs of team steps (each holds consecutive steps that
+  // use all threads; for tests and benchmarks).
+  std::uint64_t team_regions() const { return team_regions_; }
 
  private:
   void apply_ramps(std::uint64_t step);
+  // A step's parts: the serial one before the forces (piston, the methods' parameters for the
+  // step), the drift and kick as the force field's hooks (every thread of the team), the
+  // serial one after (step count, ramps, piston force).
+  void begin_step_serial(System& sys);
+  TeamHooks step_hooks(System& sys);
+  void end_step_serial(System& sys);
+  // Up to max_steps steps with `threads` threads in one parallel region, while the measured
+  // choice keeps the team; returns the steps made (at least 1, or throws).
+  std::uint64_t run_team(System& sys, ForceField& ff, std::uint64_t max_steps, int threads);
   double dt_;
   std::vector<std::shared_ptr<Method>> methods_;
   std::shared_ptr<PressureWall> wall_;
@@ -115,6 +127,8 @@ class Dynamics {
   BlowupGuard blowup_guard_;
   StepThreads step_threads_;
   std::vector<MethodParams> next_params_;  // each method's parameters for the step being made
+  std::uint64_t next_step_ = 0;            // the number of the step being made
+  std::uint64_t team_regions_ = 0;
   // Sites in no method (their forces are zeroed next to the drift), for free_sites_n_ sites.
   void update_free_sites(const System& sys);
   std::vector<int> free_sites_;

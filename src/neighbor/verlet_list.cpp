@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "core/errors.hpp"
+#include "core/team_barrier.hpp"
 
 namespace invasim {
 
@@ -150,11 +151,13 @@ void VerletList::build_team(const System& sys) {
   const int n_cells = grid_.n_cells();
   const int n_bins = kClasses * n_cells;
   const int me = omp_get_thread_num(), nt = omp_get_num_threads();
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait
   for (std::size_t i = 0; i < n; ++i)
     cell_of_[i] = int(s.kind[i]) * n_cells + grid_.cell_of(s.pos[i]);
-#pragma omp single
+  team_barrier();
+#pragma omp single nowait
   bin_sites(s);
+  team_barrier();
 
   // Each pair is tested once, from the site that comes first in the binned order (the
   // stencils are symmetric): the partner after it goes to the site's row ("upper" entries),
@@ -228,7 +231,7 @@ void VerletList::build_team(const System& sys) {
     }
     slots_[me].max_upper = max_upper;
     slots_[me].candidates = candidates;
-#pragma omp barrier
+    team_barrier();
     max_upper = 0;
     candidates = 0;
     for (int t = 0; t < nt; ++t) {
@@ -236,11 +239,12 @@ void VerletList::build_team(const System& sys) {
       candidates += slots_[t].candidates;
     }
     if (max_upper > int(stride)) {  // room for the mirrored entries too
-#pragma omp single
+#pragma omp single nowait
       {
         stride_ = 2 * std::size_t(max_upper) + 16;
         list_.resize(n * stride_);
       }
+      team_barrier();
       continue;
     }
     // Mirror: each thread takes the upper entries (i, j) of its own rows i and appends i to
@@ -272,14 +276,15 @@ void VerletList::build_team(const System& sys) {
     else
       mirror(std::false_type{});
     slots_[me].max_count = max_count;
-#pragma omp barrier
+    team_barrier();
     for (int t = 0; t < nt; ++t) max_count = std::max(max_count, slots_[t].max_count);
     if (max_count <= int(stride)) break;
-#pragma omp single
+#pragma omp single nowait
     {
       stride_ = std::size_t(max_count) + 16;
       list_.resize(n * stride_);
     }
+    team_barrier();
   }
   if (me == 0) {  // (read by the caller after the barrier below)
     max_count_ = std::size_t(max_count);
@@ -291,12 +296,13 @@ void VerletList::build_team(const System& sys) {
   }
   // Rows in index order: the force sums then do not depend on when the list was built (a run
   // restarted from a checkpoint rebuilds at another step).
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait
   for (std::size_t i = 0; i < n; ++i) {
     int* row = &list_[i * stride_];
     std::sort(row, row + counts_[i]);
     pos_at_build_[i] = s.pos[i];
   }
+  team_barrier();
 }
 
 }  // namespace invasim

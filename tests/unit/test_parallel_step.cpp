@@ -222,6 +222,8 @@ TEST_CASE(
   // builds, shape, tethers and the kick (the contact term used to open its own regions: 2 team
   // regions around it).
   CHECK(two->ff.team_regions() == 1);
+  // ... and the 200 steps share one region (Dynamics::run keeps the team between steps).
+  CHECK(two->dyn.team_regions() == 1);
   CHECK(two->contacts->neighbor_list().builds() > 1);
   CHECK(two->sys.box().lo()[0] != 0.0);
   CHECK(same_state(*one, *two));
@@ -372,4 +374,69 @@ TEST_CASE("Dynamics: a light step runs on the calling thread alone; the thread c
   CHECK(std::count(probe->seen.begin(), probe->seen.end(), 2) == 10);
   CHECK(dyn.step_threads().team_steps() == 10);
   CHECK(omp_get_max_threads() == 2);
+}
+
+namespace {
+
+// A team-capable term without forces whose preparation fails once, at one step (as a term
+// refusing a box that became too short would), to test an error inside a run of team steps.
+class FailsAtStep : public Force {
+ public:
+  explicit FailsAtStep(std::uint64_t step) : step_(step) {}
+  std::string name() const override { return "fails at step"; }
+  ForceResult add_forces(System& sys, const ForceFlags& flags) override {
+    return add_forces_in_own_region(sys, flags);
+  }
+  bool supports_team() const override { return true; }
+  bool prepare_team(System& sys, const ForceFlags&) override {
+    if (sys.step + 1 == step_ && !failed_) {
+      failed_ = true;
+      throw InputError("refused at step " + std::to_string(step_));
+    }
+    return true;
+  }
+  ForceResult add_forces_team(System&, const ForceFlags&) override { return {}; }
+
+ private:
+  std::uint64_t step_;
+  bool failed_ = false;
+};
+
+}  // namespace
+
+TEST_CASE(
+    "Dynamics: an error in a run of team steps leaves the shared region and the run can go on") {
+  ThreadGuard guard;
+  omp_set_num_threads(2);
+  auto m = make_mixed();
+  m->ff.add(std::make_shared<FailsAtStep>(37));
+  m->dyn.step_threads().set_mode(StepThreads::Mode::kAll);
+  CHECK_THROWS_WITH(m->dyn.run(m->sys, m->ff, 100), "refused at step 37");
+  CHECK(m->sys.step == 36);  // the failing step did not complete (as on one thread)
+  CHECK(m->dyn.team_regions() == 1);
+  // The team is usable again: the next run makes its steps (37 again) in a new region.
+  m->dyn.run(m->sys, m->ff, 10);
+  CHECK(m->sys.step == 46);
+  CHECK(m->dyn.team_regions() == 2);
+}
+
+TEST_CASE("Dynamics: a blow-up inside a run of team steps is reported as with one thread") {
+  ThreadGuard guard;
+  std::string message[2];
+  for (int threads : {1, 2}) {
+    omp_set_num_threads(threads);
+    auto m = make_mixed();
+    m->dyn.step_threads().set_mode(StepThreads::Mode::kAll);
+    m->dyn.set_check_every(10);
+    m->sys.sites().vel[1500] = Vec3(std::nan(""), 0.0, 0.0);
+    try {
+      m->dyn.run(m->sys, m->ff, 50);
+    } catch (const SimulationError& e) {
+      message[threads - 1] = e.what();
+    }
+    CHECK(m->sys.step == 10);  // the guard's first check
+    CHECK(m->dyn.team_regions() == (threads == 2 ? 1u : 0u));
+  }
+  CHECK(message[0].find("blow-up at step 10:") != std::string::npos);
+  CHECK(message[0] == message[1]);
 }
