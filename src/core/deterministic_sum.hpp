@@ -21,7 +21,8 @@ inline std::size_t sum_blocks(std::size_t n) {
 // The team form, for use inside a parallel region: called by every thread of the team, it
 // shares the blocks with an orphaned `omp for` and returns the total in every thread (each adds
 // the block sums itself, in order: no second barrier). `partial` is shared scratch sized to
-// sum_blocks(n) before the region; it must not be written again in the same region. value(i)
+// sum_blocks(n) before the region; it must not be written again before the team has passed
+// another barrier (every thread reads all of it after the one inside). value(i)
 // may also do per-item work (each item is visited once, in its block). Same operations in the
 // same order as deterministic_sum, so both give the same bits.
 template <typename T, typename F>

@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 
 namespace invasim {
@@ -27,14 +28,25 @@ void TeamBarrier::wait(int team_size) {
     phase_.notify_all();  // (no system call when nobody sleeps)
     return;
   }
+  // This thread's spin budget: halved by every wait that outlasts it, doubled (up to
+  // kSpinSeconds) by every wait that ends within it. Where the team's threads get their cores
+  // the waits are short and the budget stays full; where they share a core with each other or
+  // with other work (a thread that spins then takes the time of the one it waits for), most
+  // waits outlast it and it falls to kMinSpinSeconds within a few barriers: passive waiting.
+  thread_local double budget = kSpinSeconds;
   using Clock = std::chrono::steady_clock;
-  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
-                                           std::chrono::duration<double>(kSpinSeconds));
+  const auto start = Clock::now();
+  const auto deadline =
+      start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(budget));
   for (int k = 1;; ++k) {
-    if (phase_.load(std::memory_order_acquire) != phase) return;
+    if (phase_.load(std::memory_order_acquire) != phase) {
+      budget = std::min(2.0 * budget, kSpinSeconds);
+      return;
+    }
     cpu_relax();
-    if (k % 64 == 0 && Clock::now() > deadline) break;
+    if (k % 32 == 0 && Clock::now() > deadline) break;
   }
+  budget = std::max(0.5 * budget, kMinSpinSeconds);
   while (phase_.load(std::memory_order_acquire) == phase)
     phase_.wait(phase, std::memory_order_acquire);
 }

@@ -7,15 +7,17 @@
 // choice runs on one thread, which costs other processes' cores. This barrier spins for a
 // bounded time (about one wake-up's cost: the most a wait can waste is then twice the least it
 // could cost), then sleeps on a futex (std::atomic::wait), so it pays only where a team step
-// runs and never holds a core for long.
+// runs and never holds a core for long; a thread whose waits keep outlasting the spin (its
+// partner shares a core) spins less and less.
 #include <atomic>
 
 namespace invasim {
 
 class TeamBarrier {
  public:
-  // How long a waiting thread spins before it sleeps.
-  static constexpr double kSpinSeconds = 50e-6;
+  // How long a waiting thread spins before it sleeps: at most kSpinSeconds, less on a thread
+  // whose recent waits outlasted the spin (adaptive, see wait()), never below kMinSpinSeconds.
+  static constexpr double kSpinSeconds = 50e-6, kMinSpinSeconds = 1e-6;
   // Waits until `team_size` threads have called wait() for this phase. Every thread of the team
   // must call it the same number of times; team_size 1 returns at once.
   void wait(int team_size);

@@ -377,7 +377,10 @@ std::uint64_t Dynamics::run_team(System& sys, ForceField& ff, std::uint64_t max_
   const TeamHooks hooks = step_hooks(sys);
   std::uint64_t done = 0;
   std::exception_ptr error;
-  bool go = true;  // written by the leader, read by all after a barrier
+  // The leader's decisions, read by every thread after the barrier that follows them. One flag
+  // per decision: the leader writes the next one right after that barrier, before a slower
+  // thread may have read the first.
+  bool prepared = true, go_on = true;
   Clock::time_point start;
   ++team_regions_;
 #pragma omp parallel num_threads(threads)
@@ -391,11 +394,11 @@ std::uint64_t Dynamics::run_team(System& sys, ForceField& ff, std::uint64_t max_
         ff.prepare_team_step(sys, {});
       } catch (...) {
         error = std::current_exception();
-        go = false;
+        prepared = false;
       }
     }
     team_barrier();
-    if (!go) break;
+    if (!prepared) break;
     ff.compute_team(sys, {}, hooks);
     team_barrier();
     if (team_leader()) {
@@ -405,14 +408,14 @@ std::uint64_t Dynamics::run_team(System& sys, ForceField& ff, std::uint64_t max_
         ++done;
         if (blowup_guard_.due(sys.step)) check_blowup(sys);
         // Go on while the measured choice keeps the team (it may measure 1 thread next).
-        go = done < max_steps && step_threads_.begin_step() == threads;
+        go_on = done < max_steps && step_threads_.begin_step() == threads;
       } catch (...) {
         error = std::current_exception();
-        go = false;
+        go_on = false;
       }
     }
     team_barrier();
-    if (!go) break;
+    if (!go_on) break;
   }
   if (error) std::rethrow_exception(error);
   return done;
