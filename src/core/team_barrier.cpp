@@ -28,27 +28,32 @@ void TeamBarrier::wait(int team_size) {
     phase_.notify_all();  // (no system call when nobody sleeps)
     return;
   }
-  // This thread's spin budget: halved by every wait that outlasts it, doubled (up to
-  // kSpinSeconds) by every wait that ends within it. Where the team's threads get their cores
-  // the waits are short and the budget stays full; where they share a core with each other or
-  // with other work (a thread that spins then takes the time of the one it waits for), most
-  // waits outlast it and it falls to kMinSpinSeconds within a few barriers: passive waiting.
+  // This thread's spin budget, from how long its waits take: a wait short enough that the
+  // full spin would have covered it (allowing for the wake-up's latency when it slept) doubles
+  // the budget, up to kSpinSeconds; a longer one halves it, down to kMinSpinSeconds. Where the
+  // team's threads have their cores the waits are short and the budget stays full; where they
+  // share a core with each other or with other work, waits last time slices (a spinning thread
+  // would take the time of the one it waits for) and the budget falls: passive waiting.
   thread_local double budget = kSpinSeconds;
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   const auto deadline =
       start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(budget));
+  bool released = false;
   for (int k = 1;; ++k) {
     if (phase_.load(std::memory_order_acquire) != phase) {
-      budget = std::min(2.0 * budget, kSpinSeconds);
-      return;
+      released = true;
+      break;
     }
     cpu_relax();
     if (k % 32 == 0 && Clock::now() > deadline) break;
   }
-  budget = std::max(0.5 * budget, kMinSpinSeconds);
-  while (phase_.load(std::memory_order_acquire) == phase)
-    phase_.wait(phase, std::memory_order_acquire);
+  if (!released)
+    while (phase_.load(std::memory_order_acquire) == phase)
+      phase_.wait(phase, std::memory_order_acquire);
+  const double waited = std::chrono::duration<double>(Clock::now() - start).count();
+  budget = waited <= 2.0 * kSpinSeconds ? std::min(2.0 * budget, kSpinSeconds)
+                                        : std::max(0.5 * budget, kMinSpinSeconds);
 }
 
 void team_barrier() {
