@@ -377,9 +377,9 @@ std::uint64_t Dynamics::run_team(System& sys, ForceField& ff, std::uint64_t max_
   const TeamHooks hooks = step_hooks(sys);
   std::uint64_t done = 0;
   std::exception_ptr error;
-  // The leader's decisions, read by every thread after the barrier that follows them. One flag
-  // per decision: the leader writes the next one right after that barrier, before a slower
-  // thread may have read the first.
+  // The leader's two decisions per step, each read by every thread after the barrier that
+  // follows it. Two flags, not one: the leader takes its next decision right after that
+  // barrier, possibly before a slower thread has read the previous one.
   bool prepared = true, go_on = true;
   Clock::time_point start;
   ++team_regions_;
