@@ -160,7 +160,7 @@ ForceResult ContactForce::add_forces(System& sys, const ForceFlags& flags) {
   return add_forces_in_own_region(sys, flags);
 }
 
-bool ContactForce::prepare_team(System& sys, const ForceFlags& flags) {
+void ContactForce::prepare_team(System& sys, const ForceFlags& flags) {
   list_.prepare_update(sys);  // throws for a periodic box too short for the cutoffs
   const std::size_t n = sys.n_sites();
   if (list_.rebuild_forced() || table_.n_sites() != n) table_.build(sys.sites(), params_);
@@ -169,7 +169,6 @@ bool ContactForce::prepare_team(System& sys, const ForceFlags& flags) {
   scratch_.resize(std::size_t(std::max(omp_get_max_threads(), 1)));
   planned_builds_ = plan_builds_;
   planned_threads_ = plan_threads_;
-  return true;
 }
 
 ForceResult ContactForce::add_forces_team(System& sys, const ForceFlags& flags) {

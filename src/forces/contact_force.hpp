@@ -48,7 +48,7 @@ class ContactForce : public Force {
   explicit ContactForce(const ContactParams& params);
   std::string name() const override { return "contact"; }
   ForceResult add_forces(System& sys, const ForceFlags& flags) override;
-  bool prepare_team(System& sys, const ForceFlags& flags) override;
+  void prepare_team(System& sys, const ForceFlags& flags) override;
   bool supports_team() const override { return true; }
   ForceResult add_forces_team(System& sys, const ForceFlags& flags) override;
   const ContactParams& params() const { return params_; }

@@ -4,16 +4,10 @@
 #include "core/parallel.hpp"
 #include "core/team_barrier.hpp"
 
-#include <stdexcept>
-
 namespace invasim {
 
-bool Force::prepare_team(System&, const ForceFlags&) {
-  return false;
-}
-
 ForceResult Force::add_forces_team(System&, const ForceFlags&) {
-  // Unreachable: ForceField calls it only after prepare_team returned true.
+  // Unreachable: ForceField calls it only for terms that support team evaluation.
   return {};
 }
 
@@ -42,7 +36,12 @@ void ForceField::first_region(System& sys, const ForceFlags& flags, const TeamHo
   }
   const bool more = end > 0 || (end == terms_.size() && hooks.after);
   if (more) team_barrier();  // (otherwise the region's end is the barrier)
-  for (std::size_t k = 0; k < end; ++k) {
+  team_terms(sys, flags, hooks, 0, end);
+}
+
+void ForceField::team_terms(System& sys, const ForceFlags& flags, const TeamHooks& hooks,
+                            std::size_t from, std::size_t end) {
+  for (std::size_t k = from; k < end; ++k) {
     const ForceResult r = terms_[k]->add_forces_team(sys, flags);
     if (team_leader()) results_[k] = r;
   }
@@ -57,10 +56,7 @@ bool ForceField::supports_team() const {
 
 void ForceField::prepare_team_step(System& sys, const ForceFlags& flags) {
   results_.assign(terms_.size(), ForceResult{});
-  for (const auto& t : terms_)
-    if (!t->prepare_team(sys, flags))
-      throw std::logic_error("ForceField: the term '" + t->name() +
-                             "' claims team support but its prepare_team refused");
+  for (const auto& t : terms_) t->prepare_team(sys, flags);
   team_regions_ = 1;  // (the caller's region)
 }
 
@@ -87,16 +83,9 @@ ForceResult ForceField::compute(System& sys, const ForceFlags& flags,
   // End of the run of team-capable terms starting at `from` (each prepared on this thread).
   auto team_run_end = [&](std::size_t from) {
     std::size_t end = from;
-    while (end < n_terms && terms_[end]->prepare_team(sys, flags)) ++end;
+    for (; end < n_terms && terms_[end]->supports_team(); ++end)
+      terms_[end]->prepare_team(sys, flags);
     return end;
-  };
-  // Terms [from, end) inside the current region; the hook `after` if they are the last.
-  auto team_terms = [&](std::size_t from, std::size_t end) {
-    for (std::size_t k = from; k < end; ++k) {
-      const ForceResult r = terms_[k]->add_forces_team(sys, flags);
-      if (team_leader()) results_[k] = r;
-    }
-    if (end == n_terms && hooks.after) hooks.after();
   };
 
   std::size_t k = team_run_end(0);
@@ -112,7 +101,7 @@ ForceResult ForceField::compute(System& sys, const ForceFlags& flags,
     if (k == from && !(k == n_terms && hooks.after)) continue;
     ++team_regions_;
 #pragma omp parallel if (parallel)
-    team_terms(from, k);
+    team_terms(sys, flags, hooks, from, k);
   }
 
   if (per_term) per_term->assign(results_.begin(), results_.end());

@@ -36,17 +36,16 @@ class Force {
 
   // Team evaluation: a term can be evaluated inside a parallel region that ForceField::compute
   // shares with other terms and the integrator (one region per step instead of one per loop;
-  // every term of the full system supports it, the contacts with their list update). prepare_team
-  // runs on one thread before the region (validates, throws on bad input, sizes scratch) and
-  // returns true if the term supports it; then every thread of the region calls add_forces_team,
-  // which shares its loops with orphaned `omp for`, must not throw and ends with a barrier (all its
-  // forces added); the team leader's return value is the term's result. Default: not supported
-  // (add_forces runs between regions).
-  virtual bool prepare_team(System& sys, const ForceFlags& flags);
-  virtual ForceResult add_forces_team(System& sys, const ForceFlags& flags);
-  // True if prepare_team always returns true (known before the step's serial part runs, so
-  // that Dynamics can keep one region over many steps: ForceField::compute_team).
+  // every term of the full system supports it, the contacts with their list update).
+  // supports_team() says whether the term does (fixed for the term, so that Dynamics can know it
+  // before a step's serial part and keep one region over many steps). prepare_team runs on one
+  // thread before the region (validates, throws on bad input, sizes scratch); then every thread
+  // of the region calls add_forces_team, which shares its loops with orphaned `omp for`, must not
+  // throw and ends with a barrier (all its forces added); the team leader's return value is the
+  // term's result. Default: not supported (add_forces runs between regions).
   virtual bool supports_team() const { return false; }
+  virtual void prepare_team(System&, const ForceFlags&) {}
+  virtual ForceResult add_forces_team(System& sys, const ForceFlags& flags);
 
  protected:
   // add_forces of a team-capable term: prepare_team, then add_forces_team in a region of its own.
@@ -97,6 +96,10 @@ class ForceField {
   // The body of compute's first region: the hook `before`, the zeroing, then terms [0, end)
   // (and `after` if end is the last term).
   void first_region(System& sys, const ForceFlags& flags, const TeamHooks& hooks, std::size_t end);
+  // Terms [from, end) inside the current region (every thread); the hook `after` if they are the
+  // last.
+  void team_terms(System& sys, const ForceFlags& flags, const TeamHooks& hooks, std::size_t from,
+                  std::size_t end);
 };
 
 }  // namespace invasim

@@ -44,9 +44,8 @@ ForceResult ShapeForce::add_forces(System& sys, const ForceFlags& flags) {
   return add_forces_in_own_region(sys, flags);
 }
 
-bool ShapeForce::prepare_team(System& sys, const ForceFlags&) {
+void ShapeForce::prepare_team(System& sys, const ForceFlags&) {
   per_body_.resize(sys.bodies().size());
-  return true;
 }
 
 ForceResult ShapeForce::add_forces_team(System& sys, const ForceFlags& flags) {

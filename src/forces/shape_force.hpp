@@ -12,7 +12,7 @@ class ShapeForce : public Force {
   ShapeForce(double eps_v, double eps_a);
   std::string name() const override { return "shape"; }
   ForceResult add_forces(System& sys, const ForceFlags& flags) override;
-  bool prepare_team(System& sys, const ForceFlags& flags) override;
+  void prepare_team(System& sys, const ForceFlags& flags) override;
   bool supports_team() const override { return true; }
   ForceResult add_forces_team(System& sys, const ForceFlags& flags) override;
   double eps_v() const { return eps_v_; }

@@ -85,7 +85,7 @@ ForceResult TetherForce::add_forces(System& sys, const ForceFlags& flags) {
   return add_forces_in_own_region(sys, flags);
 }
 
-bool TetherForce::prepare_team(System& sys, const ForceFlags&) {
+void TetherForce::prepare_team(System& sys, const ForceFlags&) {
   const std::size_t nb = sys.bodies().size();
   centres_.resize(nb);
   body_start_.assign(nb + 1, 0);
@@ -100,7 +100,6 @@ bool TetherForce::prepare_team(System& sys, const ForceFlags&) {
     body_tethers_[fill[tethers_[k].a]++] = int(k) + 1;
     body_tethers_[fill[tethers_[k].b]++] = -(int(k) + 1);
   }
-  return true;
 }
 
 ForceResult TetherForce::add_forces_team(System& sys, const ForceFlags& flags) {

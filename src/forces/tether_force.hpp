@@ -16,7 +16,7 @@ class TetherForce : public Force {
   explicit TetherForce(double stiffness);
   std::string name() const override { return "tether"; }
   ForceResult add_forces(System& sys, const ForceFlags& flags) override;
-  bool prepare_team(System& sys, const ForceFlags& flags) override;
+  void prepare_team(System& sys, const ForceFlags& flags) override;
   bool supports_team() const override { return true; }
   ForceResult add_forces_team(System& sys, const ForceFlags& flags) override;
 

@@ -14,11 +14,10 @@ ForceResult WallForce::add_forces(System& sys, const ForceFlags& flags) {
   return add_forces_in_own_region(sys, flags);
 }
 
-bool WallForce::prepare_team(System& sys, const ForceFlags&) {
+void WallForce::prepare_team(System& sys, const ForceFlags&) {
   if (sys.box().periodic(0))
     fail_input("walls: the box is periodic in x; walls need a walled x axis");
   partial_.resize(sum_blocks(sys.n_sites()));
-  return true;
 }
 
 ForceResult WallForce::add_forces_team(System& sys, const ForceFlags& flags) {

@@ -425,9 +425,10 @@ void Dynamics::run(System& sys, ForceField& ff, std::uint64_t n_steps) {
   std::uint64_t k = 0;
   while (k < n_steps) {
     // Consecutive team steps share one parallel region (docs/performance.md "Round 7").
-    if (prepared_ && parallel_team(sys.n_sites()) && ff.supports_team()) {
+    // (The thread choice first: while it keeps one thread, a step asks nothing else.)
+    if (prepared_) {
       const int threads = step_threads_.begin_step();
-      if (threads > 1) {
+      if (threads > 1 && parallel_team(sys.n_sites()) && ff.supports_team()) {
         k += run_team(sys, ff, n_steps - k, threads);
         continue;
       }

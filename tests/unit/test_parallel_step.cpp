@@ -58,7 +58,7 @@ class Probe : public Force {
     for (Vec3& f : sys.sites().force) f[0] += push_;
     return {push_, Vec3::Zero()};
   }
-  bool prepare_team(System&, const ForceFlags&) override { return team_; }
+  bool supports_team() const override { return team_; }
   ForceResult add_forces_team(System& sys, const ForceFlags&) override {
     record(log_, name_);
     auto& f = sys.sites().force;
@@ -395,12 +395,11 @@ class FailsAtStep : public Force {
     return add_forces_in_own_region(sys, flags);
   }
   bool supports_team() const override { return true; }
-  bool prepare_team(System& sys, const ForceFlags&) override {
+  void prepare_team(System& sys, const ForceFlags&) override {
     if (sys.step + 1 == step_ && !failed_) {
       failed_ = true;
       throw InputError("refused at step " + std::to_string(step_));
     }
-    return true;
   }
   ForceResult add_forces_team(System&, const ForceFlags&) override { return {}; }
 
