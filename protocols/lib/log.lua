@@ -1,31 +1,44 @@
 -- Plain stage messages on stdout, prefixed by the stage name and flushed at once (so that
 -- logs interleave correctly with the progress lines on stderr).
+-- A failed write to log.txt (a full disk) is an error that stops the run: a log cut
+-- mid-line would not say that it is incomplete.
 local M = {}
-local tee_file = nil
+local tee_file, tee_path = nil, nil
 
 -- Also append every message to `path` (the run's log.txt), flushed line by line.
 function M.tee(path)
   if tee_file then tee_file:close() end
-  tee_file = assert(io.open(path, "a"))
+  local f, err = io.open(path, "a")
+  if not f then error(string.format("cannot open the run's log %s: %s", path, err), 0) end
+  tee_file, tee_path = f, path
+end
+
+-- Appends a line to log.txt; a failed write or flush raises an error naming the file (and
+-- stops the tee, so that reporting that error does not write to it again).
+local function append(line)
+  if not tee_file then return end
+  local ok, err = tee_file:write(line)
+  if ok then ok, err = tee_file:flush() end
+  if not ok then
+    local path = tee_path
+    tee_file:close()
+    tee_file, tee_path = nil, nil
+    error(string.format("cannot write the run's log %s: %s; the run stops (its log would be " ..
+                        "incomplete)", path, err), 0)
+  end
 end
 
 function M.say(stage, fmt, ...)
   local line = stage .. ": " .. string.format(fmt, ...) .. "\n"
   io.stdout:write(line)
   io.stdout:flush()
-  if tee_file then
-    tee_file:write(line)
-    tee_file:flush()
-  end
+  append(line)
 end
 
 -- A message for log.txt only (e.g. each checkpoint written: on stdout it would break the
 -- progress line of a terminal).
 function M.note(stage, fmt, ...)
-  if tee_file then
-    tee_file:write(stage .. ": " .. string.format(fmt, ...) .. "\n")
-    tee_file:flush()
-  end
+  if tee_file then append(stage .. ": " .. string.format(fmt, ...) .. "\n") end
 end
 
 -- "70 x 70 x 70" from a {Lx, Ly, Lz} list.

@@ -4,11 +4,16 @@
 -- observers' series.csv, summary.json, correlations.csv, shapes.csv, snapshots/ and
 -- checkpoint/. A new run refuses a directory that holds another run unless --overwrite is
 -- given, which deletes that run's files first: no stale file of an earlier run can
--- be picked up.
+-- be picked up. The directory is locked (DIR/.lock, invasim.lock_run_dir) before any of its
+-- files is written or deleted, for the whole life of the run: a second run into it, new or
+-- --resume, is refused while the first runs. A --resume first checks the directory's files
+-- against resume.txt (lib.resume_checks). Temporary files of atomic writes that a killed run
+-- left behind are removed once the lock is held (no other process writes there then).
 local iv = require("invasim")
 local files = require("lib.files")
 local log = require("lib.log")
 local resume = require("lib.resume")
+local resume_checks = require("lib.resume_checks")
 local run_identity = require("lib.run_identity")
 
 local M = {}
@@ -60,39 +65,106 @@ local function claim(dir, identity)
   return removed
 end
 
--- Creates the directory and writes params.json; returns the directory path.
+-- Takes the lock of dir for the rest of the run, or refuses the run naming its holder.
+local function lock(dir)
+  local ok, holder = iv.lock_run_dir(dir)
+  if ok then return end
+  local option = iv.resume and "--resume" or "--out"
+  error(string.format("%s %s: the run directory is in use by another invasim run (%s; lock " ..
+                      "file %s/.lock): refusing to %s while it runs (the two runs' files would " ..
+                      "mix). Wait for that run to end, or stop it (its lock goes with its " ..
+                      "process, even after kill -9)%s", option, dir, holder, dir,
+                      iv.resume and "continue it" or
+                      (iv.overwrite and "delete its files" or "start another run there"),
+                      iv.resume and "" or ", or choose another --out"), 0)
+end
+
+-- A new run with --from S: S's compressed tissue must be the one of the run S/resume.txt
+-- describes (a compressed.ckpt copied from another run would be taken for S's).
+local function check_source(identity)
+  if not identity.from then return end
+  local path = run_identity.source_path(identity.from)
+  if not identity.from_checkpoint then
+    error(string.format("--from %s: %s does not exist (the directory holds no run that finished " ..
+                        "its compression)", iv.from, path), 0)
+  end
+  local described = recorded_id(identity.from)
+  if not described then return end  -- not a protocol's run directory: the hash still holds it
+  local id = iv.checkpoint_run(path)
+  if id ~= described then
+    error(string.format("--from %s: refusing %s: it was written by %s, but %s/resume.txt " ..
+                        "describes run %s, so the tissue is not that run's (a compressed.ckpt " ..
+                        "copied from another run?); restore it, or run %s again", iv.from, path,
+                        id and "run " .. id or "no protocol run", identity.from, described,
+                        identity.from), 0)
+  end
+end
+
+-- Logs the temporary files removed and the warnings of a resume (also on stderr).
+local function report(dir, temporaries, warnings)
+  if #temporaries > 0 then
+    log.say("run", "removed %d temporary file(s) of writes interrupted by a killed run in %s: %s",
+            #temporaries, dir, table.concat(temporaries, ", "))
+  end
+  for _, w in ipairs(warnings) do
+    log.say("run", "warning: %s", w)
+    io.stderr:write("invasim: warning: ", w, "\n")
+  end
+end
+
+-- Creates and locks the directory, checks it (a new run: that it holds no other run; a
+-- resume: lib.resume_checks) and writes params.json and resume.txt; returns the directory
+-- path.
 function M.open(p, dir)
   dir = dir or iv.out_dir
   local identity = run_identity.of(p)
   resume.set_identity(identity, dir)
-  local removed = {}
-  if not iv.resume then removed = claim(dir, identity) end
-  files.mkdir(dir)
+  if not iv.resume then check_source(identity) end
+  files.mkdir(dir .. "/checkpoint")  -- an unwritable --out is refused here, naming it
+  lock(dir)
+  local removed, warnings = {}, {}
+  if iv.resume then
+    resume_checks.verify_sources(dir, identity)
+  else
+    removed = claim(dir, identity)
+  end
+  iv.record_run_lock(dir)
+  local temporaries = iv.remove_temporaries(dir)
   files.mkdir(dir .. "/checkpoint")
-  if resume.start(dir) then
+  local continuing = resume.start(dir)  -- refuses a checkpoint of another run
+  if iv.resume then warnings = resume_checks.verify_records(dir, identity, p) end
+  if continuing then
     log.tee(dir .. "/log.txt")
     log.say("run", "resuming the run in %s (run %s) from its checkpoint", dir, identity.id)
+    report(dir, temporaries, warnings)
     return dir
   end
-  -- resume.txt: what `invasim run --resume DIR` needs to start the same protocol again (the
-  -- protocol path, the run id for the reader, --from, then one key=value line per parameter,
-  -- in --set syntax).
-  local lines = { iv.script, "# run_id=" .. identity.id }
-  if identity.from then lines[#lines + 1] = "--from=" .. identity.from end
-  for _, line in ipairs(identity.lines) do lines[#lines + 1] = line end
-  files.write(dir .. "/resume.txt", table.concat(lines, "\n") .. "\n")
+  -- params.json, then resume.txt (what `invasim run --resume DIR` needs to start the same
+  -- protocol again: the protocol path, the run's records for the checks of lib.resume_checks,
+  -- --from, then one key=value line per parameter, in --set syntax). A run killed between the
+  -- two writes has no resume.txt and cannot be resumed (it has not started its work).
+  local protocol_hash = iv.hash_file(iv.script)
   local params = {}
   for k, v in pairs(p) do params[k] = v end
   files.write(dir .. "/params.json", iv.json_encode{
-    protocol = iv.script, parameters = params, run_id = identity.id, from = identity.from,
+    protocol = iv.script, protocol_hash = protocol_hash, parameters = params,
+    run_id = identity.id, from = identity.from, from_checkpoint = identity.from_checkpoint,
     invasim_version = iv.version, git_revision = iv.git_revision, threads = iv.threads(),
   })
+  local lines = { iv.script, "# run_id=" .. identity.id, "# protocol_hash=" .. protocol_hash }
+  if identity.from then
+    lines[#lines + 1] = "# from_checkpoint=" .. identity.from_checkpoint
+    lines[#lines + 1] = "--from=" .. identity.from
+  end
+  for _, line in ipairs(identity.lines) do lines[#lines + 1] = line end
+  files.write(dir .. "/resume.txt", table.concat(lines, "\n") .. "\n")
   log.tee(dir .. "/log.txt")
   if #removed > 0 then
     log.say("run", "--overwrite: deleted the previous run's %s in %s", table.concat(removed, ", "), dir)
   end
   log.say("run", "invasim %s (%s), %d threads; run %s; output in %s", iv.version,
           iv.git_revision, iv.threads(), identity.id, dir)
+  report(dir, temporaries, warnings)
   return dir
 end
 

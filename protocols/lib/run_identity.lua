@@ -1,6 +1,8 @@
 -- A run's identity: the FNV-1a 64 hash (invasim.hash) of the text
 --   protocol <resolved path of the protocol>
 --   from <resolved path of the --from run directory>      (only with --from)
+--   from_checkpoint <FNV-1a 64 of its compressed.ckpt>    (only with --from: the source's
+--                                                          contents, not just its path)
 --   key=value                                             (every resolved parameter, sorted)
 -- with floats in their shortest round-trip form. params.json (run_id), resume.txt and every
 -- checkpoint the run writes (sections run.id and run.parameters, which hold this text) carry
@@ -32,15 +34,33 @@ function M.parameter_lines(p)
 end
 
 -- The identity of the running protocol with resolved parameters p:
--- { id = 16 hex digits, text = the hashed text, from = resolved --from or nil, lines = the
---   parameter lines }.
+-- { id = 16 hex digits, text = the hashed text, from = resolved --from or nil,
+--   from_checkpoint = content hash of the --from source's compressed.ckpt (nil if missing),
+--   lines = the parameter lines }.
 function M.of(p)
   local from = iv.from and iv.resolve_path(iv.from) or nil
   local head = { "protocol " .. iv.resolve_path(iv.script) }
-  if from then head[#head + 1] = "from " .. from end
+  local from_checkpoint
+  if from then
+    from_checkpoint = M.source_hash(from)
+    head[#head + 1] = "from " .. from
+    head[#head + 1] = "from_checkpoint " .. (from_checkpoint or "missing")
+  end
   local lines = M.parameter_lines(p)
   local text = table.concat(head, "\n") .. "\n" .. table.concat(lines, "\n") .. "\n"
-  return { id = iv.hash(text), text = text, from = from, lines = lines }
+  return { id = iv.hash(text), text = text, from = from, from_checkpoint = from_checkpoint,
+           lines = lines }
+end
+
+-- The compressed tissue of the run directory `from` (what --from starts from).
+function M.source_path(from) return from .. "/checkpoint/compressed.ckpt" end
+
+-- The content hash (FNV-1a 64 of the bytes) of the --from source's compressed.ckpt, or nil
+-- if there is no such file.
+function M.source_hash(from)
+  local path = M.source_path(from)
+  if not iv.exists(path) then return nil end
+  return iv.hash_file(path)
 end
 
 -- The entries of an identity text: protocol, --from and each parameter.
@@ -50,6 +70,9 @@ local function entries(text)
     local key, value = line:match("^(protocol) (.*)$")
     if not key then key, value = line:match("^(from) (.*)$") end
     if key == "from" then key = "--from" end
+    if not key and line:match("^from_checkpoint ") then
+      key, value = "the content hash of the --from source", line:match("^from_checkpoint (.*)$")
+    end
     if not key then key, value = line:match("^([^=]+)=(.*)$") end
     if key then t[key] = value end
   end

@@ -1,8 +1,15 @@
 -- The run's time series as CSV (series.csv): a header row of `name [unit]` entries, then one
 -- row per sample, appended and flushed as the run goes, so that a killed run keeps every
--- sample written so far.
+-- sample written so far. A failed write or flush (a full disk) is an error naming the file.
 local M = {}
 M.__index = M
+
+-- Writes the parts and flushes them; raises an error naming `path` if either fails.
+local function put(file, path, ...)
+  local ok, err = file:write(...)
+  if ok then ok, err = file:flush() end
+  if not ok then error(string.format("series: cannot write %s: %s", path, tostring(err)), 0) end
+end
 
 -- Opens `path` for the given columns (names) with units (name -> unit, optional).
 function M.open(path, columns, units)
@@ -13,8 +20,7 @@ function M.open(path, columns, units)
     local unit = units and units[c]
     header[i] = (unit and unit ~= "1") and (c .. " [" .. unit .. "]") or c
   end
-  file:write(table.concat(header, ","), "\n")
-  file:flush()
+  put(file, path, table.concat(header, ","), "\n")
   return setmetatable({ file = file, columns = columns, path = path }, M)
 end
 
@@ -24,8 +30,7 @@ function M:write(row)
     local v = row[c]
     fields[i] = v == nil and "" or (math.type(v) == "integer" and tostring(v) or string.format("%.10g", v))
   end
-  self.file:write(table.concat(fields, ","), "\n")
-  self.file:flush()
+  put(self.file, self.path, table.concat(fields, ","), "\n")
 end
 
 function M:close()

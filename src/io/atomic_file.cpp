@@ -104,6 +104,38 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
   sync_directory(path.parent_path(), path);
 }
 
+namespace {
+
+// Whether a file name is that of a temporary file of write_file_atomically: "<name>.tmp.<pid>".
+bool is_atomic_temporary(const std::string& name) {
+  const std::size_t mark = name.rfind(".tmp.");
+  if (mark == std::string::npos || mark == 0 || mark + 5 == name.size()) return false;
+  for (std::size_t i = mark + 5; i < name.size(); ++i)
+    if (name[i] < '0' || name[i] > '9') return false;
+  return true;
+}
+
+}  // namespace
+
+std::vector<std::filesystem::path> remove_atomic_temporaries(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> found;
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::end(it);
+       it.increment(ec)) {
+    if (it->is_regular_file(ec) && !it->is_symlink(ec) &&
+        is_atomic_temporary(it->path().filename().string()))
+      found.push_back(it->path());
+  }
+  if (ec) fail_io("cannot list ", quoted(dir), ": ", ec.message());
+  std::vector<fs::path> removed;
+  for (const fs::path& path : found) {
+    if (!fs::remove(path, ec) && ec) fail_io("cannot remove ", quoted(path), ": ", ec.message());
+    removed.push_back(path.lexically_relative(dir));
+  }
+  return removed;
+}
+
 void append_file_synced(const std::filesystem::path& path, std::string_view contents) {
   FileDescriptor fd(::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644));
   auto fail = [&](const char* what) {

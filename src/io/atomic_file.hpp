@@ -6,6 +6,7 @@
 // new one, never a mix, and no temporary file behind when the error is reported.
 #include <filesystem>
 #include <string_view>
+#include <vector>
 
 namespace invasim {
 
@@ -22,6 +23,13 @@ void append_file_synced(const std::filesystem::path& path, std::string_view cont
 
 // The temporary file name used by write_file_atomically for `path` in this process.
 std::filesystem::path atomic_temp_path(const std::filesystem::path& path);
+
+// Removes the temporary files of write_file_atomically ("<name>.tmp.<digits>") that a killed
+// process left in `dir` and its subdirectories (symbolic links are not followed), and returns
+// their paths relative to `dir`. Only for a directory no other process writes (a run
+// directory whose lock this process holds: io/run_lock.hpp). Throws IoError naming a file
+// that cannot be removed.
+std::vector<std::filesystem::path> remove_atomic_temporaries(const std::filesystem::path& dir);
 
 // Creates `dir` and its missing parents (no-op if it exists). Throws IoError naming the
 // directory if it cannot be created or if the path exists and is not a directory.

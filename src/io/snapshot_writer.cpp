@@ -39,10 +39,26 @@ SnapshotWriter::SnapshotWriter(std::filesystem::path dir, SnapshotOptions option
   if (options_.adipocytes_vtp) load_series(adipocytes_);
 }
 
+bool SnapshotWriter::is_own_frame(const std::string& kind, const std::string& file) const {
+  const std::filesystem::path name(file);
+  if (name.has_parent_path() || name.filename() != name) return false;
+  if (file.rfind(kind + "_", 0) != 0 || name.extension() != ".vtp") return false;
+  if (step_of_file_name(file) < 0) return false;
+  std::error_code ec;
+  return std::filesystem::symlink_status(dir_ / name, ec).type() ==
+         std::filesystem::file_type::regular;
+}
+
 void SnapshotWriter::load_series(Series& s) {
   const std::filesystem::path pvd = dir_ / (s.kind + ".pvd");
   std::error_code ec;
-  if (std::filesystem::exists(pvd, ec)) s.entries = read_pvd(pvd);
+  if (!std::filesystem::exists(pvd, ec)) return;
+  s.entries = read_pvd(pvd);
+  // Keep only the entries naming this series' own frame files that are there; a hand-edited
+  // or damaged index (entries naming itself, another directory, a device) is rewritten.
+  const std::size_t before = s.entries.size();
+  std::erase_if(s.entries, [&](const PvdEntry& e) { return !is_own_frame(s.kind, e.file); });
+  if (s.entries.size() != before) write_file_atomically(pvd, pvd_text(s.entries));
 }
 
 void SnapshotWriter::add_to_series(Series& s, const Frame& frame, const std::string& file) {

@@ -7,8 +7,10 @@
 //   trajectory.xyz          optional: every frame appended to one multi-frame XYZ file
 // <step> is the step zero-padded to 9 digits (more if needed). Every file but trajectory.xyz
 // is written atomically. A writer opened on a directory that already holds a series (a
-// restarted run) continues it: at its first frame, index entries and trajectory frames whose
-// step is not below the new frame's step (the abandoned part of the old run) are dropped.
+// restarted run) continues it: entries that do not name an existing frame file of the series
+// in this directory are dropped at once, and at its first frame, index entries and trajectory
+// frames whose step is not below the new frame's step (the abandoned part of the old run) are
+// dropped.
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -55,7 +57,12 @@ class SnapshotWriter {
     std::string kind;  // "spheres" or "adipocytes"
     std::vector<PvdEntry> entries;
   };
+  // Loads an existing .pvd index, keeping only entries of is_own_frame (rewrites it if any
+  // entry was dropped).
   void load_series(Series& s);
+  // Whether a .pvd entry names a frame file of this series: "<kind>_<step>.vtp", a regular
+  // file (not a link) in this directory.
+  bool is_own_frame(const std::string& kind, const std::string& file) const;
   void add_to_series(Series& s, const Frame& frame, const std::string& file);
   void append_trajectory(const Frame& frame);
 

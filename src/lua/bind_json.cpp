@@ -1,5 +1,7 @@
 // JSON text from Lua values (io/json.hpp: nlohmann-json values, invasim's layout):
 //   invasim.json_encode(value [, {indent = 2}]) -> text ending in a newline
+//   invasim.read_json(path) -> the file's value as Lua data (objects and arrays as tables,
+//                              integers as integers, other numbers as floats, null as nil)
 // Tables whose keys are exactly 1..#t (and empty tables) become arrays, read in order up to
 // the first nil; other tables become objects with their keys as text (tostring), sorted.
 // Lua integers stay integers, floats follow json_float's rule (NaN, inf -> null); userdata
@@ -10,6 +12,7 @@
 
 #include "io/json.hpp"
 #include "lua/binding.hpp"
+#include "lua/engine_types.hpp"
 #include "lua/kwargs.hpp"
 #include "lua/module.hpp"
 
@@ -160,11 +163,77 @@ int l_json_encode(lua_State* L) {
   });
 }
 
+// Pushes a JSON value as Lua data (inside protected_call: Lua API calls only; references into
+// the Json tree create no C++ object). Returns false if the nesting is too deep.
+bool push_json(lua_State* L, const Json& value, int depth) noexcept {
+  if (depth > kMaxDepth || !lua_checkstack(L, 3)) return false;
+  switch (value.type()) {
+    case Json::value_t::object:
+      lua_createtable(L, 0, int(value.size()));
+      for (auto it = value.begin(); it != value.end(); ++it) {
+        const std::string& key = it.key();
+        lua_pushlstring(L, key.data(), key.size());
+        if (!push_json(L, it.value(), depth + 1)) return false;
+        lua_rawset(L, -3);
+      }
+      return true;
+    case Json::value_t::array: {
+      lua_createtable(L, int(value.size()), 0);
+      lua_Integer i = 0;
+      for (const Json& element : value) {
+        if (!push_json(L, element, depth + 1)) return false;
+        lua_rawseti(L, -2, ++i);
+      }
+      return true;
+    }
+    case Json::value_t::string: {
+      const std::string& text = value.get_ref<const std::string&>();
+      lua_pushlstring(L, text.data(), text.size());
+      return true;
+    }
+    case Json::value_t::boolean:
+      lua_pushboolean(L, value.get<bool>() ? 1 : 0);
+      return true;
+    case Json::value_t::number_integer:
+      lua_pushinteger(L, lua_Integer(value.get<std::int64_t>()));
+      return true;
+    case Json::value_t::number_unsigned:
+      if (value.get<std::uint64_t>() <= std::uint64_t(LUA_MAXINTEGER))
+        lua_pushinteger(L, lua_Integer(value.get<std::uint64_t>()));
+      else
+        lua_pushnumber(L, lua_Number(value.get<std::uint64_t>()));
+      return true;
+    case Json::value_t::number_float:
+      lua_pushnumber(L, value.get<double>());
+      return true;
+    default:  // null, discarded, binary
+      lua_pushnil(L);
+      return true;
+  }
+}
+
+int l_read_json(lua_State* L) {
+  const std::string path = arg_string(L, 1);
+  const Json value = engine_call("read_json", [&] { return read_json(path); });
+  bool ok = true;
+  push_results(L, 1, [&value, &ok](lua_State* S) noexcept {
+    ok = push_json(S, value, 0);  // on success, the value is on top
+    if (!ok) lua_pushnil(S);
+    return 1;
+  });
+  if (!ok)
+    throw InputError("read_json: " + path + ": nested deeper than " + std::to_string(kMaxDepth) +
+                     " levels");
+  return 1;
+}
+
 }  // namespace
 
 void open_json(lua_State* L) {
   lua_pushcfunction(L, &lua_wrap<&l_json_encode>);
   lua_setfield(L, -2, "json_encode");
+  lua_pushcfunction(L, &lua_wrap<&l_read_json>);
+  lua_setfield(L, -2, "read_json");
 }
 
 }  // namespace invasim::lua

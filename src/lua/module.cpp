@@ -82,6 +82,7 @@ int open_invasim(lua_State* L) {
   open_correlator(L);
   open_io(L);
   open_json(L);
+  open_run_dir(L);
   open_checkpoint(L);
   open_compression(L);
   open_keywords(L);

@@ -25,7 +25,8 @@ void open_fire(lua_State* L);        // invasim.Fire{...}          (bind_fire.cp
 void open_measure(lua_State* L);     // invasim.histogram, block_average (bind_measure.cpp)
 void open_correlator(lua_State* L);  // invasim.Correlator{...}    (bind_correlator.cpp)
 void open_io(lua_State* L);          // invasim.write_file, make_dirs, Snapshots (bind_io.cpp)
-void open_json(lua_State* L);        // invasim.json_encode        (bind_json.cpp)
+void open_json(lua_State* L);        // invasim.json_encode, read_json (bind_json.cpp)
+void open_run_dir(lua_State* L);     // invasim.lock_run_dir, ...  (bind_run_dir.cpp)
 void open_checkpoint(
     lua_State* L);             // invasim.save/load_checkpoint, interrupted (bind_checkpoint.cpp)
 void open_ramp(lua_State* L);  // invasim.ramp{...}          (bind_ramp.cpp)

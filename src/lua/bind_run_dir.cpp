@@ -1,0 +1,84 @@
+// What protocols/lib/run_dir.lua needs to keep a run directory to one run (src/io):
+//   invasim.lock_run_dir(dir)        -- true, or false and the holder ("pid 12 on host h,
+//                                    -- started ...") if another process holds DIR/.lock
+//   invasim.record_run_lock(dir)     -- writes this process into DIR/.lock (lock held)
+//   invasim.hash_file(path)          -- FNV-1a 64 of the file's bytes, as 16 hex digits
+//   invasim.remove_temporaries(dir)  -- removes the "*.tmp.<pid>" files of killed atomic
+//                                    -- writes in dir's tree; returns their relative paths
+#include <lua.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/fnv1a.hpp"
+#include "io/atomic_file.hpp"
+#include "io/run_lock.hpp"
+#include "lua/binding.hpp"
+#include "lua/engine_types.hpp"
+#include "lua/module.hpp"
+
+namespace invasim::lua {
+
+namespace {
+
+int l_lock_run_dir(lua_State* L) {
+  const std::string dir = arg_string(L, 1);
+  const std::optional<std::string> holder =
+      engine_call("lock_run_dir", [&] { return lock_run_directory(dir); });
+  if (!holder) {
+    lua_pushboolean(L, 1);
+    return 1;
+  }
+  return push_results(L, 2, [&holder](lua_State* S) noexcept {
+    lua_pushboolean(S, 0);
+    lua_pushlstring(S, holder->data(), holder->size());
+    return 2;
+  });
+}
+
+int l_record_run_lock(lua_State* L) {
+  const std::string dir = arg_string(L, 1);
+  engine_call("record_run_lock", [&] { record_run_lock_holder(dir); });
+  return 0;
+}
+
+int l_hash_file(lua_State* L) {
+  const std::string path = arg_string(L, 1);
+  const std::string hex = engine_call("hash_file", [&] { return fnv1a64_hex(read_file(path)); });
+  return push_results(L, 1, [&hex](lua_State* S) noexcept {
+    lua_pushlstring(S, hex.data(), hex.size());
+    return 1;
+  });
+}
+
+int l_remove_temporaries(lua_State* L) {
+  const std::string dir = arg_string(L, 1);
+  std::vector<std::string> removed;
+  engine_call("remove_temporaries", [&] {
+    for (const auto& path : remove_atomic_temporaries(dir)) removed.push_back(path.string());
+  });
+  return push_results(L, 1, [&removed](lua_State* S) noexcept {
+    lua_createtable(S, int(removed.size()), 0);
+    for (std::size_t i = 0; i < removed.size(); ++i) {
+      lua_pushlstring(S, removed[i].data(), removed[i].size());
+      lua_rawseti(S, -2, lua_Integer(i + 1));
+    }
+    return 1;
+  });
+}
+
+}  // namespace
+
+void open_run_dir(lua_State* L) {
+  lua_pushcfunction(L, &lua_wrap<&l_lock_run_dir>);
+  lua_setfield(L, -2, "lock_run_dir");
+  lua_pushcfunction(L, &lua_wrap<&l_record_run_lock>);
+  lua_setfield(L, -2, "record_run_lock");
+  lua_pushcfunction(L, &lua_wrap<&l_hash_file>);
+  lua_setfield(L, -2, "hash_file");
+  lua_pushcfunction(L, &lua_wrap<&l_remove_temporaries>);
+  lua_setfield(L, -2, "remove_temporaries");
+}
+
+}  // namespace invasim::lua

@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# What a --resume trusts (protocols/lib/resume_checks.lua): resume.txt describes the run; the
+# other files must agree with it.
+#  1. params.json with "P": 5 is refused, naming P in both files;
+#  2. resume.txt with another P than its # run_id= line says is refused (params.json names it);
+#  3. a protocol script changed since the start is refused, naming both content hashes;
+#  4. params.json with another invasim_version continues with a warning on stderr and in log.txt.
+# Usage: resume_trusts.sh INVASIM WORKDIR
+set -euo pipefail
+invasim=$1 work=$2
+here=$(cd "$(dirname "$0")" && pwd)
+source "$here/wait_for.sh"
+rm -rf "$work" && mkdir -p "$work"
+cp -r "$here/../../protocols" "$work/protocols"  # a copy of the protocol to edit in part 3
+dir=$work/run
+"$invasim" run "$work/protocols/invasion.lua" --set N_a=4 --set N_c=60 --set L0=32.0 --set quench_steps=200 \
+  --set steps=400 --set every=200 --set snapshot_every=0 --out "$dir" > "$work/run.log" 2>&1 || fail "run" "$work/run.log"
+cp "$dir/params.json" "$work/params.json"
+cp "$dir/resume.txt" "$work/resume.txt"
+refused() {  # refused NAME EXPECTED: --resume exits 1 with EXPECTED in its message
+  local status=0
+  "$invasim" run --resume "$dir" > "$work/$1.log" 2>&1 || status=$?
+  [ "$status" -eq 1 ] || fail "$1: --resume exited with $status (expected 1)" "$work/$1.log"
+  grep -qF -- "$2" "$work/$1.log" || fail "$1: no message '$2'" "$work/$1.log"
+}
+
+# 1. params.json edited.
+sed -i 's/"P": 0.0013,/"P": 5,/' "$dir/params.json"
+grep -q '"P": 5,' "$dir/params.json" || fail "the test could not edit params.json" "$dir/params.json"
+refused params "$dir/params.json does not agree with $dir/resume.txt, which this resume follows: P = 5 in params.json, 0.0013 in resume.txt"
+cp "$work/params.json" "$dir/params.json"
+
+# 2. resume.txt edited.
+sed -i 's/^P=0.0013$/P=0.002/' "$dir/resume.txt"
+refused resume_txt "P = 0.0013 in params.json, 0.002 in resume.txt"
+cp "$work/resume.txt" "$dir/resume.txt"
+
+# 3. The protocol changed.
+recorded=$(sed -n 's/^# protocol_hash=//p' "$dir/resume.txt")
+echo "-- an edit after the run started" >> "$work/protocols/invasion.lua"
+refused protocol "the protocol $work/protocols/invasion.lua changed since this run started (content hash $recorded recorded in $dir/resume.txt"
+cp "$here/../../protocols/invasion.lua" "$work/protocols/invasion.lua"
+
+# 4. Another invasim version: a warning, and the run continues.
+sed -i 's/"invasim_version": "[^"]*"/"invasim_version": "9.9.9"/' "$dir/params.json"
+"$invasim" run --resume "$dir" > "$work/version.log" 2> "$work/version.err" || fail "--resume with another version" "$work/version.err"
+grep -q "^invasim: warning: this run was started by invasim 9.9.9 (.*) and is continued by invasim " "$work/version.err" ||
+  fail "no warning on stderr" "$work/version.err"
+grep -q "^run: warning: this run was started by invasim 9.9.9 " "$dir/log.txt" || fail "no warning in log.txt" "$dir/log.txt"
+echo "resume_trusts passed: edited params.json, resume.txt and protocol refused; another version warned"
