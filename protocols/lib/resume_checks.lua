@@ -46,9 +46,9 @@ local function shown(v)
   return run_identity.format_value(v)
 end
 
--- What differs between params.json (`recorded`) and what resume.txt gives (identity, p,
--- the protocol's hash), as "P = 5 in params.json, 0.0013 in resume.txt" entries.
-local function params_json_differences(recorded, identity, p, protocol_hash)
+-- What differs between params.json (`recorded`) and what resume.txt gives (identity, p, its
+-- records), as "P = 5 in params.json, 0.0013 in resume.txt" entries.
+local function params_json_differences(recorded, identity, p, records)
   local out = {}
   local function compare(name, in_json, in_resume)
     if not same(in_json, in_resume) then
@@ -59,8 +59,8 @@ local function params_json_differences(recorded, identity, p, protocol_hash)
   compare("protocol", recorded.protocol, iv.script)
   compare("run_id", recorded.run_id, identity.id)
   compare("from", recorded.from, identity.from)
-  compare("from_checkpoint", recorded.from_checkpoint, identity.from_checkpoint)
-  compare("protocol_hash", recorded.protocol_hash, protocol_hash)
+  compare("from_checkpoint", recorded.from_checkpoint, records.from_checkpoint)
+  compare("protocol_hash", recorded.protocol_hash, records.protocol_hash)
   local parameters = type(recorded.parameters) == "table" and recorded.parameters or {}
   local names, seen = {}, {}
   for k in pairs(parameters) do if not seen[k] then seen[k] = true; names[#names + 1] = k end end
@@ -120,15 +120,13 @@ function M.verify_records(dir, identity, p)
   local resume_txt = dir .. "/resume.txt"
   local anew = ANEW
   local function refuse(fmt, ...) refusal(dir, fmt, ...) end
-  local protocol_hash = iv.hash_file(iv.script)
   local params_json = dir .. "/params.json"
   if not iv.exists(params_json) then
     refuse("%s is missing: the run's record of its parameters is gone; %s", params_json, anew)
   end
   local recorded = iv.read_json(params_json)
   if type(recorded) ~= "table" then recorded = {} end
-  local diff = params_json_differences(recorded, identity,
-                                       p, records.protocol_hash and protocol_hash or nil)
+  local diff = params_json_differences(recorded, identity, p, records)
   if #diff > 0 then
     refuse("%s does not agree with %s, which this resume follows: %s. params.json describes the " ..
            "run's results; it was edited or comes from another run. Restore it, %s", params_json,
