@@ -46,7 +46,9 @@ Options of run and params:
                     continue the run in DIR (killed, or stopped by Ctrl-C / SIGTERM) from
                     its last checkpoint, with the protocol, parameters and --from it was
                     started with; a checkpoint written by another run (other parameters) is
-                    refused
+                    refused, and so is a --from source, protocol or params.json changed since
+                    the start (docs/reliability.md); a run directory is locked (DIR/.lock) while
+                    a run uses it: a second run into it is refused
 
 Options of render:
   --slice A=VALUE   the cutting plane, x=VALUE, y=VALUE or z=VALUE (required)
