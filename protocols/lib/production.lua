@@ -123,6 +123,9 @@ return function(tissue, opts)
     local state = resume.deserialize(iv.load_checkpoint(checkpoint, parts), checkpoint)
     rows, end_step, tissue.compression = state.rows, state.end_step, state.compression
     resume.done()
+    -- Frames after the checkpoint's step belong to the abandoned part of the run: out of the
+    -- ParaView indexes until they are written again.
+    if o.snapshots then o.snapshots:forget_after(sys:step()) end
     log.say(o.label, "resumed at step %d (t = %g) from %s; %d steps to go", sys:step(), sys:time(),
             checkpoint, end_step - sys:step())
   end

@@ -72,6 +72,18 @@ void SnapshotWriter::add_to_series(Series& s, const Frame& frame, const std::str
   write_file_atomically(dir_ / (s.kind + ".pvd"), pvd_text(s.entries));
 }
 
+void SnapshotWriter::forget_after(std::uint64_t step) {
+  for (Series* s : {&spheres_, &adipocytes_}) {
+    const std::size_t before = s->entries.size();
+    std::erase_if(s->entries, [&](const PvdEntry& e) {
+      const std::int64_t frame = step_of_file_name(e.file);
+      return frame >= 0 && std::uint64_t(frame) > step;
+    });
+    if (s->entries.size() != before)
+      write_file_atomically(dir_ / (s->kind + ".pvd"), pvd_text(s->entries));
+  }
+}
+
 SnapshotFiles SnapshotWriter::write(const System& sys) {
   return write(frame_from_system(sys));
 }

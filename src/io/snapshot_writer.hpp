@@ -43,6 +43,10 @@ class SnapshotWriter {
   // Writes a frame.
   SnapshotFiles write(const Frame& frame);
 
+  // Drops the .pvd index entries of steps after `step` and rewrites the indexes (a run
+  // continued from a checkpoint of that step will write those frames again).
+  void forget_after(std::uint64_t step);
+
   const std::filesystem::path& directory() const { return dir_; }
   const SnapshotOptions& options() const { return options_; }
   // Frame file name for a kind ("cells", "spheres", "adipocytes") and step.

@@ -7,6 +7,7 @@
 //   local snap = invasim.Snapshots{dir =, cells_xyz = true, spheres_vtp = true,
 //                                  adipocytes_vtp = true}
 //   snap:write(sys)                  -- one frame: extended XYZ + VTK .vtp + .pvd indexes
+//   snap:forget_after(step)          -- drop .pvd entries of later steps (a resumed run)
 #include <lua.hpp>
 
 #include <filesystem>
@@ -110,6 +111,13 @@ int l_snapshot_write(lua_State* L) {
   return 0;
 }
 
+int l_snapshot_forget_after(lua_State* L) {
+  SnapshotWriter& w = check<SnapshotWriter>(L, 1);
+  const auto step = std::uint64_t(arg_integer(L, 2, 0, LUA_MAXINTEGER));
+  engine_call("forget_after", [&] { w.forget_after(step); });
+  return 0;
+}
+
 }  // namespace
 
 std::shared_ptr<SnapshotWriter> shared_snapshots(lua_State* L, int index) {
@@ -121,6 +129,7 @@ namespace {
 
 const luaL_Reg kSnapshotMethods[] = {
     {"write", &lua_wrap<&l_snapshot_write>},
+    {"forget_after", &lua_wrap<&l_snapshot_forget_after>},
     {nullptr, nullptr},
 };
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Leftovers of a run directory:
-#  1. on --resume, snapshots/spheres.pvd lists only the run's own frame files that exist
-#     (hand-added entries naming the index itself, /dev/zero or a missing frame are dropped);
+#  1. on --resume, snapshots/spheres.pvd lists only the run's own frame files that exist, up
+#     to the checkpoint's step (hand-added entries naming the index itself, /dev/zero, a
+#     missing frame, or an existing frame after the checkpoint's step are dropped);
 #  2. a failed write of log.txt (here log.txt is a link to /dev/full: every write fails with
 #     ENOSPC, as on a full disk) stops the run with exit 1 and a message naming the file.
 # (Temporary files of killed writes: run_dir_lock.sh.)
@@ -20,7 +21,10 @@ dir=$work/run
 "$invasim" "${run[@]}" --set snapshot_every=200 --set checkpoint_every=200 --out "$dir" > "$work/run.log" 2>&1 ||
   fail "run" "$work/run.log"
 pvd=$dir/snapshots/spheres.pvd
-sed -i 's|  </Collection>|    <DataSet timestep="40" group="" part="0" file="spheres.pvd"/>\n    <DataSet timestep="50" group="" part="0" file="/dev/zero"/>\n    <DataSet timestep="60" group="" part="0" file="spheres_000000900.vtp"/>\n  </Collection>|' "$pvd"
+# The run ended at step 600 with a checkpoint there; a frame file of step 800 (as a run killed
+# after its last checkpoint leaves) is listed too.
+cp "$dir/snapshots/spheres_000000600.vtp" "$dir/snapshots/spheres_000000800.vtp"
+sed -i 's|  </Collection>|    <DataSet timestep="40" group="" part="0" file="spheres_000000800.vtp"/>\n    <DataSet timestep="40" group="" part="0" file="spheres.pvd"/>\n    <DataSet timestep="50" group="" part="0" file="/dev/zero"/>\n    <DataSet timestep="60" group="" part="0" file="spheres_000000900.vtp"/>\n  </Collection>|' "$pvd"
 grep -q 'file="/dev/zero"' "$pvd" || fail "the test could not edit spheres.pvd" "$pvd"
 "$invasim" run --resume "$dir" > "$work/resumed.log" 2>&1 || fail "--resume" "$work/resumed.log"
 files=$(grep -o 'file="[^"]*"' "$pvd" | tr '\n' ' ')
