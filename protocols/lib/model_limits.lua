@@ -11,7 +11,8 @@
 --   dt                 velocity Verlet is stable for omega dt < 2: the stiffest contact
 --                      (s = 0.9, omega^2 = eps/(m s^2)) gives dt < 1.8, the adipocytes' volume
 --                      mode dt < 0.25 sqrt(1e3 / eps_v) (docs/model.md, "Compression": unstable
---                      above 0.2-0.25 at eps_v = 1e3); and dt >= 1e-9: a smaller step moves a
+--                      above 0.2-0.25 at eps_v = 1e3), a tether dt < 2 sqrt(21 / K_ecm) (two
+--                      adipocytes of 42 unit-mass vertices); and dt >= 1e-9: a smaller step moves a
 --                      body at the model's speeds (~1e-2 sigma/tau) by less than 1e3 rounding
 --                      units of its position, and the temperatures come out as 0/0;
 --   gamma, vertex_gamma  gamma dt / (2 m) <= 0.5 (m = 1): the integrator's half-step
@@ -26,10 +27,13 @@
 --                      snapshot_every, checkpoint_every and correlate_every larger than steps
 --                      mean "none in this run" (a sweep may fix them while its points vary
 --                      steps), as 0 does;
---   compress_ftol, final_ftol  at least 100 rounding units of the forces: the residual force
+--   compress_ftol, final_ftol  at least 10 rounding units of the forces: the residual force
 --                      of a minimised tissue cannot go below eps (2.2e-16) x the box side x
 --                      the stiffest spring (64 eps_v / 1e3 for the volume mode, 1/0.81 for a
---                      contact); FIRE asked for less runs to its iteration limit in every step.
+--                      contact), and a FIRE asked for less runs to its iteration limit (1 adipocyte
+--                      and 20 cells compressed to a box of 5.3: 1e-13 reached, 1e-14 not in
+--                      2e5 iterations, stuck at 1.7e-14; eps x 5.3 x 64 = 7.5e-14). The bound
+--                      takes the initial box L0, larger than the compressed one: a margin.
 local iv = require("invasim")
 
 local M = {}
@@ -40,7 +44,7 @@ M.max_damping = 0.5       -- gamma dt / (2 m)
 M.min_orientation_correlation = 1e-20  -- exp(-dt / tau_p) over one step
 M.max_A_0 = 3.0
 M.min_initial_phi = 1e-6
-M.ftol_rounding_units = 100
+M.ftol_rounding_units = 10
 
 local function fail(fmt, ...) error(string.format(fmt, ...), 0) end
 
@@ -88,11 +92,17 @@ local function check_time_step(p)
   end
   local eps_v = p.eps_v or 0
   local limit = M.max_dt(eps_v)
+  local mode = limit < 1.8 and string.format("the adipocytes' volume mode at eps_v = %g", eps_v)
+               or "a contact spring between cells of diameter 0.9"
+  -- A tether of stiffness K_ecm between two adipocytes of 42 unit-mass vertices (reduced mass
+  -- 21): omega^2 = K_ecm / 21.
+  if p.K_ecm and p.K_ecm > 0 and 2 * math.sqrt(21 / p.K_ecm) < limit then
+    limit = 2 * math.sqrt(21 / p.K_ecm)
+    mode = string.format("a tether at K_ecm = %g", p.K_ecm)
+  end
   if dt >= limit then
     fail("dt = %g: velocity Verlet is unstable in the stiffest mode (%s) above dt = %.3g; the " ..
-         "first steps would blow up", dt,
-         limit < 1.8 and string.format("the adipocytes' volume mode at eps_v = %g", eps_v)
-                     or "a contact spring between cells of diameter 0.9", limit)
+         "first steps would blow up", dt, mode, limit)
   end
   for _, key in ipairs{ "gamma", "vertex_gamma" } do
     local g = p[key]
@@ -138,23 +148,34 @@ local function check_tolerances(p, L0)
   for _, key in ipairs{ "compress_ftol", "final_ftol" } do
     local v = p[key]
     if v and v < floor then
-      fail("%s = %g: below what doubles can resolve in this tissue (%d rounding units of the " ..
-           "forces, eps x L0 x the stiffest spring = %.3g): FIRE would run to its iteration " ..
-           "limit in every minimisation; %s must be at least %.3g", key, v,
+      fail("%s = %g: below %d rounding units of the forces in this tissue (eps x L0 x the " ..
+           "stiffest spring = %.3g): a FIRE asked for less may never converge and would run to " ..
+           "its iteration limit in every minimisation; %s must be at least %.3g", key, v,
            M.ftol_rounding_units, floor / M.ftol_rounding_units, key, floor)
     end
   end
 end
 
--- Refuses the dynamics' parameters (P, kT, f0, dt, gamma, vertex_gamma, tau_p; those p has)
--- that make a run meaningless: for protocols without adipocytes, e.g. cells_only.lua.
-function M.check_dynamics(p)
+-- The parameters as a plain table: iv.params' table refuses to read an undeclared name, and a
+-- protocol declares only some of those checked here (K_ecm: tethered.lua, packing.lua).
+local function plain(params)
+  local p = {}
+  for k, v in pairs(params) do p[k] = v end
+  return p
+end
+
+-- Refuses the dynamics' parameters (P, kT, f0, dt, gamma, vertex_gamma, tau_p, K_ecm; those
+-- the protocol declares) that make a run meaningless: for protocols without adipocytes too
+-- (cells_only.lua).
+function M.check_dynamics(params)
+  local p = plain(params)
   check_loads(p)
   check_time_step(p)
 end
 
--- Refuses the parameters p (with the resolved system size) that make the run meaningless.
-function M.check(p, N_a, N_c, L0)
+-- Refuses the parameters (with the resolved system size) that make the run meaningless.
+function M.check(params, N_a, N_c, L0)
+  local p = plain(params)
   M.check_dynamics(p)
   if p.A_0 and p.A_0 > M.max_A_0 then
     fail("A_0 = %g: the adipocytes' reference shape parameter must be at most %g (the paper's " ..
