@@ -8,7 +8,9 @@ where the spec leaves one out). Two ways to get `fixed` and `rate`:
   thread), differing only in `steps` (S = 2 x every and S + delta, all other *steps at 0),
   after its shared preparation if it has one, each measured in CPU time (so that a busy
   machine does not skew the rate): rate = delta/(cpu_B - cpu_A), fixed = cpu_A - S/rate
-  (start-up, compression, rescale: per point); the preparation's CPU time counts once. The
+  (start-up, compression, rescale: per point); the two runs are two workspaces (a fixed
+  parameter's other value is another sweep), each with its preparation, whose first CPU
+  time counts once. The
   first point's rate stands for all points of the spec. Core-hours and wall times are then
   those of an idle machine;
 - done points (plan --workspace WS): the wall_seconds that `sweep run` recorded; the points
