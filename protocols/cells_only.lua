@@ -34,6 +34,7 @@ local p = iv.params{
 local function fail(fmt, ...) error(string.format(fmt, ...), 0) end
 -- Each parameter's own range is checked by iv.params; these are the combinations.
 if p.steps == 0 then fail("--set steps=0: must be > 0 (-1: automatic)") end
+require("lib.model_limits").check_dynamics(p)  -- values in range that mean nothing
 
 -- Times: tau_g, the free particle's tau_d, the correlation window and the run lengths.
 local tau_g = 1.0 / p.gamma

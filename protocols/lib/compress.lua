@@ -78,6 +78,16 @@ local function stop(sys, o, state, where)
                       resume.run_dir() or "DIR"), 0)
 end
 
+-- A compression step whose FIRE reached its iteration limit without reaching ftol: the
+-- minimisation stalled (a tolerance below what the forces' rounding allows, or a tissue that
+-- cannot relax), and every further step would run to the limit too. Stops the run saying so.
+local function stalled(r, o)
+  error(string.format("compress: the FIRE of compression step %d stopped at its iteration limit " ..
+                      "(max_steps = %d) with max force %.3g, above ftol = %g (phi = %.4f): the " ..
+                      "minimisation stalled; raise ftol (the protocols' compress_ftol) or max_steps",
+                      r.steps, o.max_steps, r.max_force, o.ftol, r.phi), 0)
+end
+
 -- The compressed tissue that the run in directory `from` saved, loaded into tissue.sys.
 local function load_compressed(tissue, from)
   local path = resume.compressed_path(from)
@@ -118,6 +128,7 @@ local function compress(tissue, o)
       callback = function(r)  -- each step in log.txt (the course of the compression)
         log.note("compress", "step %d: phi = %.4f, %d FIRE iterations so far", r.steps, r.phi, r.fire_steps)
         if progress then progress:update(r.steps) end
+        if not r.converged then stalled(r, o) end
       end,
     })
     if progress then progress:finish() end
@@ -145,6 +156,11 @@ local function compress(tissue, o)
     report.final = final
     report.max_force = final.max_force
     report.converged = final.converged
+    if not final.converged then
+      log.say("compress", "WARNING: the final FIRE stopped at its iteration limit (max_steps = %d) " ..
+              "with max force %.3g, above final_ftol = %g: the compressed tissue is not minimised",
+              o.max_steps, final.max_force, o.final_ftol)
+    end
     -- A signal after the final FIRE: the compressed tissue and this report are saved.
     if iv.interrupted() then stop(sys, o, { report = report }, "after the compression") end
   end

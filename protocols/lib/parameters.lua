@@ -72,9 +72,10 @@ function M.size(p)
 end
 
 -- Checks the parameters' combinations before anything runs or any file is written (each
--- parameter's own range is checked by iv.params).
+-- parameter's own range is checked by iv.params; lib/model_limits.lua refuses the values in
+-- range that would make the run meaningless).
 function M.validate(p)
-  M.size(p)
+  local N_a, N_c, L0 = M.size(p)
   if p.beta > 0 and p.beta >= p.alpha then
     error(string.format("cohesion: beta = %g must be smaller than alpha = %g (--set beta=... or --set alpha=...; beta = 0 switches cohesion off)",
                         p.beta, p.alpha), 0)
@@ -85,6 +86,7 @@ function M.validate(p)
     error(string.format("steps: quench_steps + steps = %d + %d overflows the step counter " ..
                         "(at most %d steps in a run)", p.quench_steps, p.steps, math.maxinteger), 0)
   end
+  require("lib.model_limits").check(p, N_a, N_c, L0)
 end
 
 return M

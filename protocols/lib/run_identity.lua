@@ -14,6 +14,7 @@ local M = {}
 -- A parameter value as text: floats in the shortest %g form that reads back to the same
 -- double, everything else with tostring.
 function M.format_value(v)
+  if v == 0 and math.type(v) == "float" then v = 0.0 end  -- -0.0 is the same value as 0.0
   if math.type(v) == "float" and v == v and v ~= math.huge and v ~= -math.huge then
     for digits = 1, 17 do
       local text = string.format("%." .. digits .. "g", v)

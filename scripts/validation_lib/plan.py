@@ -8,7 +8,9 @@ where the spec leaves one out). Two ways to get `fixed` and `rate`:
   thread), differing only in `steps` (S = 2 x every and S + delta, all other *steps at 0),
   after its shared preparation if it has one, each measured in CPU time (so that a busy
   machine does not skew the rate): rate = delta/(cpu_B - cpu_A), fixed = cpu_A - S/rate
-  (start-up, compression, rescale: per point); the preparation's CPU time counts once. The
+  (start-up, compression, rescale: per point); the two runs are two workspaces (a fixed
+  parameter's other value is another sweep), each with its preparation, whose first CPU
+  time counts once. The
   first point's rate stands for all points of the spec. Core-hours and wall times are then
   those of an idle machine;
 - done points (plan --workspace WS): the wall_seconds that `sweep run` recorded; the points
@@ -106,14 +108,18 @@ def time_spec(invasim, spec, scratch, delta):
     sets = base + sum((["--set", "%s=0" % n] for n in zeroed), [])
     if "snapshot_every" in first:
         sets += ["--set", "snapshot_every=0"]
+    # One workspace per step count: a workspace holds one sweep, and steps is fixed in each.
+    cpu, prep = {}, 0.0
     for s in (s_a, s_a + delta):
-        _run([invasim, "sweep", "init", spec, "--workspace", timing, "--take", "1",
+        ws = "%s_%d" % (timing, s)
+        _run([invasim, "sweep", "init", spec, "--workspace", ws, "--take", "1",
               "--set", "steps=%d" % s] + sets)
-    meta_t, tsps = statepoints(timing)
-    prep = _cpu_seconds([invasim, "sweep", "job", timing, "prep", "--threads", "1"]) \
-        if meta_t.get("prep") else 0.0
-    cpu = {int(sp["steps"]): _cpu_seconds([invasim, "sweep", "job", timing, i, "--threads", "1"])
-           for i, sp in tsps}
+        meta_t, tsps = statepoints(ws)
+        if meta_t.get("prep"):
+            seconds = _cpu_seconds([invasim, "sweep", "job", ws, "prep", "--threads", "1"])
+            prep = prep or seconds
+        for i, sp in tsps:
+            cpu[int(sp["steps"])] = _cpu_seconds([invasim, "sweep", "job", ws, i, "--threads", "1"])
     if cpu[s_a + delta] <= cpu[s_a]:
         raise InputError("%s: the timing is inconclusive (%d steps took %.2f CPU s, %d steps "
                          "%.2f CPU s); try a larger --delta" % (spec, s_a, cpu[s_a], s_a + delta,

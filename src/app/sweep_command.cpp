@@ -18,6 +18,7 @@
 #include "core/stop_request.hpp"
 #include "lua/lua_state.hpp"
 #include "sweep/collect.hpp"
+#include "sweep/init_workspace.hpp"
 #include "sweep/job_record.hpp"
 #include "sweep/local_runner.hpp"
 #include "sweep/overrides.hpp"
@@ -33,10 +34,13 @@ std::string sweep_help_text() {
 
 Usage:
   invasim sweep init SPEC.lua [--workspace DIR] [--tiny] [--set KEY=VALUE]... [--take N]
+                      [--max-points N]
         check the sweep spec and create (or grow) its signac-compatible workspace
         (default DIR: out/<spec name>, with --tiny out/tiny/<spec name>); --tiny uses the
         spec's CI size (its tiny = {...}), --set replaces a fixed parameter, --take N keeps
-        the first N values of every axis and one seed
+        the first N values of every axis and one seed; a spec of more than 10000 points is
+        refused unless --max-points N allows N; DIR must be new, empty or a workspace of
+        the same sweep (a grown spec adds its new points)
   invasim sweep run WS [--jobs N] [--threads T]
         run the points that are not done, N at a time with T threads each (default: fill
         the cores, N x T <= cores); interrupted points continue from their checkpoints;
@@ -148,7 +152,8 @@ std::string executable() {
 }
 
 int init(const std::vector<std::string>& args) {
-  const Parsed p = parse("init", args, {"--workspace", "--set", "--take"}, {"--tiny"});
+  const Parsed p =
+      parse("init", args, {"--workspace", "--set", "--take", "--max-points"}, {"--tiny"});
   const auto spec_path = words("init", p, 1, "SPEC.lua")[0];
   sweep::SpecOverrides overrides;
   overrides.tiny = p.flags.count("--tiny") > 0;
@@ -160,7 +165,9 @@ int init(const std::vector<std::string>& args) {
   const fs::path default_ws = overrides.tiny ? fs::path("out") / "tiny" : fs::path("out");
   const std::string ws =
       value(p, "--workspace").value_or((default_ws / fs::path(spec_path).stem()).string());
-  const auto report = sweep::init_workspace(spec, ws);
+  std::size_t max_points = sweep::kDefaultMaxPoints;
+  if (auto m = value(p, "--max-points")) max_points = positive("--max-points", *m, 100000000);
+  const auto report = sweep::init_workspace(spec, ws, max_points);
   std::cout << "sweep init: " << ws << ": " << report.added << " new points, " << report.kept
             << " kept (" << report.added + report.kept << " in " << spec_path << ")"
             << (spec.has_prep ? ", with a shared preparation" : "") << "\nnext: invasim sweep run "

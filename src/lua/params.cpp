@@ -88,7 +88,7 @@ ParamValue parse_value(ParamType type, const std::string& key, const std::string
     case ParamType::kNumber: {
       const auto d = parse_double(text);
       if (!d || !std::isfinite(*d)) return fail("a number");
-      return *d;
+      return *d == 0.0 ? 0.0 : *d;  // -0 is 0: the same parameters, run id and params.json
     }
     case ParamType::kInteger: {
       const auto i = parse_integer(text);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <set>
@@ -374,6 +375,33 @@ std::vector<Json> SweepSpec::points() const {
     out = std::move(next);
   }
   return out;
+}
+
+std::size_t SweepSpec::point_count() const {
+  std::size_t count = 1;
+  const auto times = [&count](std::size_t n) {
+    if (n != 0 && count > std::numeric_limits<std::size_t>::max() / n)
+      count = std::numeric_limits<std::size_t>::max();
+    else
+      count *= n;
+  };
+  for (const auto& axis : product) times(axis.second.size());
+  for (const auto& zip : zips) times(zip.front().second.size());
+  return count;
+}
+
+std::string SweepSpec::point_count_factors() const {
+  std::string text;
+  const auto factor = [&text](const std::string& name, std::size_t n) {
+    text += (text.empty() ? "" : " x ") + name + ": " + std::to_string(n);
+  };
+  for (const auto& [name, values] : product) factor(name, values.size());
+  for (const auto& zip : zips) {
+    std::string names;
+    for (const auto& axis : zip) names += (names.empty() ? "" : "+") + axis.first;
+    factor(names, zip.front().second.size());
+  }
+  return text.empty() ? "no axes" : text;
 }
 
 SweepSpec load_spec(const std::string& path) {

@@ -40,6 +40,11 @@ struct SweepSpec {
   // The state points: fixed parameters plus one value of every axis (the product of the
   // product axes and zip groups), in a fixed order.
   std::vector<Json> points() const;
+  // How many points() makes, counted without making them (the product of the axes' and zip
+  // groups' lengths; SIZE_MAX if that overflows).
+  std::size_t point_count() const;
+  // The count as its factors, e.g. "kT: 100 x f0: 100 x seed: 3".
+  std::string point_count_factors() const;
 };
 
 // Loads and checks SPEC.lua; InputError naming the file, line and key on any problem.

@@ -13,10 +13,6 @@
 
 namespace invasim::sweep {
 
-namespace {
-
-const char* const kConfig = "invasim_sweep.json";
-
 Json read_json(const fs::path& path) {
   require_regular_file(path, "sweep configuration");  // a FIFO would block the reader
   std::ifstream in(path);
@@ -27,8 +23,6 @@ Json read_json(const fs::path& path) {
     fail_input(path.string(), ": not valid JSON (", e.what(), ")");
   }
 }
-
-}  // namespace
 
 void write_file(const fs::path& path, const std::string& text) {
   const fs::path tmp = path.string() + ".tmp";
@@ -117,56 +111,6 @@ std::vector<std::string> Workspace::run_arguments(const std::string& id) const {
     args.push_back(job_dir(kPrepId).string());
   }
   return args;
-}
-
-InitReport init_workspace(const SweepSpec& spec, const fs::path& root_in) {
-  const fs::path root = fs::absolute(root_in).lexically_normal();
-  const Json prep = spec.has_prep ? Json{{"set", spec.prep_set}} : Json(nullptr);
-  std::vector<std::string> ids;
-  if (fs::exists(root / kConfig)) {
-    const Json old = read_json(root / kConfig);
-    if (old.at("protocol") != spec.protocol)
-      fail_input(root.string(), " is a sweep of ", old.at("protocol").get<std::string>(),
-                 ", not of ", spec.protocol, ": choose another --workspace");
-    const Json old_prep = old.contains("prep") ? old.at("prep") : Json(nullptr);
-    if (python_dumps(old_prep) != python_dumps(prep))
-      fail_input(root.string(),
-                 ": the shared preparation differs from the one its points started "
-                 "from (",
-                 python_dumps(old_prep), " there, ", python_dumps(prep), " in ", spec.path,
-                 "): choose another --workspace");
-    ids = old.at("points").get<std::vector<std::string>>();
-  }
-  InitReport report;
-  fs::create_directories(root / ".signac");
-  fs::create_directories(root / "workspace");
-  write_file(root / ".signac" / "config", "schema_version = 2\n");
-  for (const Json& point : spec.points()) {
-    const std::string id = signac_id(point);
-    const fs::path dir = root / "workspace" / id;
-    if (std::find(ids.begin(), ids.end(), id) != ids.end() &&
-        fs::exists(dir / "signac_statepoint.json")) {
-      ++report.kept;
-      continue;
-    }
-    fs::create_directories(dir);
-    write_file(dir / "signac_statepoint.json", python_dumps(point));
-    if (!fs::exists(dir / "signac_job_document.json"))
-      write_document(dir, Json{{"status", "pending"}});
-    if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
-    ++report.added;
-  }
-  if (spec.has_prep) {
-    fs::create_directories(root / "prep");
-    if (!fs::exists(root / "prep" / "signac_job_document.json"))
-      write_document(root / "prep", Json{{"status", "pending"}});
-  }
-  Json config = {{"protocol", spec.protocol},
-                 {"spec", fs::absolute(spec.path).lexically_normal().string()},
-                 {"prep", prep},
-                 {"points", ids}};
-  write_file(root / kConfig, config.dump(2) + "\n");
-  return report;
 }
 
 }  // namespace invasim::sweep

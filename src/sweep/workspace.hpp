@@ -21,6 +21,11 @@ namespace fs = std::filesystem;
 
 // The name of the shared preparation among job ids (its directory is WS/prep).
 inline const std::string kPrepId = "prep";
+// The workspace's configuration file, WS/invasim_sweep.json.
+inline const char* const kConfig = "invasim_sweep.json";
+
+// A JSON file's contents; InputError naming the file if it cannot be read or parsed.
+Json read_json(const fs::path& path);
 
 class Workspace {
  public:
@@ -48,16 +53,6 @@ class Workspace {
   bool has_prep_ = false;
   Json prep_set_;
 };
-
-// What `sweep init` did.
-struct InitReport {
-  int added = 0;
-  int kept = 0;
-};
-
-// Creates WS (or adds the spec's new points to it): refuses a workspace of another protocol or
-// another preparation. Existing jobs and their results are kept.
-InitReport init_workspace(const SweepSpec& spec, const fs::path& root);
 
 // Job documents (signac_job_document.json): status is one of pending, submitted, running,
 // done, failed, interrupted.
