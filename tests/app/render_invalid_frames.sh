@@ -3,10 +3,12 @@
 # with cx="nan" or r="inf" or silently dropping rows: NaN/infinite coordinates and radii, an
 # XYZ count line that disagrees with the rows (more or fewer), a plane more than one period
 # outside the box on a periodic axis. Each refusal exits 1, names the file, the row and the
-# value, and writes nothing; a plane within one period is wrapped and renders.
-# Usage: render_invalid_frames.sh INVASIM WORKDIR
+# value, and writes nothing; a plane within one period is wrapped and renders. With SNAPS (the
+# directory app_write_snapshot writes), copies of its VTP files with an infinite radius and a
+# NaN mesh point are refused too.
+# Usage: render_invalid_frames.sh INVASIM WORKDIR [SNAPS]
 set -euo pipefail
-invasim=$1 work=$2
+invasim=$1 work=$2 snaps=${3:-}
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 
 fail() {
@@ -59,4 +61,13 @@ refused far_plane_above good.xyz y=40.5 "'good.xyz': slice y = 40.5 lies outside
 "$invasim" render good.xyz --slice z=-10 -o wrapped.svg > wrapped.log 2>&1 ||
   fail "z=-10: render failed" wrapped.log
 grep -q "^render: 2 discs, 0 polygons -> wrapped.svg$" wrapped.log || fail "z=-10: wrong counts" wrapped.log
+if [ -n "$snaps" ]; then
+  mkdir -p spheres meshes  # apart: each file of a frame loads its companions
+  sed '/Name="radius"/{n;s/^\( *\)0\.5/\1inf/}' "$snaps/spheres_000000500.vtp" > spheres/spheres_000000500.vtp
+  refused vtp_inf_radius spheres/spheres_000000500.vtp z=10 \
+    "'spheres/spheres_000000500.vtp': cell 0: radius inf is not finite"
+  sed '/Name="Points"/{n;s/^\( *\)[^ ]*/\1nan/}' "$snaps/adipocytes_000000500.vtp" > meshes/adipocytes_000000500.vtp
+  refused vtp_nan_point meshes/adipocytes_000000500.vtp z=10 \
+    "'meshes/adipocytes_000000500.vtp': adipocyte point 0: position (nan, 6.70130161670408, 10) is not finite"
+fi
 echo "render_invalid_frames: invalid frames and far planes refused, a plane one period away wrapped"
