@@ -1,5 +1,6 @@
 #include "core/stop_request.hpp"
 
+#include <atomic>
 #include <csignal>
 
 namespace invasim {
@@ -7,6 +8,7 @@ namespace invasim {
 namespace {
 
 volatile std::sig_atomic_t g_stop_signal = 0;
+std::atomic<bool> g_taken{false};  // set by stop_requested(), never by the handler
 
 extern "C" void record_stop(int signal) {
   g_stop_signal = signal;
@@ -21,11 +23,22 @@ void install_stop_handlers() {
 }
 
 int stop_requested() {
+  const int signal = g_stop_signal;
+  if (signal != 0) g_taken.store(true, std::memory_order_relaxed);
+  return signal;
+}
+
+int stop_signal_pending() {
   return g_stop_signal;
+}
+
+bool stop_request_taken() {
+  return g_stop_signal != 0 && g_taken.load(std::memory_order_relaxed);
 }
 
 void clear_stop_request() {
   g_stop_signal = 0;
+  g_taken.store(false, std::memory_order_relaxed);
 }
 
 const char* stop_signal_name(int signal) {

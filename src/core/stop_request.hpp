@@ -3,12 +3,22 @@
 // only records the signal; long runs check stop_requested() between chunks of steps, write a
 // checkpoint and stop cleanly. A second signal of the same kind kills the process at once
 // (the default action is restored after the first).
+//
+// A request is "taken" once a stop point has seen it (stop_requested() returned the signal:
+// the step loop of Simulation::run, a stoppable FIRE, invasim.interrupted()). Lua's stop hook
+// (lua/stop_hook.hpp) peeks at the request with stop_signal_pending() and gives a request that
+// no stop point has taken only a short time before it ends the script itself.
 namespace invasim {
 
 // Installs the handlers (idempotent).
 void install_stop_handlers();
-// The signal that asked for a stop (SIGINT, SIGTERM), or 0.
+// The signal that asked for a stop (SIGINT, SIGTERM), or 0. A stop point's check: a nonzero
+// answer marks the request as taken.
 int stop_requested();
+// The recorded signal, or 0, without taking the request (the Lua stop hook).
+int stop_signal_pending();
+// Whether a stop point has seen the recorded request.
+bool stop_request_taken();
 // Forgets a recorded request (tests).
 void clear_stop_request();
 // "SIGINT", "SIGTERM" or "signal N".

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "io/atomic_file.hpp"
+#include "io/frame_check.hpp"
 #include "io/io_error.hpp"
 #include "io/regular_file.hpp"
 #include "io/slice_axes.hpp"
@@ -266,11 +267,32 @@ void check_same_frame(const Frame& a, const std::filesystem::path& a_file, const
             " of ", quoted(a_file), " beyond round-off (the files of one frame must agree)");
 }
 
+// The frame files, each checked for what a picture needs (io/frame_check.hpp).
+Frame load_xyz_cells(const std::filesystem::path& path) {
+  Frame f = read_xyz(path);
+  require_drawable_cells(f.cells, quoted(path), 3);  // frame 0: its rows start on line 3
+  return f;
+}
+
+Frame load_vtp_cells(const std::filesystem::path& path) {
+  Frame f = cell_frame_from_vtp(read_vtp(path), quoted(path));
+  require_drawable_cells(f.cells, quoted(path));
+  return f;
+}
+
+Frame load_vtp_meshes(const std::filesystem::path& path) {
+  Frame f = mesh_frame_from_vtp(read_vtp(path), quoted(path));
+  require_drawable_meshes(f.meshes, quoted(path));
+  return f;
+}
+
 Frame load_vtp_alone(const std::filesystem::path& path) {
   const VtpData vtp = read_vtp(path);
-  return vtp.poly_offsets.empty() && !vtp.vert_offsets.empty()
-             ? cell_frame_from_vtp(vtp, quoted(path))
-             : mesh_frame_from_vtp(vtp, quoted(path));
+  const bool cells = vtp.poly_offsets.empty() && !vtp.vert_offsets.empty();
+  Frame f = cells ? cell_frame_from_vtp(vtp, quoted(path)) : mesh_frame_from_vtp(vtp, quoted(path));
+  require_drawable_cells(f.cells, quoted(path));
+  require_drawable_meshes(f.meshes, quoted(path));
+  return f;
 }
 
 }  // namespace
@@ -284,7 +306,7 @@ Frame load_snapshot_frame(const std::filesystem::path& snapshot) {
   const std::int64_t step = SnapshotWriter::step_of_file_name(name);
   const std::string kind = step >= 0 ? name.substr(0, name.rfind('_')) : "";
   if (kind != "cells" && kind != "spheres" && kind != "adipocytes")
-    return snapshot.extension() == ".xyz" ? read_xyz(snapshot) : load_vtp_alone(snapshot);
+    return snapshot.extension() == ".xyz" ? load_xyz_cells(snapshot) : load_vtp_alone(snapshot);
 
   const std::filesystem::path dir = snapshot.parent_path();
   auto sibling = [&](const char* k, const char* ext) {
@@ -301,14 +323,14 @@ Frame load_snapshot_frame(const std::filesystem::path& snapshot) {
   Frame f;
   std::filesystem::path first;  // the file f was read from
   if (kind != "spheres" && exists(cells)) {
-    f = read_xyz(cells);
+    f = load_xyz_cells(cells);
     first = cells;
   } else if (exists(spheres)) {
-    f = cell_frame_from_vtp(read_vtp(spheres), quoted(spheres));
+    f = load_vtp_cells(spheres);
     first = spheres;
   }
   if (exists(meshes)) {
-    Frame m = mesh_frame_from_vtp(read_vtp(meshes), quoted(meshes));
+    Frame m = load_vtp_meshes(meshes);
     if (!first.empty()) {
       check_same_frame(f, first, m, meshes);
       f.meshes = std::move(m.meshes);

@@ -37,7 +37,8 @@ RenderCounts render_frame(const Frame& frame, const SlicePlane& plane,
 // adipocytes_<step>.vtp, it loads the cells (from the file given if it holds cells, else from
 // cells_<step>.xyz, else from spheres_<step>.vtp) and the meshes (adipocytes_<step>.vtp)
 // found next to it; a missing companion file just leaves that part empty. A file not named that way
-// is loaded alone (.xyz: cells; .vtp: meshes if it has polygons, else cells).
+// is loaded alone (.xyz: cells; .vtp: meshes if it has polygons, else cells). A file with a
+// non-finite coordinate or radius is refused (io/frame_check.hpp).
 Frame load_snapshot_frame(const std::filesystem::path& snapshot);
 
 // `invasim render SNAPSHOT --slice z=VALUE -o FILE.svg`: load_snapshot_frame + render_frame.

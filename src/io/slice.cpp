@@ -67,7 +67,15 @@ Slice cut_frame(const Frame& frame, const SlicePlane& plane) {
   s.w_axis = w;
   const double L = box.length(a), lo = box.lo()[a], hi = box.hi()[a];
   if (box.periodic(a)) {
+    // One period either side of the box is wrapped (a plane given in unwrapped coordinates);
+    // farther planes are refused: wrapping them loses the value's digits (z = -1e300 would
+    // land anywhere, most likely outside the box, and cut nothing).
+    if (!(plane.value >= lo - L && plane.value <= hi + L))
+      fail_input("slice ", "xyz"[a], " = ", plane.value, " lies outside the box [", lo, ", ", hi,
+                 "] by more than one period of the periodic ", "xyz"[a],
+                 " axis (planes within one period are wrapped into the box)");
     s.plane.value = plane.value - L * std::floor((plane.value - lo) / L);
+    if (s.plane.value >= hi) s.plane.value = lo;  // round-off of a value just below lo
   } else if (plane.value < lo || plane.value > hi) {
     fail_input("slice ", "xyz"[a], " = ", plane.value, " lies outside the walls [", lo, ", ", hi,
                "]");

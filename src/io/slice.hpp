@@ -53,7 +53,9 @@ struct Slice {
   std::vector<SliceDisc> vertex_discs;
 };
 
-// Cuts a frame. A plane outside the walls of a non-periodic axis is an InputError.
+// Cuts a frame. A plane outside the walls of a non-periodic axis is an InputError; on a
+// periodic axis a plane within one period of the box is wrapped into it, a farther one is an
+// InputError.
 Slice cut_frame(const Frame& frame, const SlicePlane& plane);
 
 // The cross-section(s) of one triangle mesh with the plane points[.][axis] = value, by

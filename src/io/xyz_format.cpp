@@ -1,5 +1,6 @@
 #include "io/xyz_format.hpp"
 
+#include <string>
 #include <vector>
 
 #include "io/atomic_file.hpp"
@@ -209,6 +210,7 @@ Frame parse_xyz(std::string_view text, const std::string& origin, std::size_t in
   }
   if (in.at_end()) fail_io(origin, ": no frame ", index, " (empty file or too few frames)");
   const std::size_t n = parse_count(in.next(), in, origin);
+  const std::size_t count_line = in.line_number();
   const auto kv = parse_xyz_comment(in.next());
   Frame f;
   f.box = parse_box(kv, origin);
@@ -228,8 +230,19 @@ Frame parse_xyz(std::string_view text, const std::string& origin, std::size_t in
   CellFrame& c = f.cells;
   std::vector<std::string_view> tok;
   std::vector<double> num(col.count);
+  auto rows_text = [](std::size_t rows) {
+    return std::to_string(rows) + (rows == 1 ? " row" : " rows");
+  };
+  const std::string says = std::to_string(n) + (n == 1 ? " particle" : " particles");
+  auto fewer_rows = [&](std::size_t rows, const char* where) {
+    fail_io(origin, ": line ", count_line, " says ", says, ", but the frame has ", rows_text(rows),
+            " (", where, in.line_number(), ")");
+  };
   for (std::size_t i = 0; i < n; ++i) {
+    if (in.at_end()) fewer_rows(i, "the file ends after line ");
     text::split_whitespace(in.next(), tok);
+    if (col.count > 1 && tok.size() == 1 && text::parse<std::size_t>(tok[0]))
+      fewer_rows(i, "the next frame's count line is line ");
     if (int(tok.size()) != col.count)
       fail_io(origin, ": line ", in.line_number(), ": ", tok.size(), " columns, expected ",
               col.count);
@@ -249,6 +262,18 @@ Frame parse_xyz(std::string_view text, const std::string& origin, std::size_t in
     c.vel.push_back(vec(col.velo));
     c.orient.push_back(vec(col.orient));
   }
+  // What follows the rows: nothing (blank lines), or the next frame's count line.
+  LineReader rest = in;
+  std::size_t extra = 0, first_extra = 0;
+  while (!rest.at_end()) {
+    text::split_whitespace(rest.next(), tok);
+    if (tok.empty()) continue;
+    if (tok.size() == 1 && text::parse<std::size_t>(tok[0])) break;  // the next frame
+    if (extra++ == 0) first_extra = rest.line_number();
+  }
+  if (extra > 0)
+    fail_io(origin, ": line ", count_line, " says ", says, ", but the frame has ",
+            rows_text(n + extra), " (", extra, " more from line ", first_extra, ")");
   return f;
 }
 

@@ -4,6 +4,7 @@
 #include <mutex>
 #include <vector>
 
+#include "lua/error_object.hpp"
 #include "lua/kwargs.hpp"
 #include "lua/names.hpp"
 
@@ -199,7 +200,14 @@ void throw_protected_error(lua_State* L, int status) {
 }  // namespace detail
 
 void call_lua(lua_State* L, int nargs, int nresults) {
-  if (lua_pcall(L, nargs, nresults, 0) == LUA_OK) return;
+  if (!lua_checkstack(L, 1)) throw LuaApiError("Lua stack overflow");
+  // describe_error_object below the function: error({}) in a callback names its place.
+  const int handler = lua_gettop(L) - nargs;
+  lua_pushcfunction(L, &describe_error_object);  // a light C function: no allocation
+  lua_insert(L, handler);
+  const int status = lua_pcall(L, nargs, nresults, handler);
+  lua_remove(L, handler);
+  if (status == LUA_OK) return;
   std::string message = lua_type(L, -1) == LUA_TSTRING
                             ? lua_tostring(L, -1)
                             : std::string("(error object is a ") + luaL_typename(L, -1) + " value)";

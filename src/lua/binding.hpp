@@ -77,7 +77,8 @@ std::string bad_argument(lua_State* L, int arg, const std::string& expected,
                          const std::string& got = "");
 
 // Calls the function below `nargs` arguments on the stack with lua_pcall; a Lua error comes
-// back as LuaRaised (message kept as is), so it unwinds C++ frames cleanly.
+// back as LuaRaised (a string message kept as is, any other error object described with the
+// place it was raised: lua/error_object.hpp), so it unwinds C++ frames cleanly.
 void call_lua(lua_State* L, int nargs, int nresults);
 
 // Thrown when a protected_call() block failed with a Lua error other than a runtime error (e.g.

@@ -11,8 +11,10 @@
 #include "core/errors.hpp"
 #include "io/regular_file.hpp"
 #include "lua/binding.hpp"
+#include "lua/error_object.hpp"
 #include "lua/finalizer_guard.hpp"
 #include "lua/module.hpp"
+#include "lua/stop_hook.hpp"
 #include "lua/text_chunks.hpp"
 
 namespace invasim::lua {
@@ -22,22 +24,30 @@ namespace {
 constexpr const char* kContextKey = "invasim.context";
 
 // Message handler of every script run: leaves the stop sentinel alone, otherwise returns
-// {message, traceback}. Plain C-style code: nothing here owns a C++ object.
+// {message, traceback}; a non-string error object is described with the place it was raised
+// (lua/error_object.hpp). Plain C-style code: nothing here owns a C++ object.
 int message_handler(lua_State* L) {
   if (is_stop_sentinel(L, 1)) return 1;
-  const char* message = nullptr;
-  if (lua_type(L, 1) == LUA_TSTRING || lua_type(L, 1) == LUA_TNUMBER)
-    message = lua_tostring(L, 1);
-  else if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING)
-    message = lua_tostring(L, -1);
-  else
-    message = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
+  lua_settop(L, 1);
+  lua_pushcfunction(L, &describe_error_object);
+  lua_insert(L, 1);
+  lua_call(L, 1, 1);
+  const char* message = lua_tostring(L, 1);
   lua_createtable(L, 2, 0);
   lua_pushstring(L, message);
   lua_rawseti(L, -2, 1);
   luaL_traceback(L, L, nullptr, 1);
   lua_rawseti(L, -2, 2);
   return 1;
+}
+
+// os.exit in a protocol: an error, not an end of the process that would leave the run's files
+// (series.csv, log.txt, a checkpoint in progress) unfinished and report success.
+int refuse_os_exit(lua_State* L) {
+  return luaL_error(L,
+                    "os.exit is not allowed in a protocol: it would end invasim without "
+                    "finishing the run's files; use error(message) to stop with a failure, or "
+                    "return to end the script normally");
 }
 
 // As lauxlib's panic function: an error outside any protected call ends the process.
@@ -92,6 +102,11 @@ LuaState::LuaState(RunOptions options)
   luaL_openlibs(L_);
   restrict_to_text_chunks(L_);
   guard_bound_finalizers(L_);
+  lua_getglobal(L_, "os");
+  lua_pushcfunction(L_, &refuse_os_exit);
+  lua_setfield(L_, -2, "exit");
+  lua_pop(L_, 1);
+  install_stop_hook(L_);
   lua_pushlightuserdata(L_, context_.get());
   lua_setfield(L_, LUA_REGISTRYINDEX, kContextKey);
   luaL_getsubtable(L_, LUA_REGISTRYINDEX, LUA_PRELOAD_TABLE);

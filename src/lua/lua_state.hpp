@@ -2,7 +2,9 @@
 // LuaState: owns one lua_State with the standard libraries, the `invasim` module available
 // through require("invasim") (package.preload), and the ScriptContext (command-line options in,
 // declared parameters out). Scripts run under a traceback message handler; a Lua error comes
-// back as a ScriptError whose what() is "file:line: message".
+// back as a ScriptError whose what() is "file:line: message" (also for error objects that are
+// not strings: lua/error_object.hpp). os.exit raises an error instead of ending the process,
+// and the stop hook (lua/stop_hook.hpp) lets SIGINT/SIGTERM end a script stuck in Lua code.
 #include <cstddef>
 #include <memory>
 #include <stdexcept>

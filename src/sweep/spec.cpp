@@ -16,6 +16,7 @@
 #include "io/regular_file.hpp"
 #include "lua/lua_state.hpp"
 #include "lua/names.hpp"
+#include "sweep/spec_sandbox.hpp"
 
 namespace invasim::sweep {
 
@@ -410,8 +411,7 @@ SweepSpec load_spec(const std::string& path) {
   std::unique_ptr<lua_State, decltype(&lua_close)> state(luaL_newstate(), &lua_close);
   lua_State* L = state.get();
   luaL_openlibs(L);
-  if (luaL_loadfile(L, path.c_str()) != LUA_OK || lua_pcall(L, 0, 1, 0) != LUA_OK)
-    fail_input(lua_tostring(L, -1));
+  run_spec_chunk(L, path);  // data only: sweep/spec_sandbox.hpp
   return SpecReader(L, path).read();
 }
 

@@ -174,7 +174,19 @@ TEST_CASE("XYZ reader: frames of a trajectory and clear errors") {
   CHECK_THROWS_WITH(parse_xyz("1\nLattice=\"1 1 0 0 1 0 0 0 1\"\nC 0 0 0\n", "f.xyz"),
                     Contains("not orthorhombic"));
   CHECK_THROWS_WITH(parse_xyz("2\nLattice=\"1 0 0 0 1 0 0 0 1\"\nC 0 0 0\n", "f.xyz"),
-                    Contains("f.xyz: unexpected end of file after line 3"));
+                    Contains("f.xyz: line 1 says 2 particles, but the frame has 1 row (the "
+                             "file ends after line 3)"));
+  // A count line that disagrees with the rows: more rows, or the next frame's count line early.
+  const std::string head = "2\nLattice=\"1 0 0 0 1 0 0 0 1\"\n";
+  CHECK_THROWS_WITH(
+      parse_xyz(head + "C 0 0 0\nC 0 0 0\nC 0 0 0\n", "f.xyz"),
+      "f.xyz: line 1 says 2 particles, but the frame has 3 rows (1 more from line 5)");
+  CHECK_THROWS_WITH(parse_xyz(head + "C 0 0 0\n" + head + "C 0 0 0\nC 0 0 0\n", "f.xyz"),
+                    "f.xyz: line 1 says 2 particles, but the frame has 1 row (the next frame's "
+                    "count line is line 4)");
+  CHECK(parse_xyz(head + "C 0 0 0\nC 0 0 0\n\n\n", "f.xyz").cells.size() == 2);  // blank lines
+  CHECK(parse_xyz(head + "C 0 0 0\nC 0 0 0\n" + head + "C 0 0 0\nC 0 0 0\n", "f.xyz", 1)
+            .cells.size() == 2);
   // Plain extended XYZ from elsewhere: default radius, pbc T T T, any column order.
   const Frame other = parse_xyz(
       "1\nLattice=\"2 0 0 0 3 0 0 0 4\" Properties=pos:R:3:species:S:1\n0.5 1 1.5 Si\n", "o");

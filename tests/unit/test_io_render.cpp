@@ -5,6 +5,7 @@
 #include "../io/io_test_support.hpp"
 #include "core/errors.hpp"
 #include "io/atomic_file.hpp"
+#include "io/frame_check.hpp"
 #include "io/render_slice.hpp"
 #include "io/snapshot_writer.hpp"
 #include "mesh/geometry.hpp"
@@ -105,6 +106,50 @@ TEST_CASE("periodic images across the plane's axis are cut too") {
   CHECK(t.plane.value == Approx(0.2));
   CHECK(count_shapes(t).discs == 1);
   CHECK(count_shapes(t).polygons == 1);
+}
+
+TEST_CASE("a plane within one period of a periodic box wraps, a farther one is refused") {
+  System sys(Box(Vec3::Zero(), Vec3(12.0, 10.0, 10.0), {false, true, true}), 1);
+  sys.add_sphere(Vec3(2.0, 5.0, 9.9), 1.0);
+  const Frame f = frame_from_system(sys);
+  const Slice below = cut_frame(f, {2, -9.8});  // one period below: z = 0.2
+  CHECK(below.plane.value == Approx(0.2));
+  CHECK(count_shapes(below).discs == 1);
+  CHECK(cut_frame(f, {1, 20.0}).plane.value == 0.0);  // hi + L is lo
+  // z = -1e300 wrapped would land anywhere (its digits are lost) and cut nothing.
+  CHECK_THROWS_WITH(cut_frame(f, {2, -1e300}),
+                    "slice z = -1e+300 lies outside the box [0, 10] by more than one period of "
+                    "the periodic z axis (planes within one period are wrapped into the box)");
+  CHECK_THROWS_WITH(cut_frame(f, {1, 20.5}),
+                    Contains("slice y = 20.5 lies outside the box [0, 10]"));
+  CHECK_THROWS_WITH(cut_frame(f, {1, -10.5}), Contains("slice y = -10.5 lies outside the box"));
+}
+
+TEST_CASE("frames with a non-finite coordinate or radius cannot be drawn") {
+  CellFrame c;
+  c.pos = {Vec3(1.0, 2.0, 3.0), Vec3(1.0, 2.0, 3.0)};
+  c.radius = {0.5, 0.5};
+  CHECK_NOTHROW(require_drawable_cells(c, "'c.xyz'", 3));
+  c.pos[1][2] = NAN;
+  CHECK_THROWS_WITH(require_drawable_cells(c, "'c.xyz'", 3),
+                    "'c.xyz': cell 1 (line 4): position (1, 2, nan) is not finite (a picture "
+                    "cannot place it)");
+  c.pos[1][2] = 3.0;
+  c.radius[0] = INFINITY;
+  CHECK_THROWS_WITH(require_drawable_cells(c, "'s.vtp'"),
+                    "'s.vtp': cell 0: radius inf is not finite (a picture cannot draw it)");
+  c.radius[0] = -1.0;
+  CHECK_THROWS_WITH(require_drawable_cells(c, "'s.vtp'"),
+                    Contains("cell 0: radius -1 is negative"));
+  MeshFrame m;
+  m.points = {Vec3::Zero(), Vec3(1.0, -INFINITY, 0.0)};
+  m.point_radius = {0.1, 0.1};
+  CHECK_THROWS_WITH(require_drawable_meshes(m, "'a.vtp'"),
+                    Contains("'a.vtp': adipocyte point 1: position (1, -inf, 0) is not finite"));
+  m.points[1][1] = 0.0;
+  m.point_radius[0] = NAN;
+  CHECK_THROWS_WITH(require_drawable_meshes(m, "'a.vtp'"),
+                    Contains("'a.vtp': adipocyte point 0: radius nan is not finite"));
 }
 
 TEST_CASE("cuts through mesh vertices are well defined") {

@@ -697,9 +697,18 @@ TEST_CASE("LuaState reports missing files, syntax errors and odd error values", 
   CHECK_THROWS_WITH(state.run_file("/nonexistent/protocol.lua"),
                     "cannot open protocol file '/nonexistent/protocol.lua': no such file");
   CHECK(script_error(state, "x = = 1") == "test.lua:1: unexpected symbol near '='");
-  CHECK(script_error(state, "error({})") == "(error object is a table value)");
+  CHECK(script_error(state, "error({})") ==
+        "test.lua:1: error object is a table value (no message)");
   CHECK(script_error(state, "error(setmetatable({}, {__tostring = function() return 'T' end}))") ==
-        "T");
+        "test.lua:1: error object is a table value: T");
+  CHECK(script_error(state, "\nerror(nil)") ==
+        "test.lua:2: error object is a nil value (no message)");
+  CHECK(script_error(state, "error(false)") ==
+        "test.lua:1: error object is a boolean value: false");
+  CHECK(
+      script_error(state, "error(setmetatable({}, {__tostring = function() error('x', 0) end}))") ==
+      "test.lua:1: error object is a table value (its __tostring failed: x)");
+  CHECK(script_error(state, "error('plain', 0)") == "plain");  // strings are kept as they are
   CHECK(script_error(state, "local function f() return f() + 1 end f()").find("stack overflow") !=
         std::string::npos);
   try {

@@ -1,0 +1,56 @@
+#include "io/frame_check.hpp"
+
+#include <cmath>
+
+#include "io/io_error.hpp"
+#include "io/text_format.hpp"
+
+namespace invasim {
+
+namespace {
+
+std::string vec_text(const Vec3& v) {
+  std::string t = "(";
+  for (int a = 0; a < 3; ++a) text::append(t += a ? ", " : "", v[a]);
+  return t + ")";
+}
+
+std::string num_text(double v) {
+  std::string t;
+  text::append(t, v);
+  return t;
+}
+
+// Refuses point `what` (e.g. "cell 3 (line 6)") unless its position and radius can be drawn.
+void check_point(const std::string& origin, const std::string& what, const Vec3& pos,
+                 double radius) {
+  if (!pos.allFinite())
+    fail_io(origin, ": ", what, ": position ", vec_text(pos),
+            " is not finite (a picture cannot place it)");
+  if (!std::isfinite(radius) || radius < 0.0)
+    fail_io(origin, ": ", what, ": radius ", num_text(radius),
+            radius < 0.0 ? " is negative" : " is not finite", " (a picture cannot draw it)");
+}
+
+}  // namespace
+
+void require_drawable_cells(const CellFrame& cells, const std::string& origin,
+                            std::size_t first_row_line) {
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    if (cells.pos[i].allFinite() && std::isfinite(cells.radius[i]) && cells.radius[i] >= 0.0)
+      continue;
+    std::string what = "cell " + std::to_string(i);
+    if (first_row_line != 0) what += " (line " + std::to_string(first_row_line + i) + ")";
+    check_point(origin, what, cells.pos[i], cells.radius[i]);
+  }
+}
+
+void require_drawable_meshes(const MeshFrame& meshes, const std::string& origin) {
+  for (std::size_t p = 0; p < meshes.points.size(); ++p) {
+    const double r = p < meshes.point_radius.size() ? meshes.point_radius[p] : 0.0;
+    if (meshes.points[p].allFinite() && std::isfinite(r) && r >= 0.0) continue;
+    check_point(origin, "adipocyte point " + std::to_string(p), meshes.points[p], r);
+  }
+}
+
+}  // namespace invasim
