@@ -327,7 +327,8 @@ std::vector<std::vector<Vec3>> body_positions(const System& sys) {
 
 // The adipocyte packing fraction from the bodies' actual vertex positions and the box's
 // corners: the union volume of each mesh and its vertex spheres (the paper's V_i, on a grid
-// of spacing 0.02) over the box volume, not the V_i stored when the bodies were placed.
+// of spacing 0.05, as placement.hpp) over the box volume, not the V_i stored when the bodies
+// were placed.
 double measured_phi_a(const System& sys) {
   double v = 0.0;
   for (std::size_t b = 0; b < sys.bodies().size(); ++b) {
@@ -335,7 +336,7 @@ double measured_phi_a(const System& sys) {
     std::vector<Vec3> x(std::size_t(body.n_vertices()));
     sys.body_vertices(int(b), x.data());
     v += union_volume(*body.topology, x.data(), sys.sites().diameter[std::size_t(body.first_site)],
-                      0.02);
+                      0.05);
   }
   const Vec3 edge = sys.box().hi() - sys.box().lo();
   return v / (edge[0] * edge[1] * edge[2]);
