@@ -21,6 +21,7 @@
 #include "lua/progress.hpp"
 #include "lua/temporary_contacts.hpp"
 #include "setup/compression.hpp"
+#include "setup/test_hooks.hpp"
 
 namespace invasim::lua {
 
@@ -143,7 +144,12 @@ int l_rescale(lua_State* L) {
   const FireParams& fire = k.fire;
   sim->changed();
   FireControl control;
-  if (k.stop_on_signal) control.stop = [] { return stop_requested() != 0; };
+  // Polled before every FIRE iteration; the test hook (off by default) pauses there whether
+  // or not a signal may stop the FIRE.
+  control.stop = [polls = std::uint64_t(0), on_signal = k.stop_on_signal]() mutable {
+    pause_in_rescale_fire(polls++);
+    return on_signal && stop_requested() != 0;
+  };
   const FireResult r = engine_call(
       "rescale", [&] { return rescale_to_phi_a(sim->system, sim->forces, phi_a, fire, &control); });
   push_fire_result(L, r);

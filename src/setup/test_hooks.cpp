@@ -1,6 +1,7 @@
 #include "setup/test_hooks.hpp"
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <string_view>
@@ -33,6 +34,15 @@ void pause_at_compression_step(std::size_t step) {
 void pause_in_stoppable_minimize() {
   static const char* on = std::getenv("INVASIM_TEST_PAUSE_IN_STOPPABLE_MINIMIZE");
   if (on != nullptr && std::string_view(on) == "1") wait_for_stop_signal();
+}
+
+void pause_in_rescale_fire(std::uint64_t iteration) {
+  static const char* at = std::getenv("INVASIM_TEST_PAUSE_IN_RESCALE_FIRE");
+  if (at == nullptr || std::strtoull(at, nullptr, 10) != iteration) return;
+  std::fprintf(stderr, "test hook: paused in the rescale's FIRE before iteration %llu\n",
+               static_cast<unsigned long long>(iteration));
+  std::fflush(stderr);
+  wait_for_stop_signal();
 }
 
 }  // namespace invasim

@@ -2,7 +2,8 @@
 """Unit checks of scripts/validation_lib (docs/validation.md, "Method"): the verdict criteria
 on hand-picked numbers, the A_n normalisation and the steady-state test on a hand-made run,
 the plan's cost model and its replay of `sweep run --jobs N`, and the figure command's errors.
-Usage: check_validation.py SCRIPTS_DIR WORKDIR. Exit 77 without numpy/scipy/matplotlib."""
+Usage: check_validation.py SCRIPTS_DIR WORKDIR. Without numpy/scipy/matplotlib: skipped (77),
+or a failure under INVASIM_REQUIRE_ALL_TESTS=1 (tests/support/prerequisites.py)."""
 
 import json
 import math
@@ -11,56 +12,70 @@ import shutil
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from prerequisites import skip_test  # noqa: E402
+
 try:
     import matplotlib  # noqa: F401
     import numpy as np
     import scipy  # noqa: F401
-except ImportError:
-    sys.exit(77)
+except ImportError as missing:
+    skip_test("%s cannot import %s" % (sys.executable, missing.name),
+              "python3-numpy python3-scipy python3-matplotlib")
+
+
+
+def check(condition, detail=None):
+    """An assert that python -O keeps: a failed check exits with status 1 naming its line."""
+    if not condition:
+        line = sys._getframe(1).f_lineno
+        raise SystemExit("FAILED: check_validation.py:%d%s"
+                         % (line, "" if detail is None else ": %r" % (detail,)))
+
 
 scripts, work = sys.argv[1], sys.argv[2]
 sys.path.insert(0, scripts)
 from validation_lib import plan, runs, verdict as v  # noqa: E402
 
 # Verdicts: numbers against the paper's value +- tolerance (+ 2 errors).
-assert v.value_verdict(0.60, 0.01, 0.55, 0.1) == v.AGREES
-assert v.value_verdict(0.70, 0.03, 0.55, 0.1) == v.AGREES           # 0.15 <= 0.1 + 0.06
-assert v.value_verdict(0.70, 0.01, 0.55, 0.1) == v.DISAGREES        # 0.15 > 0.12
-assert v.value_verdict(0.70, 0.01, 0.55, 0.1, trend_holds=True) == v.TREND
-assert v.value_verdict(math.nan, 0.01, 0.55, 0.1) == v.NO_DATA
+check(v.value_verdict(0.60, 0.01, 0.55, 0.1) == v.AGREES)
+check(v.value_verdict(0.70, 0.03, 0.55, 0.1) == v.AGREES)           # 0.15 <= 0.1 + 0.06
+check(v.value_verdict(0.70, 0.01, 0.55, 0.1) == v.DISAGREES)        # 0.15 > 0.12
+check(v.value_verdict(0.70, 0.01, 0.55, 0.1, trend_holds=True) == v.TREND)
+check(v.value_verdict(math.nan, 0.01, 0.55, 0.1) == v.NO_DATA)
 # Trends: d > 2e agrees, 0 < d <= 2e trend only, d <= 0 disagrees.
-assert v.trend_verdict(0.3, 0.1) == v.AGREES
-assert v.trend_verdict(0.15, 0.1) == v.TREND
-assert v.trend_verdict(-0.01, 0.1) == v.DISAGREES
+check(v.trend_verdict(0.3, 0.1) == v.AGREES)
+check(v.trend_verdict(0.15, 0.1) == v.TREND)
+check(v.trend_verdict(-0.01, 0.1) == v.DISAGREES)
 # Log scale: within a factor 3 of 0.03.
-assert v.log_verdict(0.08, 0.0, 0.03, 3.0) == v.AGREES
-assert v.log_verdict(0.2, 0.0, 0.03, 3.0) == v.DISAGREES
-assert v.log_verdict(0.2, 0.0, 0.03, 3.0, trend_holds=True) == v.TREND
+check(v.log_verdict(0.08, 0.0, 0.03, 3.0) == v.AGREES)
+check(v.log_verdict(0.2, 0.0, 0.03, 3.0) == v.DISAGREES)
+check(v.log_verdict(0.2, 0.0, 0.03, 3.0, trend_holds=True) == v.TREND)
 # Ranges: all inside, some, none.
-assert v.range_verdict([(1.0, 0.1), (2.4, 0.0)], 0.5, 2.5) == v.AGREES
-assert v.range_verdict([(1.0, 0.1), (3.4, 0.1)], 0.5, 2.5) == v.TREND
-assert v.range_verdict([(13.0, 0.1)], 1.0, 1.2) == v.DISAGREES
+check(v.range_verdict([(1.0, 0.1), (2.4, 0.0)], 0.5, 2.5) == v.AGREES)
+check(v.range_verdict([(1.0, 0.1), (3.4, 0.1)], 0.5, 2.5) == v.TREND)
+check(v.range_verdict([(13.0, 0.1)], 1.0, 1.2) == v.DISAGREES)
 # Every statement the figures use is in the paper file, with a source.
 ids = v.paper()
 for needed in ["fig3_invasion_grows", "fig5a_Tg", "fig5b_An_at_0.3", "fig6_b_range", "fig6_c1",
                "fig6_Tc_over_Ta", "fig6_factor2", "fig7_free_formula", "fig8a_onset",
                "fig10_dphi_1", "fig11_tissue", "L_f"]:
-    assert needed in ids and ids[needed]["source"].startswith("MODEL.md"), needed
+    check(needed in ids and ids[needed]["source"].startswith("MODEL.md"), needed)
 
 # The midpoint a of a sigmoid enters the fit of a = c1 (1 + c2 beta/P) tau_g/tau_d only for a
 # rising curve (b > 0 and the data rising by more than 2 errors) whose midpoint the
 # temperatures bracket (a factor 2 either side).
 from master_curve_lib import fits  # noqa: E402
 xs, up, flat, e = [0.01, 0.1, 1.0], [0.1, 0.5, 0.9], [0.1, 0.12, 0.09], [0.02, 0.02, 0.02]
-assert fits.midpoint_not_located(0.1, 0.01, 1.2, 0.1, xs, up, e) is None
-assert fits.midpoint_not_located(0.1, 0.05, 2.2, 1.2, xs, up, e) is None          # b uncertain
-assert fits.midpoint_not_located(1.9, 0.5, 1.2, 0.1, xs, up, e) is None           # <= 2 x_max
-assert "rising" in fits.midpoint_not_located(0.1, 0.01, -0.8, 0.02, xs, up[::-1], e)  # falls
-assert "rising" in fits.midpoint_not_located(0.0, 0.0, -2.6e-6, 0.08, xs, flat, e)    # b ~ 0
-assert "rise" in fits.midpoint_not_located(2.8e10, 1.9e11, 0.086, 0.022, xs, flat, e)  # flat data
-assert "outside" in fits.midpoint_not_located(5.0, 1.0, 1.0, 0.1, xs, up, e)       # > 2 x_max
-assert "outside" in fits.midpoint_not_located(0.004, 0.001, 1.0, 0.1, xs, up, e)   # < x_min / 2
-assert "finite" in fits.midpoint_not_located(math.inf, math.inf, 1e-5, 0.4, xs, up, e)
+check(fits.midpoint_not_located(0.1, 0.01, 1.2, 0.1, xs, up, e) is None)
+check(fits.midpoint_not_located(0.1, 0.05, 2.2, 1.2, xs, up, e) is None)          # b uncertain
+check(fits.midpoint_not_located(1.9, 0.5, 1.2, 0.1, xs, up, e) is None)           # <= 2 x_max
+check("rising" in fits.midpoint_not_located(0.1, 0.01, -0.8, 0.02, xs, up[::-1], e))  # falls
+check("rising" in fits.midpoint_not_located(0.0, 0.0, -2.6e-6, 0.08, xs, flat, e))    # b ~ 0
+check("rise" in fits.midpoint_not_located(2.8e10, 1.9e11, 0.086, 0.022, xs, flat, e))  # flat data
+check("outside" in fits.midpoint_not_located(5.0, 1.0, 1.0, 0.1, xs, up, e))       # > 2 x_max
+check("outside" in fits.midpoint_not_located(0.004, 0.001, 1.0, 0.1, xs, up, e))   # < x_min / 2
+check("finite" in fits.midpoint_not_located(math.inf, math.inf, 1e-5, 0.4, xs, up, e))
 
 # Normalisation by hand: A_t_max 1000, 1100; A_t 200, 500, 800.
 pts = [{"A_t": 200.0, "A_t_max": 1000.0, "A_t_error": 10.0},
@@ -68,16 +83,16 @@ pts = [{"A_t": 200.0, "A_t_max": 1000.0, "A_t_error": 10.0},
        {"A_t": 800.0, "A_t_max": 1000.0, "A_t_error": 10.0}]
 ext = runs.normalise(pts)
 r = [1 - (1000 - 200) / 1000, 1 - (1100 - 500) / 1000, 1 - (1000 - 800) / 1000]  # .2 .4 .8
-assert ext["min_A_t_max"] == 1000.0
+check(ext["min_A_t_max"] == 1000.0)
 for p, want in zip(pts, [(x - 0.2) / 0.6 for x in r]):
-    assert abs(p["A_n"] - want) < 1e-12, (p, want)
-    assert abs(p["A_n_error"] - 10.0 / 1000 / 0.6) < 1e-12
+    check(abs(p["A_n"] - want) < 1e-12, (p, want))
+    check(abs(p["A_n_error"] - 10.0 / 1000 / 0.6) < 1e-12)
 other = runs.scale_like({"A_t": 650.0, "A_t_max": 1000.0, "A_t_error": 0.0}, ext)
-assert abs(other["A_n"] - (0.65 - 0.2) / 0.6) < 1e-12
-assert abs(runs.crossing([0.01, 0.1, 1.0], [0.0, 0.25, 0.75]) - 10 ** -0.5) < 1e-12
+check(abs(other["A_n"] - (0.65 - 0.2) / 0.6) < 1e-12)
+check(abs(runs.crossing([0.01, 0.1, 1.0], [0.0, 0.25, 0.75]) - 10 ** -0.5) < 1e-12)
 # its error in log10: the larger bracketing error over the slope (0.5 per decade)
-assert abs(runs.crossing_log_error([0.01, 0.1, 1.0], [0.0, 0.25, 0.75], [0.1, 0.02, 0.05])
-           - 0.05 / 0.5) < 1e-12
+check(abs(runs.crossing_log_error([0.01, 0.1, 1.0], [0.0, 0.25, 0.75], [0.1, 0.02, 0.05])
+           - 0.05 / 0.5) < 1e-12)
 
 # Steadiness on a hand-made run: 40 rows, the last half flat (steady) or rising (not).
 def fake_job(path, last_half, error):
@@ -96,31 +111,31 @@ shutil.rmtree(work, ignore_errors=True)
 flat = fake_job(os.path.join(work, "flat"), [600.0 + (1 if i % 2 else -1) for i in range(20)], 1.0)
 rising = fake_job(os.path.join(work, "rising"), [600.0 + 2 * i for i in range(20)], 1.0)
 s = runs.steadiness(flat)
-assert s["steady"] is True and abs(s["drift"]) < 1e-12, s
+check(s["steady"] is True and abs(s["drift"]) < 1e-12, s)
 s = runs.steadiness(rising)
-assert s["steady"] is False and abs(s["drift"] - 20.0) < 1e-12, s   # 10 rows x 2 apart
+check(s["steady"] is False and abs(s["drift"] - 20.0) < 1e-12, s)   # 10 rows x 2 apart
 summary = runs.steadiness_summary([flat, rising])
-assert summary["steady"] == 1 and summary["jobs"] == 2 and summary["max_drift_over_error"] == 20.0
-assert abs(runs.window_mean(rising, "A_t", 1.0, 0.1) - np.mean([600.0 + 2 * i for i in range(16, 20)])) < 1e-12
+check(summary["steady"] == 1 and summary["jobs"] == 2 and summary["max_drift_over_error"] == 20.0)
+check(abs(runs.window_mean(rising, "A_t", 1.0, 0.1) - np.mean([600.0 + 2 * i for i in range(16, 20)])) < 1e-12)
 
 # The plan: sweep run's order on N slots after the preparation.
-assert plan.wall_time(5.0, [10, 10, 10], 2) == 25.0
-assert plan.wall_time(5.0, [10, 1, 1, 1], 2) == 15.0
-assert plan.wall_time(5.0, [], 2) == 5.0
-assert plan.point_steps({"quench_steps": 10, "steps": 100}, {"quench_steps": 5, "steps": 1,
-                                                             "equilibrate_steps": 7}, "x") == 117
+check(plan.wall_time(5.0, [10, 10, 10], 2) == 25.0)
+check(plan.wall_time(5.0, [10, 1, 1, 1], 2) == 15.0)
+check(plan.wall_time(5.0, [], 2) == 5.0)
+check(plan.point_steps({"quench_steps": 10, "steps": 100}, {"quench_steps": 5, "steps": 1,
+                                                             "equilibrate_steps": 7}, "x") == 117)
 try:
     plan.point_steps({"steps": -1}, {"steps": 1}, "x.lua")
     raise AssertionError("steps = -1 accepted")
 except runs.InputError as e:
-    assert "x.lua: steps = -1 (automatic)" in str(e), e
+    check("x.lua: steps = -1 (automatic)" in str(e), e)
 
 # The command line: a wrong number of workspaces and a non-workspace are named.
 cmd = [sys.executable, os.path.join(scripts, "validation.py"), "figure"]
 out = subprocess.run(cmd + ["fig7", work, work, "-o", work + "/o"], capture_output=True, text=True)
-assert out.returncode == 1 and "figure fig7 reads 1 workspace (fig7_cells_only); got 2" in out.stderr, out.stderr
+check(out.returncode == 1 and "figure fig7 reads 1 workspace (fig7_cells_only); got 2" in out.stderr, out.stderr)
 out = subprocess.run(cmd + ["fig7", work, "-o", work + "/o"], capture_output=True, text=True)
-assert out.returncode == 1 and "is not a sweep workspace (no invasim_sweep.json)" in out.stderr, out.stderr
+check(out.returncode == 1 and "is not a sweep workspace (no invasim_sweep.json)" in out.stderr, out.stderr)
 out = subprocess.run(cmd + ["fig9", work, "-o", work + "/o"], capture_output=True, text=True)
-assert out.returncode == 1 and "unknown figure 'fig9'" in out.stderr, out.stderr
+check(out.returncode == 1 and "unknown figure 'fig9'" in out.stderr, out.stderr)
 print("check_validation: all checks passed")

@@ -5,8 +5,9 @@ Usage: check_plot_run.py PLOT_RUN_PY SCRATCH_DIR
 Writes small series.csv files into SCRATCH_DIR, runs plot_run.py on them with this
 interpreter and checks the PNGs it writes (valid PNG files of a plausible size) and the ones
 it must skip, its messages on malformed input, and the message naming the Debian packages
-when numpy/matplotlib cannot be imported. Exits 77 (CTest SKIP_RETURN_CODE) when this
-interpreter cannot import numpy and matplotlib.
+when numpy/matplotlib cannot be imported. When this interpreter cannot import numpy and
+matplotlib: skipped (77), or a failure under INVASIM_REQUIRE_ALL_TESTS=1
+(tests/support/prerequisites.py).
 """
 
 import os
@@ -15,7 +16,8 @@ import struct
 import subprocess
 import sys
 
-SKIP = 77
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from prerequisites import skip_test  # noqa: E402
 FULL_HEADER = ("step,time [tau],T_c [eps_c],T_a [eps_c],P_left [eps_c/sigma^3],"
                "P_right [eps_c/sigma^3],L_x [sigma],phi,phi_c,phi_a,A_t [sigma^2],"
                "A_t_max [sigma^2],A_ratio")
@@ -119,9 +121,8 @@ def main():
     probe = subprocess.run([sys.executable, "-c", "import numpy, matplotlib"],
                            capture_output=True)
     if probe.returncode != 0:
-        print("SKIP: %s cannot import numpy and matplotlib (Debian: apt-get install "
-              "python3-numpy python3-matplotlib)" % sys.executable)
-        return SKIP
+        skip_test("%s cannot import numpy and matplotlib" % sys.executable,
+                  "python3-numpy python3-matplotlib")
     shutil.rmtree(scratch, ignore_errors=True)
     os.makedirs(scratch)
 

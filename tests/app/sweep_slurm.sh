@@ -7,17 +7,30 @@
 # checkpoint (as a time limit does), submits again (the stopped points continue from their
 # checkpoints), waits until every point is done, and compares each point's series.csv and
 # summary.json (timings aside) with a local `sweep run` of the same sweep, byte for byte.
-# Exit 77 (skipped) where Slurm's or munge's binaries are missing or not root.
+# Where Slurm's or munge's binaries are missing or not root: skipped (77), or a failure under
+# INVASIM_REQUIRE_ALL_TESTS=1 (tests/support/prerequisites.sh).
 # Usage: sweep_slurm.sh INVASIM SPEC_DIR WORK_DIR
 set -euo pipefail
 invasim=$1 specs=$2 work=$3
+source "$(dirname "$0")/../support/prerequisites.sh"
 for b in slurmctld slurmd sbatch squeue sinfo scancel munged munge unmunge; do
   command -v $b > /dev/null || PATH=$PATH:/usr/sbin command -v $b > /dev/null ||
-    { echo "SKIPPED: $b is not installed (apt-get install slurm-wlm munge)"; exit 77; }
+    skip_test "$b is not installed" "slurm-wlm munge"
 done
-[ "$(id -u)" = 0 ] || { echo "SKIPPED: starting munged and slurmd needs root"; exit 77; }
+[ "$(id -u)" = 0 ] || skip_test "starting munged and slurmd needs root" "slurm-wlm munge"
 export PATH=$PATH:/usr/sbin
 source "$(dirname "$0")/../lua/wait_for.sh"
+# within SECONDS WHAT COMMAND...: polls COMMAND every 0.1 s until it succeeds; fails naming
+# WHAT if it has not happened after SECONDS (a bound against a hang, e.g. a dependency that is
+# never satisfied; far above the few seconds each event takes).
+within() {
+  local limit=$1 what=$2 start=$SECONDS
+  shift 2
+  until "$@"; do
+    ((SECONDS - start <= limit)) || fail "$what did not happen within $limit s" "$work/slurmctld.log"
+    sleep 0.1
+  done
+}
 rm -rf "$work" && mkdir -p "$work/state" "$work/spool" && cd "$work"
 
 munged_pid=
@@ -67,11 +80,8 @@ export SLURM_CONF=$work/slurm.conf
 # 3. The daemons; wait until the node is idle.
 slurmctld -f "$SLURM_CONF" > slurmctld.log 2>&1
 slurmd -f "$SLURM_CONF" -N localhost > slurmd.log 2>&1
-for _ in $(seq 1 600); do
-  [ "$(sinfo -h -o %t 2> /dev/null)" = idle ] && break
-  sleep 0.1
-done
-[ "$(sinfo -h -o %t)" = idle ] || fail "the Slurm node did not become idle" slurmctld.log
+node_idle() { [ "$(sinfo -h -o %t 2> /dev/null)" = idle ]; }
+within 60 "the Slurm node becoming idle" node_idle
 
 # 4. Submit; stop the array once a point has a checkpoint; submit again; wait.
 "$invasim" sweep init "$specs/tiny.lua" --workspace ws > /dev/null
@@ -79,13 +89,22 @@ done
 grep -q "after job" submit1.log || fail "the preparation was not chained before the array" submit1.log
 grep -q "dependency\|afterok" ws/slurm/submit-1/array.sbatch && fail "dependency belongs on the command line"
 array=$(sed -n 's/.*Slurm job array \([0-9]*\).*/\1/p' submit1.log)
+[ -n "$array" ] || fail "no array job id in the submit output" submit1.log
 queue_holds() { [ -n "$(squeue -h -j "$1" 2> /dev/null)" ]; }
+queue_empty() { ! queue_holds "$1"; }
+# A point's checkpoint while the array still runs: the array ending first (every point done
+# without being stopped) would leave nothing to resume, and fails.
 checkpoint_or_end() {
   ls ws/workspace/*/checkpoint/state.ckpt > /dev/null 2>&1 || ! queue_holds "$array"
 }
-until checkpoint_or_end; do sleep 0.1; done
-scancel --signal=TERM --full "$array" 2> /dev/null || true
-until ! queue_holds "$array"; do sleep 0.1; done
+within 300 "a point's checkpoint (or the end of array $array)" checkpoint_or_end
+ls ws/workspace/*/checkpoint/state.ckpt > /dev/null 2>&1 ||
+  fail "array $array ended before any point wrote a checkpoint" submit1.log
+queue_holds "$array" || fail "array $array ended before it could be stopped: nothing to resume"
+# scancel's status is not its effect (it can report an error for a step that has just ended):
+# the effect is checked, the array ending within the bound below.
+scancel --signal=TERM --full "$array" 2> scancel.log || echo "scancel: $(cat scancel.log)"
+within 120 "the end of array $array after scancel --signal=TERM" queue_empty "$array"
 "$invasim" sweep status ws > status1.log
 cat status1.log
 # Points started before the preparation had saved its tissue would have failed.
@@ -93,7 +112,8 @@ grep -q "failed: 0" status1.log || { cat ws/workspace/*/run.log; fail "points fa
 "$invasim" sweep submit ws --slurm --cpus-per-task 1 > submit2.log || fail "second submit" submit2.log
 cat submit2.log
 array2=$(sed -n 's/.*Slurm job array \([0-9]*\).*/\1/p' submit2.log)
-[ -z "$array2" ] || until ! queue_holds "$array2"; do sleep 0.1; done
+[ -n "$array2" ] || fail "the second submit started no array" submit2.log
+within 600 "the end of the second array $array2" queue_empty "$array2"
 "$invasim" sweep status ws > status2.log
 grep -q "done: 4" status2.log || { cat ws/slurm/submit-*/slurm-*.out; fail "not every point is done" status2.log; }
 grep -q '"slurm_job_id"' ws/workspace/*/signac_job_document.json || fail "no Slurm job id recorded"
@@ -110,5 +130,8 @@ for dir in ws/workspace/*; do
   n=$(grep -c "results in" "$dir/run.log" || true)
   [ "$n" -eq 1 ] || fail "point $id completed $n times" "$dir/run.log"
 done
-echo "resumed on Slurm: $(grep -l 'resuming the run' ws/workspace/*/run.log 2> /dev/null | wc -l) points"
+# At least one point stopped by the scancel continued from its checkpoint.
+resumed=$(grep -l 'resuming the run' ws/workspace/*/run.log 2> /dev/null | wc -l)
+[ "$resumed" -ge 1 ] || fail "no point resumed from its checkpoint on Slurm" status2.log
+echo "resumed on Slurm: $resumed points"
 echo "sweep slurm: OK"

@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # `invasim --version` names the git revision the binary was built from (the version header is
 # rewritten at every build, third_party/WriteVersion.cmake), "-dirty" when tracked files have
-# uncommitted changes. Skipped (77) outside a git checkout or without git.
+# uncommitted changes. Outside a git checkout or without git: skipped (77), or a failure under
+# INVASIM_REQUIRE_ALL_TESTS=1 (tests/support/prerequisites.sh).
 # Usage: version_revision.sh INVASIM SOURCE_DIR
 set -u
 invasim=$1
 src=$2
-command -v git >/dev/null && [ -e "$src/.git" ] || { echo "not a git checkout: skipped"; exit 77; }
-expected=$(git -C "$src" rev-parse --short HEAD) || exit 77
+source "$(dirname "$0")/../support/prerequisites.sh"
+command -v git >/dev/null || skip_test "git is not installed" "git"
+[ -e "$src/.git" ] || skip_test "$src is not a git checkout" "git"
+expected=$(git -C "$src" rev-parse --short HEAD) || skip_test "git rev-parse fails in $src" "git"
 [ -n "$(git -C "$src" status --porcelain --untracked-files=no)" ] && expected="$expected-dirty"
 got=$("$invasim" --version | head -1)
 if [[ "$got" != *"(git $expected)"* ]]; then

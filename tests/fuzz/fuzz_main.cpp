@@ -27,6 +27,7 @@
 #include <iostream>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/errors.hpp"
 #include "core/fnv1a.hpp"
@@ -178,9 +179,13 @@ int usage() {
   return 2;
 }
 
+// The files named by paths (a directory: the regular files inside, less dotfiles and
+// README.md). A path that does not exist is an error, not an empty input: a mistyped corpus
+// path must not replay as nothing.
 std::vector<fs::path> files_in(const std::vector<std::string>& paths) {
   std::vector<fs::path> out;
   for (const auto& p : paths) {
+    if (!fs::exists(p)) throw std::runtime_error("corpus path '" + p + "' does not exist");
     if (fs::is_directory(p)) {
       for (const auto& e : fs::directory_iterator(p))
         if (e.is_regular_file() && e.path().filename().string()[0] != '.' &&
@@ -254,7 +259,14 @@ int main(int argc, char** argv) {
     int findings = 0;
     std::size_t n = 0;
     for (const auto& s : target.seeds) findings += !run_one(target, s, timeout).finding.empty();
-    for (const fs::path& p : files_in(rest)) {
+    std::vector<fs::path> files;
+    try {
+      files = files_in(rest);
+    } catch (const std::exception& e) {
+      std::cerr << "invasim_fuzz replay: " << e.what() << "\n";
+      return 2;
+    }
+    for (const fs::path& p : files) {
       const std::string input = read_all(p);
       const Outcome o = run_one(target, input, timeout);
       ++n;
@@ -270,8 +282,12 @@ int main(int argc, char** argv) {
   if (mode != "run") return usage();
 
   std::vector<std::string> corpus = target.seeds;
-  if (!corpus_dir.empty())
-    for (const fs::path& p : files_in({corpus_dir})) corpus.push_back(read_all(p));
+  if (!corpus_dir.empty()) try {
+      for (const fs::path& p : files_in({corpus_dir})) corpus.push_back(read_all(p));
+    } catch (const std::exception& e) {
+      std::cerr << "invasim_fuzz run: " << e.what() << "\n";
+      return 2;
+    }
   std::set<std::string> kinds;
   Mutator mutator(seed);
   const auto start = std::chrono::steady_clock::now();

@@ -249,7 +249,31 @@ def check_checkpoint(path, exp):
               f"{where}: step")
 
 
-def check_svg(path, exp):
+def expected_discs(rows, exp, plane_z):
+    """The discs a slice at z = plane_z must show, computed here from the XYZ rows: every cell
+    the plane cuts (|z - plane_z| < r, minimum image along the periodic z axis) gives a disc of
+    radius sqrt(r^2 - d^2) centred at its (x, y), plus its periodic copy along y (periodic; x
+    has walls) where the disc sticks out of the box. Returns (cell, x, y, radius) tuples."""
+    lo = [float(v) for v in exp["box_lo"].split()]
+    hi = [float(v) for v in exp["box_hi"].split()]
+    length_y, length_z = hi[1] - lo[1], hi[2] - lo[2]
+    discs = []
+    for k, cols in enumerate(rows):
+        x, y, z, r = (float(v) for v in cols[1:5])
+        d = z - plane_z
+        d -= length_z * round(d / length_z)
+        if abs(d) >= r:
+            continue
+        rho = math.sqrt(r * r - d * d)
+        discs.append((k, x, y, rho))
+        if y - rho < lo[1]:
+            discs.append((k, x, y + length_y, rho))
+        if y + rho > hi[1]:
+            discs.append((k, x, y - length_y, rho))
+    return discs
+
+
+def check_svg(path, exp, rows):
     ns = "{http://www.w3.org/2000/svg}"
     root = ET.parse(path).getroot()
     check(root.tag == ns + "svg", "slice.svg: root is not <svg>")
@@ -270,6 +294,24 @@ def check_svg(path, exp):
     check(len(circles) >= int(exp["svg_discs"]) > 0, f"slice.svg: {len(circles)} circles")
     check(len(polygons) >= int(exp["svg_polygons"]) > 0, f"slice.svg: {len(polygons)} polygons")
     check(len({c.get("data-cell") for c in circles}) == int(exp["svg_discs"]), "slice.svg: cells")
+    # Every circle against the discs computed from the frame (positions in pixels: the canvas
+    # maps x to 72 + (x - lo_x) s and y to 44 + (hi_y - y) s, s from the picture's width; the
+    # SVG numbers have 2 decimals).
+    lo = [float(v) for v in exp["box_lo"].split()]
+    hi = [float(v) for v in exp["box_hi"].split()]
+    scale = (float(root.get("width")) - 72.0 - 24.0) / (hi[0] - lo[0])
+    want = sorted((k, round(72.0 + (x - lo[0]) * scale, 2), round(44.0 + (hi[1] - y) * scale, 2),
+                   round(rho * scale, 2)) for k, x, y, rho in expected_discs(rows, exp, 5.0))
+    got = sorted((int(c.get("data-cell")), float(c.get("cx")), float(c.get("cy")),
+                  float(c.get("r"))) for c in circles)
+    check(len({k for k, *_ in want}) == int(exp["svg_discs"]),
+          "slice.svg: the renderer reports %s discs; the plane cuts %d cells"
+          % (exp["svg_discs"], len({k for k, *_ in want})))
+    check(len(got) == len(want) and all(
+        g[0] == w[0] and max(abs(a - b) for a, b in zip(g[1:], w[1:])) < 0.015
+        for g, w in zip(got, want)),
+        "slice.svg: circles (cell, cx, cy, r) %s differ from the discs the plane cuts %s"
+        % (got, want))
     check(all(c.get("fill") in ("#e3221c", "#fd9a4b") for c in circles),
           "slice.svg: circles must be red (active) or orange (passive)")
     check(all(p.get("fill") == "none" for p in polygons), "slice.svg: mesh sections are lines")
@@ -289,6 +331,7 @@ def main():
     steps = [int(s) for s in exp["steps"].split()]
     times = [float(t) for t in exp["times"].split()]
     traj = open(os.path.join(snaps, "trajectory.xyz")).read().splitlines()
+    rows = []
     for step, time in zip(steps, times):
         name = f"cells_{step:09d}.xyz"
         lines = open(os.path.join(snaps, name)).read().splitlines()
@@ -303,7 +346,7 @@ def main():
         check_pvd(os.path.join(snaps, kind + ".pvd"), kind, steps, times, snaps)
     check(not [f for f in os.listdir(snaps) if ".tmp." in f], "temporary files left behind")
     check_checkpoint(os.path.join(d, "state.ckpt"), exp)
-    check_svg(os.path.join(d, "slice.svg"), exp)
+    check_svg(os.path.join(d, "slice.svg"), exp, rows)  # the last frame's rows
     if failures:
         print("\n".join(failures))
         sys.exit(f"{len(failures)} check(s) failed")

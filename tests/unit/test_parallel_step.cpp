@@ -366,9 +366,14 @@ TEST_CASE("Dynamics: a light step runs on the calling thread alone; the thread c
   ff.add(probe);
   Dynamics dyn(0.05);
   dyn.add(Method::active(test::all_sites(sys), 0.2, 0.02, 25.0, 1e-3));
+  // The 1-thread window is measured on steps of 20 us (fed here, not timed: a loaded machine
+  // would make this tiny step's wall time anything), below StepThreads::kMinTeamStepSeconds:
+  // 1 thread is chosen and held for kMinHold windows (20000 steps), longer than the run.
+  const int light_window = int(std::ceil(StepThreads::kWindowSeconds / 20e-6));
+  CHECK(feed(dyn.step_threads(), light_window, 20e-6) == 0);
   dyn.run(sys, ff, 3000);
   CHECK(dyn.step_threads().team_steps() == 0);
-  CHECK(dyn.step_threads().serial_steps() == 3000);
+  CHECK(dyn.step_threads().serial_steps() == std::uint64_t(light_window) + 3000);
   REQUIRE(probe->seen.size() == 3001);  // prepare, then every step
   CHECK(probe->seen[0] == 2);           // (prepare is not a step)
   CHECK(std::count(probe->seen.begin() + 1, probe->seen.end(), 1) == 3000);

@@ -1,7 +1,9 @@
 // Dilute random placement, packing fractions, compression to a target phi and rescaling.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "checkpoint/state_checkpoint.hpp"
 #include "core/errors.hpp"
@@ -311,14 +313,93 @@ TEST_CASE("a compression stopped inside a FIRE continues bit for bit from a chec
   }
 }
 
+namespace {
+
+// The unwrapped vertex positions of every adipocyte, per body.
+std::vector<std::vector<Vec3>> body_positions(const System& sys) {
+  std::vector<std::vector<Vec3>> out(sys.bodies().size());
+  for (std::size_t b = 0; b < out.size(); ++b) {
+    out[b].resize(std::size_t(sys.bodies()[b].n_vertices()));
+    sys.body_vertices(int(b), out[b].data());
+  }
+  return out;
+}
+
+// The adipocyte packing fraction from the bodies' actual vertex positions and the box's
+// corners: the union volume of each mesh and its vertex spheres (the paper's V_i, on a grid
+// of spacing 0.05, as placement.hpp) over the box volume, not the V_i stored when the bodies
+// were placed.
+double measured_phi_a(const System& sys) {
+  double v = 0.0;
+  for (std::size_t b = 0; b < sys.bodies().size(); ++b) {
+    const MeshBody& body = sys.bodies()[b];
+    std::vector<Vec3> x(std::size_t(body.n_vertices()));
+    sys.body_vertices(int(b), x.data());
+    v += union_volume(*body.topology, x.data(), sys.sites().diameter[std::size_t(body.first_site)],
+                      0.05);
+  }
+  const Vec3 edge = sys.box().hi() - sys.box().lo();
+  return v / (edge[0] * edge[1] * edge[2]);
+}
+
+}  // namespace
+
 TEST_CASE("rescale reaches the requested adipocyte packing fraction, bodies rigid") {
-  System sys = dilute_start(3, 50, 9);
   ForceField ff = test::standard_forces(0.0, 1e3, 1.0);
-  std::vector<Vec3> before(42), after(42);
-  sys.body_vertices(0, before.data());
+  System sys = dilute_start(3, 50, 9);
+  const Vec3 lo = sys.box().lo();
+  const Vec3 edge_before = sys.box().hi() - lo;
+  const double phi_a_before = measured_phi_a(sys);
+  const auto before = body_positions(sys);
+  std::vector<Vec3> cells_before;
+  for (int i : sys.sites_of_kind(SiteKind::kCancer)) cells_before.push_back(sys.unwrapped(i));
+
+  // The affine map alone (a FIRE of 0 iterations): the box shrank by the same factor on
+  // every axis, s = cbrt(phi_a before / 0.05), phi_a from the geometry (not from the stored
+  // V_i) is the target within the volume grid's error, every distance between two vertices
+  // of a body is unchanged, and the bodies' vertex centroids and the cells moved as the map
+  // of the box moves them: lo + s (r - lo).
+  FireParams no_fire;
+  no_fire.max_steps = 0;
+  rescale_to_phi_a(sys, ff, 0.05, no_fire);
+  const Vec3 edge_after = sys.box().hi() - sys.box().lo();
+  const double s = std::cbrt(phi_a_before / 0.05);
+  CHECK((sys.box().lo() - lo).norm() == 0.0);
+  for (int a = 0; a < 3; ++a) CHECK(edge_after[a] == Approx(s * edge_before[a]).epsilon(2e-4));
+  const double scale = edge_after[0] / edge_before[0];
+  CHECK(measured_phi_a(sys) == Approx(0.05).epsilon(1e-3));
+  CHECK(packing_fractions(sys).adipocyte == Approx(0.05).epsilon(1e-12));  // the stored V_i
+  const auto after = body_positions(sys);
+  double worst_distance = 0.0, worst_centre = 0.0;
+  for (std::size_t b = 0; b < before.size(); ++b) {
+    const int n = int(before[b].size());
+    for (int i = 0; i < n; ++i)
+      for (int j = i + 1; j < n; ++j)
+        worst_distance = std::max(worst_distance, std::abs((after[b][i] - after[b][j]).norm() -
+                                                           (before[b][i] - before[b][j]).norm()));
+    const Vec3 c0 = vertex_centroid(n, before[b].data());
+    const Vec3 c1 = vertex_centroid(n, after[b].data());
+    worst_centre = std::max(worst_centre, (c1 - (lo + scale * (c0 - lo))).norm());
+  }
+  CHECK(worst_distance < 1e-9);
+  CHECK(worst_centre < 1e-9);
+  double worst_cell = 0.0;
+  const std::vector<int> cells = sys.sites_of_kind(SiteKind::kCancer);
+  for (std::size_t k = 0; k < cells.size(); ++k)
+    worst_cell = std::max(worst_cell,
+                          (sys.unwrapped(cells[k]) - (lo + scale * (cells_before[k] - lo))).norm());
+  CHECK(worst_cell < 1e-9);
+
+  // The whole rescale: the same box, and its FIRE converged (it relaxes the overlaps the map
+  // made, deforming the bodies a little: phi_a from the geometry within 5 %).
+  System relaxed = dilute_start(3, 50, 9);
   FireParams fp;
   fp.ftol = 1e-6;
-  rescale_to_phi_a(sys, ff, 0.05, fp);
-  CHECK(packing_fractions(sys).adipocyte == Approx(0.05).epsilon(1e-12));
+  const FireResult fire = rescale_to_phi_a(relaxed, ff, 0.05, fp);
+  CHECK(fire.converged);
+  CHECK_FALSE(fire.stopped);
+  CHECK(fire.max_force <= fp.ftol);
+  CHECK((relaxed.box().hi() - sys.box().hi()).norm() == 0.0);
+  CHECK(measured_phi_a(relaxed) == Approx(0.05).epsilon(0.05));
   CHECK_THROWS_WITH(rescale_to_phi_a(sys, ff, 1.5, fp), Contains("phi_a = 1.5 must be in (0, 1)"));
 }
