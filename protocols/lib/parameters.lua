@@ -81,7 +81,7 @@ function M.validate(p)
                         p.beta, p.alpha), 0)
   end
   -- The step counter is a 64-bit integer (2^63 - 1 = math.maxinteger): the quench's and the
-  -- production's steps together must fit in it (issue 14).
+  -- production's steps together must fit in it.
   if p.quench_steps and p.steps and p.steps > math.maxinteger - p.quench_steps then
     error(string.format("steps: quench_steps + steps = %d + %d overflows the step counter " ..
                         "(at most %d steps in a run)", p.quench_steps, p.steps, math.maxinteger), 0)

@@ -1,5 +1,5 @@
 #pragma once
-// Checks of parameters that size memory (issue 14): before a histogram's bins, a correlator's
+// Checks of parameters that size memory: before a histogram's bins, a correlator's
 // lags or a placement's sites are allocated, the bytes they need are compared with the memory
 // this process may still use, and a request beyond it is an InputError naming the parameter,
 // its value, the bytes it needs and the limit (instead of std::bad_alloc after a minute, or

@@ -109,7 +109,7 @@ FireResult Fire::minimize(System& sys, ForceField& ff, PressureWall* wall,
       result.converged = result.max_force < p.ftol && wall_ok;
       break;
     }
-    // Blow-up guard (integrate/blowup_guard.hpp) inside minimisations too (issue 14): a
+    // Blow-up guard (integrate/blowup_guard.hpp) inside minimisations too: a
     // non-finite force, and every kDefaultEvery iterations a non-finite position or velocity
     // (a NaN position can give zero forces, and FIRE would "converge" on it).
     if (!std::isfinite(sum.f2) || result.steps % BlowupGuard::kDefaultEvery == 0) {

@@ -1,5 +1,5 @@
 #pragma once
-// Fault-injection hooks for the reliability tests (issue 14, docs/reliability.md), off unless
+// Fault-injection hooks for the reliability tests (docs/reliability.md), off unless
 // their environment variable is set. They act on checkpoint writes (files ending in ".ckpt"),
 // counted in this process from 1:
 //   INVASIM_TEST_PAUSE_IN_CHECKPOINT_WRITE=N  the N-th write stops halfway through its

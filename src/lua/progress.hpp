@@ -44,7 +44,7 @@ class Progress {
   // "0:05", "12:34", "1:02:03"; beyond 100 days "3.2e+03 years".
   static std::string format_duration(double seconds);
 
-  // The warning printed once, at the first update that gives an ETA beyond a year (issue 14:
+  // The warning printed once, at the first update that gives an ETA beyond a year (
   // e.g. --set steps=9223372036854775807), or "" if there is none at wall-clock `now`.
   std::string eta_warning(long long step, double now) const;
 

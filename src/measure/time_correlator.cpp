@@ -4,9 +4,9 @@
 
 #include "core/deterministic_sum.hpp"
 #include "core/errors.hpp"
+#include "core/fast_trig.hpp"
 #include "core/memory_budget.hpp"
 #include "core/parallel.hpp"
-#include "core/fast_trig.hpp"
 
 namespace invasim {
 
@@ -44,7 +44,7 @@ TimeCorrelator::TimeCorrelator(std::vector<int> group, const TimeCorrelatorParam
   if (group_.empty()) fail_input("time correlator: the group of sites is empty");
   for (int i : group_)
     if (i < 0) fail_input("time correlator: site index ", i, " < 0");
-  // Memory per lag, checked before allocating (issue 14): the stored snapshots of the group
+  // Memory per lag, checked before allocating: the stored snapshots of the group
   // (one slot per origin_every lags) and the lag's sums.
   const int arrays = int(params_.velocity) + int(params_.orientation) + int(params_.position);
   const double per_lag = double(arrays) * double(group_.size()) * 3.0 * 8.0 /

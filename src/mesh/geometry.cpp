@@ -74,7 +74,7 @@ double union_volume(const MeshTopology& topo, const Vec3* x, double vertex_diame
   }
   lo.array() -= r;
   hi.array() += r;
-  // The grid's size is checked in doubles before the cast to int (issue 14): a tiny spacing
+  // The grid's size is checked in doubles before the cast to int: a tiny spacing
   // would overflow int and run for days.
   const Vec3 extent = ((hi - lo) / h).array().ceil();
   const double points = extent.prod();

@@ -65,7 +65,7 @@ PlacementResult place_random(System& sys, const MeshPlacement& meshes,
   if (spheres.n > 0 && spheres.diameters.empty())
     fail_input("placement: no cancer-cell diameters given");
   for (double d : spheres.diameters) require_positive("cancer-cell diameter", d);
-  // Memory of the new sites, checked before any is added (issue 14).
+  // Memory of the new sites, checked before any is added.
   const double vertices = 10.0 * std::pow(4.0, std::clamp(meshes.subdivisions, 0, 30)) + 2.0;
   check_memory("placement", "cells.n", double(spheres.n), kBytesPerSite);
   check_memory("placement", "adipocytes.n", double(meshes.n), kBytesPerSite * vertices);

@@ -1,5 +1,5 @@
 #pragma once
-// Fault injection for the reliability tests (issue 14, docs/reliability.md), off unless its
+// Fault injection for the reliability tests (docs/reliability.md), off unless its
 // environment variable is set: INVASIM_TEST_NAN_AT_COMPRESSION_STEP=K makes site 0's position
 // NaN right after the box is scaled for compression step K, so that a test can see the
 // blow-up guard stop the compression's FIRE. INVASIM_TEST_PAUSE_AT_COMPRESSION_STEP=K makes

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Non-regular files (issue 14): a FIFO (no writer), a directory or a device given as protocol,
+# Non-regular files: a FIFO (no writer), a directory or a device given as protocol,
 # snapshot, checkpoint, run description or sweep spec is refused with a message naming it,
 # instead of blocking. Each command runs under `timeout` so that a hang fails the test.
 #   fifo_inputs.sh INVASIM

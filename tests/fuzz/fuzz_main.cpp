@@ -1,4 +1,4 @@
-// invasim_fuzz: a seeded random-mutation fuzzer for the readers of hostile input (issue 14),
+// invasim_fuzz: a seeded random-mutation fuzzer for the readers of hostile input,
 // in-process, with no libFuzzer dependency.
 //   invasim_fuzz run TARGET [--seconds S] [--runs N] [--seed N] [--timeout S]
 //                           [--findings DIR] [--corpus DIR]

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the crafted hostile files of issue 14 into tests/fuzz/regression/<target>/ from the
+"""Writes the crafted hostile files into tests/fuzz/regression/<target>/ from the
 seed corpus that `invasim_fuzz seeds <target> DIR` writes (the project's own writers):
 
   make_crafted.py SEED_CHECKPOINT SEED_SPHERES_VTP OUT_DIR

@@ -1,5 +1,5 @@
 #pragma once
-// The four fuzz targets of issue 14: the checkpoint reader (with the System, tethers,
+// The four fuzz targets: the checkpoint reader (with the System, tethers,
 // correlator and protocol-state sections it holds), the VTK snapshot readers (.vtp, .pvd),
 // the --set value parser and the Lua keyword layer. Each runs one input in-process; an
 // exception of the project's error types (InputError and its IoError, SimulationError, a Lua

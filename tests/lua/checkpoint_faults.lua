@@ -1,4 +1,4 @@
--- Used by checkpoint_faults.sh (issue 14): a small production run writing a checkpoint every
+-- Used by checkpoint_faults.sh: a small production run writing a checkpoint every
 -- 200 steps to <out>/checkpoint/state.ckpt (the fault hooks of io/test_hooks.hpp act on its
 -- writes); with --set check=PATH it only loads that checkpoint into a fresh tissue and prints
 -- its step.

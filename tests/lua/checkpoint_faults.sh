@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Test (issue 14): faults that lose nothing.
+# Test: faults that lose nothing.
 #  1. SIGKILL inside a checkpoint write (paused there by INVASIM_TEST_PAUSE_IN_CHECKPOINT_WRITE)
 #     leaves the previous state.ckpt byte for byte and loadable.
 #  2. A write failing with ENOSPC (INVASIM_TEST_FAIL_CHECKPOINT_WRITE, as on a full disk) stops

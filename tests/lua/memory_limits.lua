@@ -1,4 +1,4 @@
--- Test (issue 14): parameters that size memory are checked before anything is allocated; the
+-- Test: parameters that size memory are checked before anything is allocated; the
 -- error names the parameter, its value, the bytes it needs and the limit (the memory available,
 -- core/memory_budget.hpp), instead of std::bad_alloc after a minute or the OOM killer.
 local iv = require("invasim")

@@ -1,4 +1,4 @@
--- Test (issue 14): the blow-up guard fires inside the compression's FIRE. Run with
+-- Test: the blow-up guard fires inside the compression's FIRE. Run with
 -- INVASIM_TEST_NAN_AT_COMPRESSION_STEP=3 (setup/test_hooks.hpp: site 0's position becomes NaN
 -- at compression step 3); the compression must stop with the guard's diagnostic (FIRE
 -- iteration, site, value) instead of minimising NaNs. (Production: production_blowup.lua.)

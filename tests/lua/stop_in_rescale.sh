@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Test (issue 14): SIGTERM inside the rescale stage's FIRE stops the run at the next FIRE
+# Test: SIGTERM inside the rescale stage's FIRE stops the run at the next FIRE
 # iteration with a message saying that the rescale is not checkpointed and what --resume does.
 # The run waits for the signal at a test hook inside the FIRE
 # (INVASIM_TEST_PAUSE_IN_RESCALE_FIRE=50, src/setup/test_hooks.hpp); the FIRE must stop right

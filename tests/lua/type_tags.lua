@@ -1,4 +1,4 @@
--- Test (issue 14): a bound C++ object carries its type in its userdata, checked on every
+-- Test: a bound C++ object carries its type in its userdata, checked on every
 -- access, so a script that swaps metatables with debug.setmetatable cannot make a method run
 -- on the wrong C++ type. For every pair (A, B) of bound types, an A object is given B's
 -- metatable and every method of B is called on it (self = A, and with a B as self and the A as

@@ -1,4 +1,4 @@
-// Hostile files (issue 14): every reader of a user-named file bounds its recursion, counts and
+// Hostile files: every reader of a user-named file bounds its recursion, counts and
 // sizes and refuses non-regular files, with an IoError naming the file and the problem, instead
 // of crashing, hanging or allocating without bound. Each case was a crash or hang before.
 #include <sys/stat.h>
