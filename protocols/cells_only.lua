@@ -1,5 +1,5 @@
 -- Active repulsive cancer cells without adipocytes in a fully periodic cubic box (the paper's
--- Fig. 7): C_vv(t) and tau_d against tau_p at a packing fraction phi_c, beside the exact
+-- Fig. 6): C_vv(t) and tau_d against tau_p at a packing fraction phi_c, beside the exact
 -- free-particle value (lib/free_active.lua). N_c bidisperse cells (0.9 / 1.1) are placed at
 -- random without overlaps over the whole box; phi_c <= place_phi is placed directly (random
 -- sequential addition jams near 0.38), a denser phi_c is placed at place_phi and compressed

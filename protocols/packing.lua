@@ -20,7 +20,7 @@ local p = iv.params(parameters.merge{
   phi_a = { 0.6, range = "(0, 1)", help = "adipocyte packing fraction of this scan point (0.4-0.9)" },
   K_ecm = { 0.04, range = "[0, inf)", unit = "eps_c/sigma^2", help = "ECM tether stiffness (0: no tethers)" },
   lambda = { 0.0, range = "[0, 1]", help = "tether heterogeneity" },
-  box = { "pressure", choices = { "pressure", "fixed" }, help = "after the rescale: pressure (the left wall a piston at P, MODEL.md step 6) or fixed (both walls stay: the box keeps the rescaled size)" },
+  box = { "pressure", choices = { "pressure", "fixed" }, help = "after the rescale: pressure (the left wall a piston at P, docs/model.md protocol step 6) or fixed (both walls stay: the box keeps the rescaled size)" },
   f0 = { 0.012, range = "[0, inf)", unit = "eps_c/sigma", help = "self-propulsion force (0.012: k_B T_c/(P sigma^3) ~ 0.37 in the paper's convention, docs/model.md)" },
 })
 parameters.validate(p)

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The master curve of an invasim sweep (the paper's Fig. 6 analysis; docs/sweeps_analysis.md).
+"""The master curve of an invasim sweep (the paper's Fig. 5 analysis; docs/sweeps_analysis.md).
 
 Usage: master_curve.py RESULTS.csv -o DIR [--group K1,K2] [--temperature kT|T_c|kT_c_paper]
                        [--normalise-by K=V[,K=V]] [--normalise-within K1,K2]

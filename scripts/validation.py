@@ -5,8 +5,8 @@ Usage:
   validation.py figure NAME WS [WS2] -o DIR [--invasim PATH]
       one figure from its sweep workspace(s): DIR/NAME.json (rows of the side-by-side
       table, verdicts, steady-state evidence, numbers, the command) and the images.
-      NAME and workspaces: fig3 WS | fig5a WS | fig5b WS [INSET_WS] | fig6 ACTIVE_WS
-      [PASSIVE_WS [LONG_WS]] | fig7 WS | fig8a WS | fig10 WS | fig11 WS (LONG_WS: curves run
+      NAME and workspaces: fig3 WS | fig4a WS | fig4b WS [INSET_WS] | fig5 ACTIVE_WS
+      [PASSIVE_WS [LONG_WS]] | fig6 WS | fig7a WS | fig8 WS | fig9 WS (LONG_WS: curves run
       longer, each replacing ACTIVE_WS's curve of the same beta and tau_p)
   validation.py all ROOT -o DIR [--invasim PATH]
       every figure from the standard workspaces ROOT/<sweep file name> (out, out/tiny)
@@ -34,12 +34,12 @@ REPO = os.path.dirname(HERE)
 
 # figure -> the sweep files (workspace names) it reads, in argument order
 FIGURES = {
-    "fig3": ["fig3_passive_slices"], "fig5a": ["fig5a_passive"],
-    "fig5b": ["fig5b_cohesive", "fig5b_inset"], "fig6": ["fig6_active", "fig6_passive", "fig6_long"],
-    "fig7": ["fig7_cells_only"], "fig8a": ["fig8a_tethered"], "fig10": ["fig10_packing"],
-    "fig11": ["fig11_shapes"],
+    "fig3": ["fig3_passive_slices"], "fig4a": ["fig4a_passive"],
+    "fig4b": ["fig4b_cohesive", "fig4b_inset"], "fig5": ["fig5_active", "fig5_passive", "fig5_long"],
+    "fig6": ["fig6_cells_only"], "fig7a": ["fig7a_tethered"], "fig8": ["fig8_packing"],
+    "fig9": ["fig9_shapes"],
 }
-REQUIRED = {"fig5b": 1, "fig6": 1}  # the others need all their workspaces
+REQUIRED = {"fig4b": 1, "fig5": 1}  # the others need all their workspaces
 
 
 def ensure_modules():
@@ -108,10 +108,10 @@ def figure(name, workspaces, out, invasim, argv):
             "" if most == 1 else "s", ", ".join(FIGURES[name]), len(workspaces)))
     sets = [runs.load(ws) for ws in workspaces]
     from validation_lib import figures_other, figures_tissue, verdict  # matplotlib: slow import
-    funcs = {"fig3": figures_tissue.fig3, "fig5a": figures_tissue.fig5a,
-             "fig5b": figures_tissue.fig5b, "fig8a": figures_tissue.fig8a,
-             "fig6": figures_other.fig6, "fig7": figures_other.fig7,
-             "fig10": figures_other.fig10, "fig11": figures_other.fig11}
+    funcs = {"fig3": figures_tissue.fig3, "fig4a": figures_tissue.fig4a,
+             "fig4b": figures_tissue.fig4b, "fig7a": figures_tissue.fig7a,
+             "fig5": figures_other.fig5, "fig6": figures_other.fig6,
+             "fig8": figures_other.fig8, "fig9": figures_other.fig9}
     os.makedirs(out, exist_ok=True)
     rec = funcs[name](sets[0], out, invasim, *sets[1:])
     if name == "fig3":

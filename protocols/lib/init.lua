@@ -4,7 +4,7 @@
 -- Decision: the adipocyte range is clipped to X <= L0 - R_out (R_out = diameter / 2, the
 -- outer radius with the vertex radii) so that no vertex starts outside the right wall: the
 -- paper's 68 with diameter 6 would reach x = 71 > 70.
--- start = "mixed" (the inset of the paper's Fig. 5(b)): both populations over the whole box,
+-- start = "mixed" (the inset of the paper's Fig. 4(b)): both populations over the whole box,
 -- i.e. over the union 2 < x < 68 of the two de-mixed ranges (scaled, adipocytes clipped to
 -- R_out <= X <= L0 - R_out); the adipocytes are placed first, the cells fill the gaps.
 --

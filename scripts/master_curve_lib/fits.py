@@ -1,4 +1,4 @@
-"""The two fits of the master-curve analysis (MODEL.md, Measurements: sweep analysis).
+"""The two fits of the master-curve analysis (docs/sweeps_analysis.md; the paper's Eq. (15)).
 
 Per curve: A_n = (1/2)(tanh[b log10(x/a)] + 1), x = k_B T/(P sigma^3), fitted for
 (log10 a, b) by weighted least squares with the state points' standard errors as absolute

@@ -1,4 +1,4 @@
-"""The normalised interfacial area A_n of the paper's Appendix C (MODEL.md, Measurements).
+"""The normalised interfacial area A_n of the paper's Appendix C (docs/sweeps_analysis.md).
 
 Per row (one job): rA_t = (A_t - dA)/(A_t^max - dA), dA = A_t^max - min A_t^max, i.e.
 rA_t = 1 - (A_t^max - A_t)/min A_t^max. Then A_n = (rA_t - min rA_t)/(max rA_t - min rA_t).

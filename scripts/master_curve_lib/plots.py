@@ -109,7 +109,7 @@ def collapse_figure(path, curves):
 
 def scale_figure(path, curves, scale):
     """Left: a against tau_g/tau_d with the fitted line of each beta/P. Right: a against the
-    fitted c1 (1 + c2 beta/P) tau_g/tau_d with the line a = that (the paper's Fig. 6b inset)."""
+    fitted c1 (1 + c2 beta/P) tau_g/tau_d with the line a = that (the paper's Fig. 5b inset)."""
     used = [(k, c) for k, c in enumerate(curves) if c["name"] in scale["curves"]]
     c2 = scale["c2"] or 0.0
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(10.5, 4.6))

@@ -5,27 +5,29 @@ Prose lives here (the template); every number comes from the records."""
 import json
 import os
 
+from . import citations
 from . import plan as plan_mod
-from .verdict import AGREES, DISAGREES, NO_DATA, TREND, UNTESTABLE
+from .runs import InputError
+from .verdict import AGREES, DISAGREES, NO_DATA, TREND, UNTESTABLE, paper
 
-ORDER = ["fig3", "fig5a", "fig5b", "fig6", "fig7", "fig8a", "fig10", "fig11"]
+ORDER = ["fig3", "fig4a", "fig4b", "fig5", "fig6", "fig7a", "fig8", "fig9"]
 TITLES = {
     "fig3": "Fig. 3: passive repulsive cells, A_t(t) and slices",
-    "fig5a": "Fig. 5a: passive repulsive cells, A_n against temperature at several times",
-    "fig5b": "Fig. 5b: cohesive active cells (beta = 1e-2, tau_p = 25), with the mixed-start inset",
-    "fig6": "Fig. 6: the master curve over beta x tau_p, plus the passive curve (tau_p = 2500: "
-            "the longer runs of fig6_long)",
-    "fig7": "Fig. 7: cells only, tau_d against tau_p",
-    "fig8a": "Fig. 8a: tethered tissue, K_ecm",
-    "fig10": "Fig. 10: the adipocyte packing-fraction scan",
-    "fig11": "Fig. 11: slice shape distributions",
+    "fig4a": "Fig. 4a: passive repulsive cells, A_n against temperature at several times",
+    "fig4b": "Fig. 4b: cohesive active cells (beta = 1e-2, tau_p = 25), with the mixed-start inset",
+    "fig5": "Fig. 5: the master curve over beta x tau_p, plus the passive curve (tau_p = 2500: "
+            "the longer runs of fig5_long)",
+    "fig6": "Fig. 6: cells only, tau_d against tau_p",
+    "fig7a": "Fig. 7a: tethered tissue, K_ecm",
+    "fig8": "Fig. 8: the adipocyte packing-fraction scan",
+    "fig9": "Fig. 9: slice shape distributions",
 }
 
 CONTRADICTIONS = """\
 ## Where the paper contradicts itself
 
-MODEL.md lists four statements of the paper that cannot all hold. We do not tune towards any
-of them; the rows marked below show what we get, computed from the runs:
+Four statements of the paper cannot all hold. We do not tune towards any of them; the rows
+marked below show what we get, computed from the runs:
 
 - **`L_f`** (row `L_f`): the paper's final box `L_f = 34 sigma` contradicts its own
   `L_0 = 70`, `phi: 0.01 -> 0.72`, which give 16.8 sigma. Our compression stops at the target
@@ -35,18 +37,18 @@ of them; the rows marked below show what we get, computed from the runs:
   against 2000 cannot both hold under the paper's definition of `A_t^max` (both walls fully
   covered plus the adipocytes' Voronoi surfaces). We follow the definition; the ratio at the
   lowest temperature is what we compare, `A_n` does not depend on it.
-- **The factor 2 in `k_B T`** (row `fig6_factor2`): the paper's temperature formula has an
+- **The factor 2 in `k_B T`** (row `fig5_factor2`): the paper's temperature formula has an
   extra factor 2. A passive bath shows it directly: the equipartition `T_c` equals the bath
   `kT`; the paper's convention `kT_c_paper = 2 T_c` is what the active figures' axes use.
-- **`T_c/T_a`** (row `fig6_Tc_over_Ta`): the paper reports `1 < T_c/T_a < 1.2` in active
-  runs. With active cells and adipocyte vertices in a bath at `kT = 0` (its Fig. 6 knob is
+- **`T_c/T_a`** (row `fig5_Tc_over_Ta`): the paper reports `1 < T_c/T_a < 1.2` in active
+  runs. With active cells and adipocyte vertices in a bath at `kT = 0` (its Fig. 5 knob is
   `f_0`), the vertices are heated only through contacts, and the ratio is what the row shows.
-- **`phi_a` up to 0.9 under the pressure wall** (Fig. 10): the paper rescales the box to
+- **`phi_a` up to 0.9 under the pressure wall** (Fig. 8): the paper rescales the box to
   `0.4 < phi_a < 0.9` (with `phi = phi_c + phi_a`, so `phi > 1` at the top) and quotes one
-  `k_B T/(P sigma^3) = 0.37` for the scan; MODEL.md (step 6) runs it under the pressure wall at
-  `P`. Both cannot hold: under the piston the tissue expands back to the packing that `P`
-  sets, whatever the target. `packing.lua` takes `box = pressure` (MODEL.md) or `box = fixed`
-  (the box keeps the rescaled size, the wall pressure is measured, not set); Fig. 10 shows
+  `k_B T/(P sigma^3) = 0.37` for the scan; docs/model.md (protocol step 6) runs it under the
+  pressure wall at `P`. Both cannot hold: under the piston the tissue expands back to the packing that `P`
+  sets, whatever the target. `packing.lua` takes `box = pressure` (the piston at `P`) or `box = fixed`
+  (the box keeps the rescaled size, the wall pressure is measured, not set); Fig. 8 shows
   both scans with their own rows.
 """
 
@@ -57,9 +59,9 @@ Every figure below comes from one sweep file in `protocols/sweeps/` (its header 
 run it) and one analysis command (printed under the figure). The whole campaign:
 
 ```sh
-scripts/validation.py plan protocols/sweeps/{fig3_passive_slices,fig5a_passive,fig5b_cohesive,fig5b_inset,fig6_active,fig6_passive,fig6_long,fig7_cells_only,fig8a_tethered,fig10_packing,fig11_shapes}.lua --jobs 2 -o docs/validation/plan.json
-for s in fig3_passive_slices fig5a_passive fig5b_cohesive fig5b_inset fig6_active fig6_passive \\
-         fig6_long fig7_cells_only fig8a_tethered fig10_packing fig11_shapes; do
+scripts/validation.py plan protocols/sweeps/{fig3_passive_slices,fig4a_passive,fig4b_cohesive,fig4b_inset,fig5_active,fig5_passive,fig5_long,fig6_cells_only,fig7a_tethered,fig8_packing,fig9_shapes}.lua --jobs 2 -o docs/validation/plan.json
+for s in fig3_passive_slices fig4a_passive fig4b_cohesive fig4b_inset fig5_active fig5_passive \\
+         fig5_long fig6_cells_only fig7a_tethered fig8_packing fig9_shapes; do
   build/invasim sweep init protocols/sweeps/$s.lua && build/invasim sweep run out/$s --jobs 2
 done
 scripts/validation.py all out -o docs/validation     # every figure command below, then:
@@ -83,7 +85,7 @@ means has about twice the error of the half mean: a 2-sigma test). Each figure s
 of its runs pass.
 
 **Verdicts** (`scripts/validation_lib/verdict.py`). The paper's statements and their stated
-precision are in `scripts/validation_paper.json` (each citing MODEL.md). A number agrees when
+precision are in `scripts/validation_paper.json` (each citing its place in the paper: section, figure, equation). A number agrees when
 `|ours - paper| <= tolerance + 2 errors` (or within the stated factor on a log scale); it
 *agrees in trend only* when the number is off but the trend the figure is about holds; a
 trend (a difference the paper says is positive) agrees when it exceeds 2 errors, agrees in
@@ -95,6 +97,13 @@ paper compares with data we do not have.
 campaign sweep file at its CI size (`invasim sweep init SPEC --tiny`: each file's
 `tiny = {...}`, two values per axis, one seed, a few hundred steps), then every figure command,
 the plan from the done points and this document, so that no part of the pipeline can rot.
+
+**Citations** (`scripts/validation_lib/citations.py`). Figures, sections and statement ids
+carry the paper's own figure numbers (its Figs. 3-9; `figures` in
+`scripts/validation_paper.json`), and every statement's source is its place in the paper
+(section, figure, equation, numbered as in the paper). `scripts/validation.py document`
+refuses to write a page whose statements or text cite a path outside the repository or a
+figure the paper does not have, and the CI test checks the page it wrote again.
 """
 
 
@@ -114,7 +123,7 @@ def _cell(text):
 
 
 def _paper_text(row):
-    """The paper's statement, with the variant of the protocol the row tested (e.g. Fig. 10's
+    """The paper's statement, with the variant of the protocol the row tested (e.g. Fig. 8's
     box) when a figure tests one statement more than once."""
     return row["paper"] + (" (%s)" % row["variant"] if row.get("variant") else "")
 
@@ -147,7 +156,7 @@ def render(fig_dir, plan_entries, out_path, ci_size=False, done_entries=None):
               "per point (start-up, compression or rescale) come from two short timing runs of "
               "the file's first point in CPU time, or from the recorded wall times of done "
               "points (column 'from'). One thread per point, %d points at a time. The tissue "
-              "figures use the reduced system (8 adipocytes, 400 cells); Fig. 7 has 500 cells "
+              "figures use the reduced system (8 adipocytes, 400 cells); Fig. 6 has 500 cells "
               "and no adipocytes. The paper's size (28, 1500) is about four times the cost per "
               "step and does not fit the budget (about 6 core-hours)."
               % plan_entries[0]["jobs"], "", plan_mod.table(plan_entries), ""]
@@ -197,6 +206,21 @@ def render(fig_dir, plan_entries, out_path, ci_size=False, done_entries=None):
         L += ["- %s (%s): %s. Ours: %s. Criterion: %s." % (
             _statement(r), r["figure"], r["paper"], r["ours"], r["why"]) for r in bad]
     L += ["", CONTRADICTIONS, METHOD]
+    text = "\n".join(L)
+    _check_citations(list(paper().values()) + all_rows, text, out_path)
     with open(out_path, "w") as f:
-        f.write("\n".join(L))
+        f.write(text)
     return counts
+
+
+def _check_citations(statements, text, out_path):
+    """Refuses the page (InputError, nothing written) when a statement or the page cites a
+    file outside the repository or a figure number the paper does not have (citations.py)."""
+    count, figures = citations.paper_figures()
+    problems = citations.statement_problems(statements, count, figures)
+    problems += citations.page_problems(text, count, figures)
+    if problems:
+        raise InputError("%s not written: %d citation problem%s (scripts/validation_paper.json, "
+                         "the figure records, scripts/validation_lib/document.py):\n  %s" % (
+                             out_path, len(problems), "" if len(problems) == 1 else "s",
+                             "\n  ".join(dict.fromkeys(problems))))

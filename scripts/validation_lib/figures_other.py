@@ -1,5 +1,5 @@
-"""The validation figures of Fig. 6 (the master curve), 7 (cells only), 10 (packing scan) and
-11 (slice shapes); same contract as figures_tissue.py."""
+"""The validation figures of Fig. 5 (the master curve), 6 (cells only), 8 (packing scan) and
+9 (slice shapes); same contract as figures_tissue.py."""
 
 import csv
 import math
@@ -59,8 +59,8 @@ def _run_time(jobs):
                for j in jobs)
 
 
-def fig6(jobs, out, invasim, passive_jobs=None, long_jobs=None):
-    """long_jobs (fig6_long.lua): curves run longer; each replaces the curve of the same beta
+def fig5(jobs, out, invasim, passive_jobs=None, long_jobs=None):
+    """long_jobs (fig5_long.lua): curves run longer; each replaces the curve of the same beta
     and tau_p of jobs, which is drawn for comparison (hollow markers) but not fitted."""
     curves = _curve_points(jobs, ["beta", "tau_p"])
     replaced = {}
@@ -132,11 +132,11 @@ def fig6(jobs, out, invasim, passive_jobs=None, long_jobs=None):
     axes[1].set_xlabel(r"$E_c^b = (x/a)^b$ (dimensionless)")
     axes[1].set_ylabel(label("A_n", ""))
     axes[1].set_title("collapse with each curve's fitted a, b", fontsize=9)
-    images = [save(fig, out, "fig6_An.png")]
+    images = [save(fig, out, "fig5_An.png")]
 
-    sb = verdict.paper()["fig6_b_range"]
+    sb = verdict.paper()["fig5_b_range"]
     bs = [(f["b"], f["b_error"]) for f in fitted if "b" in f]
-    rows.append(verdict.row("fig6_b_range", "b = " + (", ".join(
+    rows.append(verdict.row("fig5_b_range", "b = " + (", ".join(
         "%s (%s)" % (verdict.fmt(f["b"], f["b_error"]), f["curve"]) for f in fitted if "b" in f)
         or "n/a: " + "; ".join(f.get("why_no_fit", "") for f in fitted)),
         verdict.range_verdict(bs, sb["low"], sb["high"]), "every b in [0.5, 2.5] within 2 errors"))
@@ -168,7 +168,7 @@ def fig6(jobs, out, invasim, passive_jobs=None, long_jobs=None):
                                    [f["tau_d_rel_error"] for f in usable])
         except (FitError, RuntimeError, ValueError) as err:
             scale = {"why": str(err)}
-    for sid, name in (("fig6_c1", "c1"), ("fig6_c2", "c2")):
+    for sid, name in (("fig5_c1", "c1"), ("fig5_c2", "c2")):
         s = verdict.paper()[sid]
         v = scale.get(name) if scale else None
         e_ = scale.get(name + "_error") if scale else None
@@ -184,10 +184,10 @@ def fig6(jobs, out, invasim, passive_jobs=None, long_jobs=None):
             else verdict.NO_DATA, "within a factor %g of %g" % (s["log_factor"], s["value"])))
     ratios = [(p["T_c_over_T_a"], 0.0) for k, pts in curves.items() if k[0] != "passive"
               for p in pts]
-    st = verdict.paper()["fig6_Tc_over_Ta"]
+    st = verdict.paper()["fig5_Tc_over_Ta"]
     vals = [r for r, _ in ratios if verdict.finite(r)]
     rows.append(verdict.row(
-        "fig6_Tc_over_Ta", "T_c/T_a from %s to %s over %d active state points" % (
+        "fig5_Tc_over_Ta", "T_c/T_a from %s to %s over %d active state points" % (
             verdict.fmt(min(vals)) if vals else "n/a", verdict.fmt(max(vals)) if vals else "n/a",
             len(vals)), verdict.range_verdict(ratios, st["low"], st["high"]),
         "every state point's T_c/T_a in [1, 1.2]"))
@@ -198,11 +198,11 @@ def fig6(jobs, out, invasim, passive_jobs=None, long_jobs=None):
                    for k, v in replaced.items()]}
     if passive_jobs:
         eq = [j.mean("T_c")[0] / float(j.sp["kT"]) for j in passive_jobs if float(j.sp.get("kT", 0)) > 0]
-        s2 = verdict.paper()["fig6_factor2"]
+        s2 = verdict.paper()["fig5_factor2"]
         m = float(np.mean(eq)) if eq else math.nan
         e_ = float(np.std(eq, ddof=1) / math.sqrt(len(eq))) if len(eq) > 1 else math.nan
         rows.append(verdict.row(
-            "fig6_factor2", "passive bath: measured T_c/kT = %s (equipartition), so 2 T_c/kT = %s"
+            "fig5_factor2", "passive bath: measured T_c/kT = %s (equipartition), so 2 T_c/kT = %s"
             % (verdict.fmt(m, e_), verdict.fmt(2 * m)),
             verdict.value_verdict(m, e_, s2["value"], s2["tolerance"]),
             "the equipartition T_c equals the bath kT (|T_c/kT - 1| <= 0.05 + 2 errors); the "
@@ -213,7 +213,7 @@ def fig6(jobs, out, invasim, passive_jobs=None, long_jobs=None):
             "steadiness": runs.steadiness_summary(kept + (passive_jobs or []) + (long_jobs or []))}
 
 
-def fig7(jobs, out, invasim):
+def fig6(jobs, out, invasim):
     fig, (ax,) = figure()
     rows, table = [], []
     for (phi_c,), reps in runs.group(jobs, ["phi_c"]).items():
@@ -235,7 +235,7 @@ def fig7(jobs, out, invasim):
     ax.set_xlabel(label("tau_p", "tau"))
     ax.set_ylabel(label("tau_d", "tau"))
     ax.legend(fontsize=8)
-    images = [save(fig, out, "fig7_tau_d.png")]
+    images = [save(fig, out, "fig6_tau_d.png")]
 
     def tol(r):  # statistical precision of a tau_d from n windows, at least the paper's 10 %
         return max(0.1, 1 / math.sqrt(r["windows"])) if verdict.finite(r["windows"]) and r["windows"] > 0 else 0.1
@@ -244,13 +244,13 @@ def fig7(jobs, out, invasim):
     if zero:
         small = min(zero, key=lambda r: r["tau_p"])
         ratio = small["tau_d"] / small["tau_d_free"]
-        rows.append(verdict.row("fig7_small_tau_p", "tau_d/tau_d_free = %s at tau_p = %g, phi_c = 0"
+        rows.append(verdict.row("fig6_small_tau_p", "tau_d/tau_d_free = %s at tau_p = %g, phi_c = 0"
                                 % (verdict.fmt(ratio), small["tau_p"]),
                                 verdict.value_verdict(ratio, 0.0, 1.0, tol(small)),
                                 "|ratio - 1| <= max(0.1, 1/sqrt(windows))"))
         worst = max(zero, key=lambda r: abs(r["tau_d"] / r["tau_d_free"] - 1))
         verdicts = [verdict.value_verdict(r["tau_d"] / r["tau_d_free"], 0.0, 1.0, tol(r)) for r in zero]
-        rows.append(verdict.row("fig7_free_formula", "largest deviation at phi_c = 0: tau_d/tau_d_free = %s "
+        rows.append(verdict.row("fig6_free_formula", "largest deviation at phi_c = 0: tau_d/tau_d_free = %s "
                                 "(tau_p = %g), %d of %d within" % (
                                     verdict.fmt(worst["tau_d"] / worst["tau_d_free"]), worst["tau_p"],
                                     verdicts.count(verdict.AGREES), len(zero)),
@@ -261,7 +261,7 @@ def fig7(jobs, out, invasim):
     if dense and max(t["phi_c"] for t in table) > 0:
         big = max(dense, key=lambda r: r["tau_p"])
         d = 1 - big["tau_d"] / big["tau_d_free"]
-        rows.append(verdict.row("fig7_dense_deviates", "tau_d/tau_d_free = %s at phi_c = %g, tau_p = %g"
+        rows.append(verdict.row("fig6_dense_deviates", "tau_d/tau_d_free = %s at phi_c = %g, tau_p = %g"
                                 % (verdict.fmt(big["tau_d"] / big["tau_d_free"]), big["phi_c"], big["tau_p"]),
                                 verdict.trend_verdict(d, tol(big) / 2),
                                 "1 - ratio > 2 x half the tolerance max(0.1, 1/sqrt(windows))"))
@@ -277,16 +277,16 @@ def _box(job):
     return job.sp.get("box", "pressure")
 
 
-def fig10(jobs, out, invasim):
+def fig8(jobs, out, invasim):
     """The packing scan, one figure and one set of verdict rows per box (packing.lua's `box`:
-    the pressure wall of MODEL.md step 6, and the fixed box of the paper's text read
+    the pressure wall of docs/model.md protocol step 6, and the fixed box of the paper's text read
     literally), each normalised over its own scan (the paper's Appendix C per sweep)."""
     images, rows, numbers = [], [], {}
     boxes = sorted({_box(j) for j in jobs}, key=lambda b: (b != "pressure", b))
     for box in boxes:
         scan = [j for j in jobs if _box(j) == box]
         suffix = "" if box == "pressure" else "_" + box
-        im, r, num = _fig10_scan(scan, out, box, "fig10_An_dphi%s.png" % suffix,
+        im, r, num = _fig8_scan(scan, out, box, "fig8_An_dphi%s.png" % suffix,
                                  variant=None if len(boxes) == 1 else BOX_NAMES.get(box, box))
         images += im
         rows += r
@@ -295,7 +295,7 @@ def fig10(jobs, out, invasim):
             "steadiness": runs.steadiness_summary(jobs)}
 
 
-def _fig10_scan(jobs, out, box, image, variant):
+def _fig8_scan(jobs, out, box, image, variant):
     """One box's scan: its state points (replicate means), normalised over the scan, its
     figure and its verdict rows."""
     pts = []
@@ -313,12 +313,12 @@ def _fig10_scan(jobs, out, box, image, variant):
     by_lambda = {lam: sorted((p for p in pts if p["lambda"] == lam),
                              key=lambda p: p["phi_a_measured"])
                  for lam in sorted({p["lambda"] for p in pts})}
-    images = [_fig10_plot(by_lambda, box, out, image)]
-    rows = _fig10_rows(pts, by_lambda, box, variant)
+    images = [_fig8_plot(by_lambda, box, out, image)]
+    rows = _fig8_rows(pts, by_lambda, box, variant)
     return images, rows, {"points": pts, "normalisation": extremes}
 
 
-def _fig10_plot(by_lambda, box, out, image):
+def _fig8_plot(by_lambda, box, out, image):
     """A_n, Delta phi_a and the raw A_t (with A_t^max) against the measured phi_a, one curve
     per lambda; returns the image's name."""
     fig, axes = figure(3, width=4.4)
@@ -348,7 +348,7 @@ def _fig10_plot(by_lambda, box, out, image):
     return save(fig, out, image)
 
 
-def _fig10_rows(pts, by_lambda, box, variant):
+def _fig8_rows(pts, by_lambda, box, variant):
     """The verdict rows of one box's scan (variant: the box's name when both are shown)."""
     rows = []
 
@@ -362,12 +362,12 @@ def _fig10_rows(pts, by_lambda, box, variant):
              "phi_a is shown" if box == "pressure" else
              "the box keeps the rescaled size, so phi_a stays at the target")
     dense = [p for p in pts if p["phi_a_target"] >= 0.85 - 1e-9]
-    s0 = verdict.paper()["fig10_zero_above"]
+    s0 = verdict.paper()["fig8_zero_above"]
     if dense:
         m = max(dense, key=lambda p: p["A_n"])
         raw = [p for p in pts if verdict.finite(p["A_t"])]
         lo = min(raw, key=lambda p: p["phi_a_measured"]) if raw else m
-        add("fig10_zero_above", "largest A_n at target phi_a >= 0.85: %s "
+        add("fig8_zero_above", "largest A_n at target phi_a >= 0.85: %s "
             "(target %.3g, measured %.3g, lambda = %g; there A_t = %.0f of A_t^max = %.0f, "
             "wall pressure %.2g = %.0f P, T_c = %.2g; at the scan's lowest phi_a %.3g: "
             "A_t = %.0f of %.0f, lambda = %g)" % (
@@ -381,7 +381,7 @@ def _fig10_rows(pts, by_lambda, box, variant):
             "densest box's, so where A_t^max shrinks with the box faster than A_t, A_n rises "
             "though A_t falls (third panel)"))
     else:
-        add("fig10_zero_above", "no point with a target phi_a >= 0.85",
+        add("fig8_zero_above", "no point with a target phi_a >= 0.85",
             verdict.NO_DATA, "needs a target phi_a >= 0.85")
     lams = sorted(by_lambda)
     if len(lams) >= 2:
@@ -389,10 +389,10 @@ def _fig10_rows(pts, by_lambda, box, variant):
         a1 = np.mean([p["A_n"] for p in by_lambda[lams[-1]]])
         e = math.hypot(*[np.sqrt(np.nansum(np.square([p["A_n_error"] for p in by_lambda[l]]))) /
                          len(by_lambda[l]) for l in (lams[0], lams[-1])])
-        add("fig10_lambda_lowers", "mean A_n over the scan: %s (lambda = %g), %s "
+        add("fig8_lambda_lowers", "mean A_n over the scan: %s (lambda = %g), %s "
             "(lambda = %g)" % (verdict.fmt(a0), lams[0], verdict.fmt(a1), lams[-1]),
             verdict.trend_verdict(a0 - a1, e), "difference > 2 errors")
-    for sid in ("fig10_dphi_0", "fig10_dphi_0.3", "fig10_dphi_1"):
+    for sid in ("fig8_dphi_0", "fig8_dphi_0.3", "fig8_dphi_1"):
         s = verdict.paper()[sid]
         c = by_lambda.get(s["lambda"])
         if not c:
@@ -414,7 +414,7 @@ def read_shapes(job):
     return lo, hi, np.array([float(x["count"]) for x in r])
 
 
-def fig11(jobs, out, invasim):
+def fig9(jobs, out, invasim):
     fig, (ax,) = figure()
     means = []
     stat = "median"
@@ -438,15 +438,15 @@ def fig11(jobs, out, invasim):
     ax.set_ylabel(r"$P(A_\mathrm{2D})$ (dimensionless)")
     ax.set_xlim(1.0, 1.6)
     ax.legend(fontsize=8)
-    images = [save(fig, out, "fig11_P_A2D.png")]
+    images = [save(fig, out, "fig9_P_A2D.png")]
     means.sort()
-    rows = [verdict.row("fig11_tissue", stat + " A_2D = " + ", ".join(
+    rows = [verdict.row("fig9_tissue", stat + " A_2D = " + ", ".join(
         "%s (A_0 = %g, %d slices)" % (verdict.fmt(m, e), a, n) for a, m, e, n in means),
         verdict.UNTESTABLE, "the paper's tissue slice data are not available to us")]
     if len(means) >= 2:
         d = means[-1][1] - means[0][1]
         e = math.hypot(*(x if verdict.finite(x) else 0 for x in (means[-1][2], means[0][2])))
-        rows.append(verdict.row("fig11_shift", stat + " A_2D %s (A_0 = %g) -> %s (A_0 = %g)" % (
+        rows.append(verdict.row("fig9_shift", stat + " A_2D %s (A_0 = %g) -> %s (A_0 = %g)" % (
             verdict.fmt(means[0][1]), means[0][0], verdict.fmt(means[-1][1]), means[-1][0]),
             verdict.trend_verdict(d, e), "difference > 2 errors (replicate scatter)"))
     return {"images": images, "rows": rows, "numbers": {"means": means},

@@ -1,4 +1,4 @@
-"""The validation figures of the invasion sweeps (Figs. 3, 5a, 5b, 8a): each function takes
+"""The validation figures of the invasion sweeps (Figs. 3, 4a, 4b, 7a): each function takes
 the done jobs of its workspace(s) and the output directory, draws the figure and returns the
 figure's record (images, rows of the side-by-side table, steady-state evidence, numbers)."""
 
@@ -128,30 +128,30 @@ def render_slice(job, out, name, invasim):
     return [name]
 
 
-def fig5a(jobs, out, invasim):
+def fig4a(jobs, out, invasim):
     fractions = (0.25, 0.5, 1.0)
     table, extremes = an_over_time(jobs, ["kT"], lambda j, f: x_bath(j), fractions)
     fig, (ax,) = figure()
     plot_an_times(ax, table, T_BATH, jobs)
-    images = [save(fig, out, "fig5a_An.png")]
+    images = [save(fig, out, "fig4a_An.png")]
     mids = {f: runs.crossing([p["x"] for p in pts], [p["A_n"] for p in pts])
             for f, pts in table.items()}
     errs = {f: runs.crossing_log_error([p["x"] for p in pts], [p["A_n"] for p in pts],
                                        [p["A_n_error"] for p in pts]) for f, pts in table.items()}
-    st = verdict.paper()["fig5a_Tg"]
+    st = verdict.paper()["fig4a_Tg"]
     moves = mids[0.25] > mids[1.0] if verdict.finite(mids[0.25], mids[1.0]) else None
     shift = math.log10(mids[0.25] / mids[1.0]) if moves is not None else math.nan
     shift_err = math.hypot(errs[0.25], errs[1.0])
     end_err = mids[1.0] * math.log(10) * errs[1.0] if verdict.finite(mids[1.0], errs[1.0]) else math.nan
     rows = [
-        verdict.row("fig5a_moves_left",
+        verdict.row("fig4a_moves_left",
                     "midpoint (A_n = 1/2) at %s" % ", ".join(
                         "%s (t = %.0f%%)" % (verdict.fmt(mids[f]), 100 * f) for f in fractions),
                     verdict.trend_verdict(shift, shift_err),
                     "log10 of the midpoint's ratio, first quarter over the end: %s (> 2 errors; "
                     "the error from the A_n errors and the slope at the crossing)"
                     % verdict.fmt(shift, shift_err)),
-        verdict.row("fig5a_Tg", "midpoint at the end: %s" % verdict.fmt(mids[1.0], end_err),
+        verdict.row("fig4a_Tg", "midpoint at the end: %s" % verdict.fmt(mids[1.0], end_err),
                     verdict.log_verdict(mids[1.0], end_err, st["value"], st["log_factor"], moves),
                     "within a factor %g of %g (+ 2 errors)" % (st["log_factor"], st["value"]))]
     return {"images": images, "rows": rows,
@@ -160,24 +160,24 @@ def fig5a(jobs, out, invasim):
             "steadiness": runs.steadiness_summary(jobs)}
 
 
-def fig5b(jobs, out, invasim, inset_jobs=None):
+def fig4b(jobs, out, invasim, inset_jobs=None):
     fractions = (0.25, 0.5, 1.0)
     table, extremes = an_over_time(jobs, ["f0"], x_measured, fractions)
     fig, axes = figure(3 if inset_jobs else 1)
     plot_an_times(axes[0], table, T_PAPER, jobs)
     end = sorted(table[1.0], key=lambda p: p["x"])
-    st = verdict.paper()["fig5b_An_at_0.3"]
+    st = verdict.paper()["fig4b_An_at_0.3"]
     an03 = runs.interpolate_log([p["x"] for p in end], [p["A_n"] for p in end], st["at"])
     err03 = float(np.nanmax([p["A_n_error"] for p in end])) if end else math.nan
     mids = {f: runs.crossing([p["x"] for p in pts], [p["A_n"] for p in pts])
             for f, pts in table.items()}
-    sw = verdict.paper()["fig5b_weak_time"]
+    sw = verdict.paper()["fig4b_weak_time"]
     ratio = mids[0.5] / mids[1.0] if verdict.finite(mids[0.5], mids[1.0]) else math.nan
-    rows = [verdict.row("fig5b_An_at_0.3", "A_n = %s at %g (interpolated, end of the run)" % (
+    rows = [verdict.row("fig4b_An_at_0.3", "A_n = %s at %g (interpolated, end of the run)" % (
                             verdict.fmt(an03, err03), st["at"]),
                         verdict.value_verdict(an03, err03, st["value"], st["tolerance"]),
                         "|ours - 0.55| <= 0.1 + 2 errors"),
-            verdict.row("fig5b_weak_time", "midpoint at half time / at the end = %s" %
+            verdict.row("fig4b_weak_time", "midpoint at half time / at the end = %s" %
                         verdict.fmt(ratio),
                         verdict.log_verdict(ratio, math.nan, 1.0, sw["log_factor"]),
                         "within a factor %g" % sw["log_factor"])]
@@ -220,19 +220,19 @@ def fig5b(jobs, out, invasim, inset_jobs=None):
         if "demixed" in by_start and "mixed" in by_start:
             d = by_start["mixed"][0] - by_start["demixed"][0]
             e = math.hypot(by_start["mixed"][1], by_start["demixed"][1])
-            si = verdict.paper()["fig5b_inset_starts"]
+            si = verdict.paper()["fig4b_inset_starts"]
             rows.append(verdict.row(
-                "fig5b_inset_starts", "A_n = %s (de-mixed), %s (mixed) at %s" % (
+                "fig4b_inset_starts", "A_n = %s (de-mixed), %s (mixed) at %s" % (
                     verdict.fmt(*by_start["demixed"][:2]), verdict.fmt(*by_start["mixed"][:2]),
                     verdict.fmt(by_start["demixed"][2])),
                 verdict.value_verdict(d, e, si["value"], si["tolerance"]),
                 "difference %s; |difference| <= 0.1 + 2 errors" % verdict.fmt(d, e)))
         numbers["inset"] = by_start
-    images = [save(fig, out, "fig5b_An.png")] + images_extra
+    images = [save(fig, out, "fig4b_An.png")] + images_extra
     return {"images": images, "rows": rows, "numbers": numbers, "steadiness": steady}
 
 
-def fig8a(jobs, out, invasim):
+def fig7a(jobs, out, invasim):
     """A_n per K_ecm, normalised by the K_ecm = 0 sweep; the plateau A_n^max vs K_ecm."""
     pts = []
     for (k, f0), reps in runs.group(jobs, ["K_ecm", "f0"]).items():
@@ -243,7 +243,7 @@ def fig8a(jobs, out, invasim):
         pts.append(p)
     free = [p for p in pts if p["K_ecm"] == 0.0]
     if not free:
-        raise runs.InputError("fig8a: no K_ecm = 0 points to normalise by")
+        raise runs.InputError("fig7a: no K_ecm = 0 points to normalise by")
     extremes = runs.normalise(free)
     for p in pts:
         if p["K_ecm"] != 0.0:
@@ -266,16 +266,16 @@ def fig8a(jobs, out, invasim):
                      yerr=[e if verdict.finite(e) else 0 for _, _, e in plateau], marker="s")
     axes[1].set_xlabel(label("K_ecm", "eps_c/sigma^2"))
     axes[1].set_ylabel(r"plateau $A_n^\mathrm{max}$ (dimensionless)")
-    images = [save(fig, out, "fig8a_An.png")]
+    images = [save(fig, out, "fig7a_An.png")]
     d = plateau[0][1] - plateau[-1][1]
     e = math.hypot(*(x if verdict.finite(x) else 0 for x in (plateau[0][2], plateau[-1][2])))
-    so = verdict.paper()["fig8a_onset"]
+    so = verdict.paper()["fig7a_onset"]
     ratio = onset[-1][1] / onset[0][1] if verdict.finite(onset[-1][1], onset[0][1]) else math.nan
-    rows = [verdict.row("fig8a_plateau_falls", "A_n^max = " + ", ".join(
+    rows = [verdict.row("fig7a_plateau_falls", "A_n^max = " + ", ".join(
                 "%s (K_ecm = %g)" % (verdict.fmt(v, e_), k) for k, v, e_ in plateau),
                 verdict.trend_verdict(d, e) if len(plateau) > 1 else verdict.NO_DATA,
                 "A_n^max(K_ecm = 0) - A_n^max(largest K_ecm) = %s (> 2 errors)" % verdict.fmt(d, e)),
-            verdict.row("fig8a_onset", "A_n = 0.25 at " + ", ".join(
+            verdict.row("fig7a_onset", "A_n = 0.25 at " + ", ".join(
                 "%s (K_ecm = %g)" % (verdict.fmt(x), k) for k, x in onset),
                 verdict.log_verdict(ratio, math.nan, 1.0, so["log_factor"]),
                 "onset(largest K_ecm)/onset(0) = %s, within a factor %g" % (

@@ -160,6 +160,18 @@ def finish(entry, jobs):
     return entry
 
 
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def shown_spec(spec):
+    """A sweep file as the page shows it: relative to the repository when it lies inside it
+    (whatever the directory the plan was made in), else as recorded."""
+    if not os.path.isabs(spec):
+        return spec
+    rel = os.path.relpath(spec, REPO)
+    return spec if rel.startswith(os.pardir) else rel
+
+
 def table(entries):
     """The plan as Markdown."""
     lines = ["| sweep file | points | steps per point | rate [steps/s] | fixed [s/point] | "
@@ -167,7 +179,7 @@ def table(entries):
     for e in entries:
         lo, hi = min(e["steps"]), max(e["steps"])
         lines.append("| `%s` | %d | %s | %.0f | %s | %.1f | %.2f | %.2f (%d) | %s |" % (
-            os.path.relpath(e["spec"]) if os.path.isabs(e["spec"]) else e["spec"], e["points"],
+            shown_spec(e["spec"]), e["points"],
             "%d" % lo if lo == hi else "%d-%d" % (lo, hi), e["rate"],
             "%.1f" % e["fixed"] if e["fixed"] is not None else "-", e["prep"],
             e["core_seconds"] / 3600, e["wall_seconds"] / 3600, e["jobs"], e["source"]))

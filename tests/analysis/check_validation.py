@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Unit checks of scripts/validation_lib (docs/validation.md, "Method"): the verdict criteria
 on hand-picked numbers, the A_n normalisation and the steady-state test on a hand-made run,
-the plan's cost model and its replay of `sweep run --jobs N`, and the figure command's errors.
+the plan's cost model and its replay of `sweep run --jobs N`, the citation checks
+(paper figure numbers, sources in the paper) and the figure command's errors.
 Usage: check_validation.py SCRIPTS_DIR WORKDIR. Without numpy/scipy/matplotlib: skipped (77),
 or a failure under INVASIM_REQUIRE_ALL_TESTS=1 (tests/support/prerequisites.py)."""
 
@@ -55,12 +56,58 @@ check(v.log_verdict(0.2, 0.0, 0.03, 3.0, trend_holds=True) == v.TREND)
 check(v.range_verdict([(1.0, 0.1), (2.4, 0.0)], 0.5, 2.5) == v.AGREES)
 check(v.range_verdict([(1.0, 0.1), (3.4, 0.1)], 0.5, 2.5) == v.TREND)
 check(v.range_verdict([(13.0, 0.1)], 1.0, 1.2) == v.DISAGREES)
-# Every statement the figures use is in the paper file, with a source.
+# Every statement the figures use is in the paper file, with a source in the paper.
 ids = v.paper()
-for needed in ["fig3_invasion_grows", "fig5a_Tg", "fig5b_An_at_0.3", "fig6_b_range", "fig6_c1",
-               "fig6_Tc_over_Ta", "fig6_factor2", "fig7_free_formula", "fig8a_onset",
-               "fig10_dphi_1", "fig11_tissue", "L_f"]:
-    check(needed in ids and ids[needed]["source"].startswith("MODEL.md"), needed)
+for needed in ["fig3_invasion_grows", "fig4a_Tg", "fig4b_An_at_0.3", "fig5_b_range", "fig5_c1",
+               "fig5_Tc_over_Ta", "fig5_factor2", "fig6_free_formula", "fig7a_onset",
+               "fig8_dphi_1", "fig9_tissue", "L_f"]:
+    check(needed in ids and ids[needed]["source"], needed)
+
+# Citations (validation_lib/citations.py): the paper's figure numbers, sources in the paper.
+from validation_lib import citations, document  # noqa: E402
+count, figures = citations.paper_figures()
+check(count == 11 and figures == {"fig3", "fig4a", "fig4b", "fig5", "fig6", "fig7a", "fig7b",
+                                  "fig8", "fig9"}, (count, figures))
+check(citations.statement_problems(list(ids.values()), count, figures) == [],
+      citations.statement_problems(list(ids.values()), count, figures))
+good = {"id": "fig5_x", "figure": "fig5", "text": "t", "source": "Results; Fig. 5(a)"}
+check(citations.statement_problems([good], count, figures) == [])
+planted = [  # (statement, a word of the problem it must raise)
+    (dict(good, source="MODEL.md, figure table, Fig. 5"), "'MODEL.md', outside the repository"),
+    (dict(good, source="../shared/notes, Fig. 5"), "'../', outside the repository"),
+    (dict(good, source="/work/paper.txt, Fig. 5"), "'/work/', outside the repository"),
+    (dict(good, source="the figure table"), "names no place in the paper"),
+    (dict(good, id="fig10_x", figure="fig10"), "id names fig10, not a figure of the paper's"),
+    (dict(good, id="fig11_x", figure="fig11"), "figure 'fig11' is not a figure of the paper's"),
+    (dict(good, id="fig6_x"), "id names fig6 but its figure is fig5"),
+    (dict(good, text="as in Fig. 12"), "'Fig. 12' (the paper has Figs. 1-11)"),
+]
+for bad, word in planted:
+    got = citations.statement_problems([bad], count, figures)
+    check(len(got) >= 1 and any(word in p for p in got), (bad, got))
+check(citations.page_problems("## Fig. 4a: x\nsee Fig. 3 and Eq. (14)", count, figures) == [])
+got = citations.page_problems("x\n## Fig. 10: packing\nfrom ../shared/MODEL.md", count, figures)
+check(any("page line 2: section 'Fig. 10'" in p for p in got)
+      and any("page line 3 cites '../'" in p for p in got), got)
+# The generator refuses such a page and writes nothing.
+shutil.rmtree(work, ignore_errors=True)
+os.makedirs(os.path.join(work, "records"))
+row = dict(good, paper="t", ours="1", verdict=v.AGREES, why="w", id="fig3_x", figure="fig3")
+with open(os.path.join(work, "records", "fig3.json"), "w") as f:
+    json.dump({"rows": [dict(row, source="MODEL.md, Fig. 3")], "specs": ["s"], "runs": 1,
+               "steps_range": "1", "images": [], "command": "c"}, f)
+page = os.path.join(work, "page.md")
+try:
+    document.render(os.path.join(work, "records"), None, page)
+    check(False, "a page citing MODEL.md was written")
+except runs.InputError as e:
+    check("not written: 1 citation problem" in str(e) and "statement fig3_x: source" in str(e), e)
+check(not os.path.exists(page))
+with open(os.path.join(work, "records", "fig3.json"), "w") as f:
+    json.dump({"rows": [row], "specs": ["s"], "runs": 1, "steps_range": "1", "images": [],
+               "command": "c"}, f)
+document.render(os.path.join(work, "records"), None, page)
+check(os.path.exists(page))
 
 # The midpoint a of a sigmoid enters the fit of a = c1 (1 + c2 beta/P) tau_g/tau_d only for a
 # rising curve (b > 0 and the data rising by more than 2 errors) whose midpoint the
@@ -122,6 +169,11 @@ check(abs(runs.window_mean(rising, "A_t", 1.0, 0.1) - np.mean([600.0 + 2 * i for
 check(plan.wall_time(5.0, [10, 10, 10], 2) == 25.0)
 check(plan.wall_time(5.0, [10, 1, 1, 1], 2) == 15.0)
 check(plan.wall_time(5.0, [], 2) == 5.0)
+# A sweep file inside the repository is shown relative to it, whatever the plan's directory.
+os.chdir(work)
+check(plan.shown_spec(os.path.join(plan.REPO, "protocols", "sweeps", "x.lua"))
+      == os.path.join("protocols", "sweeps", "x.lua"))
+check(plan.shown_spec("/elsewhere/x.lua") == "/elsewhere/x.lua")
 check(plan.point_steps({"quench_steps": 10, "steps": 100}, {"quench_steps": 5, "steps": 1,
                                                              "equilibrate_steps": 7}, "x") == 117)
 try:
@@ -132,10 +184,10 @@ except runs.InputError as e:
 
 # The command line: a wrong number of workspaces and a non-workspace are named.
 cmd = [sys.executable, os.path.join(scripts, "validation.py"), "figure"]
-out = subprocess.run(cmd + ["fig7", work, work, "-o", work + "/o"], capture_output=True, text=True)
-check(out.returncode == 1 and "figure fig7 reads 1 workspace (fig7_cells_only); got 2" in out.stderr, out.stderr)
-out = subprocess.run(cmd + ["fig7", work, "-o", work + "/o"], capture_output=True, text=True)
+out = subprocess.run(cmd + ["fig6", work, work, "-o", work + "/o"], capture_output=True, text=True)
+check(out.returncode == 1 and "figure fig6 reads 1 workspace (fig6_cells_only); got 2" in out.stderr, out.stderr)
+out = subprocess.run(cmd + ["fig6", work, "-o", work + "/o"], capture_output=True, text=True)
 check(out.returncode == 1 and "is not a sweep workspace (no invasim_sweep.json)" in out.stderr, out.stderr)
-out = subprocess.run(cmd + ["fig9", work, "-o", work + "/o"], capture_output=True, text=True)
-check(out.returncode == 1 and "unknown figure 'fig9'" in out.stderr, out.stderr)
+out = subprocess.run(cmd + ["fig10", work, "-o", work + "/o"], capture_output=True, text=True)
+check(out.returncode == 1 and "unknown figure 'fig10'" in out.stderr, out.stderr)  # the old name
 print("check_validation: all checks passed")

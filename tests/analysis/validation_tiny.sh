@@ -21,15 +21,15 @@ for spec in "$repo"/protocols/sweeps/*.lua; do
 done
 
 "$repo/scripts/validation.py" all ws -o figures --invasim "$invasim" | tee figures.log
-for fig in fig3 fig5a fig5b fig6 fig7 fig8a fig10 fig11; do
+for fig in fig3 fig4a fig4b fig5 fig6 fig7a fig8 fig9; do
   [ -s "figures/$fig.json" ] || fail "figure $fig was not made"
 done
-# Fig. 6 with longer runs (fig6_long.lua): given as its own third workspace, each of its
+# Fig. 5 with longer runs (fig5_long.lua): given as its own third workspace, each of its
 # curves replaces the same curve of the first, which is kept for comparison but not fitted.
 # The Python checks below exit non-zero on a failed condition (no assert: python -O drops it).
-"$repo/scripts/validation.py" figure fig6 ws/fig6_long ws/fig6_passive ws/fig6_long -o fig6_self \
-  --invasim "$invasim" > fig6_self.log
-/usr/bin/python3 - fig6_self/fig6.json <<'PY' || fail "fig6: the longer runs did not replace the curves"
+"$repo/scripts/validation.py" figure fig5 ws/fig5_long ws/fig5_passive ws/fig5_long -o fig5_self \
+  --invasim "$invasim" > fig5_self.log
+/usr/bin/python3 - fig5_self/fig5.json <<'PY' || fail "fig5: the longer runs did not replace the curves"
 import json, sys
 n = json.load(open(sys.argv[1]))["numbers"]
 replaced = {tuple(r["key"]) for r in n["replaced_by_longer_runs"]}
@@ -41,12 +41,12 @@ if not all("(t = " in c["curve"] for c in active):
 if not all("excluded_from_scale_fit" in c for c in n["curves"]):
     sys.exit("curves without excluded_from_scale_fit")
 PY
-# Fig. 10 scans both boxes of packing.lua (box = pressure, fixed): one figure and one set of
+# Fig. 8 scans both boxes of packing.lua (box = pressure, fixed): one figure and one set of
 # rows each, the fixed box holding phi_a at its target.
-/usr/bin/python3 - figures/fig10.json <<'PY' || fail "fig10: the two boxes were not analysed apart"
+/usr/bin/python3 - figures/fig8.json <<'PY' || fail "fig8: the two boxes were not analysed apart"
 import json, sys
 rec = json.load(open(sys.argv[1]))
-if rec["images"] != ["fig10_An_dphi.png", "fig10_An_dphi_fixed.png"]:
+if rec["images"] != ["fig8_An_dphi.png", "fig8_An_dphi_fixed.png"]:
     sys.exit("images %r" % rec["images"])
 variants = {r.get("variant") for r in rec["rows"]}
 if variants != {"pressure wall at P", "fixed box"}:
@@ -64,7 +64,7 @@ work = sys.argv[1]
 doc = open(os.path.join(work, "validation.md")).read()
 allowed = {"agrees", "agrees in trend only", "disagrees", "no data", "not testable"}
 problems = []
-for fig in ["fig3", "fig5a", "fig5b", "fig6", "fig7", "fig8a", "fig10", "fig11"]:
+for fig in ["fig3", "fig4a", "fig4b", "fig5", "fig6", "fig7a", "fig8", "fig9"]:
     rec = json.load(open(os.path.join(work, "figures", fig + ".json")))
     if not rec["rows"]:
         problems.append(fig + ": no rows")
@@ -86,5 +86,30 @@ if problems:
     print("\n".join(problems))
     sys.exit(1)
 print("validation_tiny: document and %d figure records complete" % 8)
+PY
+# Citations: every statement (the paper file and the figure records) cites its place in the
+# paper and the paper's own figure numbers, and no text of the page cites a path outside the
+# repository (../, /work/, shared/, MODEL.md). The generator refuses such a page; this checks
+# the page it wrote, independently of it.
+/usr/bin/python3 - "$repo/scripts" "$work" <<'PY' || fail "a statement or the page cites outside the paper and the repository"
+import glob, json, os, sys
+sys.path.insert(0, sys.argv[1])
+from validation_lib import citations, verdict
+work = sys.argv[2]
+count, figures = citations.paper_figures()
+statements, problems = list(verdict.paper().values()), []
+for path in sorted(glob.glob(os.path.join(work, "figures", "*.json"))):
+    rec = json.load(open(path))
+    if "rows" in rec:
+        statements += rec["rows"]
+        if rec["figure"] not in figures:
+            problems.append("%s: figure %r is not a figure of the paper's" % (path, rec["figure"]))
+problems += citations.statement_problems(statements, count, figures)
+problems += citations.page_problems(open(os.path.join(work, "validation.md")).read(), count, figures)
+if problems:
+    print("\n".join(dict.fromkeys(problems)))
+    sys.exit(1)
+print("validation_tiny: %d statements and the page cite the paper's figures (1-%d) and the "
+      "repository only" % (len(statements), count))
 PY
 echo "validation_tiny: PASS"

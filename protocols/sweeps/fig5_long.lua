@@ -1,11 +1,11 @@
--- The paper's Fig. 6, tau_p = 2500 curves run four times longer than in fig6_active.lua:
+-- The paper's Fig. 5, tau_p = 2500 curves run four times longer than in fig5_active.lua:
 -- production t = 50000 = 20 tau_p (there: 12500 = 5 tau_p, too short for curves that were
--- not yet rising sigmoids). The same beta, f0 and seeds; validation.py's fig6 takes this
--- workspace as its third and uses these curves instead of fig6_active's (which it draws
+-- not yet rising sigmoids). The same beta, f0 and seeds; validation.py's fig5 takes this
+-- workspace as its third and uses these curves instead of fig5_active's (which it draws
 -- hollow for comparison).
---   invasim sweep init protocols/sweeps/fig6_long.lua
---   invasim sweep run out/fig6_long --jobs 2
---   scripts/validation.py figure fig6 out/fig6_active out/fig6_passive out/fig6_long -o docs/validation
+--   invasim sweep init protocols/sweeps/fig5_long.lua
+--   invasim sweep run out/fig5_long --jobs 2
+--   scripts/validation.py figure fig5 out/fig5_active out/fig5_passive out/fig5_long -o docs/validation
 return {
   protocol = "../invasion.lua",
   set = { system = "reduced", P = 1.3e-3, kT = 0.0, tau_p = 2500.0,

@@ -1,10 +1,10 @@
--- The paper's Fig. 5a at reduced scale: passive, repulsive cancer cells (f0 = 0, beta = 0) at
+-- The paper's Fig. 4a at reduced scale: passive, repulsive cancer cells (f0 = 0, beta = 0) at
 -- P = 1.3e-3 over a wide range of bath temperatures k_B T/(P sigma^3) = kT/1.3e-3 from 0.003
 -- to 3, two replicates each, all starting from one compressed tissue (the shared
 -- preparation). About 10 minutes on 2 cores (docs/sweeps.md):
---   invasim sweep init protocols/sweeps/fig5a_passive.lua
---   invasim sweep run out/fig5a_passive
---   invasim sweep collect out/fig5a_passive -o out/fig5a_passive/results.csv
+--   invasim sweep init protocols/sweeps/fig4a_passive.lua
+--   invasim sweep run out/fig4a_passive
+--   invasim sweep collect out/fig4a_passive -o out/fig4a_passive/results.csv
 return {
   protocol = "../invasion.lua",
   set = { system = "reduced", f0 = 0.0, beta = 0.0, P = 1.3e-3,

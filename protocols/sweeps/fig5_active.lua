@@ -1,13 +1,13 @@
--- The paper's Fig. 6 at reduced scale: beta in {1e-3, 1e-2} x tau_p in {0.02, 25, 2500}, six
+-- The paper's Fig. 5 at reduced scale: beta in {1e-3, 1e-2} x tau_p in {0.02, 25, 2500}, six
 -- self-propulsion forces f0 per tau_p (zipped with it: a persistence of 0.02 needs about 15
 -- times the force for the same measured temperature, k_B T_c ~ f0^2 tau_p/(tau_p + tau_g)),
 -- spanning k_B T_c/(P sigma^3) ~ 0.005 to 3, two seeds (the fit of a and b needs replicates
 -- for honest errors, docs/sweeps_analysis.md; a third did not fit the campaign's budget), from
 -- one compressed tissue. The passive
--- curve of the figure (beta = 1e-2, f0 = 0) is fig6_passive.lua.
---   invasim sweep init protocols/sweeps/fig6_active.lua
---   invasim sweep run out/fig6_active --jobs 2
---   scripts/validation.py figure fig6 out/fig6_active out/fig6_passive -o docs/validation
+-- curve of the figure (beta = 1e-2, f0 = 0) is fig5_passive.lua.
+--   invasim sweep init protocols/sweeps/fig5_active.lua
+--   invasim sweep run out/fig5_active --jobs 2
+--   scripts/validation.py figure fig5 out/fig5_active out/fig5_passive -o docs/validation
 return {
   protocol = "../invasion.lua",
   set = { system = "reduced", P = 1.3e-3, kT = 0.0,

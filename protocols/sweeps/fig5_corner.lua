@@ -1,12 +1,12 @@
--- A 2 x 2 corner of the paper's Fig. 6 at reduced scale: active cohesive cancer cells with
+-- A 2 x 2 corner of the paper's Fig. 5 at reduced scale: active cohesive cancer cells with
 -- beta in {1e-3, 1e-2} and tau_p in {25, 250}; along each curve the self-propulsion f0 sets
 -- the measured temperature k_B T_c/(P sigma^3) (the paper's knob for active runs,
 -- docs/model.md), all from one compressed tissue (the shared preparation). Nine f0 values
 -- from 0.002 to 0.02, denser between 0.0095 and 0.014 where the cohesive (beta = 1e-2) cells
 -- melt, x 3 seeds = 108 points, about 60 minutes on 2 cores (docs/sweeps.md):
---   invasim sweep init protocols/sweeps/fig6_corner.lua
---   invasim sweep run out/fig6_corner
---   invasim sweep collect out/fig6_corner -o out/fig6_corner/results.csv
+--   invasim sweep init protocols/sweeps/fig5_corner.lua
+--   invasim sweep run out/fig5_corner
+--   invasim sweep collect out/fig5_corner -o out/fig5_corner/results.csv
 return {
   protocol = "../invasion.lua",
   set = { system = "reduced", P = 1.3e-3, kT = 0.0,

@@ -1,9 +1,9 @@
--- The paper's Fig. 8a at reduced scale: tethered tissue (protocols/tethered.lua) at tau_p = 25,
+-- The paper's Fig. 7a at reduced scale: tethered tissue (protocols/tethered.lua) at tau_p = 25,
 -- beta = 1e-2, K_ecm in {0, 0.01, 0.04, 0.16} x five f0 (k_B T_c/(P sigma^3) ~ 0.02 to 3) x two
 -- seeds, from one compressed tissue (the tethers are inserted after it, before the quench).
 -- A_n is normalised by the K_ecm = 0 sweep (its plateau below 1 with tethers).
---   invasim sweep init protocols/sweeps/fig8a_tethered.lua
---   invasim sweep run out/fig8a_tethered --jobs 2
+--   invasim sweep init protocols/sweeps/fig7a_tethered.lua
+--   invasim sweep run out/fig7a_tethered --jobs 2
 return {
   protocol = "../tethered.lua",
   set = { system = "reduced", beta = 1e-2, tau_p = 25.0, kT = 0.0, P = 1.3e-3,

@@ -1,11 +1,11 @@
--- The inset of the paper's Fig. 5b: de-mixed against mixed start at beta = 1e-2, tau_p = 25 and
+-- The inset of the paper's Fig. 4b: de-mixed against mixed start at beta = 1e-2, tau_p = 25 and
 -- f0 = 0.0115 (k_B T_c/(P sigma^3) ~ 0.3 in the paper's convention, where the paper reports a
 -- steady A_n ~ 0.55 from both starts), three seeds each. `start` changes the initial placement,
 -- so every point compresses its own tissue (no shared preparation). Production t = 75000
--- (three times fig5b_cohesive.lua's): at t = 25000 the two starts were still 0.29 and 0.64
+-- (three times fig4b_cohesive.lua's): at t = 25000 the two starts were still 0.29 and 0.64
 -- apart, so the inset's question (do they meet?) needs the longer runs.
---   invasim sweep init protocols/sweeps/fig5b_inset.lua
---   invasim sweep run out/fig5b_inset --jobs 2
+--   invasim sweep init protocols/sweeps/fig4b_inset.lua
+--   invasim sweep run out/fig4b_inset --jobs 2
 return {
   protocol = "../invasion.lua",
   set = { system = "reduced", beta = 1e-2, tau_p = 25.0, kT = 0.0, P = 1.3e-3, f0 = 0.0115,

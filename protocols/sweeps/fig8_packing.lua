@@ -1,13 +1,13 @@
--- The paper's Fig. 10 at reduced scale: the adipocyte packing-fraction scan
+-- The paper's Fig. 8 at reduced scale: the adipocyte packing-fraction scan
 -- (protocols/packing.lua: rescale to phi_a, minimise, tether with K_ecm = 0.04 and lambda, run
 -- under the pressure wall) at phi_a = 0.45 to 0.85 and lambda in {0, 0.3, 1}; beta = 1e-2,
 -- tau_p = 25, f0 = 0.012 (k_B T_c/(P sigma^3) ~ 0.37 in the paper's convention). Each point
--- twice: box = "pressure" (MODEL.md step 6: the left wall a piston at P after the rescale; the
+-- twice: box = "pressure" (docs/model.md, protocol step 6: the left wall a piston at P after the rescale; the
 -- tissue drifts back to the packing P sets) and box = "fixed" (the box keeps the rescaled
 -- size, the paper's text read literally; the wall pressure is then measured). The
 -- compression is shared; the rescale is per point. Two seeds.
---   invasim sweep init protocols/sweeps/fig10_packing.lua
---   invasim sweep run out/fig10_packing --jobs 2
+--   invasim sweep init protocols/sweeps/fig8_packing.lua
+--   invasim sweep run out/fig8_packing --jobs 2
 return {
   protocol = "../packing.lua",
   set = { system = "reduced", beta = 1e-2, tau_p = 25.0, kT = 0.0, P = 1.3e-3, f0 = 0.012,

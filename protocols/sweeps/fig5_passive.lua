@@ -1,7 +1,7 @@
--- The passive curve of the paper's Fig. 6: cohesive (beta = 1e-2), passive (f0 = 0) cancer
+-- The passive curve of the paper's Fig. 5: cohesive (beta = 1e-2), passive (f0 = 0) cancer
 -- cells in a bath at k_B T/(P sigma^3) = 0.01 to 3, two seeds, from one compressed tissue.
---   invasim sweep init protocols/sweeps/fig6_passive.lua
---   invasim sweep run out/fig6_passive --jobs 2
+--   invasim sweep init protocols/sweeps/fig5_passive.lua
+--   invasim sweep run out/fig5_passive --jobs 2
 return {
   protocol = "../invasion.lua",
   set = { system = "reduced", P = 1.3e-3, beta = 1e-2, f0 = 0.0,
