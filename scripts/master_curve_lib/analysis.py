@@ -16,7 +16,7 @@ TEMPERATURES = {
     "kT_c_paper": ("kT_c_paper", r"$k_B T/(P\sigma^3)$, measured, the paper's "
                    r"$k_B T = (2m/3N)\sum v^2 = 2\,k_B T_c$"),
 }
-DEFAULT_GAMMA = 0.2  # MODEL.md: gamma = 0.2 sqrt(m eps_c)/sigma, tau_g = m/gamma = 5 (m = 1)
+DEFAULT_GAMMA = 0.2  # gamma = 0.2 sqrt(m eps_c)/sigma, tau_g = m/gamma = 5 (m = 1): docs/model.md
 
 
 def _sem(values):
