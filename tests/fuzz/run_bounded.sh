@@ -1,5 +1,5 @@
 #!/bin/sh
-# Runs every fuzz target for SECONDS (default 1800, the 30 minutes) one after the other,
+# Runs every fuzz target for SECONDS (default 1800: 30 minutes, docs/reliability.md) one after the other,
 # at low priority, and prints each target's executions and findings; findings are saved to
 # FINDINGS (default build/tests/fuzz/findings) for tests/fuzz/regression/<target>/.
 #   tests/fuzz/run_bounded.sh [SECONDS] [BUILD_DIR] [SEED]

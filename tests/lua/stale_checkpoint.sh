@@ -6,7 +6,7 @@
 #     both run ids and the parameter that differs;
 #  c) --overwrite deletes the old run's files before the new run starts, so a new run killed
 #     before its first checkpoint resumes from the beginning with its own parameters, not from
-#     the old run's checkpoint (the scenario).
+#     the old run's checkpoint (a stale-checkpoint scenario).
 # Usage: stale_checkpoint.sh INVASIM WORKDIR
 set -euo pipefail
 invasim=$1

@@ -125,7 +125,7 @@ assert(debug.setmetatable(io.tmpfile(), file_meta))
 f, ramp = nil, nil
 collectgarbage()
 
--- The issue's SIGSEGV: a ramp dressed as a Group given to a method, then run.
+-- The SIGSEGV this guards against: a ramp dressed as a Group given to a method, then run.
 local all = make_all()
 local disguised = iv.ramp{ from = 0, to = 1, steps = 10 }
 debug.setmetatable(disguised, debug.getmetatable(all.Group))
