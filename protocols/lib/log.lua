@@ -2,6 +2,8 @@
 -- logs interleave correctly with the progress lines on stderr).
 -- A failed write to log.txt (a full disk) is an error that stops the run: a log cut
 -- mid-line would not say that it is incomplete.
+local files = require("lib.files")
+
 local M = {}
 local tee_file, tee_path = nil, nil
 
@@ -17,8 +19,7 @@ end
 -- stops the tee, so that reporting that error does not write to it again).
 local function append(line)
   if not tee_file then return end
-  local ok, err = tee_file:write(line)
-  if ok then ok, err = tee_file:flush() end
+  local ok, err = files.write_flushed(tee_file, line)
   if not ok then
     local path = tee_path
     tee_file:close()

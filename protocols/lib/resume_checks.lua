@@ -70,71 +70,66 @@ local function params_json_differences(recorded, identity, p, records)
   return out
 end
 
+-- The way out that every refusal names last.
 local ANEW = "or start the run anew in that directory with --overwrite"
 
 -- Raises the refusal of `--resume dir` with the formatted reason.
-local function refusal(dir, fmt, ...)
+local function refuse(dir, fmt, ...)
   error(string.format("--resume %s: " .. fmt, dir, ...), 0)
 end
 
 -- Checks the sources of the run in `dir` against what resume.txt recorded at its start: the
 -- --from source's and the protocol's contents (before the checkpoint's identity is compared:
 -- a changed source also changes the identity, and this says why). Raises an error naming what
--- changed and the ways out.
-function M.verify_sources(dir, identity)
-  local records = M.records(dir)
+-- changed and the ways out. `records`: M.records(dir).
+function M.verify_sources(dir, identity, records)
   local resume_txt = dir .. "/resume.txt"
-  local anew = ANEW
-  local function refuse(fmt, ...) refusal(dir, fmt, ...) end
   if identity.from then
     local source = run_identity.source_path(identity.from)
     if not records.from_checkpoint then
-      refuse("%s records no content hash of the --from source %s (written by an older invasim), " ..
+      refuse(dir, "%s records no content hash of the --from source %s (written by an older invasim), " ..
              "so it cannot be told whether the source is still the tissue this run started from; %s",
-             resume_txt, source, anew)
+             resume_txt, source, ANEW)
     end
     if records.from_checkpoint ~= identity.from_checkpoint then
-      refuse("the --from source changed: when this run started, %s had the content hash %s " ..
+      refuse(dir, "the --from source changed: when this run started, %s had the content hash %s " ..
              "(recorded in %s); it now %s. Continuing would put this run on another tissue than " ..
              "the one it started from; restore that file, %s", source, records.from_checkpoint,
              resume_txt, identity.from_checkpoint and "has " .. identity.from_checkpoint ..
              " (replaced by another run's, or " .. identity.from .. " was run again)" or
-             "is missing", anew)
+             "is missing", ANEW)
     end
   end
   local protocol_hash = iv.hash_file(iv.script)
   if records.protocol_hash and records.protocol_hash ~= protocol_hash then
-    refuse("the protocol %s changed since this run started (content hash %s recorded in %s, %s " ..
+    refuse(dir, "the protocol %s changed since this run started (content hash %s recorded in %s, %s " ..
            "now): the resumed run would follow other stages than the ones that wrote its files " ..
            "and checkpoint; restore the script (e.g. from version control), %s", iv.script,
-           records.protocol_hash, resume_txt, protocol_hash, anew)
+           records.protocol_hash, resume_txt, protocol_hash, ANEW)
   end
 end
 
 -- Checks params.json and resume.txt's own run id against the identity resume.txt gives
 -- (lib.run_identity.of of the resolved parameters p); raises an error naming what differs and
 -- the ways out. Returns the list of warnings (a different binary, unchecked records) for the
--- log.
-function M.verify_records(dir, identity, p)
-  local records = M.records(dir)
+-- log. `records`: M.records(dir).
+function M.verify_records(dir, identity, p, records)
   local resume_txt = dir .. "/resume.txt"
-  local anew = ANEW
-  local function refuse(fmt, ...) refusal(dir, fmt, ...) end
   local params_json = dir .. "/params.json"
   if not iv.exists(params_json) then
-    refuse("%s is missing: the run's record of its parameters is gone; %s", params_json, anew)
+    refuse(dir, "%s is missing: the run's record of its parameters is gone; %s", params_json, ANEW)
   end
   local recorded = iv.read_json(params_json)
   if type(recorded) ~= "table" then recorded = {} end
   local diff = params_json_differences(recorded, identity, p, records)
   if #diff > 0 then
-    refuse("%s does not agree with %s, which this resume follows: %s. params.json describes the " ..
+    refuse(dir, "%s does not agree with %s, which this resume follows: %s. params.json describes the " ..
            "run's results; it was edited or comes from another run. Restore it, %s", params_json,
-           resume_txt, table.concat(diff, "; "), anew)
+           resume_txt, table.concat(diff, "; "), ANEW)
   end
   if records.run_id and records.run_id ~= identity.id then
-    refuse("%s records run %s, but its protocol, --from and parameters make run %s: the file " ..
-           "was edited; restore it, %s", resume_txt, records.run_id, identity.id, anew)
+    refuse(dir, "%s records run %s, but its protocol, --from and parameters make run %s: the file " ..
+           "was edited; restore it, %s", resume_txt, records.run_id, identity.id, ANEW)
   end
   local warnings = {}
   if not records.protocol_hash then

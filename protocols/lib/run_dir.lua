@@ -26,13 +26,7 @@ local MARKS = { "params.json", "resume.txt", "checkpoint/state.ckpt", "checkpoin
                 "checkpoint/compressing.ckpt" }
 
 -- The run id recorded in dir/resume.txt, or nil.
-local function recorded_id(dir)
-  local f = io.open(dir .. "/resume.txt", "r")
-  if not f then return nil end
-  local text = f:read("a")
-  f:close()
-  return text:match("\n# run_id=(%x+)")
-end
+local function recorded_id(dir) return resume_checks.records(dir).run_id end
 
 -- A new run in dir: refused if dir holds a run, unless --overwrite (then its files go).
 -- Returns the list of files removed.
@@ -122,9 +116,10 @@ function M.open(p, dir)
   if not iv.resume then check_source(identity) end
   files.mkdir(dir .. "/checkpoint")  -- an unwritable --out is refused here, naming it
   lock(dir)
-  local removed, warnings = {}, {}
+  local removed, warnings, records = {}, {}, nil
   if iv.resume then
-    resume_checks.verify_sources(dir, identity)
+    records = resume_checks.records(dir)
+    resume_checks.verify_sources(dir, identity, records)
   else
     removed = claim(dir, identity)
   end
@@ -132,7 +127,7 @@ function M.open(p, dir)
   local temporaries = iv.remove_temporaries(dir)
   files.mkdir(dir .. "/checkpoint")
   local continuing = resume.start(dir)  -- refuses a checkpoint of another run
-  if iv.resume then warnings = resume_checks.verify_records(dir, identity, p) end
+  if iv.resume then warnings = resume_checks.verify_records(dir, identity, p, records) end
   if continuing then
     log.tee(dir .. "/log.txt")
     log.say("run", "resuming the run in %s (run %s) from its checkpoint", dir, identity.id)

@@ -1,13 +1,14 @@
 -- The run's time series as CSV (series.csv): a header row of `name [unit]` entries, then one
 -- row per sample, appended and flushed as the run goes, so that a killed run keeps every
 -- sample written so far. A failed write or flush (a full disk) is an error naming the file.
+local files = require("lib.files")
+
 local M = {}
 M.__index = M
 
 -- Writes the parts and flushes them; raises an error naming `path` if either fails.
 local function put(file, path, ...)
-  local ok, err = file:write(...)
-  if ok then ok, err = file:flush() end
+  local ok, err = files.write_flushed(file, ...)
   if not ok then error(string.format("series: cannot write %s: %s", path, tostring(err)), 0) end
 end
 

@@ -16,6 +16,9 @@ namespace invasim {
 
 namespace {
 
+// What write_file_atomically puts between a file's name and its pid: "<name>.tmp.<pid>".
+const std::string kTemporaryMark = ".tmp.";
+
 // Closes a file descriptor when it goes out of scope (error paths).
 class FileDescriptor {
  public:
@@ -67,7 +70,7 @@ void sync_directory(const std::filesystem::path& dir, const std::filesystem::pat
 }  // namespace
 
 std::filesystem::path atomic_temp_path(const std::filesystem::path& path) {
-  return std::filesystem::path(path.string() + ".tmp." + std::to_string(::getpid()));
+  return std::filesystem::path(path.string() + kTemporaryMark + std::to_string(::getpid()));
 }
 
 void write_file_atomically(const std::filesystem::path& path, std::string_view contents) {
@@ -108,9 +111,10 @@ namespace {
 
 // Whether a file name is that of a temporary file of write_file_atomically: "<name>.tmp.<pid>".
 bool is_atomic_temporary(const std::string& name) {
-  const std::size_t mark = name.rfind(".tmp.");
-  if (mark == std::string::npos || mark == 0 || mark + 5 == name.size()) return false;
-  for (std::size_t i = mark + 5; i < name.size(); ++i)
+  const std::size_t mark = name.rfind(kTemporaryMark);
+  const std::size_t digits = mark + kTemporaryMark.size();
+  if (mark == std::string::npos || mark == 0 || digits == name.size()) return false;
+  for (std::size_t i = digits; i < name.size(); ++i)
     if (name[i] < '0' || name[i] > '9') return false;
   return true;
 }

@@ -21,6 +21,11 @@ std::string num_text(double v) {
   return t;
 }
 
+// Whether a picture can place and draw a point of this position and radius.
+bool drawable(const Vec3& pos, double radius) {
+  return pos.allFinite() && std::isfinite(radius) && radius >= 0.0;
+}
+
 // Refuses point `what` (e.g. "cell 3 (line 6)") unless its position and radius can be drawn.
 void check_point(const std::string& origin, const std::string& what, const Vec3& pos,
                  double radius) {
@@ -37,8 +42,7 @@ void check_point(const std::string& origin, const std::string& what, const Vec3&
 void require_drawable_cells(const CellFrame& cells, const std::string& origin,
                             std::size_t first_row_line) {
   for (std::size_t i = 0; i < cells.size(); ++i) {
-    if (cells.pos[i].allFinite() && std::isfinite(cells.radius[i]) && cells.radius[i] >= 0.0)
-      continue;
+    if (drawable(cells.pos[i], cells.radius[i])) continue;
     std::string what = "cell " + std::to_string(i);
     if (first_row_line != 0) what += " (line " + std::to_string(first_row_line + i) + ")";
     check_point(origin, what, cells.pos[i], cells.radius[i]);
@@ -48,7 +52,7 @@ void require_drawable_cells(const CellFrame& cells, const std::string& origin,
 void require_drawable_meshes(const MeshFrame& meshes, const std::string& origin) {
   for (std::size_t p = 0; p < meshes.points.size(); ++p) {
     const double r = p < meshes.point_radius.size() ? meshes.point_radius[p] : 0.0;
-    if (meshes.points[p].allFinite() && std::isfinite(r) && r >= 0.0) continue;
+    if (drawable(meshes.points[p], r)) continue;
     check_point(origin, "adipocyte point " + std::to_string(p), meshes.points[p], r);
   }
 }

@@ -10,8 +10,15 @@
 namespace invasim {
 
 namespace {
+
 constexpr int kStepDigits = 9;
+
+// A series' ParaView index: DIR/<kind>.pvd.
+std::filesystem::path index_path(const std::filesystem::path& dir, const std::string& kind) {
+  return dir / (kind + ".pvd");
 }
+
+}  // namespace
 
 std::string SnapshotWriter::frame_file_name(const std::string& kind, std::uint64_t step,
                                             const std::string& extension) {
@@ -50,7 +57,7 @@ bool SnapshotWriter::is_own_frame(const std::string& kind, const std::string& fi
 }
 
 void SnapshotWriter::load_series(Series& s) {
-  const std::filesystem::path pvd = dir_ / (s.kind + ".pvd");
+  const std::filesystem::path pvd = index_path(dir_, s.kind);
   std::error_code ec;
   if (!std::filesystem::exists(pvd, ec)) return;
   s.entries = read_pvd(pvd);
@@ -61,27 +68,23 @@ void SnapshotWriter::load_series(Series& s) {
   if (s.entries.size() != before) write_file_atomically(pvd, pvd_text(s.entries));
 }
 
+bool SnapshotWriter::drop_steps_from(Series& s, std::uint64_t first) {
+  return std::erase_if(s.entries, [&](const PvdEntry& e) {
+           const std::int64_t step = step_of_file_name(e.file);
+           return step >= 0 && std::uint64_t(step) >= first;
+         }) > 0;
+}
+
 void SnapshotWriter::add_to_series(Series& s, const Frame& frame, const std::string& file) {
-  // Drop entries of the same or later steps (a restart from an earlier checkpoint); entries
-  // whose file name encodes no step are kept.
-  std::erase_if(s.entries, [&](const PvdEntry& e) {
-    const std::int64_t step = step_of_file_name(e.file);
-    return step >= 0 && std::uint64_t(step) >= frame.step;
-  });
+  drop_steps_from(s, frame.step);  // a restart from an earlier checkpoint
   s.entries.push_back({frame.time, file});
-  write_file_atomically(dir_ / (s.kind + ".pvd"), pvd_text(s.entries));
+  write_file_atomically(index_path(dir_, s.kind), pvd_text(s.entries));
 }
 
 void SnapshotWriter::forget_after(std::uint64_t step) {
-  for (Series* s : {&spheres_, &adipocytes_}) {
-    const std::size_t before = s->entries.size();
-    std::erase_if(s->entries, [&](const PvdEntry& e) {
-      const std::int64_t frame = step_of_file_name(e.file);
-      return frame >= 0 && std::uint64_t(frame) > step;
-    });
-    if (s->entries.size() != before)
-      write_file_atomically(dir_ / (s->kind + ".pvd"), pvd_text(s->entries));
-  }
+  for (Series* s : {&spheres_, &adipocytes_})
+    if (drop_steps_from(*s, step + 1))
+      write_file_atomically(index_path(dir_, s->kind), pvd_text(s->entries));
 }
 
 SnapshotFiles SnapshotWriter::write(const System& sys) {

@@ -67,6 +67,9 @@ class SnapshotWriter {
   // Whether a .pvd entry names a frame file of this series: "<kind>_<step>.vtp", a regular
   // file (not a link) in this directory.
   bool is_own_frame(const std::string& kind, const std::string& file) const;
+  // Drops the entries of steps >= first (entries whose file name encodes no step are kept);
+  // returns whether any was dropped.
+  static bool drop_steps_from(Series& s, std::uint64_t first);
   void add_to_series(Series& s, const Frame& frame, const std::string& file);
   void append_trajectory(const Frame& frame);
 

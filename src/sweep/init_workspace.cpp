@@ -10,6 +10,7 @@
 #include <limits>
 #include <set>
 #include <string>
+#include <unordered_set>
 
 #include "core/errors.hpp"
 #include "lua/names.hpp"
@@ -45,6 +46,21 @@ void remove_stale(const fs::path& dir, const std::string& prefix) {
     if (pid != ::getpid() && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)
       fs::remove_all(entry.path());
   }
+}
+
+// The spec's shared preparation as the configuration records it (null without one).
+Json prep_of(const SweepSpec& spec) {
+  return spec.has_prep ? Json{{"set", spec.prep_set}} : Json(nullptr);
+}
+
+// The spec file as the configuration records it: absolute and normalised.
+std::string recorded_spec_path(const SweepSpec& spec) {
+  return fs::absolute(spec.path).lexically_normal().string();
+}
+
+// A job directory's document before its run: pending.
+void write_pending(const fs::path& dir) {
+  write_document(dir, Json{{"status", "pending"}});
 }
 
 // Refuses a spec with more points than `max_points`, before anything is made or written.
@@ -96,7 +112,7 @@ std::set<std::string> point_keys(const SweepSpec& spec) {
 void check_same_sweep(const SweepSpec& spec, const Json& old, const fs::path& root,
                       const std::vector<std::string>& ids) {
   const std::string old_spec = old.value("spec", std::string("its first spec"));
-  const bool same_file = old_spec == fs::absolute(spec.path).lexically_normal().string();
+  const bool same_file = old_spec == recorded_spec_path(spec);
   const std::string refused = lua::cat(
       "sweep init: ", root.string(), " holds the points of ", old_spec, ", another sweep than ",
       spec.path, same_file ? " as given now (--set, --tiny and --take change it)" : "", ": ");
@@ -106,7 +122,7 @@ void check_same_sweep(const SweepSpec& spec, const Json& old, const fs::path& ro
   if (old.at("protocol") != spec.protocol)
     fail_input(refused, "its protocol is ", old.at("protocol").get<std::string>(), ", not ",
                spec.protocol, advice);
-  const Json prep = spec.has_prep ? Json{{"set", spec.prep_set}} : Json(nullptr);
+  const Json prep = prep_of(spec);
   const Json old_prep = old.contains("prep") ? old.at("prep") : Json(nullptr);
   if (python_dumps(old_prep) != python_dumps(prep))
     fail_input(refused, "the shared preparation differs from the one its points started from (",
@@ -140,13 +156,13 @@ void check_same_sweep(const SweepSpec& spec, const Json& old, const fs::path& ro
 void write_job(const fs::path& dir, const Json& point) {
   fs::create_directories(dir);
   write_file(dir / "signac_statepoint.json", python_dumps(point));
-  write_document(dir, Json{{"status", "pending"}});
+  write_pending(dir);
 }
 
 Json config_of(const SweepSpec& spec, const std::vector<std::string>& ids) {
   return {{"protocol", spec.protocol},
-          {"spec", fs::absolute(spec.path).lexically_normal().string()},
-          {"prep", spec.has_prep ? Json{{"set", spec.prep_set}} : Json(nullptr)},
+          {"spec", recorded_spec_path(spec)},
+          {"prep", prep_of(spec)},
           {"points", ids}};
 }
 
@@ -158,10 +174,11 @@ InitReport create(const SweepSpec& spec, const fs::path& root) {
   fs::create_directories(tmp / "workspace");
   write_file(tmp / ".signac" / "config", "schema_version = 2\n");
   InitReport report;
-  std::vector<std::string> ids;
+  std::vector<std::string> ids;  // in the spec's order, for the configuration
+  std::unordered_set<std::string> written;
   for (const Json& point : spec.points()) {
     const std::string id = signac_id(point);
-    if (std::find(ids.begin(), ids.end(), id) != ids.end()) continue;
+    if (!written.insert(id).second) continue;
     write_job(tmp / "workspace" / id, point);
     ids.push_back(id);
     ++report.added;
@@ -169,7 +186,7 @@ InitReport create(const SweepSpec& spec, const fs::path& root) {
   }
   if (spec.has_prep) {
     fs::create_directories(tmp / "prep");
-    write_document(tmp / "prep", Json{{"status", "pending"}});
+    write_pending(tmp / "prep");
   }
   write_file(tmp / kConfig, config_of(spec, ids).dump(2) + "\n");
   fs::rename(tmp, root);  // root is absent or an empty directory
@@ -182,41 +199,43 @@ InitReport grow(const SweepSpec& spec, const fs::path& root, std::vector<std::st
   const fs::path staging = root / (kStagingPrefix + std::to_string(::getpid()));
   fs::remove_all(staging);
   InitReport report;
-  std::vector<std::string> staged;
+  std::unordered_set<std::string> listed_ids(ids.begin(), ids.end());
+  std::vector<std::string> staged;  // in the spec's order
+  std::unordered_set<std::string> staged_ids;
   for (const Json& point : spec.points()) {
     const std::string id = signac_id(point);
     const fs::path dir = root / "workspace" / id;
-    const bool listed = std::find(ids.begin(), ids.end(), id) != ids.end();
+    const bool listed = listed_ids.count(id) > 0;
     if (listed && fs::exists(dir / "signac_statepoint.json")) {
       ++report.kept;
       continue;
     }
-    if (std::find(staged.begin(), staged.end(), id) != staged.end()) continue;
+    if (staged_ids.count(id)) continue;
     if (fs::exists(dir)) {
       // Moved in by an init killed before it wrote the configuration (or listed without a
       // state point): list it, keeping what it holds.
       if (!fs::exists(dir / "signac_statepoint.json"))
         write_file(dir / "signac_statepoint.json", python_dumps(point));
-      if (!fs::exists(dir / "signac_job_document.json"))
-        write_document(dir, Json{{"status", "pending"}});
-      if (!listed) ids.push_back(id);
+      if (!fs::exists(dir / "signac_job_document.json")) write_pending(dir);
+      if (listed_ids.insert(id).second) ids.push_back(id);
       ++report.added;
       continue;
     }
     write_job(staging / id, point);
     staged.push_back(id);
+    staged_ids.insert(id);
   }
   fs::create_directories(root / "workspace");
   for (const auto& id : staged) {
     fs::rename(staging / id, root / "workspace" / id);
-    if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
+    if (listed_ids.insert(id).second) ids.push_back(id);
     ++report.added;
     kill_after_jobs_hook(report.added);
   }
   fs::remove_all(staging);
   if (spec.has_prep && !fs::exists(root / "prep" / "signac_job_document.json")) {
     fs::create_directories(root / "prep");
-    write_document(root / "prep", Json{{"status", "pending"}});
+    write_pending(root / "prep");
   }
   write_file(root / kConfig, config_of(spec, ids).dump(2) + "\n");
   return report;

@@ -72,7 +72,7 @@ check(citations.statement_problems(list(ids.values()), count, figures) == [],
       citations.statement_problems(list(ids.values()), count, figures))
 good = {"id": "fig5_x", "figure": "fig5", "text": "t", "source": "Results; Fig. 5(a)"}
 check(citations.statement_problems([good], count, figures) == [])
-planted = [  # (statement, a word of the problem it must raise)
+planted = [  # (statement with a bad source or id, a word of the problem it must raise)
     (dict(good, source="MODEL.md, figure table, Fig. 5"), "'MODEL.md', outside the repository"),
     (dict(good, source="../shared/notes, Fig. 5"), "'../', outside the repository"),
     (dict(good, source="/work/paper.txt, Fig. 5"), "'/work/', outside the repository"),
@@ -99,7 +99,7 @@ with open(os.path.join(work, "records", "fig3.json"), "w") as f:
 page = os.path.join(work, "page.md")
 try:
     document.render(os.path.join(work, "records"), None, page)
-    check(False, "a page citing MODEL.md was written")
+    check(False, "a page citing a file outside the repository was written")
 except runs.InputError as e:
     check("not written: 1 citation problem" in str(e) and "statement fig3_x: source" in str(e), e)
 check(not os.path.exists(page))

@@ -89,7 +89,7 @@ print("validation_tiny: document and %d figure records complete" % 8)
 PY
 # Citations: every statement (the paper file and the figure records) cites its place in the
 # paper and the paper's own figure numbers, and no text of the page cites a path outside the
-# repository (../, /work/, shared/, MODEL.md). The generator refuses such a page; this checks
+# repository (the patterns of scripts/validation_lib/citations.py, OUTSIDE). The generator refuses such a page; this checks
 # the page it wrote, independently of it.
 /usr/bin/python3 - "$repo/scripts" "$work" <<'PY' || fail "a statement or the page cites outside the paper and the repository"
 import glob, json, os, sys
