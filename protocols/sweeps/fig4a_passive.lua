@@ -1,6 +1,7 @@
 -- The paper's Fig. 4a at reduced scale: passive, repulsive cancer cells (f0 = 0, beta = 0) at
--- P = 1.3e-3 over a wide range of bath temperatures k_B T/(P sigma^3) = kT/1.3e-3 from 0.003
--- to 3, two replicates each, all starting from one compressed tissue (the shared
+-- P = 1.3e-3 over a wide range of temperatures k_B T/(P sigma^3) from 0.003 to 3 in the paper's
+-- convention (twice the equipartition T_c, docs/model.md "Equations of motion": the bath is
+-- kT = that x P / 2), two replicates each, all starting from one compressed tissue (the shared
 -- preparation). About 10 minutes on 2 cores (docs/sweeps.md):
 --   invasim sweep init protocols/sweeps/fig4a_passive.lua
 --   invasim sweep run out/fig4a_passive
@@ -10,8 +11,8 @@ return {
   set = { system = "reduced", f0 = 0.0, beta = 0.0, P = 1.3e-3,
           quench_steps = 20000, steps = 250000, every = 1000,
           snapshot_every = 0, checkpoint_every = 10000 },
-  -- kT/(P sigma^3) = 0.003, 0.01, 0.03, 0.1, 0.3, 1, 3
-  product = { kT = { 3.9e-6, 1.3e-5, 3.9e-5, 1.3e-4, 3.9e-4, 1.3e-3, 3.9e-3 } },
+  -- 2 kT/(P sigma^3) = 0.003, 0.01, 0.03, 0.1, 0.3, 1, 3
+  product = { kT = { 1.95e-6, 6.5e-6, 1.95e-5, 6.5e-5, 1.95e-4, 6.5e-4, 1.95e-3 } },
   seeds = { 1, 2 },
   -- the compression only: the points skip it (--from)
   prep = { set = { quench_steps = 0, steps = 0 } },
