@@ -8,6 +8,7 @@
 local iv = require("invasim")
 local parameters = require("lib.parameters")
 local stage = require("lib.stages")
+local motion = require("lib.motion")
 local log = require("lib.log")
 
 local p = iv.params(parameters.declarations())
@@ -21,9 +22,7 @@ local tissue = stage.init{ N_a = N_a, N_c = N_c, L0 = L0, seed = p.seed, start =
                            alpha = p.alpha, beta = p.beta }
 stage.compress(tissue, { to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.final_ftol,
                          cohesion = p.cohesive_compression, out = out, from = iv.from })
-stage.quench(tissue, { P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p, gamma = p.gamma,
-                       vertex_bath = p.vertex_bath, vertex_gamma = p.vertex_gamma, dt = p.dt,
-                       steps = p.quench_steps })
+stage.quench(tissue, motion.quench_options(p, { steps = p.quench_steps }))
 
 -- Production: thermo columns only, averaged over the whole run (the quench equilibrates).
 local result = stage.production(tissue, {

@@ -11,6 +11,7 @@
 local iv = require("invasim")
 local parameters = require("lib.parameters")
 local stage = require("lib.stages")
+local motion = require("lib.motion")
 
 -- Parameters: declared with their ranges in lib/parameters.lua; --set changes them.
 local p = iv.params(parameters.declarations())
@@ -34,9 +35,7 @@ stage.compress(tissue, { to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.
 
 -- Quench: the left wall becomes a piston at pressure P; the cells become active (f0, tau_p)
 -- or thermal (kT), the adipocyte vertices get their bath.
-stage.quench(tissue, { P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p, gamma = p.gamma,
-                       vertex_bath = p.vertex_bath, vertex_gamma = p.vertex_gamma, dt = p.dt,
-                       steps = p.quench_steps })
+stage.quench(tissue, motion.quench_options(p, { steps = p.quench_steps }))
 
 -- Production: A_t (Voronoi), temperatures and wall pressures every `every` steps, the cells'
 -- correlators, shapes at the end; snapshots and checkpoints into the run directory.

@@ -14,6 +14,7 @@
 local iv = require("invasim")
 local parameters = require("lib.parameters")
 local stage = require("lib.stages")
+local motion = require("lib.motion")
 
 -- Parameters: the shared ones (lib/parameters.lua) and this protocol's own.
 local p = iv.params(parameters.merge{
@@ -21,7 +22,7 @@ local p = iv.params(parameters.merge{
   K_ecm = { 0.04, range = "[0, inf)", unit = "eps_c/sigma^2", help = "ECM tether stiffness (0: no tethers)" },
   lambda = { 0.0, range = "[0, 1]", help = "tether heterogeneity" },
   box = { "pressure", choices = { "pressure", "fixed" }, help = "after the rescale: pressure (the left wall a piston at P, docs/model.md protocol step 6) or fixed (both walls stay: the box keeps the rescaled size)" },
-  f0 = { 0.012, range = "[0, inf)", unit = "eps_c/sigma", help = "self-propulsion force (0.012: k_B T_c/(P sigma^3) ~ 0.37 in the paper's convention, docs/model.md)" },
+  f0 = { 0.0034, range = "[0, inf)", unit = "eps_c/sigma", help = "self-propulsion force (0.0034 with the default background: 2 k_B T_c/(P sigma^3) = 0.37-0.39 over phi_a = 0.45-0.85, the paper's Fig. 8 value, docs/model.md)" },
 })
 parameters.validate(p)
 local N_a, N_c, L0 = parameters.size(p)
@@ -46,9 +47,8 @@ if p.K_ecm > 0 then
 end
 
 -- Quench, production and report, as in invasion.lua; then the measured phi_a beside the target.
-stage.quench(tissue, { P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p, gamma = p.gamma,
-                       vertex_bath = p.vertex_bath, vertex_gamma = p.vertex_gamma, dt = p.dt,
-                       steps = p.quench_steps, barostat = p.box == "pressure" })
+stage.quench(tissue, motion.quench_options(p, { steps = p.quench_steps,
+                                                barostat = p.box == "pressure" }))
 local result = stage.production(tissue, { steps = p.steps, every = p.every,
                                           correlate_every = p.correlate_every,
                                           snapshot_every = p.snapshot_every,

@@ -7,6 +7,7 @@
 local iv = require("invasim")
 local parameters = require("lib.parameters")
 local stage = require("lib.stages")
+local motion = require("lib.motion")
 
 -- Parameters: the shared ones (lib/parameters.lua) and this protocol's own.
 local p = iv.params(parameters.merge{
@@ -35,12 +36,8 @@ stage.tether(tissue, { K = p.K_ecm, mean_degree = p.mean_degree })
 stage.heterogeneity(tissue, { lambda = p.lambda })
 
 -- Quench (piston at P, the cells' motion), then a further equilibration with the same motion.
-stage.quench(tissue, { P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p, gamma = p.gamma,
-                       vertex_bath = p.vertex_bath, vertex_gamma = p.vertex_gamma, dt = p.dt,
-                       steps = p.quench_steps })
-stage.quench(tissue, { label = "equilibrate", P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p,
-                       gamma = p.gamma, vertex_bath = p.vertex_bath, vertex_gamma = p.vertex_gamma,
-                       dt = p.dt, steps = p.equilibrate_steps })
+stage.quench(tissue, motion.quench_options(p, { steps = p.quench_steps }))
+stage.quench(tissue, motion.quench_options(p, { label = "equilibrate", steps = p.equilibrate_steps }))
 
 -- Production and report, as in invasion.lua.
 local result = stage.production(tissue, { steps = p.steps, every = p.every,

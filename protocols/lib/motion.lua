@@ -20,19 +20,27 @@ function M.check_vertex_bath(bath)
   return "unknown vertex bath; choose one of: damped, langevin"
 end
 
--- The vertices' method for options {vertex_bath, vertex_gamma, kT}.
+-- The langevin vertices' noise temperature: vertex_kT, or the background kT when it is 0.
+function M.vertex_kT(o)
+  if o.vertex_kT and o.vertex_kT > 0 then return o.vertex_kT end
+  return o.kT
+end
+
+-- The vertices' method for options {vertex_bath, vertex_gamma, vertex_kT, kT}.
 function M.vertex_method(group, o)
   if o.vertex_bath == "langevin" then
-    return iv.Langevin{ group = group, gamma = o.vertex_gamma, kT = o.kT }
+    return iv.Langevin{ group = group, gamma = o.vertex_gamma, kT = M.vertex_kT(o) }
   end
   return iv.Damped{ group = group, gamma = o.vertex_gamma }
 end
 
 function M.describe_vertices(o)
   if o.vertex_bath == "langevin" then
-    return string.format("Langevin vertices (gamma = %g, kT = %g)", o.vertex_gamma, o.kT)
+    return string.format("Langevin vertices (gamma = %g, kT = %g, mass = %g)", o.vertex_gamma,
+                         M.vertex_kT(o), o.vertex_mass or 1)
   end
-  return string.format("damped vertices (gamma = %g, no noise)", o.vertex_gamma)
+  return string.format("damped vertices (gamma = %g, mass = %g, no noise)", o.vertex_gamma,
+                       o.vertex_mass or 1)
 end
 
 -- The kind of method M.cell_method would make: "Active", "Langevin" or "Damped".
@@ -48,6 +56,34 @@ function M.cell_method(group, o)
     return iv.Langevin{ group = group, gamma = o.gamma, kT = o.kT }
   end
   return iv.Damped{ group = group, gamma = o.gamma }
+end
+
+-- The free-particle temperature m <v^2>/3 of an active cell without noise (m = 1):
+-- (f0/gamma)^2 tau_p / (3 (tau_p + tau_g)), tau_g = m/gamma (docs/model.md, Vertex bath).
+function M.active_temperature(f0, tau_p, gamma)
+  if f0 == 0 then return 0.0 end
+  local tau_g = 1.0 / gamma
+  return (f0 / gamma) ^ 2 * tau_p / (3 * (tau_p + tau_g))
+end
+
+-- The background temperature of a protocol's parameters p: for active cells with
+-- background_factor > 0, that factor times their free-particle active temperature (the cells'
+-- thermal noise and the langevin vertices' bath); otherwise kT.
+function M.background_kT(p)
+  if p.f0 > 0 and (p.background_factor or 0) > 0 then
+    return p.background_factor * M.active_temperature(p.f0, p.tau_p, p.gamma)
+  end
+  return p.kT
+end
+
+-- The quench options of a protocol's parameters p (the cells' motion, the vertices' bath, the
+-- pressure and the time step), with `extra` (steps, label, barostat, ...) on top.
+function M.quench_options(p, extra)
+  local o = { P = p.P, kT = M.background_kT(p), f0 = p.f0, tau_p = p.tau_p, gamma = p.gamma, dt = p.dt,
+              vertex_bath = p.vertex_bath, vertex_gamma = p.vertex_gamma,
+              vertex_mass = p.vertex_mass, vertex_kT = p.vertex_kT }
+  for k, v in pairs(extra or {}) do o[k] = v end
+  return o
 end
 
 function M.describe(o)

@@ -30,12 +30,15 @@ function M.declarations()
     P = { 1.3e-3, range = "[0, inf)", unit = "eps_c/sigma^3", help = "pressure on the left wall" },
     beta = { 1e-2, range = "[0, inf)", help = "cancer-cell cohesion depth (0: repulsive; below alpha)" },
     alpha = { 0.2, range = "[0, inf)", help = "cancer-cell cohesion range" },
-    f0 = { 0.01, range = "[0, inf)", unit = "eps_c/sigma", help = "self-propulsion force (0: passive cells)" },
+    f0 = { 0.0027, range = "[0, inf)", unit = "eps_c/sigma", help = "self-propulsion force (0: passive cells; 0.0027 with the default background: 2 k_B T_c/(P sigma^3) ~ 0.3, the paper's Fig. 4b point)" },
     tau_p = { 25.0, range = "[0, inf)", unit = "tau", help = "persistence time of the active orientation (0: uncorrelated)" },
-    kT = { 0.0, range = "[0, inf)", unit = "eps_c", help = "thermal noise temperature of the cells" },
+    kT = { 0.0, range = "[0, inf)", unit = "eps_c", help = "background temperature of the cells and the langevin vertices (passive cells: their bath; active cells: only with background_factor = 0)" },
+    background_factor = { 3.0, range = "[0, inf)", help = "active cells (f0 > 0): background temperature = this x the activity's free-particle temperature (f0/gamma)^2 tau_p/(3 (tau_p + m/gamma)) (docs/model.md, Vertex bath); 0: the background is kT" },
     gamma = { 0.2, range = "[0, inf)", unit = "sqrt(m eps_c)/sigma", help = "damping coefficient of the cancer cells" },
     vertex_bath = { "langevin", choices = { "langevin", "damped" }, help = "bath of the adipocyte vertices and the piston: langevin (FDT noise at kT) or damped (no noise)" },
     vertex_gamma = { 0.2, range = "[0, inf)", unit = "sqrt(m eps_c)/sigma", help = "damping coefficient of the adipocyte vertices" },
+    vertex_mass = { 1.0, range = "(0, inf)", unit = "m", help = "mass of each adipocyte vertex (the cells have m = 1)" },
+    vertex_kT = { 0.0, range = "[0, inf)", unit = "eps_c", help = "noise temperature of langevin vertices (0: the background kT)" },
     eps_v = { 1e3, range = "[0, inf)", unit = "eps_c", help = "adipocyte volume stiffness" },
     eps_a = { 1.0, range = "[0, inf)", unit = "eps_c", help = "adipocyte face-area stiffness" },
     start = { "demixed", choices = { "demixed", "mixed" }, help = "initial placement: demixed (cells left of the adipocytes) or mixed (both over the whole box)" },
@@ -85,6 +88,17 @@ function M.validate(p)
   if p.quench_steps and p.steps and p.steps > math.maxinteger - p.quench_steps then
     error(string.format("steps: quench_steps + steps = %d + %d overflows the step counter " ..
                         "(at most %d steps in a run)", p.quench_steps, p.steps, math.maxinteger), 0)
+  end
+  -- Active cells take their background temperature from background_factor unless it is 0.
+  if p.f0 > 0 and p.background_factor > 0 and p.gamma == 0 then
+    error(string.format("background_factor = %g needs gamma > 0 (the free-particle active " ..
+                        "temperature (f0/gamma)^2 tau_p/(3 (tau_p + m/gamma)) is infinite at gamma = 0): " ..
+                        "--set background_factor=0 or a gamma > 0", p.background_factor), 0)
+  end
+  if p.f0 > 0 and p.background_factor > 0 and p.kT > 0 then
+    error(string.format("kT = %g and background_factor = %g both set the active cells' background " ..
+                        "temperature: --set background_factor=0 to give kT yourself, or leave kT " ..
+                        "at 0 (docs/model.md, Vertex bath)", p.kT, p.background_factor), 0)
   end
   require("lib.model_limits").check(p, N_a, N_c, L0)
 end

@@ -20,6 +20,8 @@ local spec = {
   tau_p = 25.0, gamma = method.gamma,
   vertex_bath = "langevin",   -- "langevin" (noise at kT, vertices and piston) or "damped"
   vertex_gamma = method.gamma,  -- the vertices' damping coefficient
+  vertex_mass = 1.0,            -- each vertex's mass (the cells have m = 1)
+  vertex_kT = 0.0,              -- the langevin vertices' noise temperature (0: the background kT)
   dt = iv.Dynamics.defaults.dt, steps = { "number", default = 20000, range = "[0, inf)" },
   wall_mass = iv.Dynamics.pressure_wall.defaults.mass, wall_gamma = { "number" },  -- default: gamma
   barostat = true,      -- false: both walls stay fixed (the box keeps its size; P unused)
@@ -34,6 +36,7 @@ return function(tissue, opts)
   local sys = tissue.sys
   local dyn = tissue.dyn
   if not dyn then
+    sys:set_mass{ group = tissue.vertices, mass = o.vertex_mass }
     dyn = iv.Dynamics{ dt = o.dt }
     tissue.vertex_method = dyn:add(motion.vertex_method(tissue.vertices, o))
     tissue.cell_method = dyn:add(motion.cell_method(tissue.cells, o))
@@ -55,7 +58,7 @@ return function(tissue, opts)
       if o.vertex_bath == "langevin" then dyn:set_wall_kT(o.kT) end
     end
     tissue.vertex_method:set{ gamma = o.vertex_gamma }
-    if vertex_kind == "Langevin" then tissue.vertex_method:set{ kT = o.kT } end
+    if vertex_kind == "Langevin" then tissue.vertex_method:set{ kT = motion.vertex_kT(o) } end
     tissue.cell_method:set{ gamma = o.gamma }
     if tissue.cell_method:kind() ~= motion.kind(o) then
       error(o.label .. ": cannot change the kind of cell motion of an existing Dynamics (" ..

@@ -1,25 +1,28 @@
 -- The paper's Fig. 5 at reduced scale: beta in {1e-3, 1e-2} x tau_p in {0.02, 25, 2500}, six
 -- self-propulsion forces f0 per tau_p (zipped with it: a persistence of 0.02 needs about 15
 -- times the force for the same measured temperature, k_B T_c ~ f0^2 tau_p/(tau_p + tau_g)),
--- spanning k_B T_c/(P sigma^3) ~ 0.005 to 3, two seeds (the fit of a and b needs replicates
+-- spanning 2 k_B T_c/(P sigma^3) ~ 0.01 to 3 (the paper's convention), two seeds (the fit of a and b needs replicates
 -- for honest errors, docs/sweeps_analysis.md; a third did not fit the campaign's budget), from
 -- one compressed tissue. The passive
 -- curve of the figure (beta = 1e-2, f0 = 0) is fig5_passive.lua.
+-- Active cells carry the protocols' default background temperature (background_factor = 3:
+-- T_0 = 3 x the free-particle active temperature, docs/model.md "Vertex bath"), so f0 sets
+-- both; the measured 2 k_B T_c/(P sigma^3) is about 8 T_act/P = 8 (f0/gamma)^2 tau_p/(3 (tau_p + tau_g) P).
 --   invasim sweep init protocols/sweeps/fig5_active.lua
 --   invasim sweep run out/fig5_active --jobs 2
 --   scripts/validation.py figure fig5 out/fig5_active out/fig5_passive -o docs/validation
 return {
   protocol = "../invasion.lua",
-  set = { system = "reduced", P = 1.3e-3, kT = 0.0,
+  set = { system = "reduced", P = 1.3e-3,
           quench_steps = 20000, steps = 250000, every = 1000,
           snapshot_every = 0, checkpoint_every = 20000 },
   product = { beta = { 1e-3, 1e-2 } },
   zip = { { tau_p = { 25.0, 25.0, 25.0, 25.0, 25.0, 25.0,
                       2500.0, 2500.0, 2500.0, 2500.0, 2500.0, 2500.0,
                       0.02, 0.02, 0.02, 0.02, 0.02, 0.02 },
-            f0 = { 0.003, 0.0045, 0.0075, 0.0105, 0.0125, 0.02,
-                   0.003, 0.0045, 0.0065, 0.0095, 0.0115, 0.02,
-                   0.045, 0.065, 0.11, 0.15, 0.18, 0.29 } } },
+            f0 = { 0.00048, 0.00084, 0.0015, 0.0027, 0.0048, 0.0084,
+                   0.00044, 0.00077, 0.0014, 0.0024, 0.0044, 0.0077,
+                   0.007, 0.012, 0.022, 0.038, 0.065, 0.1 } } },
   seeds = { 1, 2 },
   prep = { set = { quench_steps = 0, steps = 0 } },
   -- the CI size: three values per axis, so that the sigmoid fits run in CI too

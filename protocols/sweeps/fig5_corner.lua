@@ -2,18 +2,18 @@
 -- beta in {1e-3, 1e-2} and tau_p in {25, 250}; along each curve the self-propulsion f0 sets
 -- the measured temperature k_B T_c/(P sigma^3) (the paper's knob for active runs,
 -- docs/model.md), all from one compressed tissue (the shared preparation). Nine f0 values
--- from 0.002 to 0.02, denser between 0.0095 and 0.014 where the cohesive (beta = 1e-2) cells
--- melt, x 3 seeds = 108 points, about 60 minutes on 2 cores (docs/sweeps.md):
+-- from 0.0005 to 0.0085 (2 k_B T_c/(P sigma^3) ~ 0.01 to 3), denser between 0.0012 and
+-- 0.0035 where the cohesive (beta = 1e-2) cells melt, x 3 seeds = 108 points, about 60 minutes on 2 cores (docs/sweeps.md):
 --   invasim sweep init protocols/sweeps/fig5_corner.lua
 --   invasim sweep run out/fig5_corner
 --   invasim sweep collect out/fig5_corner -o out/fig5_corner/results.csv
 return {
   protocol = "../invasion.lua",
-  set = { system = "reduced", P = 1.3e-3, kT = 0.0,
+  set = { system = "reduced", P = 1.3e-3,
           quench_steps = 20000, steps = 250000, every = 1000,
           snapshot_every = 0, checkpoint_every = 10000 },
   product = { beta = { 1e-3, 1e-2 }, tau_p = { 25.0, 250.0 },
-              f0 = { 0.002, 0.003, 0.0045, 0.0065, 0.0095, 0.011, 0.0125, 0.014, 0.02 } },
+              f0 = { 0.0005, 0.0008, 0.0012, 0.0017, 0.0022, 0.0027, 0.0035, 0.0055, 0.0085 } },
   seeds = { 1, 2, 3 },
   prep = { set = { quench_steps = 0, steps = 0 } },
   tiny = { set = { quench_steps = 100, steps = 400, every = 100, checkpoint_every = 0 },

@@ -3,16 +3,19 @@
 -- not yet rising sigmoids). The same beta, f0 and seeds; validation.py's fig5 takes this
 -- workspace as its third and uses these curves instead of fig5_active's (which it draws
 -- hollow for comparison).
+-- Active cells carry the protocols' default background temperature (background_factor = 3:
+-- T_0 = 3 x the free-particle active temperature, docs/model.md "Vertex bath"), so f0 sets
+-- both; the measured 2 k_B T_c/(P sigma^3) is about 8 T_act/P = 8 (f0/gamma)^2 tau_p/(3 (tau_p + tau_g) P).
 --   invasim sweep init protocols/sweeps/fig5_long.lua
 --   invasim sweep run out/fig5_long --jobs 2
 --   scripts/validation.py figure fig5 out/fig5_active out/fig5_passive out/fig5_long -o docs/validation
 return {
   protocol = "../invasion.lua",
-  set = { system = "reduced", P = 1.3e-3, kT = 0.0, tau_p = 2500.0,
+  set = { system = "reduced", P = 1.3e-3, tau_p = 2500.0,
           quench_steps = 20000, steps = 1000000, every = 1000,
           snapshot_every = 0, checkpoint_every = 20000 },
   product = { beta = { 1e-3, 1e-2 },
-              f0 = { 0.003, 0.0045, 0.0065, 0.0095, 0.0115, 0.02 } },
+              f0 = { 0.00044, 0.00077, 0.0014, 0.0024, 0.0044, 0.0077 } },
   seeds = { 1, 2 },
   prep = { set = { quench_steps = 0, steps = 0 } },
   -- the CI size: three values per axis, so that the sigmoid fits run in CI too

@@ -1,16 +1,17 @@
 -- The paper's Fig. 7a at reduced scale: tethered tissue (protocols/tethered.lua) at tau_p = 25,
--- beta = 1e-2, K_ecm in {0, 0.01, 0.04, 0.16} x five f0 (k_B T_c/(P sigma^3) ~ 0.02 to 3) x two
+-- beta = 1e-2, K_ecm in {0, 0.01, 0.04, 0.16} x five f0 (2 k_B T_c/(P sigma^3) ~ 0.03 to 3 with
+-- the default background, docs/model.md "Vertex bath") x two
 -- seeds, from one compressed tissue (the tethers are inserted after it, before the quench).
 -- A_n is normalised by the K_ecm = 0 sweep (its plateau below 1 with tethers).
 --   invasim sweep init protocols/sweeps/fig7a_tethered.lua
 --   invasim sweep run out/fig7a_tethered --jobs 2
 return {
   protocol = "../tethered.lua",
-  set = { system = "reduced", beta = 1e-2, tau_p = 25.0, kT = 0.0, P = 1.3e-3,
+  set = { system = "reduced", beta = 1e-2, tau_p = 25.0, P = 1.3e-3,
           quench_steps = 20000, equilibrate_steps = 10000, steps = 250000, every = 1000,
           snapshot_every = 0, checkpoint_every = 20000 },
   product = { K_ecm = { 0.0, 0.01, 0.04, 0.16 },
-              f0 = { 0.0075, 0.0105, 0.0125, 0.014, 0.02 } },
+              f0 = { 0.0008, 0.0017, 0.0027, 0.0045, 0.0085 } },
   seeds = { 1, 2 },
   prep = { set = { quench_steps = 0, equilibrate_steps = 0, steps = 0 } },
   tiny = { set = { quench_steps = 100, equilibrate_steps = 100, steps = 400, every = 100,

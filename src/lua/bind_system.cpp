@@ -12,6 +12,7 @@
 #include "measure/packing.hpp"
 #include "mesh/geometry.hpp"
 #include "run/energies.hpp"
+#include "setup/masses.hpp"
 #include "setup/placement.hpp"
 #include "setup/velocities.hpp"
 
@@ -339,6 +340,20 @@ int l_set_velocities(lua_State* L) {
   return 0;
 }
 
+// sys:set_mass{group = g, mass = m}: the sites of g get mass m (velocities kept); the
+// protocols give the adipocyte vertices their vertex_mass this way before the dynamics starts.
+int l_set_mass(lua_State* L) {
+  Simulation& sim = check<Simulation>(L, 1);
+  Kwargs kw(L, 2, "set_mass");
+  const auto group = kw_group(kw, "group", true);
+  const double mass = kw.number("mass", Range::positive());
+  kw.finish();
+  require_same_system(*group, sim, "set_mass");
+  engine_call("set_mass", [&] { set_masses(sim.system, group->sites, mass); });
+  sim.changed();
+  return 0;
+}
+
 // sys:add(force): appends a force term (Contacts, Walls, Shape, Tethers); returns it.
 int l_add(lua_State* L) {
   auto& sim = check_shared<Simulation>(L, 1);
@@ -412,6 +427,7 @@ const luaL_Reg kMethods[] = {
     {"packing", &lua_wrap<&l_packing>},
     {"temperature", &lua_wrap<&l_temperature>},
     {"set_velocities", &lua_wrap<&l_set_velocities>},
+    {"set_mass", &lua_wrap<&l_set_mass>},
     {"positions", &lua_wrap<&l_positions>},
     {"adipocytes", &lua_wrap<&l_adipocytes>},
     {"add", &lua_wrap<&l_add>},

@@ -9,22 +9,24 @@ local iv = require("invasim")
 local decl = require("lib.parameters").declarations()
 local preset = require("lib.presets").reduced
 local p = iv.params{
-  vertex_bath = decl.vertex_bath[1], vertex_gamma = decl.vertex_gamma[1], seed = 3,
+  vertex_bath = decl.vertex_bath[1], vertex_gamma = decl.vertex_gamma[1],
+  vertex_mass = decl.vertex_mass[1], vertex_kT = decl.vertex_kT[1], seed = 3,
   kT = 3.9e-4, quench_steps = 10000, steps = 40000, every = 50,
 }
 
 local tissue = require("lib.init"){ N_a = preset.N_a, N_c = preset.N_c, L0 = preset.L0, seed = p.seed }
 require("lib.compress")(tissue, { to_phi = 0.72, progress = false })
 require("lib.quench")(tissue, { P = 1.3e-3, kT = p.kT, f0 = 0.0, vertex_bath = p.vertex_bath,
-                                vertex_gamma = p.vertex_gamma, steps = p.quench_steps,
+                                vertex_gamma = p.vertex_gamma, vertex_mass = p.vertex_mass,
+                                vertex_kT = p.vertex_kT, steps = p.quench_steps,
                                 progress = false })
 local result = require("lib.production")(tissue, {
   steps = p.steps, every = p.every, average_fraction = 1.0, interface = false,
   correlate_every = 0, slices_per_body = 0, progress = false,
 })
 local r = result.summary.T_c_over_T_a
-print(string.format("vertex_bath = %s, vertex_gamma = %g: T_c/T_a = %.4f +- %.4f (%d samples), T_c/kT = %.4f",
-                    p.vertex_bath, p.vertex_gamma, r.mean, r.error, r.samples,
+print(string.format("vertex_bath = %s, vertex_gamma = %g, vertex_mass = %g: T_c/T_a = %.4f +- %.4f (%d samples), T_c/kT = %.4f",
+                    p.vertex_bath, p.vertex_gamma, p.vertex_mass, r.mean, r.error, r.samples,
                     result.summary.T_c.mean / p.kT))
 assert(math.abs(r.mean - 1) < 0.02, string.format("FAILED: T_c/T_a = %.4f is not 1 within 2 %%", r.mean))
 assert(r.error > 0 and r.error < 0.005, "FAILED: the error bar " .. r.error .. " is not well below 2 %")

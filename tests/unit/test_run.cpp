@@ -14,6 +14,7 @@
 #include "run/energies.hpp"
 #include "run/operations.hpp"
 #include "run/simulation.hpp"
+#include "setup/masses.hpp"
 #include "setup/velocities.hpp"
 #include "test_support.hpp"
 
@@ -212,6 +213,27 @@ TEST_CASE("Kinetic temperature and Maxwell-Boltzmann velocities", "[run]") {
   CHECK(sys.sites().vel[0] == v0);
   CHECK_THROWS_WITH(set_maxwell_boltzmann(sys, {4000}, 1.0),
                     Catch::Contains("site 4000 is outside [0, 4000)"));
+}
+
+TEST_CASE("set_masses: the group's masses change, velocities and other sites are kept", "[run]") {
+  System sys = test::random_spheres(200, 0.2, false, 5);
+  const auto all = test::all_sites(sys);
+  set_maxwell_boltzmann(sys, all, 0.5);
+  const std::vector<int> half(all.begin(), all.begin() + 100), rest(all.begin() + 100, all.end());
+  const double T_half = temperature(sys, half), T_rest = temperature(sys, rest);
+  const std::vector<Vec3> vel = sys.sites().vel;
+  set_masses(sys, half, 4.5);
+  // The kinetic temperature m <v^2>/3 follows the mass at fixed velocities.
+  CHECK(temperature(sys, half) == Approx(4.5 * T_half).epsilon(1e-12));
+  CHECK(temperature(sys, rest) == T_rest);
+  CHECK(sys.sites().vel == vel);
+  for (int i : half) CHECK(sys.sites().mass[i] == 4.5);
+  for (int i : rest) CHECK(sys.sites().mass[i] == 1.0);
+  CHECK_THROWS_WITH(set_masses(sys, half, 0.0),
+                    Catch::Contains("mass = 0.000000 must be finite and > 0"));
+  CHECK_THROWS_WITH(set_masses(sys, half, std::nan("")), Catch::Contains("must be finite and > 0"));
+  CHECK_THROWS_WITH(set_masses(sys, {200}, 2.0), Catch::Contains("site 200 is outside [0, 200)"));
+  CHECK(sys.sites().mass[0] == 4.5);  // a refused call changes nothing
 }
 
 TEST_CASE("observe_energies names the terms and restores the site forces", "[run]") {
