@@ -134,7 +134,8 @@ def figure(name, workspaces, out, invasim, argv):
             specs.append(os.path.relpath(json.load(f)["spec"], REPO))
     jobs = [j for s in sets if s for j in s]
     steps = sorted(int(j.sp.get("steps", j.scalar("steps"))) for j in jobs)
-    rec.update({"figure": name, "command": command_text(argv), "specs": specs,
+    rec.update({"figure": name, "criteria": verdict.CRITERIA, "command": command_text(argv),
+                "specs": specs,
                 "runs": len(jobs), "steps_range": "%d" % steps[0] if steps[0] == steps[-1]
                 else "%d-%d" % (steps[0], steps[-1])})
     with open(os.path.join(out, name + ".json"), "w") as f:

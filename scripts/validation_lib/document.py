@@ -8,7 +8,7 @@ import os
 from . import citations
 from . import plan as plan_mod
 from .runs import InputError
-from .verdict import DISAGREES, VERDICTS, is_code_check, paper, paper_verdict
+from .verdict import CRITERIA, DISAGREES, VERDICTS, is_code_check, paper, paper_verdict
 
 ORDER = ["fig3", "fig4a", "fig4b", "fig5", "fig6", "fig7a", "fig7b", "fig8", "fig9"]
 # The sweep files (workspaces) of each figure, as scripts/validation.py's FIGURES.
@@ -213,6 +213,12 @@ def render(fig_dir, plan_entries, out_path, ci_size=False, done_entries=None):
         L += ["Sweep%s: %s; %d runs, %s steps per run." % (
             "s" if len(rec["specs"]) > 1 else "", ", ".join("`%s`" % s for s in rec["specs"]),
             rec["runs"], rec["steps_range"]), ""]
+        if rec.get("criteria", 1) < CRITERIA:
+            L += ["**Record from older criteria.** This record was written before the current "
+                  "criteria (Method: one temperature axis, the per-point rows, *not steady*); "
+                  "its rows, texts and figures are as it computed them, only the verdict classes "
+                  "*paper inconsistent* and the checks of our code are applied here. Rerun the "
+                  "command below on the workspaces to update it.", ""]
         if rec.get("missing"):
             L += ["Workspace%s not given for this record: %s; the curves and rows that need "
                   "%s are absent." % ("s" if len(rec["missing"]) > 1 else "",

@@ -28,6 +28,10 @@ import os
 AGREES, TREND, DISAGREES, NO_DATA, UNTESTABLE = (
     "agrees", "agrees in trend only", "disagrees", "no data", "not testable")
 PAPER_INCONSISTENT, NOT_STEADY = "paper inconsistent", "not steady"
+# The version of the criteria a figure record was computed with (its "criteria"): 2 is the
+# measured 2 T_c/P axis for every figure, the classes above and the per-point criteria of
+# Figs. 5-8; records without it are older (docs/validation.md says so under the figure).
+CRITERIA = 2
 # Every verdict, in the order of the page's counts.
 VERDICTS = (AGREES, TREND, DISAGREES, PAPER_INCONSISTENT, NOT_STEADY, NO_DATA, UNTESTABLE)
 

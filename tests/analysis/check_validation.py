@@ -231,6 +231,7 @@ check("| fig3 | `L_f` | paper inconsistent |" in verdicts_part, verdicts_part)
 check("fig5_factor2" not in verdicts_part and "| fig5 | `fig5_factor2` |" in checks_part, checks_part)
 check("Not generated: no record `fig7b.json`" in text and "`out/fig7b_tethered`" in text)
 check("Workspace not given for this record: `fig5_extra_curves`" in text)
+check(text.count("**Record from older criteria.**") == 2, text)  # neither record has "criteria"
 
 # Fig. 7's onset: where A_n first rises above its lowest-temperature value by more than 2
 # combined errors (here 0.0566, crossed between 0.1 and 1), not the A_n = 0.25 crossing.

@@ -143,6 +143,8 @@ rows = {r["id"]: r for fig in ["fig3", "fig5"]
 for sid in ("L_f", "fig3_At_min_over_max"):
     if rows.get(sid, {}).get("verdict") != "paper inconsistent":
         problems.append("%s: %r" % (sid, rows.get(sid, {}).get("verdict")))
+if "Record from older criteria" in doc:
+    problems.append("a record just written is taken for an older one (its criteria)")
 verdicts = doc[doc.index("## Verdicts"):doc.index("### Checks of our code")]
 checks = doc[doc.index("### Checks of our code"):doc.index("## Where the paper")]
 if "fig5_factor2" in verdicts or "`fig5_factor2`" not in checks:
