@@ -114,11 +114,11 @@ def figure(name, workspaces, out, invasim, argv):
         raise runs.InputError("figure %s: its first workspace (%s) is required"
                               % (name, FIGURES[name][0]))
     sets = [runs.load(ws) if ws != NOT_GIVEN else None for ws in workspaces]
-    from validation_lib import (figures_master, figures_other, figures_tissue,  # slow import
-                                verdict)
+    from validation_lib import (figures_master, figures_other, figures_tethered,  # slow import
+                                figures_tissue, verdict)
     funcs = {"fig3": figures_tissue.fig3, "fig4a": figures_tissue.fig4a,
-             "fig4b": figures_tissue.fig4b, "fig7a": figures_tissue.fig7a,
-             "fig7b": figures_tissue.fig7b, "fig5": figures_master.fig5,
+             "fig4b": figures_tissue.fig4b, "fig7a": figures_tethered.fig7a,
+             "fig7b": figures_tethered.fig7b, "fig5": figures_master.fig5,
              "fig6": figures_other.fig6, "fig8": figures_other.fig8, "fig9": figures_other.fig9}
     os.makedirs(out, exist_ok=True)
     rec = funcs[name](sets[0], out, invasim, *sets[1:])

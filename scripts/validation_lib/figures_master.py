@@ -310,6 +310,8 @@ def _rows(fitted, usable, scale, curves, passive_jobs):
             how = " (fit of a over %d curves, chi2/dof = %s%s)" % (
                 scale["n_curves"], verdict.fmt(scale.get("chi2_dof")),
                 "; left out: " + excluded if excluded else "")
+        if v is not None and name == "c1":  # a, hence c1, is a temperature: both conventions
+            how = " (2T_c/P; by T_c/P: %s)%s" % (verdict.fmt(v / 2, e_ / 2), how)
         rows.append(verdict.row(
             sid, "%s = %s%s" % (name, verdict.fmt(v, e_), how) if v is not None else
             "n/a (%s)" % scale.get("why", "no fit"),

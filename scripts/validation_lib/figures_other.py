@@ -8,12 +8,13 @@ import os
 import numpy as np
 
 from . import runs, verdict
-from .plotting import figure, label, log_if_spans, save, state
+from .plotting import figure, label, log_axis, log_if_spans, save, state
 
 INTERMEDIATE = 10.0  # tau_p <= 10 tau_g: small and intermediate persistence (Fig. 6(b))
 
 
 def fig6(jobs, out, invasim):
+    """tau_d against tau_p per phi_c beside the exact free-particle value (Eq. (18))."""
     fig, (ax,) = figure()
     rows, table = [], []
     for (phi_c,), reps in runs.group(jobs, ["phi_c"]).items():
@@ -30,7 +31,7 @@ def fig6(jobs, out, invasim):
                           "windows": n_windows})
     free = sorted({(r["tau_p"], r["tau_d_free"]) for r in table})
     ax.plot([f[0] for f in free], [f[1] for f in free], "k--", lw=1, label="free particle (exact)")
-    log_if_spans(ax, [r["tau_p"] for r in table], "x", 1.0)
+    log_axis(ax, [r["tau_p"] for r in table], "x")
     log_if_spans(ax, [r["tau_d"] for r in table] + [f[1] for f in free], "y", 1.0)
     ax.set_xlabel(label("tau_p", "tau"))
     ax.set_ylabel(label("tau_d", "tau"))

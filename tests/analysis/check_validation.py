@@ -235,11 +235,11 @@ check(text.count("**Record from older criteria.**") == 2, text)  # neither recor
 
 # Fig. 7's onset: where A_n first rises above its lowest-temperature value by more than 2
 # combined errors (here 0.0566, crossed between 0.1 and 1), not the A_n = 0.25 crossing.
-from validation_lib import figures_tissue, figures_other  # noqa: E402
-got = figures_tissue.onset([0.01, 0.1, 1.0], [0.0, 0.05, 0.8], [0.02, 0.02, 0.02])
+from validation_lib import figures_other, figures_tethered, figures_tissue  # noqa: E402
+got = figures_tethered.onset([0.01, 0.1, 1.0], [0.0, 0.05, 0.8], [0.02, 0.02, 0.02])
 want = 10 ** (-1 + (2 * math.hypot(0.02, 0.02) - 0.05) / 0.75)
 check(abs(got - want) < 1e-9, (got, want))
-check(math.isnan(figures_tissue.onset([0.01, 0.1], [0.0, 0.01], [0.02, 0.02])))
+check(math.isnan(figures_tethered.onset([0.01, 0.1], [0.0, 0.01], [0.02, 0.02])))
 
 # Fig. 6 holds for all phi_c: at phi_c = 0.5 the smallest tau_p gives tau_d/tau_d_free = 0.7,
 # so "tau_d -> tau_g as tau_p -> 0" disagrees although phi_c = 0 agrees.
@@ -302,7 +302,7 @@ jobs7 = [tissue_job(os.path.join(work, "k%dp%d" % (i, n)), 0.001 * (n + 1), x, a
                     {"K_ecm": k}) for i, (k, ats) in enumerate([(0.0, (100.0, 150.0, 900.0)),
                                                                 (0.1, (100.0, 150.0, 400.0))])
          for n, (x, a) in enumerate(zip((0.01, 0.1, 1.0), ats))]
-rec7 = figures_tissue.fig7b(jobs7, work, None)
+rec7 = figures_tethered.fig7b(jobs7, work, None)
 r7 = [r for r in rec7["rows"] if r["id"] == "fig7b_onset"][0]
 check(r7["verdict"] == v.AGREES, r7)
 check(os.path.exists(os.path.join(work, "fig7b_An.png")))
