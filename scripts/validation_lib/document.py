@@ -95,9 +95,10 @@ measured value is about the paper's `x`, and Fig. 3 names both. The paper's thre
 (`T_g ~ 0.03`, Fig. 4b's 0.3, Fig. 8's 0.37) are in this convention; rows that quote a
 compared temperature give both, `2T_c/P` and the equipartition `T_c/P`.
 
-The two plan files are kept beside the
-figure records (`docs/validation/plan.json`, `plan_done.json`), so that this page can be
-regenerated without the workspaces; the workspaces themselves (about 1 GB) are not kept.
+The two plan files are kept beside the figure records (`docs/validation/plan.json`,
+`plan_done.json`), so that this page can be regenerated without the workspaces; the
+workspaces themselves (about 1 GB) are not kept. A figure without a record says so ("Not
+generated"); a record from older criteria is marked under its figure.
 
 **Steady state.** For every run, `A_t` over the last half of the production: the mean of its
 last quarter minus that of its third quarter (the drift) against the block error of the
@@ -128,6 +129,9 @@ of Fig. 7) agree when every point agrees and disagree when one disagrees.
 campaign sweep file at its CI size (`invasim sweep init SPEC --tiny`: each file's
 `tiny = {...}`, two values per axis, one seed, a few hundred steps), then every figure command,
 the plan from the done points and this document, so that no part of the pipeline can rot.
+A point that fails to run fails the test at its end, after the done points are analysed. The
+unit test (`analysis_validation_unit`) holds each verdict class and per-point criterion on
+hand-made runs and numbers.
 
 **Citations** (`scripts/validation_lib/citations.py`). Figures, sections and statement ids
 carry the paper's own figure numbers (its Figs. 3-9; `figures` in

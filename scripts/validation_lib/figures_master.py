@@ -141,7 +141,7 @@ def _fit_curve(key, pts, plain, jobs_by_id, extremes):
     return entry
 
 
-def _plot_curves(axes, curves, fitted, replaced, short_t):
+def _plot_curves(axes, curves, fitted, replaced):
     """Panels (a) and (b): the data (hollow where not steady), the fits and the collapse of
     the curves whose midpoint is located."""
     for key, pts in replaced.items():
@@ -237,7 +237,7 @@ def fig5(jobs, out, invasim, passive_jobs=None, long_jobs=None, extra_jobs=None)
     usable = [f for f in fitted if f["excluded_from_scale_fit"] is None]
     scale = _scale_fit(usable, fitted)
     fig, axes = figure(3, width=4.6)
-    _plot_curves(axes, curves, fitted, replaced, short_t)
+    _plot_curves(axes, curves, fitted, replaced)
     _plot_inset(axes[2], usable, scale)
     _legend(fig, curves, replaced)
     images = [save(fig, out, "fig5_An.png", rect=(0, 0, 0.91, 1))]
