@@ -6,8 +6,10 @@ Usage:
       one figure from its sweep workspace(s): DIR/NAME.json (rows of the side-by-side
       table, verdicts, steady-state evidence, numbers, the command) and the images.
       NAME and workspaces: fig3 WS | fig4a WS | fig4b WS [INSET_WS] | fig5 ACTIVE_WS
-      [PASSIVE_WS [LONG_WS]] | fig6 WS | fig7a WS | fig8 WS | fig9 WS (LONG_WS: curves run
-      longer, each replacing ACTIVE_WS's curve of the same beta and tau_p)
+      [PASSIVE_WS [LONG_WS [EXTRA_WS]]] | fig6 WS | fig7a WS | fig7b WS | fig8 WS | fig9 WS
+      (LONG_WS: curves run longer, each replacing ACTIVE_WS's curve of the same beta and
+      tau_p; EXTRA_WS: further curves; '-' for an optional workspace not given: the record
+      and the page name it as missing)
   validation.py all ROOT -o DIR [--invasim PATH]
       every figure from the standard workspaces ROOT/<sweep file name> (out, out/tiny)
   validation.py plan SPEC... [--jobs N] [--delta STEPS] [-o plan.json] [--invasim PATH]
@@ -35,10 +37,12 @@ REPO = os.path.dirname(HERE)
 # figure -> the sweep files (workspace names) it reads, in argument order
 FIGURES = {
     "fig3": ["fig3_passive_slices"], "fig4a": ["fig4a_passive"],
-    "fig4b": ["fig4b_cohesive", "fig4b_inset"], "fig5": ["fig5_active", "fig5_passive", "fig5_long"],
-    "fig6": ["fig6_cells_only"], "fig7a": ["fig7a_tethered"], "fig8": ["fig8_packing"],
-    "fig9": ["fig9_shapes"],
+    "fig4b": ["fig4b_cohesive", "fig4b_inset"],
+    "fig5": ["fig5_active", "fig5_passive", "fig5_long", "fig5_extra_curves"],
+    "fig6": ["fig6_cells_only"], "fig7a": ["fig7a_tethered"], "fig7b": ["fig7b_tethered"],
+    "fig8": ["fig8_packing"], "fig9": ["fig9_shapes"],
 }
+NOT_GIVEN = "-"  # an optional workspace left out (figure fig5 A - LONG)
 REQUIRED = {"fig4b": 1, "fig5": 1}  # the others need all their workspaces
 
 
@@ -106,25 +110,32 @@ def figure(name, workspaces, out, invasim, argv):
         raise runs.InputError("figure %s reads %s workspace%s (%s); got %d" % (
             name, least if least == most else "%d or %d" % (least, most),
             "" if most == 1 else "s", ", ".join(FIGURES[name]), len(workspaces)))
-    sets = [runs.load(ws) for ws in workspaces]
-    from validation_lib import figures_other, figures_tissue, verdict  # matplotlib: slow import
+    if workspaces[0] == NOT_GIVEN:
+        raise runs.InputError("figure %s: its first workspace (%s) is required"
+                              % (name, FIGURES[name][0]))
+    sets = [runs.load(ws) if ws != NOT_GIVEN else None for ws in workspaces]
+    from validation_lib import (figures_master, figures_other, figures_tethered,  # slow import
+                                figures_tissue, verdict)
     funcs = {"fig3": figures_tissue.fig3, "fig4a": figures_tissue.fig4a,
-             "fig4b": figures_tissue.fig4b, "fig7a": figures_tissue.fig7a,
-             "fig5": figures_other.fig5, "fig6": figures_other.fig6,
-             "fig8": figures_other.fig8, "fig9": figures_other.fig9}
+             "fig4b": figures_tissue.fig4b, "fig7a": figures_tethered.fig7a,
+             "fig7b": figures_tethered.fig7b, "fig5": figures_master.fig5,
+             "fig6": figures_other.fig6, "fig8": figures_other.fig8, "fig9": figures_other.fig9}
     os.makedirs(out, exist_ok=True)
     rec = funcs[name](sets[0], out, invasim, *sets[1:])
+    rec["missing"] = [FIGURES[name][k] for k in range(len(FIGURES[name]))
+                      if k >= len(workspaces) or workspaces[k] == NOT_GIVEN]
     if name == "fig3":
         row = lf_row(workspaces[0], runs, verdict)
         if row:
             rec["rows"].append(row)
     specs = []
-    for ws in workspaces:
+    for ws in [w for w in workspaces if w != NOT_GIVEN]:
         with open(os.path.join(ws, "invasim_sweep.json")) as f:
             specs.append(os.path.relpath(json.load(f)["spec"], REPO))
-    jobs = [j for s in sets for j in s]
+    jobs = [j for s in sets if s for j in s]
     steps = sorted(int(j.sp.get("steps", j.scalar("steps"))) for j in jobs)
-    rec.update({"figure": name, "command": command_text(argv), "specs": specs,
+    rec.update({"figure": name, "criteria": verdict.CRITERIA, "command": command_text(argv),
+                "specs": specs,
                 "runs": len(jobs), "steps_range": "%d" % steps[0] if steps[0] == steps[-1]
                 else "%d-%d" % (steps[0], steps[-1])})
     with open(os.path.join(out, name + ".json"), "w") as f:
@@ -172,13 +183,15 @@ def main(argv):
             for name, names in FIGURES.items():
                 wss = [os.path.join(args.root, n) for n in names]
                 present = [os.path.exists(os.path.join(w, "invasim_sweep.json")) for w in wss]
-                # The first workspace is the figure's own; the others are optional extras.
+                # The first workspace is the figure's own; the others are optional extras,
+                # passed as '-' when missing (the record names them).
                 if not present[0] or sum(present) < REQUIRED.get(name, len(names)):
                     print("%s: skipped (no workspace %s)" % (name, ", ".join(
-                        os.path.join(args.root, n) for n in names)))
+                        w for w, here in zip(wss, present) if not here)))
                     continue
-                # (optional ones are positional: those after a missing one are left out)
-                wss = wss[:present.index(False)] if False in present else wss
+                while not present[-1]:
+                    wss, present = wss[:-1], present[:-1]
+                wss = [w if here else NOT_GIVEN for w, here in zip(wss, present)]
                 figure(name, wss, args.out, args.invasim, ["figure", name] + wss + ["-o", args.out])
         elif args.verb == "plan":
             from validation_lib import plan

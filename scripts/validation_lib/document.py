@@ -8,17 +8,22 @@ import os
 from . import citations
 from . import plan as plan_mod
 from .runs import InputError
-from .verdict import AGREES, DISAGREES, NO_DATA, TREND, UNTESTABLE, paper
+from .verdict import CRITERIA, DISAGREES, VERDICTS, is_code_check, paper, paper_verdict
 
-ORDER = ["fig3", "fig4a", "fig4b", "fig5", "fig6", "fig7a", "fig8", "fig9"]
+ORDER = ["fig3", "fig4a", "fig4b", "fig5", "fig6", "fig7a", "fig7b", "fig8", "fig9"]
+# The sweep files (workspaces) of each figure, as scripts/validation.py's FIGURES.
+SWEEPS = {"fig3": "fig3_passive_slices", "fig4a": "fig4a_passive", "fig4b": "fig4b_cohesive",
+          "fig5": "fig5_active", "fig6": "fig6_cells_only", "fig7a": "fig7a_tethered",
+          "fig7b": "fig7b_tethered", "fig8": "fig8_packing", "fig9": "fig9_shapes"}
 TITLES = {
     "fig3": "Fig. 3: passive repulsive cells, A_t(t) and slices",
     "fig4a": "Fig. 4a: passive repulsive cells, A_n against temperature at several times",
     "fig4b": "Fig. 4b: cohesive active cells (beta = 1e-2, tau_p = 25), with the mixed-start inset",
     "fig5": "Fig. 5: the master curve over beta x tau_p, plus the passive curve (tau_p = 2500: "
-            "the longer runs of fig5_long)",
+            "the longer runs of fig5_long; beta = 1e-4 and tau_p = 250: fig5_extra_curves)",
     "fig6": "Fig. 6: cells only, tau_d against tau_p",
-    "fig7a": "Fig. 7a: tethered tissue, K_ecm",
+    "fig7a": "Fig. 7a: tethered tissue, K_ecm (tau_p = 25, beta = 1e-2)",
+    "fig7b": "Fig. 7b: tethered tissue, K_ecm (tau_p = 2500, beta = 1e-3)",
     "fig8": "Fig. 8: the adipocyte packing-fraction scan",
     "fig9": "Fig. 9: slice shape distributions",
 }
@@ -26,8 +31,10 @@ TITLES = {
 CONTRADICTIONS = """\
 ## Where the paper contradicts itself
 
-Four statements of the paper cannot all hold. We do not tune towards any of them; the rows
-marked below show what we get, computed from the runs:
+Some statements of the paper cannot all hold. We do not tune towards any of them; the rows
+named below show what we get, computed from the runs. Where the paper contradicts itself on a
+number (`L_f`, `A_t^min`/`A_t^max`) the row's verdict is *paper inconsistent*, not
+*disagrees*:
 
 - **`L_f`** (row `L_f`): the paper's final box `L_f = 34 sigma` contradicts its own
   `L_0 = 70`, `phi: 0.01 -> 0.72`, which give 16.8 sigma. Our compression stops at the target
@@ -37,9 +44,10 @@ marked below show what we get, computed from the runs:
   against 2000 cannot both hold under the paper's definition of `A_t^max` (both walls fully
   covered plus the adipocytes' Voronoi surfaces). We follow the definition; the ratio at the
   lowest temperature is what we compare, `A_n` does not depend on it.
-- **The factor 2 in `k_B T`** (row `fig5_factor2`): the paper's temperature formula has an
-  extra factor 2. A passive bath shows it directly: the equipartition `T_c` equals the bath
-  `kT`; the paper's convention `kT_c_paper = 2 T_c` is what the active figures' axes use.
+- **The factor 2 in `k_B T`** (check `fig5_factor2`, under "Checks of our code"): the
+  paper's temperature formula has an extra factor 2. A passive bath shows it directly: the
+  equipartition `T_c` equals the bath `kT`; the paper's convention `kT_c_paper = 2 T_c` is
+  what every figure's temperature axis uses, passive runs included (Method).
 - **`T_c/T_a`** (row `fig5_Tc_over_Ta`): the paper reports `1 < T_c/T_a < 1.2` in active
   runs. With active cells and adipocyte vertices in a bath at `kT = 0` (its Fig. 5 knob is
   `f_0`), the vertices are heated only through contacts, and the ratio is what the row shows.
@@ -59,9 +67,10 @@ Every figure below comes from one sweep file in `protocols/sweeps/` (its header 
 run it) and one analysis command (printed under the figure). The whole campaign:
 
 ```sh
-scripts/validation.py plan protocols/sweeps/{fig3_passive_slices,fig4a_passive,fig4b_cohesive,fig4b_inset,fig5_active,fig5_passive,fig5_long,fig6_cells_only,fig7a_tethered,fig8_packing,fig9_shapes}.lua --jobs 2 -o docs/validation/plan.json
+scripts/validation.py plan protocols/sweeps/{fig3_passive_slices,fig4a_passive,fig4b_cohesive,fig4b_inset,fig5_active,fig5_passive,fig5_long,fig5_extra_curves,fig6_cells_only,fig7a_tethered,fig7b_tethered,fig8_packing,fig9_shapes}.lua --jobs 2 -o docs/validation/plan.json
 for s in fig3_passive_slices fig4a_passive fig4b_cohesive fig4b_inset fig5_active fig5_passive \\
-         fig5_long fig6_cells_only fig7a_tethered fig8_packing fig9_shapes; do
+         fig5_long fig5_extra_curves fig6_cells_only fig7a_tethered fig7b_tethered fig8_packing \\
+         fig9_shapes; do
   build/invasim sweep init protocols/sweeps/$s.lua && build/invasim sweep run out/$s --jobs 2
 done
 scripts/validation.py all out -o docs/validation     # every figure command below, then:
@@ -74,15 +83,33 @@ means and errors over the last half of the production; `series.csv`; `shapes.csv
 `snapshots/`). `A_n` is the paper's Appendix C normalisation over the state points of the
 figure (replicate means; docs/sweeps_analysis.md), its error the replicate scatter (standard
 error) where there are replicates, else the run's block error of `A_t` propagated. Curves
-are fitted with `scripts/master_curve_lib/fits.py`. The two plan files are kept beside the
-figure records (`docs/validation/plan.json`, `plan_done.json`), so that this page can be
-regenerated without the workspaces; the workspaces themselves (about 1 GB) are not kept.
+are fitted with `scripts/master_curve_lib/fits.py`. `scripts/validation.py all` passes a
+missing optional workspace as `-` (e.g. Fig. 5 without `fig5_long`); the record names it and
+the figure's section says which workspaces were not given.
+
+**One temperature axis.** Every figure's `k_B T/(P sigma^3)` is the measured cancer-cell
+temperature in the paper's convention, `2 k_B T_c/(P sigma^3)` (`kT_c_paper/P` of
+`summary.json` and `series.csv`; the paper's Eq. (14) has an extra factor 2 over
+equipartition), for the passive runs too: their baths are set to `kT = x P / 2` so that the
+measured value is about the paper's `x`, and Fig. 3 names both. The paper's thresholds
+(`T_g ~ 0.03`, Fig. 4b's 0.3, Fig. 8's 0.37) are in this convention; rows that quote a
+compared temperature give both, `2T_c/P` and the equipartition `T_c/P`.
+
+The two plan files are kept beside the figure records (`docs/validation/plan.json`,
+`plan_done.json`), so that this page can be regenerated without the workspaces; the
+workspaces themselves (about 1 GB) are not kept. A figure without a record says so ("Not
+generated"); a record from older criteria is marked under its figure.
 
 **Steady state.** For every run, `A_t` over the last half of the production: the mean of its
 last quarter minus that of its third quarter (the drift) against the block error of the
 last-half mean; a run is steady when `|drift| <= 4 x error` (the difference of two quarter
-means has about twice the error of the half mean: a 2-sigma test). Each figure says how many
-of its runs pass.
+means has about twice the error of the half mean: a 2-sigma test); a run whose error is not
+finite cannot be judged and does not count as steady. A state point is steady when all its
+runs are. Each figure says how many of its runs pass. A row that rests on state points (its
+criterion names them: Fig. 4b's two points bracketing 0.3, the inset's runs, every point of
+a Fig. 5 curve) gets the verdict *not steady* when one of them is not steady, and names them;
+a Fig. 5 curve that is not steady is drawn hollow and left out of the collapse and of the fit
+of `a`.
 
 **Verdicts** (`scripts/validation_lib/verdict.py`). The paper's statements and their stated
 precision are in `scripts/validation_paper.json` (each citing its place in the paper: section, figure, equation). A number agrees when
@@ -91,12 +118,20 @@ precision are in `scripts/validation_paper.json` (each citing its place in the p
 trend (a difference the paper says is positive) agrees when it exceeds 2 errors, agrees in
 trend only when it has the right sign within 2 errors, and disagrees otherwise. *No data*: too
 few points for the number (always the case at the CI size for fits); *not testable*: the
-paper compares with data we do not have.
+paper compares with data we do not have; *not steady*: above; *paper inconsistent*: the paper
+contradicts itself on the number (its `inconsistent` in `scripts/validation_paper.json`; the
+row keeps what the verdict against one of its values would be). A statement marked
+`"check": "code"` tests our code, not the paper: it is listed under "Checks of our code" and
+not counted. Statements that must hold at several points (all `phi_c` of Fig. 6, all `K_ecm`
+of Fig. 7) agree when every point agrees and disagree when one disagrees.
 
 **CI.** `tests/analysis/validation_tiny.sh` (CTest `validation_pipeline_tiny`, about 75 s at 2 jobs) runs every
 campaign sweep file at its CI size (`invasim sweep init SPEC --tiny`: each file's
 `tiny = {...}`, two values per axis, one seed, a few hundred steps), then every figure command,
 the plan from the done points and this document, so that no part of the pipeline can rot.
+A point that fails to run fails the test at its end, after the done points are analysed. The
+unit test (`analysis_validation_unit`) holds each verdict class and per-point criterion on
+hand-made runs and numbers.
 
 **Citations** (`scripts/validation_lib/citations.py`). Figures, sections and statement ids
 carry the paper's own figure numbers (its Figs. 3-9; `figures` in
@@ -169,18 +204,34 @@ def render(fig_dir, plan_entries, out_path, ci_size=False, done_entries=None):
               "of the runs, %d at a time, on a machine shared with the development work, so they "
               "are lower than the timing runs' CPU rates above)." % done_entries[0]["jobs"], "",
               plan_mod.table(done_entries), ""]
-    all_rows = []
+    all_rows, checks = [], []
     for name in ORDER:
         rec = recs.get(name)
         L += ["## %s" % TITLES[name], ""]
         if not rec:
-            L += ["Not generated yet (`scripts/validation.py figure %s ...`)." % name, ""]
+            L += ["Not generated: no record `%s.json`. Its workspace `out/%s` has not been "
+                  "analysed (run it as under Method, then `scripts/validation.py figure %s "
+                  "out/%s ... -o docs/validation`); its statements are not on this page and not "
+                  "counted." % (name, SWEEPS[name], name, SWEEPS[name]), ""]
             continue
         L += ["Sweep%s: %s; %d runs, %s steps per run." % (
             "s" if len(rec["specs"]) > 1 else "", ", ".join("`%s`" % s for s in rec["specs"]),
             rec["runs"], rec["steps_range"]), ""]
+        if rec.get("criteria", 1) < CRITERIA:
+            L += ["**Record from older criteria.** This record was written before the current "
+                  "criteria (Method: one temperature axis, the per-point rows, *not steady*); "
+                  "its rows, texts and figures are as it computed them, only the verdict classes "
+                  "*paper inconsistent* and the checks of our code are applied here. Rerun the "
+                  "command below on the workspaces to update it.", ""]
+        if rec.get("missing"):
+            L += ["Workspace%s not given for this record: %s; the curves and rows that need "
+                  "%s are absent." % ("s" if len(rec["missing"]) > 1 else "",
+                                      ", ".join("`%s`" % m for m in rec["missing"]),
+                                      "them" if len(rec["missing"]) > 1 else "it"), ""]
         for img in rec["images"]:
             L += ["![%s](%s)" % (name, _rel(os.path.join(os.path.abspath(fig_dir), img), base))]
+            if rec.get("captions", {}).get(img):
+                L += ["", "*%s*" % rec["captions"][img], ""]
         L += ["", "Regenerate: `%s`" % rec["command"], ""]
         st = rec.get("steadiness")
         if st:
@@ -190,14 +241,16 @@ def render(fig_dir, plan_entries, out_path, ci_size=False, done_entries=None):
                                          if st["max_drift_over_error"] is not None else "n/a"), ""]
         L += ["| paper | ours | verdict | criterion |", "|---|---|---|---|"]
         for r in rec["rows"]:
-            all_rows.append(r)
+            r = dict(r)
+            r["verdict"], r["why"] = paper_verdict(paper().get(r["id"], {}), r["verdict"], r["why"])
+            (checks if is_code_check(r["id"]) else all_rows).append(r)
             L.append("| %s | %s | **%s** | %s |" % tuple(
                 _cell(v) for v in (_paper_text(r), r["ours"], r["verdict"], r["why"])))
         L.append("")
     L += ["## Verdicts", ""]
-    counts = {v: sum(1 for r in all_rows if r["verdict"] == v)
-              for v in (AGREES, TREND, DISAGREES, NO_DATA, UNTESTABLE)}
-    L += [", ".join("%d %s" % (n, v) for v, n in counts.items()), "",
+    counts = {v: sum(1 for r in all_rows if r["verdict"] == v) for v in VERDICTS}
+    L += [", ".join("%d %s" % (n, v) for v, n in counts.items()) + " (the paper's statements; "
+          "the checks of our code below are not counted)", "",
           "| figure | statement | verdict |", "|---|---|---|"]
     L += ["| %s | %s | %s |" % (r["figure"], _statement(r), r["verdict"]) for r in all_rows]
     bad = [r for r in all_rows if r["verdict"] == DISAGREES]
@@ -205,6 +258,16 @@ def render(fig_dir, plan_entries, out_path, ci_size=False, done_entries=None):
         L += ["", "Disagreements, each with what we get and the criterion it fails:", ""]
         L += ["- %s (%s): %s. Ours: %s. Criterion: %s." % (
             _statement(r), r["figure"], r["paper"], r["ours"], r["why"]) for r in bad]
+    L += ["", "### Checks of our code", "",
+          "Statements that test our code against the paper's formulas rather than the paper's "
+          "results (`\"check\": \"code\"` in `scripts/validation_paper.json`); their rows "
+          "stand under their figures and are not counted above.", ""]
+    if checks:
+        L += ["| figure | check | ours | verdict |", "|---|---|---|---|"]
+        L += ["| %s | %s | %s | %s |" % tuple(_cell(v) for v in (
+            r["figure"], _statement(r), r["ours"], r["verdict"])) for r in checks]
+    else:
+        L += ["(none in the records)"]
     L += ["", CONTRADICTIONS, METHOD]
     text = "\n".join(L)
     _check_citations(list(paper().values()) + all_rows, text, out_path)

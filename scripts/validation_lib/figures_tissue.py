@@ -1,6 +1,9 @@
-"""The validation figures of the invasion sweeps (Figs. 3, 4a, 4b, 7a): each function takes
+"""The validation figures of the invasion sweeps (Figs. 3, 4a, 4b; Figs. 7a, 7b:
+figures_tethered.py): each function takes
 the done jobs of its workspace(s) and the output directory, draws the figure and returns the
-figure's record (images, rows of the side-by-side table, steady-state evidence, numbers)."""
+figure's record (images, rows of the side-by-side table, steady-state evidence, numbers).
+Every temperature axis is the measured cancer-cell temperature in the paper's convention,
+2 k_B T_c/(P sigma^3) (x_measured), passive runs included."""
 
 import math
 import os
@@ -10,7 +13,7 @@ import subprocess
 import numpy as np
 
 from . import runs, verdict
-from .plotting import T_BATH, T_PAPER, figure, label, log_if_spans, save, state
+from .plotting import T_PAPER, figure, label, log_axis, save
 
 P_DEFAULT = 1.3e-3
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -20,9 +23,10 @@ def pressure(job):
     return float(job.sp.get("P", P_DEFAULT))
 
 
-def x_bath(job):
-    """k_B T/(P sigma^3) of the bath (set)."""
-    return float(job.sp.get("kT", 0.0)) / pressure(job)
+def x_stands_for(job):
+    """The paper's k_B T/(P sigma^3) a passive run stands for: its bath is set to kT = x P / 2
+    (the sweep files of Figs. 3 and 4a), so that the measured 2 T_c/P is about x."""
+    return 2 * float(job.sp.get("kT", 0.0)) / pressure(job)
 
 
 def x_measured(job, end_fraction=None):
@@ -65,9 +69,8 @@ def plot_an_times(ax, table, xlabel, jobs):
                     marker="o", capsize=2,
                     label=r"$t$ = %.4g $\tau$ (%.0f%% of the run)" % (run_time(jobs, f), 100 * f))
     xs = [p["x"] for pts in table.values() for p in pts]
-    log_if_spans(ax, xs)
     if xs and min(xs) > 0:
-        ax.set_xscale("log")
+        log_axis(ax, xs)
     ax.set_xlabel(xlabel)
     ax.set_ylabel(label("A_n", ""))
     ax.axhline(0.5, color="0.7", lw=0.8, ls=":")
@@ -75,19 +78,30 @@ def plot_an_times(ax, table, xlabel, jobs):
 
 
 def fig3(jobs, out, invasim):
+    """A_t/A_t^max over time per temperature, labelled with the paper's value each run stands
+    for and the measured one (both 2 T_c/P), and slices of each run's last snapshot."""
     fig, (ax,) = figure()
-    ends = []
+    ends, captions = [], {}
     for (kT,), reps in runs.group(jobs, ["kT"]).items():
         j = reps[0]
         s = j.series
-        ax.plot(s["time"], s["A_ratio"], label=r"$k_B T/(P\sigma^3)$ = %.3g" % x_bath(j))
-        ends.append((x_bath(j),) + j.mean("A_ratio") + j.mean("A_t") + j.mean("A_t_max"))
+        ax.plot(s["time"], s["A_ratio"], label=r"paper %.3g, measured %.3g" % (
+            x_stands_for(j), x_measured(j)))
+        ends.append((x_measured(j),) + j.mean("A_ratio") + j.mean("A_t") + j.mean("A_t_max")
+                    + (x_stands_for(j),))
     ax.set_xlabel(label("time", "tau"))
     ax.set_ylabel(label("A_ratio", ""))
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=7, title=r"$2 k_B T_c/(P\sigma^3)$", title_fontsize=7)
     images = [save(fig, out, "fig3_At.png")]
     for (kT,), reps in runs.group(jobs, ["kT"]).items():
-        images += render_slice(reps[0], out, "fig3_slice_T%.3g.svg" % x_bath(reps[0]), invasim)
+        j = reps[0]
+        name = "fig3_slice_T%.3g.svg" % x_stands_for(j)
+        made = render_slice(j, out, name, invasim)
+        images += made
+        if made:
+            captions[name] = ("slice z = L_z/2 of the last snapshot: the paper's k_B T/(P "
+                              "sigma^3) = %.3g, measured %s" % (
+                                  x_stands_for(j), verdict.fmt_temperature(x_measured(j))))
     ends.sort()
     rows = []
     if len(ends) >= 2:
@@ -95,22 +109,22 @@ def fig3(jobs, out, invasim):
         e = math.hypot(ends[-1][2], ends[0][2])
         rows.append(verdict.row(
             "fig3_invasion_grows",
-            "A_t/A_t^max = %s at %.3g, %s at %.3g" % (verdict.fmt(ends[0][1], ends[0][2]),
-                                                     ends[0][0], verdict.fmt(ends[-1][1], ends[-1][2]), ends[-1][0]),
+            "A_t/A_t^max = %s at %s, %s at %s" % (
+                verdict.fmt(ends[0][1], ends[0][2]), verdict.fmt_temperature(ends[0][0]),
+                verdict.fmt(ends[-1][1], ends[-1][2]), verdict.fmt_temperature(ends[-1][0])),
             verdict.trend_verdict(d, e),
             "difference %s (criterion: > 2 errors)" % verdict.fmt(d, e)))
         lo = ends[0]
         st = verdict.paper()["fig3_At_min_over_max"]
         rows.append(verdict.row(
             "fig3_At_min_over_max",
-            "A_t = %s, A_t^max = %s at the lowest temperature: ratio %s" % (
-                verdict.fmt(lo[3], lo[4]), verdict.fmt(lo[5], lo[6]), verdict.fmt(lo[1], lo[2])),
+            "A_t = %s, A_t^max = %s at the lowest temperature (%s): ratio %s" % (
+                verdict.fmt(lo[3], lo[4]), verdict.fmt(lo[5], lo[6]),
+                verdict.fmt_temperature(lo[0]), verdict.fmt(lo[1], lo[2])),
             verdict.value_verdict(lo[1], lo[2], st["value"], st["tolerance"]),
-            "the paper's 470 (or 610) and 2000 cannot both hold under its definition of A_t^max "
-            "(walls counted fully covered plus the adipocytes' Voronoi surfaces); ours follows "
-            "the definition"))
-    return {"images": images, "rows": rows, "numbers": {"end_points": ends},
-            "steadiness": runs.steadiness_summary(jobs)}
+            "ours follows the paper's definition of A_t^max; A_n does not depend on the ratio"))
+    return {"images": images, "captions": captions, "rows": rows,
+            "numbers": {"end_points": ends}, "steadiness": runs.steadiness_summary(jobs)}
 
 
 def render_slice(job, out, name, invasim):
@@ -129,35 +143,61 @@ def render_slice(job, out, name, invasim):
 
 
 def fig4a(jobs, out, invasim):
+    """A_n against the measured 2 T_c/P at three times; the midpoint's move and T_g."""
     fractions = (0.25, 0.5, 1.0)
-    table, extremes = an_over_time(jobs, ["kT"], lambda j, f: x_bath(j), fractions)
+    table, extremes = an_over_time(jobs, ["kT"], x_measured, fractions)
     fig, (ax,) = figure()
-    plot_an_times(ax, table, T_BATH, jobs)
+    plot_an_times(ax, table, T_PAPER, jobs)
+    st = verdict.paper()["fig4a_Tg"]
+    ax.axvline(st["value"], color="0.4", ls="--", lw=0.8)
+    ax.text(st["value"], 0.98, r" paper's $T_g$", fontsize=7, va="top", color="0.3",
+            transform=ax.get_xaxis_transform())
     images = [save(fig, out, "fig4a_An.png")]
     mids = {f: runs.crossing([p["x"] for p in pts], [p["A_n"] for p in pts])
             for f, pts in table.items()}
     errs = {f: runs.crossing_log_error([p["x"] for p in pts], [p["A_n"] for p in pts],
                                        [p["A_n_error"] for p in pts]) for f, pts in table.items()}
-    st = verdict.paper()["fig4a_Tg"]
     moves = mids[0.25] > mids[1.0] if verdict.finite(mids[0.25], mids[1.0]) else None
     shift = math.log10(mids[0.25] / mids[1.0]) if moves is not None else math.nan
     shift_err = math.hypot(errs[0.25], errs[1.0])
     end_err = mids[1.0] * math.log(10) * errs[1.0] if verdict.finite(mids[1.0], errs[1.0]) else math.nan
     rows = [
         verdict.row("fig4a_moves_left",
-                    "midpoint (A_n = 1/2) at %s" % ", ".join(
+                    "midpoint (A_n = 1/2) at 2T_c/P = %s" % ", ".join(
                         "%s (t = %.0f%%)" % (verdict.fmt(mids[f]), 100 * f) for f in fractions),
                     verdict.trend_verdict(shift, shift_err),
                     "log10 of the midpoint's ratio, first quarter over the end: %s (> 2 errors; "
                     "the error from the A_n errors and the slope at the crossing)"
                     % verdict.fmt(shift, shift_err)),
-        verdict.row("fig4a_Tg", "midpoint at the end: %s" % verdict.fmt(mids[1.0], end_err),
+        verdict.row("fig4a_Tg", "midpoint at the end: %s" % verdict.fmt_temperature(mids[1.0], end_err),
                     verdict.log_verdict(mids[1.0], end_err, st["value"], st["log_factor"], moves),
-                    "within a factor %g of %g (+ 2 errors)" % (st["log_factor"], st["value"]))]
+                    "2T_c/P within a factor %g of %g (+ 2 errors), the paper's convention"
+                    % (st["log_factor"], st["value"])),
+        tc_equals_ta_row("fig4a_Tc_equals_Ta", jobs, ["kT"])]
     return {"images": images, "rows": rows,
             "numbers": {"midpoints": {str(f): m for f, m in mids.items()},
                         "normalisation": extremes, "points": table},
             "steadiness": runs.steadiness_summary(jobs)}
+
+
+def tc_equals_ta_row(sid, jobs, keys):
+    """The passive runs' T_c/T_a (summary.json) against 1: every state point within 2 errors
+    (replicate scatter, or the run's block error)."""
+    pts = []
+    for key, reps in runs.group(jobs, keys).items():
+        p = runs.state_point(reps, lambda j: {
+            "r": j.mean("T_c_over_T_a")[0], "r_error": j.mean("T_c_over_T_a")[1],
+            "x": x_measured(j)})
+        pts.append(p)
+    each = [verdict.value_verdict(p["r"], p["r_error"], 1.0, 0.0) for p in pts]
+    worst = max(pts, key=lambda p: abs(p["r"] - 1) if verdict.finite(p["r"]) else -1)
+    return verdict.row(
+        sid, "T_c/T_a = %s; farthest from 1: %s at %s; %d of %d state points within" % (
+            ", ".join(verdict.fmt(p["r"], p["r_error"]) for p in pts),
+            verdict.fmt(worst["r"], worst["r_error"]), verdict.fmt_temperature(worst["x"]),
+            each.count(verdict.AGREES), len(pts)),
+        verdict.all_of(each), "every passive state point |T_c/T_a - 1| <= 2 errors",
+        data={"points": pts})
 
 
 def fig4b(jobs, out, invasim, inset_jobs=None):
@@ -167,16 +207,30 @@ def fig4b(jobs, out, invasim, inset_jobs=None):
     plot_an_times(axes[0], table, T_PAPER, jobs)
     end = sorted(table[1.0], key=lambda p: p["x"])
     st = verdict.paper()["fig4b_An_at_0.3"]
+    for ax in axes:  # the paper's steady A_n ~ 0.55 (its black dashed line)
+        ax.axhline(st["value"], color="k", ls="--", lw=0.9)
+    axes[0].axvline(st["at"], color="0.5", ls=":", lw=0.8)
     an03 = runs.interpolate_log([p["x"] for p in end], [p["A_n"] for p in end], st["at"])
     err03 = float(np.nanmax([p["A_n_error"] for p in end])) if end else math.nan
+    # The row rests on the two end-of-run state points that bracket 0.3 (the interpolation's).
+    jobs_by_id = {j.id: j for j in jobs}
+    below = [p for p in end if p["x"] <= st["at"]]
+    above = [p for p in end if p["x"] > st["at"]]
+    bracket = ([below[-1]] if below else []) + ([above[0]] if above else [])
+    unsteady03 = runs.unsteady_points(bracket, jobs_by_id, lambda p: "f0 = %g (2T_c/P = %.3g)"
+                                      % (p["key"][0], p["x"])) if len(bracket) == 2 else []
     mids = {f: runs.crossing([p["x"] for p in pts], [p["A_n"] for p in pts])
             for f, pts in table.items()}
     sw = verdict.paper()["fig4b_weak_time"]
     ratio = mids[0.5] / mids[1.0] if verdict.finite(mids[0.5], mids[1.0]) else math.nan
-    rows = [verdict.row("fig4b_An_at_0.3", "A_n = %s at %g (interpolated, end of the run)" % (
-                            verdict.fmt(an03, err03), st["at"]),
+    rows = [verdict.row("fig4b_An_at_0.3", "A_n = %s at 2T_c/P = %g (T_c/P = %g; interpolated "
+                        "between the end-of-run state points at 2T_c/P = %s)" % (
+                            verdict.fmt(an03, err03), st["at"], st["at"] / 2,
+                            " and ".join(verdict.fmt(p["x"]) for p in bracket) or "n/a"),
                         verdict.value_verdict(an03, err03, st["value"], st["tolerance"]),
-                        "|ours - 0.55| <= 0.1 + 2 errors"),
+                        "|ours - 0.55| <= 0.1 + 2 errors; rests on the two state points "
+                        "bracketing 2T_c/P = 0.3, each steady (all its runs)",
+                        unsteady=unsteady03),
             verdict.row("fig4b_weak_time", "midpoint at half time / at the end = %s" %
                         verdict.fmt(ratio),
                         verdict.log_verdict(ratio, math.nan, 1.0, sw["log_factor"]),
@@ -224,62 +278,12 @@ def fig4b(jobs, out, invasim, inset_jobs=None):
             rows.append(verdict.row(
                 "fig4b_inset_starts", "A_n = %s (de-mixed), %s (mixed) at %s" % (
                     verdict.fmt(*by_start["demixed"][:2]), verdict.fmt(*by_start["mixed"][:2]),
-                    verdict.fmt(by_start["demixed"][2])),
+                    verdict.fmt_temperature(by_start["demixed"][2])),
                 verdict.value_verdict(d, e, si["value"], si["tolerance"]),
-                "difference %s; |difference| <= 0.1 + 2 errors" % verdict.fmt(d, e)))
+                "difference %s; |difference| <= 0.1 + 2 errors; rests on every inset run, "
+                "each steady" % verdict.fmt(d, e),
+                unsteady=["%s start, seed %s" % (j.sp.get("start"), j.sp.get("seed"))
+                          for j in inset_jobs if j.id in runs.unsteady_jobs(inset_jobs)]))
         numbers["inset"] = by_start
     images = [save(fig, out, "fig4b_An.png")] + images_extra
     return {"images": images, "rows": rows, "numbers": numbers, "steadiness": steady}
-
-
-def fig7a(jobs, out, invasim):
-    """A_n per K_ecm, normalised by the K_ecm = 0 sweep; the plateau A_n^max vs K_ecm."""
-    pts = []
-    for (k, f0), reps in runs.group(jobs, ["K_ecm", "f0"]).items():
-        p = runs.state_point(reps, lambda j: {"x": x_measured(j), "A_t": j.mean("A_t")[0],
-                                              "A_t_max": j.mean("A_t_max")[0],
-                                              "A_t_error": j.mean("A_t")[1]})
-        p["K_ecm"] = float(k)
-        pts.append(p)
-    free = [p for p in pts if p["K_ecm"] == 0.0]
-    if not free:
-        raise runs.InputError("fig7a: no K_ecm = 0 points to normalise by")
-    extremes = runs.normalise(free)
-    for p in pts:
-        if p["K_ecm"] != 0.0:
-            runs.scale_like(p, extremes)
-    fig, axes = figure(2)
-    plateau, onset = [], []
-    for k in sorted({p["K_ecm"] for p in pts}):
-        c = sorted((p for p in pts if p["K_ecm"] == k), key=lambda p: p["x"])
-        axes[0].errorbar([p["x"] for p in c], [p["A_n"] for p in c],
-                         yerr=[p["A_n_error"] if verdict.finite(p["A_n_error"]) else 0 for p in c],
-                         marker="o", capsize=2, label=state({"K_ecm": "%g" % k}))
-        top = max(c, key=lambda p: p["A_n"])
-        plateau.append((k, top["A_n"], top["A_n_error"]))
-        onset.append((k, runs.crossing([p["x"] for p in c], [p["A_n"] for p in c], 0.25)))
-    axes[0].set_xscale("log")
-    axes[0].set_xlabel(T_PAPER)
-    axes[0].set_ylabel(label("A_n", "") + r", normalised by $K_\mathrm{ecm}$ = 0")
-    axes[0].legend(fontsize=8)
-    axes[1].errorbar([k for k, _, _ in plateau], [v for _, v, _ in plateau],
-                     yerr=[e if verdict.finite(e) else 0 for _, _, e in plateau], marker="s")
-    axes[1].set_xlabel(label("K_ecm", "eps_c/sigma^2"))
-    axes[1].set_ylabel(r"plateau $A_n^\mathrm{max}$ (dimensionless)")
-    images = [save(fig, out, "fig7a_An.png")]
-    d = plateau[0][1] - plateau[-1][1]
-    e = math.hypot(*(x if verdict.finite(x) else 0 for x in (plateau[0][2], plateau[-1][2])))
-    so = verdict.paper()["fig7a_onset"]
-    ratio = onset[-1][1] / onset[0][1] if verdict.finite(onset[-1][1], onset[0][1]) else math.nan
-    rows = [verdict.row("fig7a_plateau_falls", "A_n^max = " + ", ".join(
-                "%s (K_ecm = %g)" % (verdict.fmt(v, e_), k) for k, v, e_ in plateau),
-                verdict.trend_verdict(d, e) if len(plateau) > 1 else verdict.NO_DATA,
-                "A_n^max(K_ecm = 0) - A_n^max(largest K_ecm) = %s (> 2 errors)" % verdict.fmt(d, e)),
-            verdict.row("fig7a_onset", "A_n = 0.25 at " + ", ".join(
-                "%s (K_ecm = %g)" % (verdict.fmt(x), k) for k, x in onset),
-                verdict.log_verdict(ratio, math.nan, 1.0, so["log_factor"]),
-                "onset(largest K_ecm)/onset(0) = %s, within a factor %g" % (
-                    verdict.fmt(ratio), so["log_factor"]))]
-    return {"images": images, "rows": rows,
-            "numbers": {"plateau": plateau, "onset": onset, "normalisation": extremes,
-                        "points": pts}, "steadiness": runs.steadiness_summary(jobs)}

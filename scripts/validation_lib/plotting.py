@@ -12,8 +12,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import plot_labels  # noqa: E402
 
-T_PAPER = r"$2 k_B T_c/(P\sigma^3)$ (measured, the paper's convention)"
-T_BATH = r"$k_B T/(P\sigma^3)$ (bath)"
+# The one temperature axis of every figure: the measured cancer-cell temperature in the
+# paper's convention (its Eq. (14): twice the equipartition T_c), for passive runs too.
+T_PAPER = r"$k_B T/(P\sigma^3) = 2 k_B T_c/(P\sigma^3)$ (measured, paper's convention)"
 
 
 def figure(ncols=1, width=5.2):
@@ -29,9 +30,26 @@ def log_if_spans(ax, values, axis="x", decades=1.5):
         (ax.set_xscale if axis == "x" else ax.set_yscale)("log")
 
 
-def save(fig, out_dir, name):
+def log_axis(ax, values, axis="x"):
+    """A log scale on `axis` with plain-number labels ("0.03", not "3 x 10^-2"): ticks at
+    1, 2, 5 x 10^k when the values span less than two decades, else at the decades, and no
+    labels on the minor ticks (which crowd a narrow log axis)."""
+    import numpy as np
+    from matplotlib.ticker import FormatStrFormatter, LogLocator, NullFormatter
+    v = np.asarray([x for x in values if x > 0], float)
+    narrow = len(v) < 2 or np.log10(v.max() / v.min()) < 2
+    (ax.set_xscale if axis == "x" else ax.set_yscale)("log")
+    a = ax.xaxis if axis == "x" else ax.yaxis
+    a.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0) if narrow else (1.0,)))
+    a.set_major_formatter(FormatStrFormatter("%g"))
+    a.set_minor_formatter(NullFormatter())
+
+
+def save(fig, out_dir, name, rect=None):
+    """Writes the figure (rect: the part of the figure tight_layout fills, leaving room for a
+    legend outside the axes)."""
     path = os.path.join(out_dir, name)
-    fig.tight_layout()
+    fig.tight_layout(rect=rect)
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return name

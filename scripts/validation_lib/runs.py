@@ -124,6 +124,19 @@ def steadiness_summary(jobs, column="A_t"):
             "max_drift_over_error": max(ratios) if ratios else None, "rows": rows}
 
 
+def unsteady_jobs(jobs, column="A_t"):
+    """The ids of the jobs that are not steady by steadiness(): drifting, or not judged (no
+    finite error or too few rows), since neither shows a steady state."""
+    return [j.id for j in jobs if steadiness(j, column)["steady"] is not True]
+
+
+def unsteady_points(points, jobs_by_id, name):
+    """The names (name(point)) of the state points (dicts with "jobs": ids) that have a run
+    that is not steady: a state point is steady when all its runs are."""
+    return [name(p) for p in points
+            if unsteady_jobs([jobs_by_id[i] for i in p["jobs"]])]
+
+
 def window_mean(job, column, end_fraction, width=0.1):
     """The mean of a series column over the rows in (end - width, end] of the run (fractions
     of the production rows), at least one row."""

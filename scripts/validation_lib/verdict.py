@@ -11,7 +11,15 @@ Two kinds of statement, each with an explicit criterion:
   agrees in trend only 0 < d <= 2 e (the right sign, not significant at 2 sigma)
   disagrees            d <= 0
 A row whose numbers are missing or not finite (too few points, e.g. at the CI size) gets
-"no data" with the reason; a statement that needs data we do not have gets "not testable"."""
+"no data" with the reason; a statement that needs data we do not have gets "not testable".
+Two classes say why a number is not compared:
+- paper inconsistent  the paper contradicts itself on the statement (its `inconsistent` in
+                      validation_paper.json says how); the row shows ours and what the
+                      number's verdict against one of the paper's values would be
+- not steady          a state point the row rests on (named in the row's criterion) has a run
+                      that is not steady by runs.steadiness (or cannot be judged)
+A statement with `"check": "code"` tests our code, not the paper (e.g. the factor 2 of k_B T):
+docs/validation.md lists it apart and leaves it out of the verdict counts."""
 
 import json
 import math
@@ -19,6 +27,13 @@ import os
 
 AGREES, TREND, DISAGREES, NO_DATA, UNTESTABLE = (
     "agrees", "agrees in trend only", "disagrees", "no data", "not testable")
+PAPER_INCONSISTENT, NOT_STEADY = "paper inconsistent", "not steady"
+# The version of the criteria a figure record was computed with (its "criteria"): 2 is the
+# measured 2 T_c/P axis for every figure, the classes above and the per-point criteria of
+# Figs. 5-8; records without it are older (docs/validation.md says so under the figure).
+CRITERIA = 2
+# Every verdict, in the order of the page's counts.
+VERDICTS = (AGREES, TREND, DISAGREES, PAPER_INCONSISTENT, NOT_STEADY, NO_DATA, UNTESTABLE)
 
 PAPER_FILE = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                           "validation_paper.json")
@@ -64,13 +79,54 @@ def fmt(v, err=None, digits=3):
     return text
 
 
-def row(statement_id, ours, verdict, why, data=None):
+def fmt_temperature(x, err=None):
+    """A temperature k_B T/(P sigma^3) given in the paper's convention (2 T_c) in both
+    conventions: "2T_c/P = 0.3 (T_c/P = 0.15)"."""
+    half = err / 2 if err is not None and finite(err) else None
+    return "2T_c/P = %s (T_c/P = %s)" % (fmt(x, err), fmt(x / 2 if finite(x) else x, half))
+
+
+def row(statement_id, ours, verdict, why, data=None, unsteady=None):
     """One row of the side-by-side table: the paper's statement (by id), ours as text, the
-    verdict, the reason (with the criterion's numbers) and the raw numbers."""
+    verdict, the reason (with the criterion's numbers) and the raw numbers. `unsteady`: the
+    names of the state points the row rests on that are not steady (then "not steady");
+    a statement the paper contradicts itself on gets "paper inconsistent" (paper_verdict)."""
     s = paper()[statement_id]
+    if unsteady:
+        why += "; not steady: %s" % ", ".join(unsteady)
+        verdict = NOT_STEADY
+    verdict, why = paper_verdict(s, verdict, why)
     return {"id": statement_id, "figure": s["figure"], "paper": s["text"],
             "source": s["source"], "ours": ours, "verdict": verdict, "why": why,
             "data": data or {}}
+
+
+def paper_verdict(statement, verdict, why):
+    """(verdict, why) of a row by the statement's class: where the paper contradicts itself
+    (`inconsistent`), a number's verdict becomes "paper inconsistent" and the reason keeps
+    what it would have been. Idempotent, so that records written before a class existed read
+    the same (docs/validation.md is regenerated from them)."""
+    if statement.get("inconsistent") and verdict not in (NO_DATA, UNTESTABLE, NOT_STEADY,
+                                                          PAPER_INCONSISTENT):
+        return PAPER_INCONSISTENT, "%s; against %s alone: %s" % (
+            statement["inconsistent"], statement.get("compared", "the paper's value"), verdict)
+    return verdict, why
+
+
+def is_code_check(statement_id):
+    """True for a statement that checks our code, not the paper (`"check": "code"`)."""
+    return paper().get(statement_id, {}).get("check") == "code"
+
+
+def all_of(verdicts):
+    """One verdict for a statement that must hold at every point: no data if none has data;
+    agrees if every point with data agrees; disagrees if one disagrees; else trend only."""
+    vs = [v for v in verdicts if v != NO_DATA]
+    if not vs:
+        return NO_DATA
+    if all(v == AGREES for v in vs):
+        return AGREES
+    return DISAGREES if DISAGREES in vs else TREND
 
 
 def log_verdict(ours, err, p, factor, trend_holds=None):

@@ -182,6 +182,149 @@ try:
 except runs.InputError as e:
     check("x.lua: steps = -1 (automatic)" in str(e), e)
 
+# The verdict classes (verdict.py): where the paper contradicts itself, a number's verdict
+# becomes "paper inconsistent" (also for a record written before the class existed); a row
+# resting on a state point that is not steady is "not steady"; the factor-2 check is a check
+# of our code, not a statement of the paper's.
+for sid in ("fig3_At_min_over_max", "L_f"):
+    for given in (v.AGREES, v.DISAGREES):
+        r = v.row(sid, "x", given, "w")
+        check(r["verdict"] == v.PAPER_INCONSISTENT and given in r["why"], r)
+    check(v.row(sid, "x", v.NO_DATA, "w")["verdict"] == v.NO_DATA)
+check(v.row("fig4b_An_at_0.3", "x", v.AGREES, "w")["verdict"] == v.AGREES)
+r = v.row("fig4b_An_at_0.3", "x", v.AGREES, "w", unsteady=["f0 = 0.1"])
+check(r["verdict"] == v.NOT_STEADY and "not steady: f0 = 0.1" in r["why"], r)
+check(v.is_code_check("fig5_factor2") and not v.is_code_check("fig5_c1"))
+check(v.all_of([v.AGREES, v.AGREES, v.NO_DATA]) == v.AGREES)
+check(v.all_of([v.AGREES, v.TREND]) == v.TREND and v.all_of([v.AGREES, v.DISAGREES]) == v.DISAGREES)
+check(v.fmt_temperature(0.3) == "2T_c/P = 0.3 (T_c/P = 0.15)", v.fmt_temperature(0.3))
+for needed in ["fig4a_Tc_equals_Ta", "fig5_Tc_equals_Ta", "fig5_inset", "fig7b_plateau_falls",
+               "fig7b_onset", "fig8_dphi_grows"]:
+    check(needed in ids and ids[needed]["source"], needed)
+
+# The page: the counts name every class, the code check has its own table and is not
+# counted, an old record's "disagrees" on L_f reads "paper inconsistent", a missing record
+# and a missing workspace are named.
+shutil.rmtree(work, ignore_errors=True)
+os.makedirs(os.path.join(work, "records"))
+def rec_row(sid, verdict_):
+    s_ = ids[sid]
+    return {"id": sid, "figure": s_["figure"], "paper": s_["text"], "source": s_["source"],
+            "ours": "o", "verdict": verdict_, "why": "w", "data": {}}
+with open(os.path.join(work, "records", "fig3.json"), "w") as f:
+    json.dump({"rows": [rec_row("L_f", v.DISAGREES), rec_row("fig3_invasion_grows", v.AGREES)],
+               "specs": ["s"], "runs": 1, "steps_range": "1", "images": [], "command": "c"}, f)
+with open(os.path.join(work, "records", "fig5.json"), "w") as f:
+    json.dump({"rows": [rec_row("fig5_factor2", v.AGREES),
+                        dict(rec_row("fig5_b_range", v.NOT_STEADY), variant="beta = 0.001, tau_p = 2500")],
+               "specs": ["s"], "runs": 1, "steps_range": "1", "images": [], "command": "c",
+               "missing": ["fig5_extra_curves"]}, f)
+counts = document.render(os.path.join(work, "records"), None, page)
+text = open(page).read()
+verdicts_part = text[text.index("## Verdicts"):text.index("### Checks of our code")]
+checks_part = text[text.index("### Checks of our code"):text.index("## Where the paper")]
+check(counts == {v.AGREES: 1, v.TREND: 0, v.DISAGREES: 0, v.PAPER_INCONSISTENT: 1,
+                 v.NOT_STEADY: 1, v.NO_DATA: 0, v.UNTESTABLE: 0}, counts)
+check("1 agrees, 0 agrees in trend only, 0 disagrees, 1 paper inconsistent, 1 not steady, "
+      "0 no data, 0 not testable" in verdicts_part, verdicts_part)
+check("| fig3 | `L_f` | paper inconsistent |" in verdicts_part, verdicts_part)
+check("fig5_factor2" not in verdicts_part and "| fig5 | `fig5_factor2` |" in checks_part, checks_part)
+check("Not generated: no record `fig7b.json`" in text and "`out/fig7b_tethered`" in text)
+check("Workspace not given for this record: `fig5_extra_curves`" in text)
+check(text.count("**Record from older criteria.**") == 2, text)  # neither record has "criteria"
+
+# Fig. 7's onset: where A_n first rises above its lowest-temperature value by more than 2
+# combined errors (here 0.0566, crossed between 0.1 and 1), not the A_n = 0.25 crossing.
+from validation_lib import figures_other, figures_tethered, figures_tissue  # noqa: E402
+got = figures_tethered.onset([0.01, 0.1, 1.0], [0.0, 0.05, 0.8], [0.02, 0.02, 0.02])
+want = 10 ** (-1 + (2 * math.hypot(0.02, 0.02) - 0.05) / 0.75)
+check(abs(got - want) < 1e-9, (got, want))
+check(math.isnan(figures_tethered.onset([0.01, 0.1], [0.0, 0.01], [0.02, 0.02])))
+
+# Fig. 6 holds for all phi_c: at phi_c = 0.5 the smallest tau_p gives tau_d/tau_d_free = 0.7,
+# so "tau_d -> tau_g as tau_p -> 0" disagrees although phi_c = 0 agrees.
+def p6(phi, tp, td, free):
+    return {"phi_c": phi, "tau_p": tp, "tau_d": td, "tau_d_free": free, "windows": 50.0}
+table6 = [p6(0.0, 0.02, 5.0, 5.0), p6(0.0, 2500.0, 2500.0, 2500.0),
+          p6(0.5, 0.02, 3.5, 5.0), p6(0.5, 2500.0, 60.0, 2500.0)]
+rows6 = {r["id"]: r for r in figures_other._fig6_rows(table6, lambda r: 0.1)}
+check(rows6["fig6_small_tau_p"]["verdict"] == v.DISAGREES, rows6["fig6_small_tau_p"])
+check(rows6["fig6_free_formula"]["verdict"] == v.DISAGREES, rows6["fig6_free_formula"])
+check(rows6["fig6_dense_deviates"]["verdict"] == v.AGREES, rows6["fig6_dense_deviates"])
+
+# Fig. 8: lambda compared at the same phi_a. lambda = 1 has a higher A_n than lambda = 0 at
+# both shared phi_a, but an extra dense point at A_n = 0 lowers its scan mean: pointwise, the
+# statement disagrees. Delta phi_a rising 0.1 -> 0.2 -> 0.25 (errors 0.01) agrees.
+def p8(lam, phi, an, dphi):
+    return {"lambda": lam, "phi_a_target": phi, "phi_a_measured": phi, "A_n": an,
+            "A_n_error": 0.01, "dphi": dphi, "dphi_error": 0.01, "A_t": 1.0, "A_t_max": 2.0,
+            "P_right": 1.0, "P": 1.0, "T_c": 1.0}
+pts8 = [p8(0.0, 0.5, 0.6, 0.1), p8(0.0, 0.6, 0.4, 0.05), p8(0.3, 0.5, 0.7, 0.2),
+        p8(1.0, 0.5, 0.7, 0.25), p8(1.0, 0.6, 0.5, 0.1), p8(1.0, 0.9, 0.0, 0.1)]
+by8 = {lam: [p for p in pts8 if p["lambda"] == lam] for lam in (0.0, 0.3, 1.0)}
+rows8 = {r["id"]: r for r in figures_other._fig8_rows(pts8, by8, "fixed", None)}
+check(rows8["fig8_lambda_lowers"]["verdict"] == v.DISAGREES, rows8["fig8_lambda_lowers"])
+check(rows8["fig8_dphi_grows"]["verdict"] == v.AGREES, rows8["fig8_dphi_grows"])
+
+# Fig. 4b's A_n at 0.3 rests on the two end-of-run state points bracketing 2T_c/P = 0.3:
+# one of them drifting makes the row "not steady"; all flat, it gets a number's verdict. The
+# temperature is the measured kT_c_paper/P.
+def tissue_job(path, f0, x, a_t, rising, sp=None):
+    os.makedirs(path, exist_ok=True)
+    P = 1.3e-3
+    ys = [a_t + ((2.0 * i) if rising else (1 if i % 2 else -1)) for i in range(40)]
+    with open(os.path.join(path, "series.csv"), "w") as f:
+        f.write("step,time [tau],A_t [sigma^2],A_t_max [sigma^2],kT_c_paper [eps_c]\n")
+        f.writelines("%d,%d,%r,1000.0,%r\n" % (i, i, y, x * P) for i, y in enumerate(ys))
+    json.dump(dict({"f0": f0, "P": P, "steps": 40}, **(sp or {})), open(os.path.join(path, "signac_statepoint.json"), "w"))
+    json.dump({"status": "done"}, open(os.path.join(path, "signac_job_document.json"), "w"))
+    json.dump({"averages": {"A_t": {"mean": float(np.mean(ys[20:])), "error": 1.0},
+                            "A_t_max": {"mean": 1000.0, "error": 1.0},
+                            "kT_c_paper": {"mean": x * P, "error": 0.0}}},
+              open(os.path.join(path, "summary.json"), "w"))
+    return runs.Job(path)
+
+for drifting, want in ((True, {v.NOT_STEADY}), (False, {v.AGREES, v.DISAGREES})):
+    shutil.rmtree(work, ignore_errors=True)
+    jobs4 = [tissue_job(os.path.join(work, "j%d" % k), f0, x, a, drifting and k == 1)
+             for k, (f0, x, a) in enumerate([(0.001, 0.1, 200.0), (0.002, 0.25, 500.0),
+                                              (0.004, 0.4, 620.0)])]
+    rec4 = figures_tissue.fig4b(jobs4, work, None)
+    r03 = [r for r in rec4["rows"] if r["id"] == "fig4b_An_at_0.3"][0]
+    check(r03["verdict"] in want and ("f0 = 0.002" in r03["why"]) == drifting, r03)
+    xs4 = sorted(p["x"] for p in rec4["numbers"]["points"][1.0])
+    check(all(abs(a - b) < 1e-12 for a, b in zip(xs4, [0.1, 0.25, 0.4])), xs4)
+
+# Fig. 7's rows use that onset: with K_ecm = 0.1 rising later but from the same point, the
+# onsets agree (the A_n = 0.25 crossings would differ by a factor 2.5).
+shutil.rmtree(work, ignore_errors=True)
+jobs7 = [tissue_job(os.path.join(work, "k%dp%d" % (i, n)), 0.001 * (n + 1), x, a, False,
+                    {"K_ecm": k}) for i, (k, ats) in enumerate([(0.0, (100.0, 150.0, 900.0)),
+                                                                (0.1, (100.0, 150.0, 400.0))])
+         for n, (x, a) in enumerate(zip((0.01, 0.1, 1.0), ats))]
+rec7 = figures_tethered.fig7b(jobs7, work, None)
+r7 = [r for r in rec7["rows"] if r["id"] == "fig7b_onset"][0]
+check(r7["verdict"] == v.AGREES, r7)
+check(os.path.exists(os.path.join(work, "fig7b_An.png")))
+
+# Fig. 5: a curve with a drifting state point gets "not steady" for its b and is left out of
+# the collapse and the fit of a; the other curve keeps a number's verdict.
+from validation_lib import figures_master  # noqa: E402
+shutil.rmtree(work, ignore_errors=True)
+jobs5 = []
+for c, (beta, tau_p) in enumerate([(1e-3, 25.0), (1e-3, 2500.0)]):
+    for k, (x, a) in enumerate([(0.03, 150.0), (0.1, 300.0), (0.3, 600.0), (1.0, 760.0)]):
+        jobs5.append(tissue_job(os.path.join(work, "c%dp%d" % (c, k)), 0.001 * (k + 1), x, a,
+                                c == 1 and k == 2, {"beta": beta, "tau_p": tau_p}))
+rec5 = figures_master.fig5(jobs5, work, None)
+b_rows = {r["variant"]: r for r in rec5["rows"] if r["id"] == "fig5_b_range"}
+check(b_rows["beta = 0.001, tau_p = 2500"]["verdict"] == v.NOT_STEADY, b_rows)
+check(b_rows["beta = 0.001, tau_p = 25"]["verdict"] != v.NOT_STEADY, b_rows)
+curves5 = {c["curve"]: c for c in rec5["numbers"]["curves"]}
+check(not curves5["beta = 0.001, tau_p = 2500"]["in_collapse"]
+      and "not steady" in curves5["beta = 0.001, tau_p = 2500"]["excluded_from_scale_fit"], curves5)
+check(os.path.getsize(os.path.join(work, "fig5_An.png")) > 1000)
+
 # The command line: a wrong number of workspaces and a non-workspace are named.
 cmd = [sys.executable, os.path.join(scripts, "validation.py"), "figure"]
 out = subprocess.run(cmd + ["fig6", work, work, "-o", work + "/o"], capture_output=True, text=True)

@@ -1,0 +1,102 @@
+"""The validation figures of the tethered tissue (Figs. 7a and 7b: the same statements at two
+tau_p and beta): A_n per K_ecm against the measured 2 T_c/P, normalised by the K_ecm = 0
+sweep, with each K_ecm's plateau A_n^max dashed; the plateau and the onset against K_ecm.
+Same contract as figures_tissue.py."""
+
+import math
+
+import matplotlib
+import numpy as np
+
+from . import runs, verdict
+from .figures_tissue import x_measured
+from .plotting import T_PAPER, figure, label, log_axis, save, state
+
+
+def onset(xs, ans, errs):
+    """Where A_n first rises above zero: the lowest temperature whose A_n exceeds the
+    lowest-temperature value by more than 2 combined errors, log-interpolated to that level
+    from the point before it; nan when no point does (errors: a missing one counts as 0)."""
+    order = np.argsort(xs)
+    x, y = np.asarray(xs, float)[order], np.asarray(ans, float)[order]
+    e = np.array([v if verdict.finite(v) else 0.0 for v in np.asarray(errs, float)[order]])
+    for k in range(1, len(x)):
+        level = y[0] + 2 * math.hypot(e[0], e[k])
+        if y[k] > level:
+            if x[k - 1] <= 0 or y[k] == y[k - 1]:
+                return float(x[k])
+            t = min(1.0, max(0.0, (level - y[k - 1]) / (y[k] - y[k - 1])))
+            return float(10 ** (math.log10(x[k - 1]) + t * (math.log10(x[k]) - math.log10(x[k - 1]))))
+    return math.nan
+
+
+def fig7a(jobs, out, invasim):
+    return fig7(jobs, out, "fig7a")
+
+
+def fig7b(jobs, out, invasim):
+    return fig7(jobs, out, "fig7b")
+
+
+def fig7(jobs, out, name):
+    """Fig. 7a or 7b (the same statements at another tau_p and beta): A_n per K_ecm,
+    normalised by the K_ecm = 0 sweep; the plateau A_n^max and the onset against K_ecm."""
+    pts = []
+    for (k, f0), reps in runs.group(jobs, ["K_ecm", "f0"]).items():
+        p = runs.state_point(reps, lambda j: {"x": x_measured(j), "A_t": j.mean("A_t")[0],
+                                              "A_t_max": j.mean("A_t_max")[0],
+                                              "A_t_error": j.mean("A_t")[1]})
+        p["K_ecm"] = float(k)
+        pts.append(p)
+    free = [p for p in pts if p["K_ecm"] == 0.0]
+    if not free:
+        raise runs.InputError("%s: no K_ecm = 0 points to normalise by" % name)
+    extremes = runs.normalise(free)
+    for p in pts:
+        if p["K_ecm"] != 0.0:
+            runs.scale_like(p, extremes)
+    fig, axes = figure(2)
+    plateau, onsets = [], []
+    ks = sorted({p["K_ecm"] for p in pts})
+    greens = [matplotlib.cm.Greens(0.45 + 0.5 * (1 - i / max(1, len(ks) - 1))) for i in range(len(ks))]
+    for i, k in enumerate(ks):
+        c = sorted((p for p in pts if p["K_ecm"] == k), key=lambda p: p["x"])
+        errs = [p["A_n_error"] if verdict.finite(p["A_n_error"]) else 0 for p in c]
+        colour = "k" if k == 0 else greens[i]
+        axes[0].errorbar([p["x"] for p in c], [p["A_n"] for p in c], yerr=errs, marker="o",
+                         capsize=2, color=colour, label=state({"K_ecm": "%g" % k}))
+        top = max(c, key=lambda p: p["A_n"])
+        plateau.append((k, top["A_n"], top["A_n_error"]))
+        axes[0].axhline(top["A_n"], color=colour, ls="--", lw=0.8)  # this K_ecm's A_n^max
+        onsets.append((k, onset([p["x"] for p in c], [p["A_n"] for p in c], errs)))
+    log_axis(axes[0], [p["x"] for p in pts])
+    axes[0].set_xlabel(T_PAPER)
+    axes[0].set_ylabel(label("A_n", "") + "\n" + r"(normalised by $K_\mathrm{ecm}$ = 0)")
+    axes[0].legend(fontsize=7, title="dashed: each $A_n^\\mathrm{max}$", title_fontsize=7)
+    axes[1].errorbar([k for k, _, _ in plateau], [v for _, v, _ in plateau],
+                     yerr=[e if verdict.finite(e) else 0 for _, _, e in plateau], marker="s",
+                     color="k")
+    axes[1].set_xlabel(label("K_ecm", "eps_c/sigma^2"))
+    axes[1].set_ylabel(r"plateau $A_n^\mathrm{max}$ (dimensionless)")
+    axes[1].set_title("inset: plateau against $K_\\mathrm{ecm}$", fontsize=9)
+    images = [save(fig, out, name + "_An.png")]
+    d = plateau[0][1] - plateau[-1][1]
+    e = math.hypot(*(x if verdict.finite(x) else 0 for x in (plateau[0][2], plateau[-1][2])))
+    so = verdict.paper()[name + "_onset"]
+    base = onsets[0][1]
+    ratios = [(k, x / base if verdict.finite(x, base) else math.nan) for k, x in onsets[1:]]
+    each = [verdict.log_verdict(r, math.nan, 1.0, so["log_factor"]) for _, r in ratios]
+    rows = [verdict.row(name + "_plateau_falls", "A_n^max = " + ", ".join(
+                "%s (K_ecm = %g)" % (verdict.fmt(v, e_), k) for k, v, e_ in plateau),
+                verdict.trend_verdict(d, e) if len(plateau) > 1 else verdict.NO_DATA,
+                "A_n^max(K_ecm = 0) - A_n^max(largest K_ecm) = %s (> 2 errors)" % verdict.fmt(d, e)),
+            verdict.row(name + "_onset", "onset at 2T_c/P = " + ", ".join(
+                "%s (K_ecm = %g)" % (verdict.fmt(x), k) for k, x in onsets),
+                verdict.all_of(each) if ratios else verdict.NO_DATA,
+                "the onset is where A_n first exceeds its lowest-temperature value by more than "
+                "2 combined errors (log-interpolated); onset(K_ecm)/onset(0) = %s, each within "
+                "a factor %g" % (", ".join("%s (K_ecm = %g)" % (verdict.fmt(r), k)
+                                          for k, r in ratios) or "n/a", so["log_factor"]))]
+    return {"images": images, "rows": rows,
+            "numbers": {"plateau": plateau, "onset": onsets, "normalisation": extremes,
+                        "points": pts}, "steadiness": runs.steadiness_summary(jobs)}
