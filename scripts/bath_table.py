@@ -41,12 +41,13 @@ P, GAMMA, M = 1.3e-3, 0.2, 1.0
 TAU_G = M / GAMMA
 TAU_PS = (25.0, 2500.0)
 BETAS = (1e-3, 1e-2)
-F0S = (0.003, 0.0065, 0.0105, 0.02)
+F0S = (0.001, 0.003, 0.0065, 0.0105, 0.02)
 PASSIVE_XS = (0.03, 0.3, 1.0)  # the paper's 2 k_B T/(P sigma^3) of the passive bath
 RATIOS = (3.0, 1.0, 1.0 / 3.0, 0.1)
 DAMPINGS = (0.2, 0.02, 0.006, 0.002, 0.0)
 HEAVY_MASS = 20.0
 WINDOW = (1.0, 1.2)  # the paper's 1 < T_c/T_a < 1.2 for active runs
+FIG5_RANGE = (0.005, 3.0)  # the measured 2 k_B T_c/(P sigma^3) the Fig. 5 sweeps span
 
 
 def active_temperature(f0, tau_p):
@@ -226,16 +227,18 @@ def markdown(rows, all_readings, points, m_v):
     with a row per state point, each cell `T_c/T_a +- error (2 k_B T_c/(P sigma^3))`."""
     by = {(r["reading"], r["point"]): r for r in rows}
     lines = ["Adipocyte vertex mass of reading (c): %.3g m (the adipocyte's volume over a cell's, / 42)." % m_v, "",
-             "| reading | active points in 1 <= T_c/T_a <= 1.2 (2 errors) | range of T_c/T_a (active) | passive T_c/T_a | passive equilibrates |",
-             "|---|---|---|---|---|"]
+             "| reading | active points in 1 <= T_c/T_a <= 1.2 (2 errors) | of those at 2 k_B T_c/(P sigma^3) in [%g, %g] (Fig. 5's range) | range of T_c/T_a (active) | passive T_c/T_a | passive equilibrates |" % FIG5_RANGE,
+             "|---|---|---|---|---|---|"]
     for rid, _, desc, _ in all_readings:
         act = [by[(rid, p[0])] for p in points if p[1] == "active" and (rid, p[0]) in by]
         pas = [by[(rid, p[0])] for p in points if p[1] == "passive" and (rid, p[0]) in by]
         if not act:
             continue
         ratios = [r["T_c_over_T_a"] for r in act]
-        lines.append("| %s (%s) | %d of %d | %.3g to %.3g | %s | %s |" % (
-            rid, desc, sum(in_window(r) for r in act), len(act), min(ratios), max(ratios),
+        fig5 = [r for r in act if FIG5_RANGE[0] <= 2 * r["kT_c_over_P"] <= FIG5_RANGE[1]]
+        lines.append("| %s (%s) | %d of %d | %d of %d | %.3g to %.3g | %s | %s |" % (
+            rid, desc, sum(in_window(r) for r in act), len(act), sum(in_window(r) for r in fig5),
+            len(fig5), min(ratios), max(ratios),
             ", ".join("%.3g" % r["T_c_over_T_a"] for r in pas),
             "yes" if pas and all(equilibrates(r) for r in pas) else "no"))
     for group, title in (("a", "(a) a common background T_0 for cells and vertices, the activity on top"),

@@ -6,6 +6,7 @@
 local iv = require("invasim")
 local parameters = require("lib.parameters")
 local stage = require("lib.stages")
+local motion = require("lib.motion")
 
 -- Parameters: the shared ones and this protocol's own, each with its range.
 local p = iv.params(parameters.merge{
@@ -27,18 +28,16 @@ stage.compress(tissue, { to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.
                          cohesion = p.cohesive_compression, out = out, from = iv.from })
 
 -- The pressure ramp: a quench whose piston pressure rises linearly from P_start to P.
-stage.quench(tissue, { label = "ramp", P = iv.ramp{ from = p.P_start, to = p.P, steps = p.ramp_steps },
-                       kT = p.kT, f0 = p.f0, tau_p = p.tau_p, gamma = p.gamma,
-                       vertex_bath = p.vertex_bath, vertex_gamma = p.vertex_gamma, dt = p.dt,
-                       steps = p.ramp_steps })
+-- (motion.quench_options: the cells' motion and background, the vertices' bath, dt from p.)
+stage.quench(tissue, motion.quench_options(p, {
+  label = "ramp", P = iv.ramp{ from = p.P_start, to = p.P, steps = p.ramp_steps },
+  steps = p.ramp_steps }))
 
 -- ECM tethers between neighbouring adipocytes of the ramped tissue.
 stage.tether(tissue, { K = p.K_ecm })
 
 -- Equilibration at P, then production and the report, as in invasion.lua.
-stage.quench(tissue, { label = "equilibrate", P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p,
-                       gamma = p.gamma, vertex_bath = p.vertex_bath, vertex_gamma = p.vertex_gamma,
-                       dt = p.dt, steps = p.quench_steps })
+stage.quench(tissue, motion.quench_options(p, { label = "equilibrate", steps = p.quench_steps }))
 local result = stage.production(tissue, { steps = p.steps, every = p.every,
                                           correlate_every = p.correlate_every,
                                           snapshot_every = p.snapshot_every,

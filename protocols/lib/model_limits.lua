@@ -70,14 +70,26 @@ local function check_loads(p)
   -- What each is, and the overlap it causes in diameters (a spring of stiffness eps/s^2: P s^2
   -- and f0 press it by P s^3 / eps and f0 s / eps, kT by sqrt(kT / eps) s).
   local what = { P = "the pressure on the left wall (eps_c/sigma^3)",
-                 kT = "the thermal energy (eps_c)", f0 = "the self-propulsion force (eps_c/sigma)" }
-  local overlap = { P = function(v) return v end, kT = math.sqrt, f0 = function(v) return v end }
-  for _, key in ipairs{ "P", "kT", "f0" } do
+                 kT = "the thermal energy (eps_c)", f0 = "the self-propulsion force (eps_c/sigma)",
+                 vertex_kT = "the vertices' thermal energy (eps_c)" }
+  local overlap = { P = function(v) return v end, kT = math.sqrt, f0 = function(v) return v end,
+                    vertex_kT = math.sqrt }
+  for _, key in ipairs{ "P", "kT", "f0", "vertex_kT" } do
     local v = p[key]
     if v and v > M.max_load then
       fail("%s = %g: %s is not small against the contacts' modulus eps_c = 1: the bodies would " ..
            "overlap by about %.3g of a diameter; %s must be at most %g (the paper's values are " ..
            "at most ~1e-2)", key, v, what[key], overlap[key](v), key, M.max_load)
+    end
+  end
+  -- The active cells' background (background_factor x their free-particle temperature).
+  local factor = p.background_factor or 0
+  if (p.f0 or 0) > 0 and factor > 0 and (p.gamma or 0) > 0 then
+    local T0 = require("lib.motion").background_kT(p)
+    if T0 > M.max_load then
+      fail("background_factor = %g with f0 = %g, tau_p = %g: the background temperature %g " ..
+           "(eps_c) is not small against the contacts' modulus eps_c = 1; it must be at most %g " ..
+           "(lower f0 or background_factor)", factor, p.f0, p.tau_p, T0, M.max_load)
     end
   end
 end

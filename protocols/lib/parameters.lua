@@ -89,6 +89,7 @@ function M.validate(p)
     error(string.format("steps: quench_steps + steps = %d + %d overflows the step counter " ..
                         "(at most %d steps in a run)", p.quench_steps, p.steps, math.maxinteger), 0)
   end
+  require("lib.model_limits").check(p, N_a, N_c, L0)
   -- Active cells take their background temperature from background_factor unless it is 0.
   if p.f0 > 0 and p.background_factor > 0 and p.gamma == 0 then
     error(string.format("background_factor = %g needs gamma > 0 (the free-particle active " ..
@@ -100,7 +101,6 @@ function M.validate(p)
                         "temperature: --set background_factor=0 to give kT yourself, or leave kT " ..
                         "at 0 (docs/model.md, Vertex bath)", p.kT, p.background_factor), 0)
   end
-  require("lib.model_limits").check(p, N_a, N_c, L0)
 end
 
 return M

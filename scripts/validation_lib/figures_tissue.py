@@ -74,7 +74,7 @@ def plot_an_times(ax, table, xlabel, jobs):
     ax.set_xlabel(xlabel)
     ax.set_ylabel(label("A_n", ""))
     ax.axhline(0.5, color="0.7", lw=0.8, ls=":")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="center left")  # rising curves: the upper left holds labels
 
 
 def fig3(jobs, out, invasim):
@@ -181,22 +181,24 @@ def fig4a(jobs, out, invasim):
 
 
 def tc_equals_ta_row(sid, jobs, keys):
-    """The passive runs' T_c/T_a (summary.json) against 1: every state point within 2 errors
-    (replicate scatter, or the run's block error)."""
+    """The passive runs' T_c/T_a (summary.json) against 1: every state point within the
+    statement's tolerance (2 %, the precision docs/model.md's bath table asks of an
+    equilibrated bath) + 2 errors (replicate scatter, or the run's block error)."""
+    tolerance = verdict.paper()[sid]["tolerance"]
     pts = []
     for key, reps in runs.group(jobs, keys).items():
         p = runs.state_point(reps, lambda j: {
             "r": j.mean("T_c_over_T_a")[0], "r_error": j.mean("T_c_over_T_a")[1],
             "x": x_measured(j)})
         pts.append(p)
-    each = [verdict.value_verdict(p["r"], p["r_error"], 1.0, 0.0) for p in pts]
+    each = [verdict.value_verdict(p["r"], p["r_error"], 1.0, tolerance) for p in pts]
     worst = max(pts, key=lambda p: abs(p["r"] - 1) if verdict.finite(p["r"]) else -1)
     return verdict.row(
         sid, "T_c/T_a = %s; farthest from 1: %s at %s; %d of %d state points within" % (
             ", ".join(verdict.fmt(p["r"], p["r_error"]) for p in pts),
             verdict.fmt(worst["r"], worst["r_error"]), verdict.fmt_temperature(worst["x"]),
             each.count(verdict.AGREES), len(pts)),
-        verdict.all_of(each), "every passive state point |T_c/T_a - 1| <= 2 errors",
+        verdict.all_of(each), "every passive state point |T_c/T_a - 1| <= %g + 2 errors" % tolerance,
         data={"points": pts})
 
 

@@ -10,7 +10,7 @@ work=$2
 cd "$(dirname "$0")"
 rm -rf "$work" && mkdir -p "$work"
 # A background kT: the cells, the Langevin vertices and the piston all draw noise.
-args=(run ../../protocols/invasion.lua --set N_a=4 --set N_c=60 --set L0=32.0 --set quench_steps=500 --set kT=1e-4
+args=(run ../../protocols/invasion.lua --set N_a=4 --set N_c=60 --set L0=32.0 --set quench_steps=500 --set background_factor=0 --set kT=1e-4
       --set steps=30000 --set every=200 --set snapshot_every=30000 --set checkpoint_every=1000
       --set correlate_every=10)
 

@@ -2,7 +2,7 @@
 -- 2 adipocytes and 40 cells, all starting from one shared preparation (compression only).
 return {
   protocol = "../../../protocols/invasion.lua",
-  set = { N_a = 2, N_c = 40, quench_steps = 100, steps = 1000, every = 50,
+  set = { N_a = 2, N_c = 40, background_factor = 0, quench_steps = 100, steps = 1000, every = 50,
           snapshot_every = 0, checkpoint_every = 50, correlate_every = 5 },
   product = { kT = { 1e-4, 1e-3 } },
   seeds = { 1, 2 },
