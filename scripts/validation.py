@@ -67,6 +67,22 @@ def default_invasim():
     return os.path.join(REPO, "build", "invasim")
 
 
+def repo_spec_path(spec):
+    """The spec as a path in this repository: a workspace made from another checkout (a
+    campaign's own clone) cites the same file under protocols/sweeps/, so that the page never
+    names a path outside the repository."""
+    rel = os.path.relpath(spec, REPO)
+    if not rel.startswith(".."):
+        return rel
+    parts = os.path.normpath(spec).split(os.sep)
+    if "protocols" in parts:
+        k = len(parts) - 1 - parts[::-1].index("protocols")
+        inside = os.path.join(*parts[k:])
+        if os.path.exists(os.path.join(REPO, inside)):
+            return inside
+    return rel
+
+
 def command_text(argv):
     return " ".join(["scripts/validation.py"] + argv)
 
@@ -131,7 +147,7 @@ def figure(name, workspaces, out, invasim, argv):
     specs = []
     for ws in [w for w in workspaces if w != NOT_GIVEN]:
         with open(os.path.join(ws, "invasim_sweep.json")) as f:
-            specs.append(os.path.relpath(json.load(f)["spec"], REPO))
+            specs.append(repo_spec_path(json.load(f)["spec"]))
     jobs = [j for s in sets if s for j in s]
     steps = sorted(int(j.sp.get("steps", j.scalar("steps"))) for j in jobs)
     rec.update({"figure": name, "criteria": verdict.CRITERIA, "command": command_text(argv),

@@ -333,4 +333,16 @@ out = subprocess.run(cmd + ["fig6", work, "-o", work + "/o"], capture_output=Tru
 check(out.returncode == 1 and "is not a sweep workspace (no invasim_sweep.json)" in out.stderr, out.stderr)
 out = subprocess.run(cmd + ["fig10", work, "-o", work + "/o"], capture_output=True, text=True)
 check(out.returncode == 1 and "unknown figure 'fig10'" in out.stderr, out.stderr)  # the old name
+# A workspace made from another checkout of the repository (a campaign's own clone) cites its
+# spec by the same path inside this repository; a spec found nowhere here keeps its own path
+# (and the page's citation check then refuses it).
+import importlib.util  # noqa: E402
+cli_spec = importlib.util.spec_from_file_location("validation_cli", os.path.join(scripts, "validation.py"))
+cli = importlib.util.module_from_spec(cli_spec)
+cli_spec.loader.exec_module(cli)
+check(cli.repo_spec_path("/elsewhere/clone/protocols/sweeps/fig3_passive_slices.lua")
+      == "protocols/sweeps/fig3_passive_slices.lua")
+check(cli.repo_spec_path(os.path.join(cli.REPO, "protocols/sweeps/fig4a_passive.lua"))
+      == "protocols/sweeps/fig4a_passive.lua")
+check(cli.repo_spec_path("/elsewhere/clone/protocols/sweeps/no_such_sweep.lua").startswith(".."))
 print("check_validation: all checks passed")
