@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Checks that comments and docs speak of the repository as it is (docs/architecture.md,
+# "Tests and benchmarks"): no tracked file cites a tracker's issue number ("issue 12", "issues 16 and
+# 17", "issue #3") or a file outside the repository (the model notes, paths under /work or
+# ../shared). The paper is cited by section, figure and equation; history lives in the git log.
+# Prints every offending line and exits 1 if there is one.
+# Usage: check_citations.sh [REPO]   (default: the repository holding this script)
+# Files that must name such paths to test their refusal are listed in ALLOWED.
+set -euo pipefail
+repo=${1:-$(cd "$(dirname "$0")/.." && pwd)}
+cd "$repo"
+ALLOWED='^(tests/analysis/check_validation\.py|scripts/validation_lib/citations\.py|scripts/check_citations\.sh|tests/app/check_citations_test\.sh)$'
+pattern='\b[Ii]ssues? #?[0-9]+|\b[Ii]ssue #[0-9]+|MODEL\.md|ARCHITECTURE\.md|SLURM\.md|\.\./shared/|/work/shared|/work/main|/work/wt/'
+# The tracked files of a git checkout; any other tree (or a directory inside one): all files.
+if [ "$(git rev-parse --show-toplevel 2>/dev/null)" = "$(pwd -P)" ]; then
+  files=$(git ls-files)
+else
+  files=$(find . -type f ! -path './build*' ! -path './.git/*' | sed 's|^\./||')
+fi
+bad=$(printf '%s\n' "$files" | grep -Ev "$ALLOWED" | grep -Ev '\.(png|svg|ckpt|bin)$' \
+      | tr '\n' '\0' | xargs -0 grep -nIE "$pattern" 2>/dev/null || true)
+if [ -n "$bad" ]; then
+  printf '%s\n' "$bad"
+  echo "check_citations: the lines above cite an issue number or a file outside the repository" >&2
+  exit 1
+fi
+echo "check_citations: no tracked file cites an issue number or a file outside the repository"
