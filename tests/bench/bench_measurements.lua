@@ -25,9 +25,7 @@ local tissue = stage.init{ N_a = N_a, N_c = N_c, L0 = L0, seed = p.seed, start =
                            alpha = p.alpha, beta = p.beta }
 stage.compress(tissue, { to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.final_ftol,
                          cohesion = p.cohesive_compression, progress = false })
-stage.quench(tissue, { P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p, gamma = p.gamma,
-                       vertex_bath = p.vertex_bath, vertex_gamma = p.vertex_gamma, dt = p.dt,
-                       steps = p.quench_steps })
+stage.quench(tissue, require("lib.motion").quench_options(p, { steps = p.quench_steps }))
 local sys, dyn = tissue.sys, tissue.dyn
 local lags, origin_every = 250, 5  -- lib/production.lua's defaults
 local corr = p.correlate_every > 0 and iv.Correlator{ group = tissue.cells,
