@@ -50,9 +50,13 @@ WINDOW = (1.0, 1.2)  # the paper's 1 < T_c/T_a < 1.2 for active runs
 FIG5_RANGE = (0.005, 3.0)  # the measured 2 k_B T_c/(P sigma^3) the Fig. 5 sweeps span
 
 
-def active_temperature(f0, tau_p):
-    """Free-particle active temperature m <v^2>/3 of Active{f0, tau_p, gamma} without noise."""
-    return (f0 / GAMMA) ** 2 * tau_p / (3.0 * (tau_p + TAU_G))
+def active_temperature(f0, tau_p, dt=0.05):
+    """Free-particle active temperature m <v^2>/3 of Active{f0, tau_p, gamma} without noise, as
+    the integrator makes it (protocols/lib/motion.lua, active_temperature): the force's
+    persistence held over steps of dt, (dt/2)(1 + rho)/(1 - rho) with rho = exp(-dt/tau_p)."""
+    rho = math.exp(-dt / tau_p)
+    tau = 0.5 * dt * (1 + rho) / (1 - rho)
+    return (f0 / GAMMA) ** 2 * tau / (3.0 * (tau + TAU_G))
 
 
 def readings(vertex_mass_adipocyte):

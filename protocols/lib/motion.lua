@@ -58,12 +58,18 @@ function M.cell_method(group, o)
   return iv.Damped{ group = group, gamma = o.gamma }
 end
 
--- The free-particle temperature m <v^2>/3 of an active cell without noise (m = 1):
--- (f0/gamma)^2 tau_p / (3 (tau_p + tau_g)), tau_g = m/gamma (docs/model.md, Vertex bath).
-function M.active_temperature(f0, tau_p, gamma)
+-- The free-particle temperature m <v^2>/3 of an active cell without noise (m = 1), as the
+-- integrator makes it: (f0/gamma)^2 tau / (3 (tau + tau_g)), tau_g = m/gamma, with the
+-- persistence tau of the force held over each step of dt, tau = (dt/2) (1 + rho)/(1 - rho),
+-- rho = exp(-dt/tau_p) (= tau_p to 1e-6 when tau_p >> dt; dt/2 at tau_p = 0, a fresh
+-- direction every step; docs/model.md, Vertex bath).
+function M.active_temperature(f0, tau_p, gamma, dt)
   if f0 == 0 then return 0.0 end
   local tau_g = 1.0 / gamma
-  return (f0 / gamma) ^ 2 * tau_p / (3 * (tau_p + tau_g))
+  if tau_p == math.huge then return (f0 / gamma) ^ 2 / 3 end
+  local rho = math.exp(-dt / tau_p)
+  local tau = 0.5 * dt * (1 + rho) / (1 - rho)
+  return (f0 / gamma) ^ 2 * tau / (3 * (tau + tau_g))
 end
 
 -- The background temperature of a protocol's parameters p: for active cells with
@@ -71,7 +77,7 @@ end
 -- thermal noise and the langevin vertices' bath); otherwise kT.
 function M.background_kT(p)
   if p.f0 > 0 and (p.background_factor or 0) > 0 then
-    return p.background_factor * M.active_temperature(p.f0, p.tau_p, p.gamma)
+    return p.background_factor * M.active_temperature(p.f0, p.tau_p, p.gamma, p.dt)
   end
   return p.kT
 end

@@ -142,7 +142,7 @@ check(abs(runs.crossing_log_error([0.01, 0.1, 1.0], [0.0, 0.25, 0.75], [0.1, 0.0
            - 0.05 / 0.5) < 1e-12)
 
 # Steadiness on a hand-made run: 40 rows, the last half flat (steady) or rising (not).
-def fake_job(path, last_half, error):
+def fake_job(path, last_half, error, a_t_max=None):
     os.makedirs(path, exist_ok=True)
     y = [500.0] * 20 + list(last_half)
     with open(os.path.join(path, "series.csv"), "w") as f:
@@ -150,8 +150,10 @@ def fake_job(path, last_half, error):
         f.writelines("%d,%d,%r\n" % (i, i, a) for i, a in enumerate(y))
     json.dump({"a": 1}, open(os.path.join(path, "signac_statepoint.json"), "w"))
     json.dump({"status": "done"}, open(os.path.join(path, "signac_job_document.json"), "w"))
-    json.dump({"averages": {"A_t": {"mean": float(np.mean(last_half)), "error": error}}},
-              open(os.path.join(path, "summary.json"), "w"))
+    averages = {"A_t": {"mean": float(np.mean(last_half)), "error": error}}
+    if a_t_max is not None:
+        averages["A_t_max"] = {"mean": a_t_max, "error": 0.1}
+    json.dump({"averages": averages}, open(os.path.join(path, "summary.json"), "w"))
     return runs.Job(path)
 
 shutil.rmtree(work, ignore_errors=True)
@@ -164,6 +166,14 @@ check(s["steady"] is False and abs(s["drift"] - 20.0) < 1e-12, s)   # 10 rows x 
 summary = runs.steadiness_summary([flat, rising])
 check(summary["steady"] == 1 and summary["jobs"] == 2 and summary["max_drift_over_error"] == 20.0)
 check(abs(runs.window_mean(rising, "A_t", 1.0, 0.1) - np.mean([600.0 + 2 * i for i in range(16, 20)])) < 1e-12)
+# A drift of 20 error bars that is below 1 % of A_t^max (a caged tissue ageing) is negligible:
+# steady; the same rise against a smaller A_t^max (20 > 1 % of 1500) is not.
+creeping = fake_job(os.path.join(work, "creeping"), [600.0 + 0.2 * i for i in range(20)], 0.1, 2500.0)
+s = runs.steadiness(creeping)
+check(s["steady"] is True and abs(s["drift"] - 2.0) < 1e-9 and s["negligible"] == 25.0, s)
+rising_big = fake_job(os.path.join(work, "rising_big"), [600.0 + 2 * i for i in range(20)], 1.0, 1500.0)
+s = runs.steadiness(rising_big)
+check(s["steady"] is False and s["negligible"] == 15.0, s)
 
 # The plan: sweep run's order on N slots after the preparation.
 check(plan.wall_time(5.0, [10, 10, 10], 2) == 25.0)
