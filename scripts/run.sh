@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs the main job: protocols/invasion.lua with its
-# embedded defaults (the reduced system: about a minute on 2 cores), printing progress and a
+# embedded defaults (the reduced system: about 15 seconds on 2 cores), printing progress and a
 # final summary; results in out/invasion/. Extra arguments go to `invasim run`, e.g.
 #   bash scripts/run.sh --set system=paper --out runs/paper
 set -euo pipefail
