@@ -157,6 +157,26 @@ def main(argv):
         paths.update(plots.write_figures(args.out, result,
                                          analysis.TEMPERATURES[args.temperature][1]))
     report(result, paths)
+    warn_bad_fits(result)
+
+
+def warn_bad_fits(result):
+    """Says on stderr which curves are not fits and which tau_d were dropped; exits 1 if no
+    curve gives a fit (the tables and figures are written, to look at)."""
+    for c in result["curves"]:
+        for d in c["tau_d_dropped"]:
+            print("master_curve.py: warning: curve %s: job %s has tau_d = %s: left out of the "
+                  "curve's tau_d%s" % (c["name"], d["job"], d["tau_d"],
+                                       "" if c["tau_d"] is not None else
+                                       " (none left: the curve is left out of the fit of a)"),
+                  file=sys.stderr)
+        if c["not_a_fit"]:
+            print("master_curve.py: warning: curve %s is not a fit: %s; it is left out of the "
+                  "collapse and of the fit of a" % (c["name"], c["not_a_fit"]), file=sys.stderr)
+    if not any(c["not_a_fit"] is None for c in result["curves"]):
+        fail("no curve gives a fit (%d curve%s, none with b > 0 and errors below the values%s)"
+             % (len(result["curves"]), "" if len(result["curves"]) == 1 else "s",
+                "" if len(result["curves"]) > 1 else "; group the sweep into curves with --group"))
 
 
 def report(result, paths):
@@ -181,6 +201,8 @@ def report(result, paths):
                                  "%.3g" % (c["chi2"] / c["dof"]) if c["dof"] > 0 else "-"))
         if c["fit_note"]:
             print("  note: " + c["fit_note"])
+        if c["not_a_fit"]:
+            print("  NOT A FIT: " + c["not_a_fit"])
         if c["varying"]:
             print("  its state points differ in: %s" % ", ".join(c["varying"]))
     s = result["scale_fit"]

@@ -155,6 +155,9 @@ def curve_scale_inputs(keys, table, rows, tau_g_opt):
         tau_g = 1.0 / DEFAULT_GAMMA
     tau_d = np.array([table.number(r, "tau_d", "for the fit of a", allow_missing=True)
                       for r in rows]) if table.has("tau_d") else np.array([])
+    # Jobs whose tau_d is empty, NaN, infinite or not positive: named, left out of the mean.
+    dropped = [{"job": r.get("job_id") or "line %d" % r["_line"], "tau_d": r["tau_d"] or "(empty)"}
+               for r, t in zip(rows, tau_d) if not (math.isfinite(t) and t > 0)]
     tau_d = tau_d[np.isfinite(tau_d) & (tau_d > 0)]
     reason = None
     if not keys.known("beta"):
@@ -172,7 +175,8 @@ def curve_scale_inputs(keys, table, rows, tau_g_opt):
     return {"beta": beta, "P": p, "tau_g": tau_g,
             "tau_d": float(np.mean(tau_d)) if tau_d.size else None,
             "tau_d_error": _sem(tau_d) if tau_d.size > 1 else None,
-            "tau_d_jobs": int(tau_d.size), "excluded_from_scale_fit": reason}
+            "tau_d_jobs": int(tau_d.size), "tau_d_dropped": dropped,
+            "excluded_from_scale_fit": reason}
 
 
 def analyse(table, opts):
@@ -219,7 +223,10 @@ def analyse(table, opts):
         curve = {"name": name, "group": dict(zip(opts.group, label)), "points": points,
                  "jobs": len(idx), "varying": varying, **fit}
         curve.update(curve_scale_inputs(keys, table, [rows[i] for i in idx], opts.tau_g))
-        if curve["excluded_from_scale_fit"] is None:
+        curve["not_a_fit"] = fits.not_a_fit(fit["a"], fit["a_error"], fit["b"], fit["b_error"])
+        if curve["not_a_fit"] is not None:
+            curve["excluded_from_scale_fit"] = "not a fit: " + curve["not_a_fit"]
+        elif curve["excluded_from_scale_fit"] is None:
             curve["excluded_from_scale_fit"] = fits.midpoint_not_located(
                 fit["a"], fit["a_error"], fit["b"], fit["b_error"], [p["x"] for p in points],
                 [p["A_n"] for p in points], [p["A_n_error"] for p in points])

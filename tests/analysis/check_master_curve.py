@@ -8,7 +8,11 @@ Usage: check_master_curve.py CASE MASTER_CURVE_PY SCRATCH_DIR, CASE one of
   steadiness     jobs whose L_x drifts beyond --max-drift are scaled but neither normalise
                  nor enter a fit; a unitless _drift column is not taken for a state-point key;
   errors         bad input: each case exits with status 1 (2: command line) and names the
-                 problem.
+                 problem;
+  not_a_fit      curves whose fit is not a fit (b not positive, an error above its value)
+                 are named on stderr, marked in the tables and figures and left out of the
+                 collapse and the fit of a; no fit at all exits 1; a NaN or empty tau_d is
+                 named with its curve.
 When this interpreter lacks numpy, scipy or matplotlib: skipped (77), or a failure under
 INVASIM_REQUIRE_ALL_TESTS=1 (tests/support/prerequisites.py).
 """
@@ -424,6 +428,100 @@ def case_errors(script, scratch):
               "%s: no output directory is created" % name)
 
 
+# --- fits that are not fits --------------------------------------------------------------
+def flat_table(np, synthetic, truth, path, flat_curves):
+    """A synthetic table (4 replicates) whose curves `flat_curves` (indices into truth) have
+    A_n = 1/2 plus noise at every temperature: no sigmoid, so their fit is not a fit. One job
+    of curve 0 has tau_d = nan, another an empty tau_d. Returns the rows written."""
+    synthetic.write_table(path, np.random.default_rng(7), truth, replicates=4)
+    rows = read_csv(path)
+    rng = np.random.default_rng(8)
+    for r in rows:
+        k = int(r["job_id"][1]) if r["job_id"].startswith("c") else -1
+        if k in flat_curves:
+            a_max = float(r["A_t_max [sigma^2]"])
+            r["A_t [sigma^2]"] = repr(a_max - 0.8 * 1300.0 * (0.5 + 0.05 * rng.standard_normal()))
+    rows[0]["tau_d [tau]"], rows[1]["tau_d [tau]"] = "nan", ""
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=synthetic.HEADER, lineterminator="\n")
+        w.writeheader()
+        w.writerows(rows)
+    return rows
+
+
+def case_not_a_fit(script, scratch):
+    import numpy as np
+
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import synthetic
+
+    truth = synthetic.make_truth(c1=0.06, c2=0.1)
+    # 1. Curve 5 (beta = 0.01, tau_p = 2500) is flat: named on stderr, "not a fit" in the
+    #    tables and the figure, left out of the collapse and of the fit of a; the other five
+    #    curves are fitted, and the command succeeds.
+    table = os.path.join(scratch, "one_flat.csv")
+    rows = flat_table(np, synthetic, truth, table, {5})
+    out = os.path.join(scratch, "one_flat")
+    p = run(script, [table, "-o", out, "--group", "beta,tau_p"])
+    check(p.returncode == 0, "one flat curve among six: exit 0 (%d)" % p.returncode)
+    flat = "beta=0.01, tau_p=2500"
+    check(re.search(r"warning: curve %s is not a fit: .*left out of the collapse and of the "
+                    r"fit of a" % flat, p.stderr) is not None,
+          "stderr names the flat curve as not a fit")
+    check(p.stderr.count("is not a fit") == 1, "only the flat curve is not a fit")
+    # 2. The jobs with tau_d = nan and an empty tau_d are named with their curve.
+    curve0 = "beta=0.0001, tau_p=25"
+    for job, text in ((rows[0]["job_id"], "nan"), (rows[1]["job_id"], "\\(empty\\)")):
+        check(re.search(r"warning: curve %s: job %s has tau_d = %s: left out of the curve's "
+                        r"tau_d" % (curve0, job, text), p.stderr) is not None,
+              "stderr names job %s's tau_d = %s and its curve" % (job, text))
+    if p.returncode != 0:
+        return
+    with open(os.path.join(out, "fits.json")) as f:
+        fits = json.load(f)
+    by_name = {c["curve"]: c for c in fits["curves"]}
+    check(by_name[flat]["not_a_fit"] and
+          by_name[flat]["excluded_from_scale_fit"].startswith("not a fit: "),
+          "fits.json: the flat curve is not a fit (%s)" % by_name[flat]["not_a_fit"])
+    check(all(c["not_a_fit"] is None for n, c in by_name.items() if n != flat),
+          "fits.json: the other five curves are fits")
+    check([d["job"] for d in by_name[curve0]["tau_d_dropped"]] == [rows[0]["job_id"],
+                                                                   rows[1]["job_id"]]
+          and abs(by_name[curve0]["tau_d"] / truth["curves"][0]["tau_d"] - 1) < 0.03,
+          "fits.json: curve 0's tau_d from the other jobs, the 2 dropped named")
+    check(flat not in fits["scale_fit"]["curves"] and fits["scale_fit"]["n_curves"] == 5,
+          "the fit of a uses the five curves that are fits")
+    fits_csv = {r["curve"]: r for r in read_csv(os.path.join(out, "fits.csv"))}
+    check(fits_csv[flat]["not_a_fit"] != "" and fits_csv[curve0]["not_a_fit"] == "",
+          "fits.csv: the not_a_fit column")
+    with open(os.path.join(out, "figure_labels.json")) as f:
+        labels = json.load(f)
+    curves_legend = labels["An_vs_T.png"]["axes"][0]["legend"]
+    collapse_legend = labels["collapse.png"]["axes"][0]["legend"]
+    check(sum("not a fit" in t for t in curves_legend) == 1,
+          "An_vs_T.png: one curve labelled 'not a fit' (%s)" % curves_legend)
+    check(len(collapse_legend) == 6 and not any(r"$\tau_p$ = 2500" in t and r"$\beta$ = 0.01"
+                                                in t for t in collapse_legend),
+          "collapse.png: the five fits and the reference curve, not the flat curve (%s)"
+          % collapse_legend)
+    # 3. No curve gives a fit: exit 1 naming that, with the tables written to look at.
+    table = os.path.join(scratch, "all_flat.csv")
+    flat_table(np, synthetic, truth, table, set(range(6)))
+    out = os.path.join(scratch, "all_flat")
+    p = run(script, [table, "-o", out, "--group", "beta,tau_p", "--no-figures"])
+    check(p.returncode == 1 and "error: no curve gives a fit (6 curves" in p.stderr
+          and p.stderr.count("is not a fit") == 6,
+          "six flat curves: exit 1 (%d), 'no curve gives a fit', each curve named"
+          % p.returncode)
+    check(os.path.isfile(os.path.join(out, "fits.csv")), "the tables are written all the same")
+    # 4. Without --group, the six sigmoids at their different scales are one curve: its fit
+    #    b = ... is a fit only if the data say so; here the flat table gives none: exit 1 with
+    #    the hint to group.
+    p = run(script, [table, "-o", os.path.join(scratch, "no_group"), "--no-figures"])
+    check(p.returncode == 1 and "group the sweep into curves with --group" in p.stderr,
+          "one flat curve without --group: exit 1 with the hint (%d)" % p.returncode)
+
+
 SCRIPT = None
 
 
@@ -437,7 +535,8 @@ def main():
     shutil.rmtree(scratch, ignore_errors=True)
     os.makedirs(scratch)
     {"synthetic": case_synthetic, "normalisation": case_normalisation,
-     "steadiness": case_steadiness, "errors": case_errors}[case](SCRIPT, scratch)
+     "steadiness": case_steadiness, "errors": case_errors,
+     "not_a_fit": case_not_a_fit}[case](SCRIPT, scratch)
     if failures:
         print("%d check(s) FAILED" % len(failures))
         sys.exit(1)
