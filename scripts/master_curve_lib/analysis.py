@@ -112,9 +112,10 @@ def build_points(idx, x, a_n, run_err, norm_err, min_error, window=1):
     standard error over replicates, with the replicate variance pooled over the state point
     and its `window` neighbours on each side along x (dof-weighted), so that 2-4 replicates
     give usable weights; a state point without replicates anywhere in its window takes its
-    run's own propagated error. The errors of the two state points that set the
+    run's own propagated error (floored at min_error: A_n_error_own, the sigma of the fit
+    with fitted plateaus, plateaus.py). The errors of the two state points that set the
     normalisation (norm_err: per row, of the min and of the max) are added in quadrature,
-    weighted (1 - A_n) and A_n. Floored at min_error."""
+    weighted (1 - A_n) and A_n (A_n_error_raw). Floored at min_error: A_n_error."""
     out = []
     for i_rows in idx:
         y = a_n[i_rows]
@@ -130,6 +131,7 @@ def build_points(idx, x, a_n, run_err, norm_err, min_error, window=1):
             err = math.sqrt(sum(q["dof"] * q["var"] for q in near) / dof / p["replicates"])
         else:
             err = float(np.mean(run_err[p["rows"]])) / math.sqrt(p["replicates"])
+        p["A_n_error_own"] = max(err, min_error) if math.isfinite(err) else min_error
         lo, hi = norm_err[p["rows"][0]]
         a = p["A_n"]
         if math.isfinite(lo) and math.isfinite(hi):
@@ -199,6 +201,7 @@ def analyse(table, opts):
     from . import fits  # scipy: imported only once the input has been read and checked
 
     curves, curve_of = [], [None] * len(rows)
+    in_group, partition_of = {}, {}
     for label, all_idx in group_indices([keys.label(r, opts.group) for r in rows]).items():
         name = ", ".join("%s=%s" % kv for kv in zip(opts.group, label)) or "all"
         for i in all_idx:
@@ -221,20 +224,38 @@ def analyse(table, opts):
         varying = [k for k in point_keys if k not in opts.group
                    and len({keys.label(rows[i], [k]) for i in idx}) > 1]
         curve = {"name": name, "group": dict(zip(opts.group, label)), "points": points,
-                 "jobs": len(idx), "varying": varying, **fit}
+                 "jobs": len(idx), "varying": varying, "plateaus": (0.0, 1.0), **fit}
         curve.update(curve_scale_inputs(keys, table, [rows[i] for i in idx], opts.tau_g))
-        curve["not_a_fit"] = fits.not_a_fit(fit["a"], fit["a_error"], fit["b"], fit["b_error"])
+        in_group[name] = all(matches(keys, rows[i], opts.selector) for i in idx)
+        parts = {keys.label(rows[i], opts.within) for i in idx}
+        partition_of[name] = parts.pop() if len(parts) == 1 else None
+        curves.append(curve)
+    from . import plateaus
+
+    if getattr(opts, "plateaus", "fitted") == "fitted":
+        plateau_fits = plateaus.refine(curves, in_group, partition_of)
+    else:  # --plateaus extremes: the paper's min-max normalisation as it stands
+        plateau_fits = [{"partition": part, "done": False, "reason": "--plateaus extremes"}
+                        for part in sorted(set(partition_of.values()) - {None}, key=repr)]
+    for curve in curves:
+        curve["not_a_fit"] = fits.not_a_fit(curve["a"], curve["a_error"], curve["b"],
+                                            curve["b_error"])
         if curve["not_a_fit"] is not None:
             curve["excluded_from_scale_fit"] = "not a fit: " + curve["not_a_fit"]
         elif curve["excluded_from_scale_fit"] is None:
+            lo, hi = curve["plateaus"]
+            points = curve["points"]
             curve["excluded_from_scale_fit"] = fits.midpoint_not_located(
-                fit["a"], fit["a_error"], fit["b"], fit["b_error"], [p["x"] for p in points],
-                [p["A_n"] for p in points], [p["A_n_error"] for p in points])
-        curves.append(curve)
+                curve["a"], curve["a_error"], curve["b"], curve["b_error"],
+                [p["x"] for p in points], [(p["A_n"] - lo) / (hi - lo) for p in points],
+                [p["A_n_error"] / (hi - lo) for p in points])
+    for record in plateau_fits:
+        record["partition"] = dict(zip(opts.within, record["partition"]))
     scale = scale_fit(curves, fits)
     return {"rows": rows, "x": x, "rA_t": r_a, "A_n": a_n, "curves": curves,
             "curve_of": curve_of, "unsteady": unsteady, "unchecked_drift": unchecked,
-            "scale_fit": scale, "normalisation": norm_info, "state_keys": keys.state_keys}
+            "scale_fit": scale, "normalisation": norm_info, "plateau_fits": plateau_fits,
+            "state_keys": keys.state_keys}
 
 
 def scale_fit(curves, fits):

@@ -30,7 +30,8 @@ def _text(v):
 def curve_record(c):
     rec = {k: _clean(c.get(k)) for k in CURVE_COLUMNS if k not in ("curve", "state_points")}
     rec.update({"curve": c["name"], "group": c["group"], "state_points": len(c["points"]),
-                "varying_within_curve": c["varying"], "tau_d_dropped": c["tau_d_dropped"]})
+                "varying_within_curve": c["varying"], "tau_d_dropped": c["tau_d_dropped"],
+                "plateaus": list(c["plateaus"])})
     return rec
 
 
@@ -52,6 +53,8 @@ def write_tables(out_dir, result, settings):
     unsteady = [{"job_id": r.get("job_id", ""), "curve": result["curve_of"][i], "why": why}
                 for i, (r, why) in enumerate(zip(result["rows"], result["unsteady"])) if why]
     doc = {"settings": settings, "normalisation": result["normalisation"],
+           "plateau_fits": [{k: _clean(v) for k, v in p.items()}
+                            for p in result["plateau_fits"]],
            "curves": [curve_record(c) for c in curves], "scale_fit": scale,
            "not_steady": unsteady}
     with open(paths["fits.json"], "w") as f:

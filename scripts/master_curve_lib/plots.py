@@ -72,7 +72,8 @@ def curves_figure(path, result, x_label):
             continue
         span = np.concatenate([x, ux])
         xs = np.logspace(np.log10(span.min()) - 0.2, np.log10(span.max()) + 0.2, 200)
-        ax.plot(xs, sigmoid(xs, c["a"], c["b"]), color=st["color"], lw=1.2)
+        lo, hi = c["plateaus"]  # the fitted plateaus (plateaus.py), in A_n
+        ax.plot(xs, lo + (hi - lo) * sigmoid(xs, c["a"], c["b"]), color=st["color"], lw=1.2)
     if hollow:
         ax.plot([], [], ls="none", marker="o", mfc="none", color="0.4",
                 label="hollow: single jobs not steady (not fitted)")
@@ -96,6 +97,8 @@ def collapse_figure(path, curves):
             continue
         st = _style(k)
         x, y, e = _points(c)
+        lo, hi = c["plateaus"]  # A_n rescaled to the curve's fitted plateaus (plateaus.py)
+        y, e = (y - lo) / (hi - lo), e / (hi - lo)
         ecb = (x / c["a"]) ** c["b"]
         lo, hi = min(lo, ecb.min()), max(hi, ecb.max())
         ax.errorbar(ecb, y, yerr=e, ls="none", capsize=2, ms=5, label=_name(c), **st)
@@ -106,7 +109,7 @@ def collapse_figure(path, curves):
             label=r"$(\tanh[\log_{10} E_c^b] + 1)/2$")
     ax.set_xscale("log")
     ax.set_xlabel(r"$E_c^b$, $E_c = k_B T/(a P \sigma^3)$ ($a$, $b$ fitted per curve) " + NONE)
-    ax.set_ylabel(A_N_LABEL)
+    ax.set_ylabel(r"$(A_n - L)/(H - L)$, $L$, $H$: fitted plateaus " + NONE)
     ax.legend(fontsize=7, loc="best")
     fig.tight_layout()
     fig.savefig(path, dpi=120)
