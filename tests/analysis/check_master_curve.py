@@ -105,8 +105,7 @@ def case_synthetic(script, scratch):
               "curve %s: 13 state points of 8 replicates (the failed job left out)" % c["curve"])
         pa, pb = pull(c["a"], t["a"], c["a_error"]), pull(c["b"], t["b"], c["b_error"])
         pulls += [pa, pb]
-        # 4 sigma for the 12 per-curve parameters: b carries the extreme-value bias of the
-        # min-max normalisation (~ -0.4 sigma here; docs/sweeps_analysis.md).
+        # 4 sigma for the 12 per-curve parameters (their bias: case_plateau_bias).
         check(abs(pa) < 4 and abs(pb) < 4,
               "curve %s: a = %.5g +- %.2g (true %.5g, %+.2f sigma), b = %.4g +- %.2g "
               "(true %.3g, %+.2f sigma)" % (c["curve"], c["a"], c["a_error"], t["a"], pa,
