@@ -175,6 +175,8 @@ def main(argv):
 def warn_bad_fits(result):
     """Says on stderr which curves are not fits and which tau_d were dropped; exits 1 if no
     curve gives a fit (the tables and figures are written, to look at)."""
+    for w in result["warnings"]:
+        print("master_curve.py: warning: " + w, file=sys.stderr)
     for c in result["curves"]:
         for d in c["tau_d_dropped"]:
             print("master_curve.py: warning: curve %s: job %s has tau_d = %s: left out of the "

@@ -6,7 +6,7 @@ import math
 import numpy as np
 
 from .normalise import normalise
-from .selection import Keys, group_indices, matches
+from .selection import Keys, canonical, group_indices, matches
 from .table import InputError
 
 # --temperature: column read per row, and the axis label (the convention said plainly).
@@ -54,6 +54,34 @@ def row_values(table, keys, rows, temperature):
         if table.has(name):
             errors[k] = np.array([table.number(r, name, "", allow_missing=True) for r in rows])
     return np.array(x), np.array(a_t), np.array(a_max), errors[0], errors[1]
+
+
+def same_number_written_twice(keys, rows):
+    """Warnings for state-point values that are one number written two ways (tau_p = 25 and
+    25.0: two jobs, as `sweep collect` keeps an integer and a float apart, docs/sweeps.md),
+    which the analysis compares as numbers and so puts in one state point; and for jobs
+    that are then the same state point and the same replicate twice."""
+    out = []
+    for key in keys.state_keys:
+        texts = {}
+        for r in rows:
+            texts.setdefault(canonical(r[key]), set()).add(r[key])
+        for value, written in texts.items():
+            if len(written) > 1:
+                out.append("%s: %s are one value written %d ways (different jobs of the sweep): "
+                           "analysed as one state point" % (key, " and ".join(sorted(written)),
+                                                            len(written)))
+    seen = {}
+    for r in rows:
+        label = keys.label(r, keys.state_keys)
+        if label in seen:
+            out.append("jobs %s and %s have the same state point and replicate (%s): both "
+                       "count as replicates" % (seen[label], r.get("job_id") or r["_line"],
+                                                ", ".join("%s=%s" % kv for kv in
+                                                          zip(keys.state_keys, label))))
+        else:
+            seen[label] = r.get("job_id") or r["_line"]
+    return out
 
 
 def steadiness(table, rows, max_drift, point_of):
@@ -190,6 +218,7 @@ def analyse(table, opts):
     keys.check([k for k, _ in opts.selector], "--normalise-by")
     point_keys = [k for k in keys.state_keys if k != opts.replicate_key]
     point_of = [keys.label(r, point_keys) for r in rows]
+    warnings = same_number_written_twice(keys, rows)
     x, a_t, a_max, err_t, err_max = row_values(table, keys, rows, opts.temperature)
     unsteady, unchecked = steadiness(table, rows, opts.max_drift, point_of)
     steady = [why is None for why in unsteady]
@@ -255,6 +284,7 @@ def analyse(table, opts):
     return {"rows": rows, "x": x, "rA_t": r_a, "A_n": a_n, "curves": curves,
             "curve_of": curve_of, "unsteady": unsteady, "unchecked_drift": unchecked,
             "scale_fit": scale, "normalisation": norm_info, "plateau_fits": plateau_fits,
+            "warnings": warnings,
             "state_keys": keys.state_keys}
 
 

@@ -521,6 +521,26 @@ def case_not_a_fit(script, scratch):
     p = run(script, [table, "-o", os.path.join(scratch, "no_group"), "--no-figures"])
     check(p.returncode == 1 and "group the sweep into curves with --group" in p.stderr,
           "one flat curve without --group: exit 1 with the hint (%d)" % p.returncode)
+    check("written" not in p.stderr, "no warning about values written two ways here")
+    # 5. tau_p = 25 and 25.0 (two jobs: `sweep collect` keeps an integer and a float apart)
+    #    are one state point for the analysis: said on stderr, and a job that then repeats
+    #    another's state point and seed is named.
+    rows = read_csv(os.path.join(scratch, "one_flat.csv"))
+    twin = dict(rows[0], job_id="twin")
+    twin["tau_p"] = "25"
+    rows.append(twin)
+    table = os.path.join(scratch, "int_float.csv")
+    with open(table, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=synthetic.HEADER, lineterminator="\n")
+        w.writeheader()
+        w.writerows(rows)
+    p = run(script, [table, "-o", os.path.join(scratch, "int_float"), "--group", "beta,tau_p",
+                     "--no-figures"])
+    check(p.returncode == 0 and "warning: tau_p: 25 and 25.0 are one value written 2 ways "
+          "(different jobs of the sweep): analysed as one state point" in p.stderr
+          and re.search(r"warning: jobs %s and twin have the same state point and replicate "
+                        r"\(.*tau_p=25.*\)" % rows[0]["job_id"], p.stderr) is not None,
+          "tau_p = 25 and 25.0: one state point, said on stderr, the repeated job named")
 
 
 # --- the bias of the min-max normalisation -------------------------------------------------
