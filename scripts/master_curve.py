@@ -4,7 +4,8 @@
 Usage: master_curve.py RESULTS.csv -o DIR [--group K1,K2] [--temperature kT|T_c|kT_c_paper]
                        [--normalise-by K=V[,K=V]] [--normalise-within K1,K2]
                        [--fixed K=V[,K=V]] [--replicate-key seed] [--tau-g T] [--pool N]
-                       [--min-error E] [--max-drift K=F[,K=F]|none] [--no-figures]
+                       [--min-error E] [--max-drift K=F[,K=F]|none]
+                       [--plateaus fitted|extremes] [--no-figures]
 
 RESULTS.csv is what `invasim sweep collect WS -o results.csv` writes; only jobs with status
 `done` count. Writes into DIR: fits.csv, fits.json, points.csv, rows.csv, An_vs_T.png,
@@ -43,7 +44,12 @@ Fits the paper's master curve to a sweep's results table.
    error over replicates (one replicate: the run's own error of A_t and A_t^max,
    propagated), at least --min-error.
 3. Per curve (jobs equal in the --group keys), weighted least squares (absolute sigmas) of
-   A_n = (1/2)(tanh[b log10(x/a)] + 1) for log10 a and b; a's error from log10 a's.
+   A_n = (1/2)(tanh[b log10(x/a)] + 1) for log10 a and b; a's error from log10 a's. Then
+   the curves of the normalisation group are fitted together with the plateaus as shared
+   parameters, A_n = L + (H - L)(1/2)(tanh[b log10(x/a)] + 1): the extremes of noisy means
+   overshoot the plateaus and would bias a and b (docs/sweeps_analysis.md). A fit with b <= 0
+   or an error above its value is not a fit: named, left out of the collapse and the fit of
+   a; exit 1 if no curve gives a fit.
 4. Across curves: a = c1 (1 + c2 beta eps_c/(P sigma^3)) tau_g/tau_d, tau_g = m/gamma
    (gamma from the state point or --fixed, else 0.2: tau_g = 5), tau_d = mean of the
    curve's tau_d column; sigmas: a's error and tau_d's standard error (effective
@@ -106,6 +112,11 @@ def parse_args(argv):
                    help="state points whose K drifts by more than F of its mean over the "
                    "averaging window (mean over replicates) are not steady: not fitted "
                    "(default: L_x=0.05; none: no check)")
+    p.add_argument("--plateaus", default="fitted", choices=["fitted", "extremes"],
+                   help="the plateaus of A_n in the per-curve fits: fitted jointly over the "
+                   "normalisation group's curves (default; unbiased), or the extremes of the "
+                   "state-point means, 0 and 1 (the paper's normalisation as it stands: a, c1 "
+                   "biased high when the noise grows with A_t)")
     p.add_argument("--no-figures", dest="figures", action="store_false",
                    help="write the tables only")
     return p.parse_args(argv)
@@ -133,7 +144,8 @@ def main(argv):
             selector=parse_assignments(args.normalise_by, "--normalise-by"),
             fixed=dict(parse_assignments(args.fixed, "--fixed")), temperature=args.temperature,
             replicate_key=args.replicate_key, tau_g=args.tau_g, min_error=args.min_error,
-            window=args.pool, max_drift=parse_limits(args.max_drift, "--max-drift"))
+            window=args.pool, max_drift=parse_limits(args.max_drift, "--max-drift"),
+            plateaus=args.plateaus)
         table = Table(args.results)
         for k in opts.fixed:
             if table.has(k):
@@ -148,7 +160,7 @@ def main(argv):
                 "normalise_by": dict(opts.selector), "normalise_within": opts.within,
                 "fixed": opts.fixed, "replicate_key": opts.replicate_key,
                 "tau_g": args.tau_g, "min_error": args.min_error, "pool": args.pool,
-                "max_drift": dict(opts.max_drift),
+                "max_drift": dict(opts.max_drift), "plateaus": args.plateaus,
                 "state_keys": result["state_keys"]}
     paths = output.write_tables(args.out, result, settings)
     if args.figures:
@@ -157,6 +169,28 @@ def main(argv):
         paths.update(plots.write_figures(args.out, result,
                                          analysis.TEMPERATURES[args.temperature][1]))
     report(result, paths)
+    warn_bad_fits(result)
+
+
+def warn_bad_fits(result):
+    """Says on stderr which curves are not fits and which tau_d were dropped; exits 1 if no
+    curve gives a fit (the tables and figures are written, to look at)."""
+    for w in result["warnings"]:
+        print("master_curve.py: warning: " + w, file=sys.stderr)
+    for c in result["curves"]:
+        for d in c["tau_d_dropped"]:
+            print("master_curve.py: warning: curve %s: job %s has tau_d = %s: left out of the "
+                  "curve's tau_d%s" % (c["name"], d["job"], d["tau_d"],
+                                       "" if c["tau_d"] is not None else
+                                       " (none left: the curve is left out of the fit of a)"),
+                  file=sys.stderr)
+        if c["not_a_fit"]:
+            print("master_curve.py: warning: curve %s is not a fit: %s; it is left out of the "
+                  "collapse and of the fit of a" % (c["name"], c["not_a_fit"]), file=sys.stderr)
+    if not any(c["not_a_fit"] is None for c in result["curves"]):
+        fail("no curve gives a fit (%d curve%s, none with b > 0 and errors below the values%s)"
+             % (len(result["curves"]), "" if len(result["curves"]) == 1 else "s",
+                "" if len(result["curves"]) > 1 else "; group the sweep into curves with --group"))
 
 
 def report(result, paths):
@@ -181,8 +215,19 @@ def report(result, paths):
                                  "%.3g" % (c["chi2"] / c["dof"]) if c["dof"] > 0 else "-"))
         if c["fit_note"]:
             print("  note: " + c["fit_note"])
+        if c["not_a_fit"]:
+            print("  NOT A FIT: " + c["not_a_fit"])
         if c["varying"]:
             print("  its state points differ in: %s" % ", ".join(c["varying"]))
+    for p in result["plateau_fits"]:
+        where = ", ".join("%s=%s" % kv for kv in p["partition"].items()) or "the whole sweep"
+        if p["done"]:
+            print("plateaus of A_n fitted over the %d curve%s of the normalisation group of %s: "
+                  "L = %.3g +- %.2g, H = %.3g +- %.2g (the extremes of the means: 0 and 1)"
+                  % (len(p["curves"]), "" if len(p["curves"]) == 1 else "s", where, p["lo"],
+                     p["lo_error"], p["hi"], p["hi_error"]))
+        else:
+            print("plateaus of %s not fitted: %s" % (where, p["reason"]))
     s = result["scale_fit"]
     if s["done"]:
         line = "a = c1 (1 + c2 beta/P) tau_g/tau_d over %d curves: c1 = %.4g +- %.2g" % (

@@ -6,7 +6,7 @@ import math
 import numpy as np
 
 from .normalise import normalise
-from .selection import Keys, group_indices, matches
+from .selection import Keys, canonical, group_indices, matches
 from .table import InputError
 
 # --temperature: column read per row, and the axis label (the convention said plainly).
@@ -54,6 +54,34 @@ def row_values(table, keys, rows, temperature):
         if table.has(name):
             errors[k] = np.array([table.number(r, name, "", allow_missing=True) for r in rows])
     return np.array(x), np.array(a_t), np.array(a_max), errors[0], errors[1]
+
+
+def same_number_written_twice(keys, rows):
+    """Warnings for state-point values that are one number written two ways (tau_p = 25 and
+    25.0: two jobs, as `sweep collect` keeps an integer and a float apart, docs/sweeps.md),
+    which the analysis compares as numbers and so puts in one state point; and for jobs
+    that are then the same state point and the same replicate twice."""
+    out = []
+    for key in keys.state_keys:
+        texts = {}
+        for r in rows:
+            texts.setdefault(canonical(r[key]), set()).add(r[key])
+        for value, written in texts.items():
+            if len(written) > 1:
+                out.append("%s: %s are one value written %d ways (different jobs of the sweep): "
+                           "analysed as one state point" % (key, " and ".join(sorted(written)),
+                                                            len(written)))
+    seen = {}
+    for r in rows:
+        label = keys.label(r, keys.state_keys)
+        if label in seen:
+            out.append("jobs %s and %s have the same state point and replicate (%s): both "
+                       "count as replicates" % (seen[label], r.get("job_id") or r["_line"],
+                                                ", ".join("%s=%s" % kv for kv in
+                                                          zip(keys.state_keys, label))))
+        else:
+            seen[label] = r.get("job_id") or r["_line"]
+    return out
 
 
 def steadiness(table, rows, max_drift, point_of):
@@ -112,9 +140,10 @@ def build_points(idx, x, a_n, run_err, norm_err, min_error, window=1):
     standard error over replicates, with the replicate variance pooled over the state point
     and its `window` neighbours on each side along x (dof-weighted), so that 2-4 replicates
     give usable weights; a state point without replicates anywhere in its window takes its
-    run's own propagated error. The errors of the two state points that set the
+    run's own propagated error (floored at min_error: A_n_error_own, the sigma of the fit
+    with fitted plateaus, plateaus.py). The errors of the two state points that set the
     normalisation (norm_err: per row, of the min and of the max) are added in quadrature,
-    weighted (1 - A_n) and A_n. Floored at min_error."""
+    weighted (1 - A_n) and A_n (A_n_error_raw). Floored at min_error: A_n_error."""
     out = []
     for i_rows in idx:
         y = a_n[i_rows]
@@ -130,6 +159,7 @@ def build_points(idx, x, a_n, run_err, norm_err, min_error, window=1):
             err = math.sqrt(sum(q["dof"] * q["var"] for q in near) / dof / p["replicates"])
         else:
             err = float(np.mean(run_err[p["rows"]])) / math.sqrt(p["replicates"])
+        p["A_n_error_own"] = max(err, min_error) if math.isfinite(err) else min_error
         lo, hi = norm_err[p["rows"][0]]
         a = p["A_n"]
         if math.isfinite(lo) and math.isfinite(hi):
@@ -155,6 +185,9 @@ def curve_scale_inputs(keys, table, rows, tau_g_opt):
         tau_g = 1.0 / DEFAULT_GAMMA
     tau_d = np.array([table.number(r, "tau_d", "for the fit of a", allow_missing=True)
                       for r in rows]) if table.has("tau_d") else np.array([])
+    # Jobs whose tau_d is empty, NaN, infinite or not positive: named, left out of the mean.
+    dropped = [{"job": r.get("job_id") or "line %d" % r["_line"], "tau_d": r["tau_d"] or "(empty)"}
+               for r, t in zip(rows, tau_d) if not (math.isfinite(t) and t > 0)]
     tau_d = tau_d[np.isfinite(tau_d) & (tau_d > 0)]
     reason = None
     if not keys.known("beta"):
@@ -172,7 +205,8 @@ def curve_scale_inputs(keys, table, rows, tau_g_opt):
     return {"beta": beta, "P": p, "tau_g": tau_g,
             "tau_d": float(np.mean(tau_d)) if tau_d.size else None,
             "tau_d_error": _sem(tau_d) if tau_d.size > 1 else None,
-            "tau_d_jobs": int(tau_d.size), "excluded_from_scale_fit": reason}
+            "tau_d_jobs": int(tau_d.size), "tau_d_dropped": dropped,
+            "excluded_from_scale_fit": reason}
 
 
 def analyse(table, opts):
@@ -184,6 +218,7 @@ def analyse(table, opts):
     keys.check([k for k, _ in opts.selector], "--normalise-by")
     point_keys = [k for k in keys.state_keys if k != opts.replicate_key]
     point_of = [keys.label(r, point_keys) for r in rows]
+    warnings = same_number_written_twice(keys, rows)
     x, a_t, a_max, err_t, err_max = row_values(table, keys, rows, opts.temperature)
     unsteady, unchecked = steadiness(table, rows, opts.max_drift, point_of)
     steady = [why is None for why in unsteady]
@@ -195,6 +230,7 @@ def analyse(table, opts):
     from . import fits  # scipy: imported only once the input has been read and checked
 
     curves, curve_of = [], [None] * len(rows)
+    in_group, partition_of = {}, {}
     for label, all_idx in group_indices([keys.label(r, opts.group) for r in rows]).items():
         name = ", ".join("%s=%s" % kv for kv in zip(opts.group, label)) or "all"
         for i in all_idx:
@@ -217,17 +253,39 @@ def analyse(table, opts):
         varying = [k for k in point_keys if k not in opts.group
                    and len({keys.label(rows[i], [k]) for i in idx}) > 1]
         curve = {"name": name, "group": dict(zip(opts.group, label)), "points": points,
-                 "jobs": len(idx), "varying": varying, **fit}
+                 "jobs": len(idx), "varying": varying, "plateaus": (0.0, 1.0), **fit}
         curve.update(curve_scale_inputs(keys, table, [rows[i] for i in idx], opts.tau_g))
-        if curve["excluded_from_scale_fit"] is None:
-            curve["excluded_from_scale_fit"] = fits.midpoint_not_located(
-                fit["a"], fit["a_error"], fit["b"], fit["b_error"], [p["x"] for p in points],
-                [p["A_n"] for p in points], [p["A_n_error"] for p in points])
+        in_group[name] = all(matches(keys, rows[i], opts.selector) for i in idx)
+        parts = {keys.label(rows[i], opts.within) for i in idx}
+        partition_of[name] = parts.pop() if len(parts) == 1 else None
         curves.append(curve)
+    from . import plateaus
+
+    if getattr(opts, "plateaus", "fitted") == "fitted":
+        plateau_fits = plateaus.refine(curves, in_group, partition_of)
+    else:  # --plateaus extremes: the paper's min-max normalisation as it stands
+        plateau_fits = [{"partition": part, "done": False, "reason": "--plateaus extremes"}
+                        for part in sorted(set(partition_of.values()) - {None}, key=repr)]
+    for curve in curves:
+        curve["not_a_fit"] = fits.not_a_fit(curve["a"], curve["a_error"], curve["b"],
+                                            curve["b_error"])
+        if curve["not_a_fit"] is not None:
+            curve["excluded_from_scale_fit"] = "not a fit: " + curve["not_a_fit"]
+        elif curve["excluded_from_scale_fit"] is None:
+            lo, hi = curve["plateaus"]
+            points = curve["points"]
+            curve["excluded_from_scale_fit"] = fits.midpoint_not_located(
+                curve["a"], curve["a_error"], curve["b"], curve["b_error"],
+                [p["x"] for p in points], [(p["A_n"] - lo) / (hi - lo) for p in points],
+                [p["A_n_error"] / (hi - lo) for p in points])
+    for record in plateau_fits:
+        record["partition"] = dict(zip(opts.within, record["partition"]))
     scale = scale_fit(curves, fits)
     return {"rows": rows, "x": x, "rA_t": r_a, "A_n": a_n, "curves": curves,
             "curve_of": curve_of, "unsteady": unsteady, "unchecked_drift": unchecked,
-            "scale_fit": scale, "normalisation": norm_info, "state_keys": keys.state_keys}
+            "scale_fit": scale, "normalisation": norm_info, "plateau_fits": plateau_fits,
+            "warnings": warnings,
+            "state_keys": keys.state_keys}
 
 
 def scale_fit(curves, fits):

@@ -69,6 +69,24 @@ def fit_sigmoid(x, y, sigma, name):
             "dof": dof, "error_scale": scale, "fit_note": note}
 
 
+def not_a_fit(a, a_err, b, b_err):
+    """Why a curve's sigmoid fit is not a fit, or None: a or b or an error is not finite,
+    an error exceeds its parameter's magnitude (the data do not determine it: `b = -49 +- 62`
+    is any slope, `a = 3e-5 +- 7e-5` any midpoint), or b is not positive (A_n must rise with
+    the temperature for a to be the midpoint of the invasion). Such a curve is reported, drawn
+    without its line, and left out of the collapse and of the fit of a."""
+    if not all(math.isfinite(v) for v in (a, a_err, b, b_err)):
+        return "a, b or their errors are not finite (a = %.3g +- %.2g, b = %.3g +- %.2g)" % (
+            a, a_err, b, b_err)
+    if not b > 0:
+        return "b = %.3g +- %.2g is not positive (A_n does not rise with T)" % (b, b_err)
+    if b_err > abs(b):
+        return "the error of b exceeds b (b = %.3g +- %.2g)" % (b, b_err)
+    if a_err > abs(a):
+        return "the error of a exceeds a (a = %.3g +- %.2g)" % (a, a_err)
+    return None
+
+
 def midpoint_not_located(a, a_err, b, b_err, xs, ys, errs):
     """Why a curve's fitted midpoint a cannot enter the fit of a = c1 (1 + c2 q) r, or None.
     a is the temperature at A_n = 1/2 only for a rising sigmoid: b > 0, and the data rise

@@ -9,7 +9,8 @@ import os
 
 CURVE_COLUMNS = ["curve", "state_points", "jobs", "a", "a_error", "b", "b_error", "log10_a",
                  "log10_a_error", "chi2", "dof", "beta", "P", "tau_g", "tau_d", "tau_d_error",
-                 "tau_g_over_tau_d", "error_scale", "excluded_from_scale_fit", "fit_note"]
+                 "tau_g_over_tau_d", "error_scale", "not_a_fit", "excluded_from_scale_fit",
+                 "fit_note"]
 
 
 def _clean(v):
@@ -29,7 +30,8 @@ def _text(v):
 def curve_record(c):
     rec = {k: _clean(c.get(k)) for k in CURVE_COLUMNS if k not in ("curve", "state_points")}
     rec.update({"curve": c["name"], "group": c["group"], "state_points": len(c["points"]),
-                "varying_within_curve": c["varying"]})
+                "varying_within_curve": c["varying"], "tau_d_dropped": c["tau_d_dropped"],
+                "plateaus": list(c["plateaus"])})
     return rec
 
 
@@ -51,6 +53,8 @@ def write_tables(out_dir, result, settings):
     unsteady = [{"job_id": r.get("job_id", ""), "curve": result["curve_of"][i], "why": why}
                 for i, (r, why) in enumerate(zip(result["rows"], result["unsteady"])) if why]
     doc = {"settings": settings, "normalisation": result["normalisation"],
+           "plateau_fits": [{k: _clean(v) for k, v in p.items()}
+                            for p in result["plateau_fits"]],
            "curves": [curve_record(c) for c in curves], "scale_fit": scale,
            "not_steady": unsteady}
     with open(paths["fits.json"], "w") as f:

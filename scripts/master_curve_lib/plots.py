@@ -60,16 +60,20 @@ def curves_figure(path, result, x_label):
     for k, c in enumerate(result["curves"]):
         st = _style(k)
         x, y, e = _points(c)
+        label = ("%s: not a fit" % _name(c) if c["not_a_fit"]
+                 else "%s: $a$ = %.3g, $b$ = %.2f" % (_name(c), c["a"], c["b"]))
         ax.errorbar(x, y, yerr=e, ls="none", capsize=2, ms=5, color=st["color"],
-                    marker=st["marker"],
-                    label="%s: $a$ = %.3g, $b$ = %.2f" % (_name(c), c["a"], c["b"]))
+                    marker=st["marker"], label=label)
         ux, uy = _unsteady_jobs(result, c["name"])
         if len(ux):
             hollow = True
             ax.plot(ux, uy, ls="none", ms=5, mfc="none", color=st["color"], marker=st["marker"])
+        if c["not_a_fit"]:
+            continue
         span = np.concatenate([x, ux])
         xs = np.logspace(np.log10(span.min()) - 0.2, np.log10(span.max()) + 0.2, 200)
-        ax.plot(xs, sigmoid(xs, c["a"], c["b"]), color=st["color"], lw=1.2)
+        lo, hi = c["plateaus"]  # the fitted plateaus (plateaus.py), in A_n
+        ax.plot(xs, lo + (hi - lo) * sigmoid(xs, c["a"], c["b"]), color=st["color"], lw=1.2)
     if hollow:
         ax.plot([], [], ls="none", marker="o", mfc="none", color="0.4",
                 label="hollow: single jobs not steady (not fitted)")
@@ -85,20 +89,27 @@ def curves_figure(path, result, x_label):
 
 
 def collapse_figure(path, curves):
+    """A_n against E_c^b of the curves that are fits (a curve that is not a fit has no E_c)."""
     fig, ax = plt.subplots(figsize=(6.4, 4.6))
     lo, hi = np.inf, -np.inf
     for k, c in enumerate(curves):
+        if c["not_a_fit"]:
+            continue
         st = _style(k)
         x, y, e = _points(c)
+        lo, hi = c["plateaus"]  # A_n rescaled to the curve's fitted plateaus (plateaus.py)
+        y, e = (y - lo) / (hi - lo), e / (hi - lo)
         ecb = (x / c["a"]) ** c["b"]
         lo, hi = min(lo, ecb.min()), max(hi, ecb.max())
         ax.errorbar(ecb, y, yerr=e, ls="none", capsize=2, ms=5, label=_name(c), **st)
+    if not np.isfinite(lo):  # no curve is a fit: the reference curve alone, around E_c = 1
+        lo, hi = 0.01, 100.0
     xs = np.logspace(np.log10(lo) - 0.2, np.log10(hi) + 0.2, 200)
     ax.plot(xs, 0.5 * (np.tanh(np.log10(xs)) + 1.0), color="k", lw=1.2,
             label=r"$(\tanh[\log_{10} E_c^b] + 1)/2$")
     ax.set_xscale("log")
     ax.set_xlabel(r"$E_c^b$, $E_c = k_B T/(a P \sigma^3)$ ($a$, $b$ fitted per curve) " + NONE)
-    ax.set_ylabel(A_N_LABEL)
+    ax.set_ylabel(r"$(A_n - L)/(H - L)$, $L$, $H$: fitted plateaus " + NONE)
     ax.legend(fontsize=7, loc="best")
     fig.tight_layout()
     fig.savefig(path, dpi=120)

@@ -1,24 +1,30 @@
 #include "sweep/collect.hpp"
 
-#include <cstdio>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
 
+#include "sweep/python_json.hpp"
 #include "sweep/window_drift.hpp"
 
 namespace invasim::sweep {
 
 namespace {
 
+// A float as Python's repr writes it: the shortest text that reads back to the same double,
+// always with a decimal point or an exponent (25.0, 0.0013, 1e-05), so that a float never
+// reads like an integer; nan, inf and -inf as repr spells them.
 std::string number(double value) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  return text;
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  return python_float_repr(value);
 }
 
-// A CSV cell: numbers with %.17g, booleans true/false, strings quoted if needed.
+// A CSV cell: floats as Python's repr, integers without a decimal point (tau_p = 25 and
+// tau_p = 25.0 are different points and stay different rows), booleans true/false, strings
+// quoted if needed.
 std::string cell(const Json& value) {
   if (value.is_null()) return "";
   if (value.is_number_float()) return number(value.get<double>());

@@ -5,8 +5,10 @@
 //   "<name>_error [unit]" and "<name>_drift [unit]" (unit from series.csv's header, no
 //   brackets when unitless; the drift is the second half of the averaging window's mean minus
 //   the first half's, window_drift.hpp), then tau_d [tau], tau_r [tau].
-// Numbers with %.17g; strings as they are (quoted when they hold a comma or a quote); a job
-// that is not done has its status and empty measurement cells. docs/sweeps.md, "results.csv".
+// Floats as Python's repr (shortest round-trip text, always with a decimal point or an
+// exponent), integers without one, so that 25 and 25.0 stay apart; strings as they are (quoted when
+// they hold a comma or a quote); a job that is not done has its status and empty measurement cells.
+// docs/sweeps.md, "results.csv".
 #include <ostream>
 
 #include "sweep/workspace.hpp"

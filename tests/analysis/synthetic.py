@@ -2,7 +2,8 @@
 the paper's sigmoid with known a and b per curve, a = c1 (1 + c2 beta/P) tau_g/tau_d, plus
 noise on A_n, on the measured temperature and on tau_d. The A_n noise is largest mid-curve
 and small on the plateaus, as in the simulations (de-mixed and mixed states fluctuate
-little)."""
+little). Or (relative_a_t_noise) noise proportional to A_t itself: a larger interface
+fluctuates more, so the invaded plateau is the noisiest."""
 
 import csv
 import math
@@ -34,8 +35,9 @@ def make_truth(c1=0.06, c2=0.1):
 
 
 def write_table(path, rng, truth, points=13, span=2.6, replicates=4, noise=0.08,
-                floor=0.003, tau_d_noise=0.05):
-    """Writes results.csv; returns the rows' true A_n (by job id)."""
+                floor=0.003, tau_d_noise=0.05, relative_a_t_noise=None):
+    """Writes results.csv; returns the rows' true A_n (by job id). With relative_a_t_noise
+    = r, each job's A_t is the true A_t times (1 + r N(0, 1)) instead of the noise on A_n."""
     rows, true_an = [], {}
     m0 = 1300.0
     for k, c in enumerate(truth["curves"]):
@@ -45,11 +47,14 @@ def write_table(path, rng, truth, points=13, span=2.6, replicates=4, noise=0.08,
             for s in range(1, replicates + 1):
                 job = "c%dp%02ds%d" % (k, j, s)
                 sd = floor + noise * math.sqrt(an * (1 - an))
-                an_obs = an + sd * rng.standard_normal()
+                draw = rng.standard_normal()
+                an_obs = an if relative_a_t_noise else an + sd * draw
                 # Dilation: A_t^max grows with the temperature; A_t^max - A_t is the
                 # non-invaded area, 0.8 m0 in the de-mixed state, 0 when fully invaded.
                 a_max = m0 * (1 + 0.03 * max(lx, 0)) + 0.5 * rng.standard_normal()
                 a_t = a_max - 0.8 * m0 * (1 - an_obs)
+                if relative_a_t_noise:
+                    a_t *= 1 + relative_a_t_noise * draw
                 kt_paper = x * P * (1 + 0.002 * rng.standard_normal())
                 tau_d = c["tau_d"] * (1 + tau_d_noise * rng.standard_normal())
                 rows.append([job, "done", "12.5", repr(P), repr(c["beta"]), repr(c["tau_p"]),
