@@ -22,7 +22,7 @@ local p = iv.params(parameters.merge{
   K_ecm = { 0.04, range = "[0, inf)", unit = "eps_c/sigma^2", help = "ECM tether stiffness (0: no tethers)" },
   lambda = { 0.0, range = "[0, 1]", help = "tether heterogeneity" },
   box = { "pressure", choices = { "pressure", "fixed" }, help = "after the rescale: pressure (the left wall a piston at P, docs/model.md protocol step 6) or fixed (both walls stay: the box keeps the rescaled size)" },
-  f0 = { 0.0034, range = "[0, inf)", unit = "eps_c/sigma", help = "self-propulsion force (0.0034 with the default background: 2 k_B T_c/(P sigma^3) = 0.37-0.39 over phi_a = 0.45-0.85, the paper's Fig. 8 value, docs/model.md)" },
+  f0 = { 0.0024, range = "[0, inf)", unit = "eps_c/sigma", help = "self-propulsion force (0.0024 with the default background: 2 k_B T_c/(P sigma^3) = 0.37-0.39 over phi_a = 0.45-0.85, the paper's Fig. 8 value, docs/model.md)" },
 })
 parameters.validate(p)
 local N_a, N_c, L0 = parameters.size(p)

@@ -39,11 +39,14 @@ import sys
 
 P, GAMMA, M = 1.3e-3, 0.2, 1.0
 TAU_G = M / GAMMA
-TAU_PS = (25.0, 2500.0)
+TAU_PS = (25.0, 2500.0, 0.02)
 BETAS = (1e-3, 1e-2)
-F0S = (0.001, 0.003, 0.0065, 0.0105, 0.02)
+# f0 per tau_p: the Fig. 5 sweeps' range without background (tau_p = 0.02, shorter than dt, needs
+# about 15 times the force for the same temperature, and at most 0.1, lib/model_limits.lua)
+F0S = {25.0: (0.001, 0.003, 0.0065, 0.0105, 0.02), 2500.0: (0.001, 0.003, 0.0065, 0.0105, 0.02),
+       0.02: (0.007, 0.022, 0.065, 0.1)}
 PASSIVE_XS = (0.03, 0.3, 1.0)  # the paper's 2 k_B T/(P sigma^3) of the passive bath
-RATIOS = (3.0, 1.0, 1.0 / 3.0, 0.1)
+RATIOS = (3.0, 1.0, 1.0 / 3.0, 1.0 / 6.0, 0.1)
 DAMPINGS = (0.2, 0.02, 0.006, 0.002, 0.0)
 HEAVY_MASS = 20.0
 WINDOW = (1.0, 1.2)  # the paper's 1 < T_c/T_a < 1.2 for active runs
@@ -89,7 +92,7 @@ def state_points(quick=False):
     rows = [("passive_x%g" % x, "passive", 0.0, 1e-2, 0.0, x) for x in PASSIVE_XS]
     for tau_p in TAU_PS:
         for beta in BETAS:
-            for f0 in F0S:
+            for f0 in F0S[tau_p]:
                 rows.append(("tau%g_beta%g_f%g" % (tau_p, beta, f0), "active", tau_p, beta, f0, None))
     return rows
 

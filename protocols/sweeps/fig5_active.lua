@@ -5,9 +5,10 @@
 -- for honest errors, docs/sweeps_analysis.md; a third did not fit the campaign's budget), from
 -- one compressed tissue. The passive
 -- curve of the figure (beta = 1e-2, f0 = 0) is fig5_passive.lua.
--- Active cells carry the protocols' default background temperature (background_factor = 3:
--- T_0 = 3 x the free-particle active temperature, docs/model.md "Vertex bath"), so f0 sets
--- both; the measured 2 k_B T_c/(P sigma^3) is about 8 T_act/P = 8 (f0/gamma)^2 tau_p/(3 (tau_p + tau_g) P).
+-- Active cells carry the protocols' default background temperature (background_factor = 6:
+-- T_0 = 6 x the free-particle active temperature T_act, docs/model.md "Vertex bath"), so f0
+-- sets both; the measured 2 k_B T_c/(P sigma^3) is about 14 T_act/P in a fluid and 12 T_act/P
+-- in a caged tissue, T_act ~ (f0/gamma)^2 tau_p/(3 (tau_p + tau_g)).
 --   invasim sweep init protocols/sweeps/fig5_active.lua
 --   invasim sweep run out/fig5_active --jobs 2
 --   scripts/validation.py figure fig5 out/fig5_active out/fig5_passive -o docs/validation
@@ -20,9 +21,9 @@ return {
   zip = { { tau_p = { 25.0, 25.0, 25.0, 25.0, 25.0, 25.0,
                       2500.0, 2500.0, 2500.0, 2500.0, 2500.0, 2500.0,
                       0.02, 0.02, 0.02, 0.02, 0.02, 0.02 },
-            f0 = { 0.00048, 0.00084, 0.0015, 0.0027, 0.0048, 0.0084,
-                   0.00044, 0.00077, 0.0014, 0.0024, 0.0044, 0.0077,
-                   0.007, 0.012, 0.022, 0.038, 0.065, 0.1 } } },
+            f0 = { 0.00035, 0.00061, 0.0011, 0.002, 0.0035, 0.0061,
+                   0.00032, 0.00056, 0.001, 0.0018, 0.0032, 0.0056,
+                   0.0051, 0.0088, 0.016, 0.028, 0.047, 0.073 } } },
   seeds = { 1, 2 },
   prep = { set = { quench_steps = 0, steps = 0 } },
   -- the CI size: three values per axis, so that the sigmoid fits run in CI too

@@ -13,7 +13,7 @@ return {
           quench_steps = 20000, steps = 250000, every = 1000,
           snapshot_every = 0, checkpoint_every = 10000 },
   product = { beta = { 1e-3, 1e-2 }, tau_p = { 25.0, 250.0 },
-              f0 = { 0.0005, 0.0008, 0.0012, 0.0017, 0.0022, 0.0027, 0.0035, 0.0055, 0.0085 } },
+              f0 = { 0.00036, 0.00058, 0.00088, 0.0012, 0.0016, 0.002, 0.0026, 0.004, 0.0062 } },
   seeds = { 1, 2, 3 },
   prep = { set = { quench_steps = 0, steps = 0 } },
   tiny = { set = { quench_steps = 100, steps = 400, every = 100, checkpoint_every = 0 },

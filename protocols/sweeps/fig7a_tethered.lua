@@ -11,7 +11,7 @@ return {
           quench_steps = 20000, equilibrate_steps = 10000, steps = 250000, every = 1000,
           snapshot_every = 0, checkpoint_every = 20000 },
   product = { K_ecm = { 0.0, 0.01, 0.04, 0.16 },
-              f0 = { 0.0008, 0.0017, 0.0027, 0.0045, 0.0085 } },
+              f0 = { 0.00058, 0.0012, 0.002, 0.0033, 0.0062 } },
   seeds = { 1, 2 },
   prep = { set = { quench_steps = 0, equilibrate_steps = 0, steps = 0 } },
   tiny = { set = { quench_steps = 100, equilibrate_steps = 100, steps = 400, every = 100,

@@ -13,7 +13,7 @@ return {
           quench_steps = 20000, equilibrate_steps = 10000, steps = 500000, every = 2000,
           snapshot_every = 0, checkpoint_every = 20000 },
   product = { K_ecm = { 0.0, 0.01, 0.04, 0.16 },
-              f0 = { 0.0007, 0.0015, 0.0024, 0.004, 0.0077 } },
+              f0 = { 0.00051, 0.0011, 0.0018, 0.0029, 0.0056 } },
   seeds = { 1, 2 },
   prep = { set = { quench_steps = 0, equilibrate_steps = 0, steps = 0 } },
   tiny = { set = { quench_steps = 100, equilibrate_steps = 100, steps = 400, every = 100,

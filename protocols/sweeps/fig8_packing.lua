@@ -1,7 +1,7 @@
 -- The paper's Fig. 8 at reduced scale: the adipocyte packing-fraction scan
 -- (protocols/packing.lua: rescale to phi_a, minimise, tether with K_ecm = 0.04 and lambda, run
 -- under the pressure wall) at phi_a = 0.45 to 0.85 and lambda in {0, 0.3, 1}; beta = 1e-2,
--- tau_p = 25, f0 = 0.0034 (2 k_B T_c/(P sigma^3) = 0.37-0.39 in the paper's convention with the
+-- tau_p = 25, f0 = 0.0024 (2 k_B T_c/(P sigma^3) = 0.37-0.39 in the paper's convention with the
 -- default background, docs/model.md "Vertex bath"). Each point
 -- twice: box = "pressure" (docs/model.md, protocol step 6: the left wall a piston at P after the rescale; the
 -- tissue drifts back to the packing P sets) and box = "fixed" (the box keeps the rescaled
@@ -11,7 +11,7 @@
 --   invasim sweep run out/fig8_packing --jobs 2
 return {
   protocol = "../packing.lua",
-  set = { system = "reduced", beta = 1e-2, tau_p = 25.0, P = 1.3e-3, f0 = 0.0034,
+  set = { system = "reduced", beta = 1e-2, tau_p = 25.0, P = 1.3e-3, f0 = 0.0024,
           K_ecm = 0.04, quench_steps = 20000, steps = 250000, every = 1000,
           snapshot_every = 0, checkpoint_every = 20000 },
   -- descending, so that the CI size (take = 2) gets the quick ones: expanding to 0.45 takes

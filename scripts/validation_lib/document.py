@@ -52,8 +52,8 @@ number (`L_f`, `A_t^min`/`A_t^max`) the row's verdict is *paper inconsistent*, n
   runs but gives its vertices damping without noise, which without a background heats them
   only through contacts (`T_c/T_a` from 1.7 to 73 at the cells' damping). docs/model.md
   ("Vertex bath") measures the readings; the protocols run the one that holds the window
-  over Fig. 5's range: a background temperature three times the activity's free-particle
-  temperature for cells and vertices (`background_factor = 3`). The row shows what it gives
+  over Fig. 5's range: a background temperature six times the activity's free-particle
+  temperature for cells and vertices (`background_factor = 6`). The row shows what it gives
   in the campaign.
 - **`phi_a` up to 0.9 under the pressure wall** (Fig. 8): the paper rescales the box to
   `0.4 < phi_a < 0.9` (with `phi = phi_c + phi_a`, so `phi > 1` at the top) and quotes one

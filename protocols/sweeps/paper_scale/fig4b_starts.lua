@@ -1,5 +1,5 @@
 -- The paper's Fig. 4b inset at the paper's scale: 28 adipocytes and 1500 cancer cells
--- (system = paper), beta = 1e-2, tau_p = 25, f0 = 0.00265 (2 k_B T_c/(P sigma^3) ~ 0.3 with the
+-- (system = paper), beta = 1e-2, tau_p = 25, f0 = 0.0019 (2 k_B T_c/(P sigma^3) ~ 0.3 with the
 -- default background, where the paper reads a steady A_n ~ 0.55), from the de-mixed and the
 -- mixed start, two seeds each, to t = 5e5 (1e7 steps of dt = 0.05, the paper's length).
 -- `start` changes the placement, so every point compresses its own tissue.
@@ -9,7 +9,7 @@
 --   scripts/validation.py plan protocols/sweeps/paper_scale/fig4b_starts.lua   (projected cost)
 return {
   protocol = "../../invasion.lua",
-  set = { system = "paper", beta = 1e-2, tau_p = 25.0, P = 1.3e-3, f0 = 0.00265,
+  set = { system = "paper", beta = 1e-2, tau_p = 25.0, P = 1.3e-3, f0 = 0.0019,
           quench_steps = 20000, steps = 10000000, every = 10000,
           snapshot_every = 0, checkpoint_every = 100000 },
   product = { start = { "demixed", "mixed" } },

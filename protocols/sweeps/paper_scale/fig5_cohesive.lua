@@ -1,6 +1,6 @@
 -- The beta = 1e-2, tau_p = 25 curve of the paper's Fig. 5 at the paper's scale: 28 adipocytes
 -- and 1500 cells (system = paper), seven f0 spanning 2 k_B T_c/(P sigma^3) ~ 0.03 to 3 with
--- the default background (about 42700 f0^2; docs/model.md "Vertex bath"), to t = 5e5
+-- the default background (about 7.5e4 f0^2; docs/model.md "Vertex bath"), to t = 5e5
 -- (1e7 steps), one compressed tissue.
 --   invasim sweep init protocols/sweeps/paper_scale/fig5_cohesive.lua --workspace out/paper_fig5_cohesive
 --   invasim sweep run out/paper_fig5_cohesive --jobs 1 --threads 2       (this machine)
@@ -11,7 +11,7 @@ return {
   set = { system = "paper", beta = 1e-2, tau_p = 25.0, P = 1.3e-3,
           quench_steps = 20000, steps = 10000000, every = 10000,
           snapshot_every = 0, checkpoint_every = 100000 },
-  product = { f0 = { 0.00084, 0.00153, 0.00216, 0.00265, 0.00342, 0.00484, 0.00838 } },
+  product = { f0 = { 0.00061, 0.0011, 0.0016, 0.0019, 0.0025, 0.0035, 0.0061 } },
   seeds = { 1 },
   prep = { set = { quench_steps = 0, steps = 0 } },
   tiny = { set = { system = "reduced", quench_steps = 100, steps = 400, every = 100,
