@@ -56,7 +56,8 @@ def _curve_points(jobs, keys):
         p = runs.state_point(reps, lambda j: {
             "x": x_measured(j), "A_t": j.mean("A_t")[0], "A_t_max": j.mean("A_t_max")[0],
             "A_t_error": j.mean("A_t")[1], "tau_d": j.scalar("tau_d"),
-            "T_c_over_T_a": j.mean("T_c_over_T_a")[0]})
+            "T_c_over_T_a": j.mean("T_c_over_T_a")[0],
+            "T_c_over_T_a_error": j.mean("T_c_over_T_a")[1]})
         out.setdefault(key[:len(keys)], []).append(p)
     return out
 
@@ -331,7 +332,8 @@ def _rows(fitted, usable, scale, curves, passive_jobs):
     rows.append(verdict.row("fig5_inset", ours, v, "each curve's a within a factor %g of the "
                             "line with our fitted c1, c2 (+ 2 errors); %s" % (si["log_factor"], rests),
                             unsteady=blocked))
-    ratios = [(p["T_c_over_T_a"], 0.0) for k, pts in curves.items() if k[0] != "passive"
+    ratios = [(p["T_c_over_T_a"], p["T_c_over_T_a_error"]) for k, pts in curves.items()
+              if k[0] != "passive"
               for p in pts]
     st = verdict.paper()["fig5_Tc_over_Ta"]
     vals = [r for r, _ in ratios if verdict.finite(r)]
@@ -339,7 +341,7 @@ def _rows(fitted, usable, scale, curves, passive_jobs):
         "fig5_Tc_over_Ta", "T_c/T_a from %s to %s over %d active state points" % (
             verdict.fmt(min(vals)) if vals else "n/a", verdict.fmt(max(vals)) if vals else "n/a",
             len(vals)), verdict.range_verdict(ratios, st["low"], st["high"]),
-        "every state point's T_c/T_a in [1, 1.2]"))
+        "every state point's T_c/T_a in [1, 1.2] within 2 errors (replicate scatter)"))
     if passive_jobs:
         rows.append(tc_equals_ta_row("fig5_Tc_equals_Ta", passive_jobs, ["beta", "kT"]))
         eq = [j.mean("T_c")[0] / float(j.sp["kT"]) for j in passive_jobs if float(j.sp.get("kT", 0)) > 0]
