@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Checks that comments and docs speak of the repository as it is (docs/architecture.md,
-# "Tests and benchmarks"): no tracked file cites a tracker's issue number ("issue 12", "issues 16 and
-# 17", "issue #3") or a file outside the repository (the model notes, paths under /work or
-# ../shared). The paper is cited by section, figure and equation; history lives in the git log.
+# "Tests and benchmarks"): no tracked file cites a tracker's issue number or a file outside the
+# repository (the model notes, the machine's own paths); `pattern` below lists the forms. The
+# paper is cited by section, figure and equation; history lives in the git log.
 # Prints every offending line and exits 1 if there is one.
 # Usage: check_citations.sh [REPO]   (default: the repository holding this script)
 # Files that must name such paths to test their refusal are listed in ALLOWED.
