@@ -37,10 +37,10 @@ end
 function M.describe_vertices(o)
   if o.vertex_bath == "langevin" then
     return string.format("Langevin vertices (gamma = %g, kT = %g, mass = %g)", o.vertex_gamma,
-                         M.vertex_kT(o), o.vertex_mass or 1)
+                         M.vertex_kT(o), o.vertex_mass)
   end
   return string.format("damped vertices (gamma = %g, mass = %g, no noise)", o.vertex_gamma,
-                       o.vertex_mass or 1)
+                       o.vertex_mass)
 end
 
 -- The kind of method M.cell_method would make: "Active", "Langevin" or "Damped".
