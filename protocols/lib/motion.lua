@@ -34,13 +34,12 @@ function M.vertex_method(group, o)
   return iv.Damped{ group = group, gamma = o.vertex_gamma }
 end
 
-function M.describe_vertices(o)
+function M.describe_vertices(o, mass)
   if o.vertex_bath == "langevin" then
     return string.format("Langevin vertices (gamma = %g, kT = %g, mass = %g)", o.vertex_gamma,
-                         M.vertex_kT(o), o.vertex_mass)
+                         M.vertex_kT(o), mass)
   end
-  return string.format("damped vertices (gamma = %g, mass = %g, no noise)", o.vertex_gamma,
-                       o.vertex_mass)
+  return string.format("damped vertices (gamma = %g, mass = %g, no noise)", o.vertex_gamma, mass)
 end
 
 -- The kind of method M.cell_method would make: "Active", "Langevin" or "Damped".

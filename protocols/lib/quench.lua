@@ -20,7 +20,8 @@ local spec = {
   tau_p = 25.0, gamma = method.gamma,
   vertex_bath = "langevin",   -- "langevin" (noise at kT, vertices and piston) or "damped"
   vertex_gamma = method.gamma,  -- the vertices' damping coefficient
-  vertex_mass = 1.0,            -- each vertex's mass (the cells have m = 1)
+  vertex_mass = { "number", range = "(0, inf)" },  -- each vertex's mass (default 1, the cells'); set
+                                                  -- by the first quench, a later different one refused
   vertex_kT = 0.0,              -- the langevin vertices' noise temperature (0: the background kT)
   dt = iv.Dynamics.defaults.dt, steps = { "number", default = 20000, range = "[0, inf)" },
   wall_mass = iv.Dynamics.pressure_wall.defaults.mass, wall_gamma = { "number" },  -- default: gamma
@@ -36,7 +37,8 @@ return function(tissue, opts)
   local sys = tissue.sys
   local dyn = tissue.dyn
   if not dyn then
-    sys:set_mass{ group = tissue.vertices, mass = o.vertex_mass }
+    tissue.vertex_mass = o.vertex_mass or 1.0
+    sys:set_mass{ group = tissue.vertices, mass = tissue.vertex_mass }
     dyn = iv.Dynamics{ dt = o.dt }
     tissue.vertex_method = dyn:add(motion.vertex_method(tissue.vertices, o))
     tissue.cell_method = dyn:add(motion.cell_method(tissue.cells, o))
@@ -51,6 +53,11 @@ return function(tissue, opts)
     if tissue.vertex_method:kind() ~= vertex_kind then
       error(o.label .. ": cannot change the vertex bath of an existing Dynamics (" ..
             tissue.vertex_method:kind() .. " vertices); run quench first with the bath you want", 2)
+    end
+    if o.vertex_mass and o.vertex_mass ~= tissue.vertex_mass then
+      error(string.format("%s: vertex_mass = %g: the vertices' mass was set to %g by the first quench " ..
+                          "and cannot change in an existing Dynamics; run quench first with the mass you want",
+                          o.label, o.vertex_mass, tissue.vertex_mass), 2)
     end
     dyn:set_dt(o.dt)
     if dyn:wall_state() then
@@ -75,7 +82,7 @@ return function(tissue, opts)
   local walls = wall and string.format("P = %g%s", wall.P, type(o.P) == "userdata" and " (ramp)" or "")
                 or "fixed walls"
   log.say(o.label, "%s, %s (%s), %d steps of dt = %g; %s", walls, motion.describe(o),
-          tissue.cell_method:kind(), o.steps, dyn:dt(), motion.describe_vertices(o))
+          tissue.cell_method:kind(), o.steps, dyn:dt(), motion.describe_vertices(o, tissue.vertex_mass))
   if require("lib.resume").pending() then
     log.say(o.label, "steps skipped: resuming from a checkpoint")
     return tissue

@@ -56,6 +56,12 @@ require("lib.quench")(tissue, { steps = 10, progress = false, vertex_bath = "dam
 -- The Dynamics keeps the vertex bath it was made with (equilibrate cannot switch it).
 expect_error("equilibrate: cannot change the vertex bath of an existing Dynamics %(Damped vertices%)",
              require("lib.quench"), tissue, { label = "equilibrate", steps = 10, vertex_bath = "langevin" })
+-- The vertices' mass is the first quench's (here the default 1): a different one later is refused,
+-- the same one accepted.
+expect_error("^stages_errors.lua:%d+: equilibrate: vertex_mass = 4.5: the vertices' mass was set to 1 by the first quench",
+             require("lib.quench"), tissue, { label = "equilibrate", steps = 10, vertex_bath = "damped", vertex_mass = 4.5 })
+require("lib.quench")(tissue, { label = "equilibrate", steps = 0, progress = false, vertex_bath = "damped",
+                                vertex_gamma = 0.02, vertex_mass = 1 })
 assert(tissue.vertex_method:kind() == "Damped" and tissue.vertex_method:params().gamma == 0.02, "damped vertex bath")
 assert(tissue.dyn:wall_state().kT == 0, "no piston noise with damped vertices")
 checks = checks + 1
