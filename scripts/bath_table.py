@@ -36,9 +36,9 @@ import math
 import os
 import subprocess
 import sys
+import tempfile
 
-P, GAMMA, M = 1.3e-3, 0.2, 1.0
-TAU_G = M / GAMMA
+P, GAMMA = 1.3e-3, 0.2
 TAU_PS = (25.0, 2500.0, 0.02)
 BETAS = (1e-3, 1e-2)
 # f0 per tau_p: the Fig. 5 sweeps' range without background (tau_p = 0.02, shorter than dt, needs
@@ -53,13 +53,28 @@ WINDOW = (1.0, 1.2)  # the paper's 1 < T_c/T_a < 1.2 for active runs
 FIG5_RANGE = (0.005, 3.0)  # the measured 2 k_B T_c/(P sigma^3) the Fig. 5 sweeps span
 
 
-def active_temperature(f0, tau_p, dt=0.05):
-    """Free-particle active temperature m <v^2>/3 of Active{f0, tau_p, gamma} without noise, as
-    the integrator makes it (protocols/lib/motion.lua, active_temperature): the force's
-    persistence held over steps of dt, (dt/2)(1 + rho)/(1 - rho) with rho = exp(-dt/tau_p)."""
-    rho = math.exp(-dt / tau_p)
-    tau = 0.5 * dt * (1 + rho) / (1 - rho)
-    return (f0 / GAMMA) ** 2 * tau / (3.0 * (tau + TAU_G))
+def active_temperatures(binary, pairs, dt=0.05):
+    """{(f0, tau_p): T_act} for the (f0, tau_p) pairs: the free-particle active temperature of
+    Active{f0, tau_p, gamma} without noise, as the protocols compute it
+    (protocols/lib/motion.lua, active_temperature), asked of the library through the binary
+    (one `invasim run` of a generated script) so that the table and the protocols cannot
+    disagree."""
+    pairs = sorted(set(pairs))
+    lines = ['package.path = %s .. "/?.lua;" .. package.path' % json.dumps(os.path.abspath("protocols")),
+             'local motion = require("lib.motion")']
+    lines += ['print(string.format("%%.17g", motion.active_temperature(%r, %r, %r, %r)))'
+              % (f0, tau_p, GAMMA, dt) for f0, tau_p in pairs]
+    fd, script = tempfile.mkstemp(suffix=".lua", prefix="bath_table_")
+    try:
+        with os.fdopen(fd, "w") as f:
+            f.write("\n".join(lines) + "\n")
+        done = subprocess.run([binary, "run", script], capture_output=True, text=True)
+    finally:
+        os.unlink(script)
+    values = done.stdout.split()
+    if done.returncode != 0 or len(values) != len(pairs):
+        raise RuntimeError("asking lib.motion for the active temperatures failed: %s" % done.stderr.strip())
+    return dict(zip(pairs, (float(v) for v in values)))
 
 
 def readings(vertex_mass_adipocyte):
@@ -126,7 +141,7 @@ def cell(a, base, reading, point, measured_T_c):
     if motion == "passive":
         kT = x * P / 2.0
     elif "background_ratio" in rset:
-        kT = active_temperature(f0, tau_p) / rset["background_ratio"]
+        kT = a.t_act[(f0, tau_p)] / rset["background_ratio"]
     sets = {"vertex_bath": rset["vertex_bath"], "vertex_gamma": rset["vertex_gamma"],
             "vertex_mass": "%.6g" % rset["vertex_mass"], "kT": "%.6g" % kT, "f0": "%.6g" % f0,
             "tau_p": tau_p if tau_p else 25, "beta": beta, "P": P, "background_factor": 0,
@@ -172,6 +187,7 @@ def main():
     m_v = adipocyte_vertex_mass(base)
     all_readings = readings(m_v)
     points = state_points(a.quick)
+    a.t_act = active_temperatures(a.bin, [(p[4], p[2]) for p in points if p[1] != "passive"])
     rows = []
     with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as pool:
         # Every reading but (d) first; (d) needs the T_c measured under damped vertices at 0.2.
