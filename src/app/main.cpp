@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "app/cli.hpp"
+#include "app/error_report.hpp"
 #include "app/render_command.hpp"
 #include "app/sweep_command.hpp"
 #include "core/errors.hpp"
@@ -112,11 +113,11 @@ int main(int argc, char** argv) {
     std::cerr << "invasim: " << e.what() << " (see invasim --help)\n";
     return 2;
   } catch (const invasim::lua::ScriptError& e) {
-    std::cerr << "invasim: error: " << e.what() << '\n';
+    invasim::app::report_run_end(e, std::cerr);
     if (traceback && !e.traceback().empty()) std::cerr << e.traceback() << '\n';
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "invasim: error: " << e.what() << '\n';
+    invasim::app::report_run_end(e, std::cerr);
     return 1;
   }
   return 1;

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <charconv>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -13,6 +14,7 @@
 #include <optional>
 
 #include "app/cli.hpp"
+#include "app/error_report.hpp"
 #include "app/sweep_analyze.hpp"
 #include "core/errors.hpp"
 #include "core/stop_request.hpp"
@@ -239,7 +241,10 @@ int job(const std::vector<std::string>& args) {
     fail_input("sweep job: ", ws.root().string(), " has no shared preparation");
   const fs::path dir = ws.job_dir(id);
   const auto lock = sweep::JobLock::try_acquire(dir);
-  if (!lock) fail_input("sweep job: ", id, " is being run by another runner");
+  if (!lock) {
+    std::cerr << "sweep job: " << id << " is being run by another runner: skipped\n";
+    return sweep::kJobBusyExitCode;
+  }
   if (sweep::read_document(dir).value("status", "") == "done") {
     std::cout << "sweep job: " << id << " is done already\n";
     return 0;
@@ -263,12 +268,16 @@ int job(const std::vector<std::string>& args) {
   sweep::JobRecord record(dir, ::getpid());
   int code = 0;
   try {
-    const Command command = parse_command_line(run_args);
+    Command command = parse_command_line(run_args);
     if (command.threads) omp_set_num_threads(*command.threads);
+    // A stopped point continues with the sweep's command, not with `invasim run --resume`.
+    command.options.continue_command =
+        std::string(std::getenv("SLURM_JOB_ID") ? "invasim sweep submit " : "invasim sweep run ") +
+        ws.root().string() + (std::getenv("SLURM_JOB_ID") ? " --slurm" : "");
     lua::LuaState state(command.options);
     state.run_file(command.options.script_path);
   } catch (const std::exception& e) {
-    std::cerr << "invasim: error: " << e.what() << std::endl;
+    report_run_end(e, std::cerr);
     code = 1;
   }
   std::cout << std::flush;

@@ -23,6 +23,9 @@ struct RunOptions {
   std::string from_dir;    // --from RUN_DIR: start from its compressed tissue (invasim.from)
   bool overwrite = false;  // --overwrite: a new run may replace the run in out_dir
                            // (invasim.overwrite)
+  // The command that continues this run after a stop, when it is not `invasim run --resume
+  // DIR` (a sweep's point: `invasim sweep run WS`); invasim.continue_command, else nil.
+  std::string continue_command;
 };
 
 // Per-state shared data: the options in, the declared parameters out.

@@ -55,6 +55,10 @@ int open_invasim(lua_State* L) {
     lua_pushstring(L, context.options.out_dir.c_str());
     lua_setfield(L, -2, "resume");
   }
+  if (!context.options.continue_command.empty()) {
+    lua_pushstring(L, context.options.continue_command.c_str());
+    lua_setfield(L, -2, "continue_command");
+  }
   lua_pushboolean(L, context.options.overwrite);  // --overwrite: replace the run in out_dir
   lua_setfield(L, -2, "overwrite");
   lua_pushstring(L, context.options.script_path.c_str());

@@ -49,17 +49,21 @@ JobRecord::JobRecord(const fs::path& job_dir, int pid)
   write_document(dir_, doc);
 }
 
-std::string JobRecord::finish(int exit_code, bool stopped) {
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  Json doc = read_document(dir_);
+std::string record_end(const fs::path& job_dir, int exit_code, bool stopped, double seconds) {
+  Json doc = read_document(job_dir);
   const std::string status = exit_code == 0 ? "done" : stopped ? "interrupted" : "failed";
   doc["status"] = status;
   doc["exit_code"] = exit_code;
   doc["wall_seconds"] = doc.value("wall_seconds", 0.0) + seconds;
   doc["finished_at"] = utc_now();
-  write_document(dir_, doc);
+  write_document(job_dir, doc);
   return status;
+}
+
+std::string JobRecord::finish(int exit_code, bool stopped) {
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  return record_end(dir_, exit_code, stopped, seconds);
 }
 
 }  // namespace invasim::sweep

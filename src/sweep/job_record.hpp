@@ -25,6 +25,16 @@ class JobRecord {
   std::chrono::steady_clock::time_point start_;
 };
 
+// Records the end of a run of the job in its document (status done for exit code 0, else
+// interrupted when stopped by a signal, else failed; the exit code; `seconds` added to
+// wall_seconds) and returns the status. JobRecord::finish, and `sweep run` for a child that
+// died before it could record its own end.
+std::string record_end(const fs::path& job_dir, int exit_code, bool stopped, double seconds);
+
+// `sweep job`'s exit status when another runner holds the point (EX_TEMPFAIL): not a failure
+// of the point, which `sweep run` reports as running elsewhere.
+inline constexpr int kJobBusyExitCode = 75;
+
 // Now as an ISO 8601 UTC time stamp.
 std::string utc_now();
 

@@ -5,9 +5,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <deque>
-#include <fstream>
-#include <memory>
 #include <vector>
 
 #include "core/errors.hpp"
@@ -17,12 +16,46 @@ namespace invasim::sweep {
 
 namespace {
 
-// A child running one job.
+// "abcdef12 (key=value ...)", or "the shared preparation".
+std::string point_label(const Workspace& ws, const std::string& id) {
+  if (id == kPrepId) return "the shared preparation";
+  const Json point = ws.statepoint(id);
+  std::string text(id, 0, 8);
+  text += " (";
+  for (auto it = point.begin(); it != point.end(); ++it) {
+    if (it != point.begin()) text += ' ';
+    text += it.key();
+    text += '=';
+    text += set_text(it.value());
+  }
+  text += ')';
+  return text;
+}
+
+// Why a point that is not done is not: its status as the documents and locks tell, with its
+// log (failed, interrupted) or its holder (running elsewhere).
+std::string unfinished_reason(const Workspace& ws, const std::string& id) {
+  const fs::path dir = ws.job_dir(id);
+  const std::string status = job_status(dir);
+  const Json doc = read_document(dir);
+  const std::string log = (dir / "run.log").string();
+  if (status == "failed")
+    return "failed (exit status " + std::to_string(doc.value("exit_code", -1)) + "; log " + log +
+           ")";
+  if (status == "interrupted") return "interrupted (continue with sweep run; log " + log + ")";
+  if (status == "running")
+    return "running elsewhere (pid " + std::to_string(doc.value("pid", -1)) + " on " +
+           doc.value("host", std::string("?")) + " since " +
+           doc.value("started_at", std::string("?")) + "; log " + log + ")";
+  if (status == "submitted" || status == "queued") return status + " to Slurm";
+  return "not started (" + status + ")";
+}
+
+// A child running one job (`invasim sweep job`, which holds the job's lock and records it).
 struct Child {
   pid_t pid = -1;
   std::string id;
-  JobLock lock;
-  std::unique_ptr<JobRecord> record;
+  std::chrono::steady_clock::time_point start;
 };
 
 // The runner's state: children, signal mask, tallies.
@@ -53,8 +86,7 @@ class Runner {
   }
 
   int stop_signal() const { return stop_signal_; }
-  int done = 0, already_done = 0, busy = 0;
-  std::vector<std::string> failed, interrupted;  // "id (log)"
+  int done = 0, already_done = 0;
 
  private:
   void start(const std::string& id, int threads) {
@@ -63,50 +95,29 @@ class Runner {
       ++already_done;
       return;
     }
-    auto lock = JobLock::try_acquire(dir);
-    if (!lock) {
-      ++busy;
-      out_ << "sweep run: " << id << " is being run by another runner: skipped\n";
+    if (!JobLock::try_acquire(dir)) {  // held elsewhere: reported at the end
+      out_ << "sweep run: " << label(id) << " is being run by another runner: skipped\n";
       return;
     }
-    if (read_document(dir).value("status", "") == "done") {  // finished before we locked it
-      ++already_done;
-      return;
-    }
-    std::vector<std::string> args = ws_.run_arguments(id);
-    args.insert(args.begin(), settings_.executable);
-    args.push_back("--threads");
-    args.push_back(std::to_string(threads));
+    const std::vector<std::string> args = {settings_.executable,   "sweep", "job",
+                                           ws_.root().string(),    id,      "--threads",
+                                           std::to_string(threads)};
     const fs::path log = dir / "run.log";
-    {
-      std::ofstream header(log, std::ios::app);
-      header << "== " << utc_now() << " invasim sweep run:";
-      for (const auto& a : args) header << ' ' << a;
-      header << '\n';
-    }
-    std::vector<int> other_locks;
-    for (const auto& c : children_) other_locks.push_back(c.lock.fd());
     const pid_t pid = ::fork();
     if (pid < 0) fail_input("sweep run: cannot start a process (fork failed)");
-    if (pid == 0) exec_child(args, log, other_locks);
-    Child child;
-    child.pid = pid;
-    child.id = id;
-    child.lock = std::move(*lock);
-    child.record = std::make_unique<JobRecord>(dir, pid);
+    if (pid == 0) exec_child(args, log);
+    children_.push_back(Child{pid, id, std::chrono::steady_clock::now()});
     out_ << "sweep run: started " << label(id) << " (pid " << pid << ", log " << log.string()
          << ")\n"
          << std::flush;
-    children_.push_back(std::move(child));
   }
 
   // In the forked child: the parent's signal mask undone, its own process group (a Ctrl-C at
-  // the terminal reaches it once, through the runner), output to the job's log.
-  [[noreturn]] void exec_child(const std::vector<std::string>& args, const fs::path& log,
-                               const std::vector<int>& other_locks) {
+  // the terminal reaches it once, through the runner; a killed runner leaves it running to
+  // its end), output to the job's log.
+  [[noreturn]] void exec_child(const std::vector<std::string>& args, const fs::path& log) {
     pthread_sigmask(SIG_SETMASK, &old_mask_, nullptr);
     ::setpgid(0, 0);
-    for (int fd : other_locks) ::close(fd);
     const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
     if (fd >= 0) {
       ::dup2(fd, 1);
@@ -123,20 +134,7 @@ class Runner {
     _exit(127);
   }
 
-  std::string label(const std::string& id) const {
-    if (id == kPrepId) return "the shared preparation";
-    const Json point = ws_.statepoint(id);
-    std::string text(id, 0, 8);
-    text += " (";
-    for (auto it = point.begin(); it != point.end(); ++it) {
-      if (it != point.begin()) text += ' ';
-      text += it.key();
-      text += '=';
-      text += set_text(it.value());
-    }
-    text += ')';
-    return text;
-  }
+  std::string label(const std::string& id) const { return point_label(ws_, id); }
 
   void wait_for_event() {
     siginfo_t info{};
@@ -168,14 +166,19 @@ class Runner {
         if (it->pid != pid) continue;
         const bool signalled = WIFSIGNALED(status);
         const int code = signalled ? 128 + WTERMSIG(status) : WEXITSTATUS(status);
-        const std::string result = it->record->finish(code, stop_signal_ != 0 || signalled);
-        const std::string entry = label(it->id) + ": " + it->record->log_path().string();
-        if (result == "done")
-          done += it->id == kPrepId ? 0 : 1;
-        else if (result == "interrupted")
-          interrupted.push_back(entry);
-        else
-          failed.push_back(entry + " (exit status " + std::to_string(code) + ")");
+        const fs::path dir = ws_.job_dir(it->id);
+        std::string result;
+        if (!signalled && code == kJobBusyExitCode) {
+          result = "skipped (another runner took it first)";
+        } else {
+          result = read_document(dir).value("status", "pending");
+          if (result == "running") {  // the child died before it could record its end
+            const double seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - it->start).count();
+            result = record_end(dir, code, stop_signal_ != 0 || signalled, seconds);
+          }
+          if (result == "done" && it->id != kPrepId) ++done;
+        }
         out_ << "sweep run: " << result << ": " << label(it->id) << '\n' << std::flush;
         children_.erase(it);
         break;
@@ -195,7 +198,13 @@ class Runner {
 
 int run_local(const Workspace& ws, const LocalRunSettings& settings, std::ostream& out) {
   Runner runner(ws, settings, out);
-  if (ws.has_prep() && job_status(ws.job_dir(kPrepId)) != "done") {
+  const auto unfinished = [&ws] {
+    std::vector<std::string> ids;
+    for (const auto& id : ws.ids())
+      if (job_status(ws.job_dir(id)) != "done") ids.push_back(id);
+    return ids;
+  };
+  if (ws.has_prep() && job_status(ws.job_dir(kPrepId)) != "done" && !unfinished().empty()) {
     runner.run({kPrepId}, 1, settings.threads);
     if (job_status(ws.job_dir(kPrepId)) != "done") {
       out << "sweep run: the shared preparation is not done (" << job_status(ws.job_dir(kPrepId))
@@ -206,17 +215,17 @@ int run_local(const Workspace& ws, const LocalRunSettings& settings, std::ostrea
   }
   std::deque<std::string> ids(ws.ids().begin(), ws.ids().end());
   if (!runner.stop_signal()) runner.run(ids, settings.jobs, settings.threads);
-  int pending = 0;
-  for (const auto& id : ws.ids())
-    if (job_status(ws.job_dir(id)) != "done") ++pending;
-  out << "sweep run: " << runner.done << " done now, " << runner.already_done << " done before, "
-      << runner.failed.size() << " failed, " << runner.interrupted.size() << " interrupted, "
-      << runner.busy << " running elsewhere; " << ws.ids().size() - pending << " of "
-      << ws.ids().size() << " points done\n";
-  for (const auto& f : runner.failed) out << "  failed: " << f << '\n';
-  for (const auto& i : runner.interrupted)
-    out << "  interrupted (continue with sweep run): " << i << '\n';
-  return runner.failed.empty() && runner.interrupted.empty() && !runner.stop_signal() ? 0 : 1;
+  const std::vector<std::string> left = unfinished();
+  out << "sweep run: " << runner.done << " done now, " << runner.already_done << " done before; "
+      << ws.ids().size() - left.size() << " of " << ws.ids().size() << " points done";
+  if (left.empty()) {
+    out << '\n';
+    return 0;
+  }
+  out << "; " << left.size() << " not done:\n";
+  for (const auto& id : left)
+    out << "  " << point_label(ws, id) << ": " << unfinished_reason(ws, id) << '\n';
+  return 1;
 }
 
 }  // namespace invasim::sweep

@@ -119,8 +119,9 @@ PY
 status=0
 "$invasim" sweep run failing --jobs 1 --threads 1 > failing.log 2>&1 || status=$?
 [ $status -eq 1 ] || fail "a sweep with a failing point exited with $status" failing.log
-grep -q "1 done now, 0 done before, 1 failed" failing.log || fail "failure tally" failing.log
-grep -q "failed: .*beta=0.5.*run.log (exit status 1)" failing.log || fail "failure report" failing.log
+grep -q "1 done now, 0 done before; 1 of 2 points done; 1 not done:" failing.log &&
+  grep -q "^  [0-9a-f]\{8\} (.*beta=0.5.*): failed (exit status 1; log .*/run.log)" failing.log ||
+  fail "failure tally" failing.log
 grep -rq "beta = 0.5 must be smaller than alpha" failing/workspace/*/run.log || fail "failure log"
 # 7. analyze: collects into ws/results.csv (the same table as collect) and runs
 #    scripts/master_curve.py on it, with the user's options passed on and the protocol's

@@ -41,7 +41,7 @@ stop loop "stop_endless_loop: looping" \
 stop callback "stop_endless_loop: looping in a callback" \
   "^invasim: error: stop_endless_loop.lua:31: stopped by SIGTERM while the script ran Lua code with no stop point of the engine"
 stop graceful "stop_endless_loop: running" \
-  "^invasim: error: stopped by SIGTERM after the script's own stop path"
+  "^invasim: stopped by SIGTERM after the script's own stop path"
 grep -q "stop_endless_loop: the stop path finished" "$work/graceful.txt" ||
   fail "graceful: the script's stop path was cut short" "$work/graceful.txt"
 echo "stop_endless_loop: one SIGTERM ended every Lua loop; the engine's stop path kept"
