@@ -73,9 +73,8 @@ local function stop(sys, o, state, where)
   end
   iv.save_checkpoint(o.checkpoint, resume.stamp{ system = sys, extra = resume.serialize(state) })
   log.note("compress", "checkpoint %s written to %s", where, o.checkpoint)
-  error(string.format("stopped by %s %s (phi = %.4f); checkpoint saved to %s; continue with: " ..
-                      "invasim run --resume %s", signal, where, phi, o.checkpoint,
-                      resume.run_dir() or "DIR"), 0)
+  error(string.format("stopped by %s %s (phi = %.4f); checkpoint saved to %s; continue with: %s",
+                      signal, where, phi, o.checkpoint, resume.continue_command()), 0)
 end
 
 -- A compression step whose FIRE reached its iteration limit without reaching ftol: the

@@ -170,8 +170,9 @@ return function(tissue, opts)
   if signal then
     if progress then progress:finish() end
     if checkpoint then
-      error(string.format("stopped by %s at step %d (t = %g); checkpoint saved to %s; continue with: invasim run --resume %s",
-                          signal, sys:step(), sys:time(), checkpoint, o.out), 0)
+      error(string.format("stopped by %s at step %d (t = %g); checkpoint saved to %s; continue with: %s",
+                          signal, sys:step(), sys:time(), checkpoint,
+                          resume.continue_command(o.out)), 0)
     end
     error(string.format("stopped by %s at step %d (t = %g); no run directory, nothing saved", signal,
                         sys:step(), sys:time()), 0)

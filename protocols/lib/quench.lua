@@ -92,10 +92,11 @@ return function(tissue, opts)
   if progress then progress:finish() end
   local signal = iv.interrupted()
   if signal then
-    local dir = require("lib.resume").run_dir()
+    local resume = require("lib.resume")
+    local dir = resume.run_dir()
     error(string.format("stopped by %s during %s at step %d; no checkpoint is written during a quench " ..
                         "(only during compression and production): %s", signal, o.label, sys:step(),
-                        dir and "invasim run --resume " .. dir .. " starts the run again from the beginning"
+                        dir and resume.continue_command(dir) .. " starts the run again from the beginning"
                         or "run the protocol again from the start"), 0)
   end
   local box = sys:box()

@@ -30,6 +30,13 @@ function M.set_identity(id, dir) identity, run_dir = id, dir end
 function M.identity() return identity end
 function M.run_dir() return run_dir end
 
+-- The command that continues this run after a stop: the sweep's own command when the run is
+-- a point of a sweep (invasim.continue_command, set by `invasim sweep job`), else
+-- `invasim run --resume DIR`.
+function M.continue_command(dir)
+  return iv.continue_command or ("invasim run --resume " .. (dir or run_dir or "DIR"))
+end
+
 -- Adds this run's identity to a save_checkpoint keyword table (nothing outside a run
 -- directory); returns the table.
 function M.stamp(t)

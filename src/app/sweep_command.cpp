@@ -281,7 +281,10 @@ int job(const std::vector<std::string>& args) {
     code = 1;
   }
   std::cout << std::flush;
-  return record.finish(code, stop_requested() != 0) == "done" ? 0 : 1;
+  const std::string result = record.finish(code, stop_requested() != 0);
+  if (id == sweep::kPrepId && result == "failed" && std::getenv("SLURM_JOB_ID"))
+    sweep::cancel_after_failed_prep(ws, std::getenv("SLURM_JOB_ID"), std::cout);
+  return result == "done" ? 0 : 1;
 }
 
 }  // namespace

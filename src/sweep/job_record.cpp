@@ -32,6 +32,7 @@ JobRecord::JobRecord(const fs::path& job_dir, int pid)
     : dir_(job_dir), start_(std::chrono::steady_clock::now()) {
   Json doc = read_document(dir_);
   doc["status"] = "running";
+  doc.erase("cancelled");  // set when an earlier Slurm array was cancelled
   doc["pid"] = pid;
   doc["host"] = host_name();
   doc["started_at"] = utc_now();

@@ -1,6 +1,7 @@
 #include "sweep/slurm.hpp"
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -36,7 +37,8 @@ std::string header(const SlurmOptions& o, const std::string& name, const std::st
 std::string sbatch(const fs::path& script, const std::string& dependency) {
   std::ostringstream text_of_command;
   text_of_command << "sbatch --parsable";
-  if (!dependency.empty()) text_of_command << " --dependency=afterok:" << dependency;
+  if (!dependency.empty())
+    text_of_command << " --dependency=afterok:" << dependency << " --kill-on-invalid-dep=yes";
   text_of_command << ' ' << quoted(script.string()) << " 2>&1";
   const std::string command = text_of_command.str();
   FILE* pipe = ::popen(command.c_str(), "r");
@@ -56,6 +58,7 @@ std::string sbatch(const fs::path& script, const std::string& dependency) {
 void mark_submitted(const fs::path& dir, const std::string& slurm_id) {
   Json doc = read_document(dir);
   doc["status"] = "submitted";
+  doc.erase("cancelled");  // an earlier array's cancellation no longer applies
   doc["slurm_job_id"] = slurm_id;
   doc["submitted_at"] = utc_now();
   write_document(dir, doc);
@@ -139,6 +142,38 @@ int submit_slurm(const Workspace& ws, const SlurmOptions& o, std::ostream& out) 
       << (prep_job.empty() ? "" : " (after job " + prep_job + ")") << "; scripts in "
       << dir.string() << '\n';
   return 0;
+}
+
+int cancel_after_failed_prep(const Workspace& ws, const std::string& prep_job, std::ostream& out) {
+  const fs::path log_path = ws.root() / "slurm" / "submissions.json";
+  if (prep_job.empty() || !fs::exists(log_path)) return 0;
+  std::ifstream in(log_path);
+  const Json log = Json::parse(in);
+  const std::string note = "the shared preparation failed (Slurm job " + prep_job + ", log " +
+                           (ws.job_dir(kPrepId) / "run.log").string() + ")";
+  int returned = 0;
+  for (const auto& submission : log) {
+    if (submission.value("prep_job", Json()) != Json(prep_job)) continue;
+    const std::string array = submission.value("array_job", "");
+    if (!array.empty()) {
+      const std::string command = "scancel " + array + " > /dev/null 2>&1";
+      if (std::system(command.c_str()) != 0)
+        out << "sweep job: scancel " << array << " failed (the array may have ended already)\n";
+    }
+    for (const auto& id : submission.value("points", std::vector<std::string>{})) {
+      Json doc = read_document(ws.job_dir(id));
+      if (doc.value("status", "") != "submitted" ||
+          doc.value("slurm_job_id", "").rfind(array + "_", 0) != 0)
+        continue;
+      doc["status"] = "pending";
+      doc["cancelled"] = note;
+      write_document(ws.job_dir(id), doc);
+      ++returned;
+    }
+    out << "sweep job: " << note << ": cancelled job array " << array << "; " << returned
+        << " points pending again (fix the cause, then sweep submit)\n";
+  }
+  return returned;
 }
 
 }  // namespace invasim::sweep

@@ -4,9 +4,11 @@
 // line: array task i runs line i + 1), array.sbatch (each task runs
 // `invasim sweep job WS ID --threads $SLURM_CPUS_PER_TASK`) and, when the shared preparation
 // is not done, prep.sbatch, submitted first; the array then waits for it with
-// --dependency=afterok. Both are submitted with `sbatch --parsable`; the Slurm job ids go to
-// the job documents (status "submitted") and WS/slurm/submissions.json. A task killed by its
-// time limit was stopped by SIGTERM and checkpointed; submitting again continues it.
+// --dependency=afterok (with --kill-on-invalid-dep=yes: Slurm drops the array if the
+// preparation fails, rather than holding it pending forever). Both are submitted with `sbatch
+// --parsable`; the Slurm job ids go to the job documents (status "submitted") and
+// WS/slurm/submissions.json. A task killed by its time limit was stopped by SIGTERM and
+// checkpointed; submitting again continues it.
 #include <ostream>
 #include <string>
 #include <vector>
@@ -27,5 +29,12 @@ struct SlurmOptions {
 
 // Returns 0, or 1 if sbatch failed (its message printed).
 int submit_slurm(const Workspace& ws, const SlurmOptions& options, std::ostream& out);
+
+// Called by the shared preparation's `sweep job` when it did not finish under Slurm job
+// `prep_job`: cancels (scancel) the arrays submitted after it and returns their points to
+// "pending" with a "cancelled" note naming the preparation's failure and log, so that `status`
+// says why and `submit` submits them again (with a new preparation). Returns the number of
+// points returned to pending.
+int cancel_after_failed_prep(const Workspace& ws, const std::string& prep_job, std::ostream& out);
 
 }  // namespace invasim::sweep

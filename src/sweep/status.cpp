@@ -41,11 +41,13 @@ int print_status(const Workspace& ws, std::ostream& out) {
   const auto queue = slurm_queue();
   std::map<std::string, int> counts;
   std::vector<std::string> failed;
+  std::map<std::string, int> cancelled;  // why -> points
   for (const auto& id : ws.ids()) {
     const std::string status = effective_status(ws.job_dir(id), queue);
     ++counts[status];
-    if (status == "failed")
-      failed.push_back(id + ": " + read_document(ws.job_dir(id)).value("log", ""));
+    const Json doc = read_document(ws.job_dir(id));
+    if (status == "failed") failed.push_back(id + ": " + doc.value("log", ""));
+    if (status == "pending" && doc.contains("cancelled")) ++cancelled[doc.value("cancelled", "")];
   }
   out << ws.root().string() << ": " << ws.ids().size() << " points of " << ws.protocol() << '\n';
   if (ws.has_prep())
@@ -53,6 +55,9 @@ int print_status(const Workspace& ws, std::ostream& out) {
   for (const char* name : {"pending", "queued", "running", "done", "failed", "interrupted"})
     out << "  " << name << ": " << counts[name] << '\n';
   for (const auto& f : failed) out << "  failed: " << f << '\n';
+  for (const auto& [why, n] : cancelled)
+    out << "  cancelled: " << n << " pending points whose Slurm array was cancelled: " << why
+        << "; fix the cause, then sweep submit\n";
   return 0;
 }
 

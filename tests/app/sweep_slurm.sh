@@ -6,7 +6,9 @@
 # with --dependency=afterok), stops the array with SIGTERM once a point has written a
 # checkpoint (as a time limit does), submits again (the stopped points continue from their
 # checkpoints), waits until every point is done, and compares each point's series.csv and
-# summary.json (timings aside) with a local `sweep run` of the same sweep, byte for byte.
+# summary.json (timings aside) with a local `sweep run` of the same sweep, byte for byte;
+# then a sweep whose preparation fails: the dependent array is cancelled, the points are
+# pending again with the reason in `status`, and `submit` submits them again.
 # Where Slurm's or munge's binaries are missing or not root: skipped (77), or a failure under
 # INVASIM_REQUIRE_ALL_TESTS=1 (tests/support/prerequisites.sh).
 # Usage: sweep_slurm.sh INVASIM SPEC_DIR WORK_DIR
@@ -134,4 +136,23 @@ done
 resumed=$(grep -l 'resuming the run' ws/workspace/*/run.log 2> /dev/null | wc -l)
 [ "$resumed" -ge 1 ] || fail "no point resumed from its checkpoint on Slurm" status2.log
 echo "resumed on Slurm: $resumed points"
+
+# 6. A failing preparation: its dependent array is cancelled (not left pending forever), the
+#    points are pending again with the reason in status, and submit submits them again.
+"$invasim" sweep init "$specs/failing_prep.lua" --workspace badprep > /dev/null
+"$invasim" sweep submit badprep --slurm --cpus-per-task 1 > submit3.log || fail submit submit3.log
+array3=$(sed -n 's/.*Slurm job array \([0-9]*\).*/\1/p' submit3.log)
+[ -n "$array3" ] || fail "no array job id for the failing preparation's sweep" submit3.log
+prep_failed() { grep -q '"status": "failed"' badprep/prep/signac_job_document.json; }
+within 120 "the preparation's failure" prep_failed
+within 60 "the end of array $array3 after its preparation failed" queue_empty "$array3"
+"$invasim" sweep status badprep > status3.log
+grep -q "pending: 2" status3.log || fail "the cancelled points are not pending" status3.log
+grep -q "cancelled: 2 pending points whose Slurm array was cancelled: the shared preparation failed (Slurm job [0-9]*, log .*badprep/prep/run.log)" status3.log ||
+  fail "status does not say why the points wait" status3.log
+"$invasim" sweep submit badprep --slurm --cpus-per-task 1 > submit4.log || fail submit4 submit4.log
+grep -q "shared preparation: Slurm job" submit4.log && grep -q "2 points as Slurm job array" submit4.log ||
+  fail "the second submit did not submit the preparation and the points again" submit4.log
+array4=$(sed -n 's/.*Slurm job array \([0-9]*\).*/\1/p' submit4.log)
+within 120 "the end of the resubmitted array $array4" queue_empty "$array4"
 echo "sweep slurm: OK"
