@@ -53,9 +53,10 @@ Usage:
         one row per point: state point, summary means and errors, tau_d, tau_r
         (default: standard output)
   invasim sweep submit WS --slurm [--partition P] [--time T] [--cpus-per-task C]
-                        [--array-limit L] [--sbatch-arg ARG]... [--dry-run]
-        run the points that are not done as one Slurm job array (after the shared
-        preparation, if any)
+                        [--array-limit L] [--max-array-size M] [--sbatch-arg ARG]...
+                        [--dry-run]
+        run the points that are not done as Slurm job arrays of at most M tasks (default:
+        the cluster's MaxArraySize), after the shared preparation, if any
   invasim sweep analyze WS [-o DIR] [--group K1,K2] [--temperature kT|T_c|kT_c_paper] ...
         collect into WS/results.csv and fit the master curve (scripts/master_curve.py;
         its options pass through, see --help there): fit tables and figures in DIR
@@ -212,9 +213,10 @@ int collect(const std::vector<std::string>& args) {
 }
 
 int submit(const std::vector<std::string>& args) {
-  const Parsed p = parse(
-      "submit", args, {"--partition", "--time", "--cpus-per-task", "--array-limit", "--sbatch-arg"},
-      {"--slurm", "--dry-run"});
+  const Parsed p = parse("submit", args,
+                         {"--partition", "--time", "--cpus-per-task", "--array-limit",
+                          "--max-array-size", "--sbatch-arg"},
+                         {"--slurm", "--dry-run"});
   const auto ws = sweep::Workspace::open(words("submit", p, 1, "a workspace directory")[0]);
   if (!p.flags.count("--slurm"))
     throw UsageError("invasim sweep submit: say which batch system: --slurm (the only one so far)");
@@ -223,6 +225,8 @@ int submit(const std::vector<std::string>& args) {
   o.time = value(p, "--time").value_or("");
   if (auto c = value(p, "--cpus-per-task")) o.cpus_per_task = positive("--cpus-per-task", *c);
   if (auto l = value(p, "--array-limit")) o.array_limit = positive("--array-limit", *l, 1000000);
+  if (auto m = value(p, "--max-array-size"))
+    o.max_array_size = positive("--max-array-size", *m, 4000001);
   if (p.values.count("--sbatch-arg")) o.extra = p.values.at("--sbatch-arg");
   o.dry_run = p.flags.count("--dry-run") > 0;
   o.executable = executable();

@@ -1,5 +1,6 @@
 #include "sweep/slurm.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -55,6 +56,20 @@ std::string sbatch(const fs::path& script, const std::string& dependency) {
   return id;
 }
 
+// The cluster's MaxArraySize (`scontrol show config`): array indices run 0..MaxArraySize-1,
+// so an array holds at most that many tasks; 1001, Slurm's default, when it cannot be read.
+int cluster_max_array_size() {
+  FILE* pipe = ::popen("scontrol show config 2>/dev/null", "r");
+  int size = 0;
+  if (pipe) {
+    char line[512];
+    while (std::fgets(line, sizeof line, pipe))
+      if (std::sscanf(line, " MaxArraySize = %d", &size) == 1) break;
+    ::pclose(pipe);
+  }
+  return size > 0 ? size : 1001;
+}
+
 void mark_submitted(const fs::path& dir, const std::string& slurm_id) {
   Json doc = read_document(dir);
   doc["status"] = "submitted";
@@ -85,10 +100,6 @@ int submit_slurm(const Workspace& ws, const SlurmOptions& o, std::ostream& out) 
   while (fs::exists(slurm_dir / ("submit-" + std::to_string(k)))) ++k;
   const fs::path dir = slurm_dir / ("submit-" + std::to_string(k));
   fs::create_directories(dir);
-  {
-    std::ofstream points(dir / "points.txt");
-    for (const auto& id : ids) points << id << '\n';
-  }
   const std::string exe = quoted(o.executable), root = quoted(ws.root().string());
   const std::string threads = "--threads \"${SLURM_CPUS_PER_TASK:-1}\"";
   const bool need_prep =
@@ -101,19 +112,35 @@ int submit_slurm(const Workspace& ws, const SlurmOptions& o, std::ostream& out) 
            << kPrepId << ' ' << threads << '\n';
     write_file(dir / "prep.sbatch", script.str());
   }
-  std::ostringstream script;
-  script << header(o, "invasim-sweep", (dir / "slurm-%A_%a.out").string()) << "#SBATCH --array=0-"
-         << ids.size() - 1;
-  if (o.array_limit > 0) script << '%' << o.array_limit;
-  script << "\n# array task i runs the state point on line i + 1 of points.txt\n"
-         << "id=$(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" "
-         << quoted((dir / "points.txt").string()) << ")\nexec " << exe << " sweep job " << root
-         << " \"$id\" " << threads << '\n';
-  write_file(dir / "array.sbatch", script.str());
+  const std::size_t chunk =
+      static_cast<std::size_t>(o.max_array_size > 0 ? o.max_array_size : cluster_max_array_size());
+  std::vector<std::vector<std::string>> arrays;
+  for (std::size_t first = 0; first < ids.size(); first += chunk)
+    arrays.emplace_back(ids.begin() + first, ids.begin() + std::min(ids.size(), first + chunk));
+  std::vector<fs::path> scripts;
+  for (std::size_t j = 0; j < arrays.size(); ++j) {
+    std::string suffix;  // "" for a single array, else "-<j+1>"
+    if (arrays.size() > 1) suffix.append("-").append(std::to_string(j + 1));
+    const fs::path points = dir / ("points" + suffix + ".txt");
+    {
+      std::ofstream list(points);
+      for (const auto& id : arrays[j]) list << id << '\n';
+    }
+    std::ostringstream script;
+    script << header(o, "invasim-sweep", (dir / "slurm-%A_%a.out").string()) << "#SBATCH --array=0-"
+           << arrays[j].size() - 1;
+    if (o.array_limit > 0) script << '%' << o.array_limit;
+    script << "\n# array task i runs the state point on line i + 1 of "
+           << points.filename().string() << "\nid=$(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" "
+           << quoted(points.string()) << ")\nexec " << exe << " sweep job " << root << " \"$id\" "
+           << threads << '\n';
+    scripts.push_back(dir / ("array" + suffix + ".sbatch"));
+    write_file(scripts.back(), script.str());
+  }
   if (o.dry_run) {
     out << "sweep submit: wrote " << (need_prep ? (dir / "prep.sbatch").string() + " and " : "")
-        << (dir / "array.sbatch").string() << " (" << ids.size()
-        << " points); --dry-run: nothing submitted\n";
+        << scripts.size() << " array script(s) in " << dir.string() << " (" << ids.size()
+        << " points, at most " << chunk << " per array); --dry-run: nothing submitted\n";
     return 0;
   }
   std::string prep_job;
@@ -124,23 +151,25 @@ int submit_slurm(const Workspace& ws, const SlurmOptions& o, std::ostream& out) 
   } else if (prep_status == "queued" || prep_status == "running") {
     prep_job = read_document(ws.job_dir(kPrepId)).value("slurm_job_id", "");
   }
-  const std::string array_job = sbatch(dir / "array.sbatch", prep_job);
-  for (std::size_t i = 0; i < ids.size(); ++i)
-    mark_submitted(ws.job_dir(ids[i]), array_job + "_" + std::to_string(i));
   Json log = Json::array();
   if (fs::exists(slurm_dir / "submissions.json")) {
     std::ifstream in(slurm_dir / "submissions.json");
     log = Json::parse(in);
   }
-  log.push_back({{"submitted_at", utc_now()},
-                 {"directory", dir.string()},
-                 {"array_job", array_job},
-                 {"prep_job", prep_job.empty() ? Json(nullptr) : Json(prep_job)},
-                 {"points", ids}});
-  write_file(slurm_dir / "submissions.json", log.dump(2) + "\n");
-  out << "sweep submit: " << ids.size() << " points as Slurm job array " << array_job
-      << (prep_job.empty() ? "" : " (after job " + prep_job + ")") << "; scripts in "
-      << dir.string() << '\n';
+  for (std::size_t j = 0; j < arrays.size(); ++j) {
+    const std::string array_job = sbatch(scripts[j], prep_job);
+    for (std::size_t i = 0; i < arrays[j].size(); ++i)
+      mark_submitted(ws.job_dir(arrays[j][i]), array_job + "_" + std::to_string(i));
+    log.push_back({{"submitted_at", utc_now()},
+                   {"directory", dir.string()},
+                   {"array_job", array_job},
+                   {"prep_job", prep_job.empty() ? Json(nullptr) : Json(prep_job)},
+                   {"points", arrays[j]}});
+    write_file(slurm_dir / "submissions.json", log.dump(2) + "\n");
+    out << "sweep submit: " << arrays[j].size() << " points as Slurm job array " << array_job
+        << (prep_job.empty() ? "" : " (after job " + prep_job + ")") << "; script "
+        << scripts[j].string() << '\n';
+  }
   return 0;
 }
 

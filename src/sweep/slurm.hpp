@@ -1,7 +1,8 @@
 #pragma once
 // `invasim sweep submit WS --slurm`: the points that are not done (nor queued or running)
-// become one Slurm job array. In WS/slurm/submit-K/ it writes points.txt (one job id per
-// line: array task i runs line i + 1), array.sbatch (each task runs
+// become Slurm job arrays of at most MaxArraySize tasks each (a cluster refuses larger
+// ones). In WS/slurm/submit-K/ it writes, per array j = 1, 2, ..., points-j.txt (one job id
+// per line: array task i runs line i + 1) and array-j.sbatch (each task runs
 // `invasim sweep job WS ID --threads $SLURM_CPUS_PER_TASK`) and, when the shared preparation
 // is not done, prep.sbatch, submitted first; the array then waits for it with
 // --dependency=afterok (with --kill-on-invalid-dep=yes: Slurm drops the array if the
@@ -22,6 +23,8 @@ struct SlurmOptions {
   std::string time;                // --time (default: the partition's limit)
   int cpus_per_task = 1;           // --cpus-per-task, also the runs' --threads
   int array_limit = 0;             // --array-limit: tasks at a time (0: no limit)
+  int max_array_size = 0;          // --max-array-size: tasks per array (0: the cluster's
+                                   // MaxArraySize from `scontrol show config`, else 1001)
   std::vector<std::string> extra;  // --sbatch-arg ARG: more #SBATCH lines
   bool dry_run = false;            // write the scripts, submit nothing
   std::string executable;          // this invasim binary

@@ -76,6 +76,7 @@ SlurmdPort=$slurmd_port
 ReturnToService=2
 NodeName=localhost NodeAddr=127.0.0.1 CPUs=2 State=UNKNOWN
 PartitionName=debug Nodes=localhost Default=YES MaxTime=INFINITE State=UP
+MaxArraySize=500
 CONF
 export SLURM_CONF=$work/slurm.conf
 
@@ -155,4 +156,25 @@ grep -q "shared preparation: Slurm job" submit4.log && grep -q "2 points as Slur
   fail "the second submit did not submit the preparation and the points again" submit4.log
 array4=$(sed -n 's/.*Slurm job array \([0-9]*\).*/\1/p' submit4.log)
 within 120 "the end of the resubmitted array $array4" queue_empty "$array4"
+
+# 7. Arrays within MaxArraySize: the cluster's (500 in slurm.conf) read by submit; with
+#    --max-array-size 3 the 4 points go as two arrays (3 + 1 tasks), which finish them all.
+"$invasim" sweep init "$specs/tiny.lua" --workspace split > /dev/null
+"$invasim" sweep submit split --slurm --dry-run > dry.log || fail "dry run" dry.log
+grep -q "1 array script(s) .*(4 points, at most 500 per array)" dry.log ||
+  fail "submit did not read MaxArraySize = 500 from the cluster" dry.log
+rm -rf split/slurm
+"$invasim" sweep submit split --slurm --cpus-per-task 1 --max-array-size 3 > submit5.log ||
+  fail "split submit" submit5.log
+[ "$(grep -c "points as Slurm job array" submit5.log)" -eq 2 ] &&
+  grep -q "^sweep submit: 3 points as Slurm job array" submit5.log &&
+  grep -q "^sweep submit: 1 points as Slurm job array" submit5.log ||
+  fail "4 points with --max-array-size 3 are not two arrays of 3 and 1" submit5.log
+grep -q -- "--array=0-2" split/slurm/submit-1/array-1.sbatch &&
+  grep -q -- "--array=0-0" split/slurm/submit-1/array-2.sbatch || fail "the array scripts' ranges"
+for a in $(sed -n 's/.*Slurm job array \([0-9]*\).*/\1/p' submit5.log); do
+  within 600 "the end of array $a" queue_empty "$a"
+done
+"$invasim" sweep status split > status5.log
+grep -q "done: 4" status5.log || fail "the split arrays did not finish every point" status5.log
 echo "sweep slurm: OK"
