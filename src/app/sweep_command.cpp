@@ -123,6 +123,11 @@ int positive(const std::string& name, const std::string& text, int max = kMaxThr
   return value;
 }
 
+// --max-requeues N: an integer in [0, 1000] (0: a stopped point waits for sweep submit).
+int requeue_count(const std::string& text) {
+  return text == "0" ? 0 : positive("--max-requeues", text, 1000);
+}
+
 std::optional<std::string> value(const Parsed& p, const std::string& name) {
   const auto it = p.values.find(name);
   if (it == p.values.end()) return std::nullopt;
@@ -213,10 +218,12 @@ int collect(const std::vector<std::string>& args) {
 }
 
 int submit(const std::vector<std::string>& args) {
-  const Parsed p = parse("submit", args,
-                         {"--partition", "--time", "--cpus-per-task", "--array-limit",
-                          "--max-array-size", "--sbatch-arg"},
-                         {"--slurm", "--dry-run"});
+  const Parsed p =
+      parse("submit", args,
+            {"--partition", "--time", "--cpus-per-task", "--array-limit", "--max-array-size",
+             "--sbatch-arg", "--mem", "--account", "--qos", "--prep-time", "--prep-mem",
+             "--prep-cpus-per-task", "--signal-before", "--max-requeues"},
+            {"--slurm", "--dry-run"});
   const auto ws = sweep::Workspace::open(words("submit", p, 1, "a workspace directory")[0]);
   if (!p.flags.count("--slurm"))
     throw UsageError("invasim sweep submit: say which batch system: --slurm (the only one so far)");
@@ -228,6 +235,17 @@ int submit(const std::vector<std::string>& args) {
   if (auto m = value(p, "--max-array-size"))
     o.max_array_size = positive("--max-array-size", *m, 4000001);
   if (p.values.count("--sbatch-arg")) o.extra = p.values.at("--sbatch-arg");
+  o.mem = value(p, "--mem").value_or("");
+  o.account = value(p, "--account").value_or("");
+  o.qos = value(p, "--qos").value_or("");
+  o.prep_time = value(p, "--prep-time").value_or("");
+  o.prep_mem = value(p, "--prep-mem").value_or("");
+  if (auto c = value(p, "--prep-cpus-per-task"))
+    o.prep_cpus_per_task = positive("--prep-cpus-per-task", *c);
+  if (auto s = value(p, "--signal-before"))
+    o.signal_before = positive("--signal-before", *s, 65535);
+  if (auto r = value(p, "--max-requeues")) o.max_requeues = requeue_count(*r);
+  sweep::check_slurm_options(o);
   o.dry_run = p.flags.count("--dry-run") > 0;
   o.executable = executable();
   return sweep::submit_slurm(ws, o, std::cout);
@@ -235,7 +253,7 @@ int submit(const std::vector<std::string>& args) {
 
 // One point in this process, output appended to its run.log.
 int job(const std::vector<std::string>& args) {
-  const Parsed p = parse("job", args, {"--threads"}, {});
+  const Parsed p = parse("job", args, {"--threads", "--max-requeues"}, {});
   const auto w = words("job", p, 2, "a workspace directory and a job id");
   const auto ws = sweep::Workspace::open(w[0]);
   const std::string& id = w[1];
@@ -288,6 +306,8 @@ int job(const std::vector<std::string>& args) {
   const std::string result = record.finish(code, stop_requested() != 0);
   if (id == sweep::kPrepId && result == "failed" && std::getenv("SLURM_JOB_ID"))
     sweep::cancel_after_failed_prep(ws, std::getenv("SLURM_JOB_ID"), std::cout);
+  if (result == "interrupted" && value(p, "--max-requeues"))
+    sweep::requeue_stopped_point(ws, id, requeue_count(*value(p, "--max-requeues")), std::cout);
   return result == "done" ? 0 : 1;
 }
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 #include "core/errors.hpp"
@@ -22,16 +23,31 @@ std::string quoted(const std::string& text) {
   return "'" + text + "'";
 }
 
-std::string header(const SlurmOptions& o, const std::string& name, const std::string& output) {
+// The #SBATCH lines of a script: the points' (prep = false) or the preparation's resources.
+std::string header(const SlurmOptions& o, const std::string& name, const std::string& output,
+                   bool prep) {
+  const int cpus = prep && o.prep_cpus_per_task > 0 ? o.prep_cpus_per_task : o.cpus_per_task;
+  const std::string& time = prep && !o.prep_time.empty() ? o.prep_time : o.time;
+  const std::string& mem = prep && !o.prep_mem.empty() ? o.prep_mem : o.mem;
   std::ostringstream s;
   s << "#!/bin/bash\n"
     << "#SBATCH --job-name=" << name << '\n'
-    << "#SBATCH --cpus-per-task=" << o.cpus_per_task << '\n'
+    << "#SBATCH --cpus-per-task=" << cpus << '\n'
     << "#SBATCH --output=" << output << '\n';
   if (!o.partition.empty()) s << "#SBATCH --partition=" << o.partition << '\n';
-  if (!o.time.empty()) s << "#SBATCH --time=" << o.time << '\n';
+  if (!time.empty()) s << "#SBATCH --time=" << time << '\n';
+  if (!mem.empty()) s << "#SBATCH --mem=" << mem << '\n';
+  if (!o.account.empty()) s << "#SBATCH --account=" << o.account << '\n';
+  if (!o.qos.empty()) s << "#SBATCH --qos=" << o.qos << '\n';
+  // The time limit's warning: SIGTERM to the batch shell (exec'd into invasim) S seconds
+  // before the limit, so the run checkpoints; the point then requeues itself.
+  s << "#SBATCH --signal=B:TERM@" << o.signal_before << '\n' << "#SBATCH --requeue\n";
   for (const auto& e : o.extra) s << "#SBATCH " << e << '\n';
   return s.str();
+}
+
+bool matches(const std::string& text, const char* pattern) {
+  return std::regex_match(text, std::regex(pattern));
 }
 
 // Runs `sbatch --parsable [dependency] SCRIPT`; returns the job id.
@@ -106,10 +122,10 @@ int submit_slurm(const Workspace& ws, const SlurmOptions& o, std::ostream& out) 
       prep_status != "done" && prep_status != "queued" && prep_status != "running";
   if (need_prep) {
     std::ostringstream script;
-    script << header(o, "invasim-prep", (dir / "slurm-%j.out").string())
+    script << header(o, "invasim-prep", (dir / "slurm-%j.out").string(), true)
            << "# the shared preparation every point starts from (--from "
            << ws.job_dir(kPrepId).string() << ")\nexec " << exe << " sweep job " << root << ' '
-           << kPrepId << ' ' << threads << '\n';
+           << kPrepId << ' ' << threads << " --max-requeues " << o.max_requeues << '\n';
     write_file(dir / "prep.sbatch", script.str());
   }
   const std::size_t chunk =
@@ -127,13 +143,13 @@ int submit_slurm(const Workspace& ws, const SlurmOptions& o, std::ostream& out) 
       for (const auto& id : arrays[j]) list << id << '\n';
     }
     std::ostringstream script;
-    script << header(o, "invasim-sweep", (dir / "slurm-%A_%a.out").string()) << "#SBATCH --array=0-"
-           << arrays[j].size() - 1;
+    script << header(o, "invasim-sweep", (dir / "slurm-%A_%a.out").string(), false)
+           << "#SBATCH --array=0-" << arrays[j].size() - 1;
     if (o.array_limit > 0) script << '%' << o.array_limit;
     script << "\n# array task i runs the state point on line i + 1 of "
            << points.filename().string() << "\nid=$(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" "
            << quoted(points.string()) << ")\nexec " << exe << " sweep job " << root << " \"$id\" "
-           << threads << '\n';
+           << threads << " --max-requeues " << o.max_requeues << '\n';
     scripts.push_back(dir / ("array" + suffix + ".sbatch"));
     write_file(scripts.back(), script.str());
   }
@@ -203,6 +219,62 @@ int cancel_after_failed_prep(const Workspace& ws, const std::string& prep_job, s
         << " points pending again (fix the cause, then sweep submit)\n";
   }
   return returned;
+}
+
+void check_slurm_options(const SlurmOptions& o) {
+  const char* time = R"((\d+)|(\d+:\d+)|(\d+:\d+:\d+)|(\d+-\d+)|(\d+-\d+:\d+)|(\d+-\d+:\d+:\d+))";
+  const char* mem = R"(\d+[KMGT]?)";
+  const char* name = R"([A-Za-z0-9_.-]+)";
+  const auto check = [](const std::string& value, const char* pattern, const char* option,
+                        const char* form) {
+    if (!value.empty() && !matches(value, pattern))
+      fail_input("sweep submit: ", option, " '", value, "' is not ", form);
+  };
+  const char* time_form = "a Slurm time (M, M:S, H:M:S, D-H, D-H:M or D-H:M:S)";
+  const char* mem_form = "a memory size (digits with an optional K, M, G or T)";
+  check(o.time, time, "--time", time_form);
+  check(o.prep_time, time, "--prep-time", time_form);
+  check(o.mem, mem, "--mem", mem_form);
+  check(o.prep_mem, mem, "--prep-mem", mem_form);
+  check(o.account, name, "--account", "an account name (letters, digits, _ - .)");
+  check(o.qos, name, "--qos", "a QOS name (letters, digits, _ - .)");
+  check(o.partition, name, "--partition", "a partition name (letters, digits, _ - .)");
+}
+
+bool requeue_stopped_point(const Workspace& ws, const std::string& id, int max_requeues,
+                           std::ostream& out) {
+  const char* array_job = std::getenv("SLURM_ARRAY_JOB_ID");
+  const char* task = std::getenv("SLURM_ARRAY_TASK_ID");
+  const char* job = std::getenv("SLURM_JOB_ID");
+  const std::string slurm_id = array_job && task ? std::string(array_job) + "_" + task
+                               : job             ? std::string(job)
+                                                 : "";
+  if (slurm_id.empty()) return false;
+  const fs::path dir = ws.job_dir(id);
+  Json doc = read_document(dir);
+  const int used = doc.value("requeues", 0);
+  if (used >= max_requeues) {
+    out << "sweep job: " << id << " was stopped and has used its " << max_requeues
+        << " requeues: it stays interrupted (sweep submit continues it)\n";
+    return false;
+  }
+  // The document first: Slurm ends this process as soon as the requeue is taken.
+  doc["status"] = "submitted";
+  doc["requeues"] = used + 1;
+  doc["slurm_job_id"] = slurm_id;
+  write_document(dir, doc);
+  out << "sweep job: " << id << " stopped by a signal: requeued as Slurm job " << slurm_id
+      << " (requeue " << used + 1 << " of " << max_requeues << ")\n"
+      << std::flush;
+  const std::string command = "scontrol requeue " + slurm_id + " 2>&1";
+  if (std::system(command.c_str()) != 0) {
+    doc["status"] = "interrupted";
+    doc["requeues"] = used;
+    write_document(dir, doc);
+    out << "sweep job: " << command << " failed: the point stays interrupted\n";
+    return false;
+  }
+  return true;
 }
 
 }  // namespace invasim::sweep

@@ -88,7 +88,9 @@ within 60 "the Slurm node becoming idle" node_idle
 
 # 4. Submit; stop the array once a point has a checkpoint; submit again; wait.
 "$invasim" sweep init "$specs/tiny.lua" --workspace ws > /dev/null
-"$invasim" sweep submit ws --slurm --cpus-per-task 1 --time 10 > submit1.log || fail submit submit1.log
+# --max-requeues 0: a stopped point waits for the next submit (section 8 tests the requeue).
+"$invasim" sweep submit ws --slurm --cpus-per-task 1 --time 10 --max-requeues 0 > submit1.log ||
+  fail submit submit1.log
 grep -q "after job" submit1.log || fail "the preparation was not chained before the array" submit1.log
 grep -q "dependency\|afterok" ws/slurm/submit-1/array.sbatch && fail "dependency belongs on the command line"
 array=$(sed -n 's/.*Slurm job array \([0-9]*\).*/\1/p' submit1.log)
@@ -177,4 +179,55 @@ for a in $(sed -n 's/.*Slurm job array \([0-9]*\).*/\1/p' submit5.log); do
 done
 "$invasim" sweep status split > status5.log
 grep -q "done: 4" status5.log || fail "the split arrays did not finish every point" status5.log
+
+# 8. Resources and the time limit's warning. Named options reach the scripts (the preparation
+#    its own); bad values are refused naming the option; a point stopped by SIGTERM (what
+#    --signal=B:TERM@S sends before the limit) requeues itself and finishes, no submit needed.
+"$invasim" sweep init "$specs/tiny.lua" --workspace res > /dev/null
+if "$invasim" sweep submit res --slurm --dry-run --mem 4X > badmem.log 2>&1; then
+  fail "--mem 4X was accepted" badmem.log
+fi
+grep -q "\-\-mem '4X' is not a memory size" badmem.log || fail "the refusal names no option" badmem.log
+if "$invasim" sweep submit res --slurm --dry-run --time 1h > badtime.log 2>&1; then
+  fail "--time 1h was accepted" badtime.log
+fi
+grep -q "\-\-time '1h' is not a Slurm time" badtime.log || fail "--time refusal" badtime.log
+"$invasim" sweep submit res --slurm --dry-run --time 2:00:00 --mem 4G --account lab_1 \
+  --qos normal --prep-time 30 --prep-mem 8G --prep-cpus-per-task 2 > dry2.log || fail dry2 dry2.log
+a=res/slurm/submit-1/array.sbatch p=res/slurm/submit-1/prep.sbatch
+grep -qx "#SBATCH --time=2:00:00" $a && grep -qx "#SBATCH --mem=4G" $a &&
+  grep -qx "#SBATCH --account=lab_1" $a && grep -qx "#SBATCH --qos=normal" $a &&
+  grep -qx "#SBATCH --cpus-per-task=1" $a || fail "the array's resources" $a
+grep -qx "#SBATCH --time=30" $p && grep -qx "#SBATCH --mem=8G" $p &&
+  grep -qx "#SBATCH --cpus-per-task=2" $p && grep -qx "#SBATCH --account=lab_1" $p ||
+  fail "the preparation's own resources" $p
+grep -qx "#SBATCH --signal=B:TERM@300" $a && grep -qx "#SBATCH --requeue" $a &&
+  grep -q "sweep job .* --max-requeues 3$" $a || fail "the time limit's warning and requeue" $a
+rm -rf res/slurm
+"$invasim" sweep submit res --slurm --cpus-per-task 1 --time 10 --signal-before 120 > submit6.log ||
+  fail "submit with requeues" submit6.log
+array6=$(sed -n 's/.*Slurm job array \([0-9]*\).*/\1/p' submit6.log)
+grep -qx "#SBATCH --signal=B:TERM@120" res/slurm/submit-1/array.sbatch || fail "--signal-before 120"
+res_checkpoint_or_end() {
+  ls res/workspace/*/checkpoint/state.ckpt > /dev/null 2>&1 || ! queue_holds "$array6"
+}
+within 300 "a point's checkpoint (or the end of array $array6)" res_checkpoint_or_end
+queue_holds "$array6" || fail "array $array6 ended before it could be signalled"
+scancel --signal=TERM --batch "$array6" 2> scancel6.log || echo "scancel: $(cat scancel6.log)"
+requeued() { grep -q '"requeues": 1' res/workspace/*/signac_job_document.json 2> /dev/null; }
+within 120 "a point requeuing itself" requeued
+# Slurm holds a requeued job back for a while (its begin time); start it now, as the test
+# checks what runs after the requeue, not Slurm's delay.
+nudge_or_end() {
+  queue_empty "$array6" && return 0
+  scontrol update JobId="$array6" StartTime=now > /dev/null 2>&1 || true
+  return 1
+}
+within 600 "the end of array $array6 after its requeues" nudge_or_end
+"$invasim" sweep status res > status6.log
+grep -q "done: 4" status6.log || { cat res/workspace/*/run.log; fail "requeued points did not finish" status6.log; }
+grep -l '"requeues": 1' res/workspace/*/signac_job_document.json > /dev/null ||
+  fail "no point recorded a requeue" status6.log
+grep -q "requeued as Slurm job ${array6}_[0-9]* (requeue 1 of 3)" res/workspace/*/run.log ||
+  fail "no point logged its requeue" status6.log
 echo "sweep slurm: OK"
