@@ -11,6 +11,7 @@
 
 #include "core/errors.hpp"
 #include "sweep/job_record.hpp"
+#include "sweep/status.hpp"
 
 namespace invasim::sweep {
 
@@ -34,19 +35,22 @@ std::string point_label(const Workspace& ws, const std::string& id) {
 
 // Why a point that is not done is not: its status as the documents and locks tell, with its
 // log (failed, interrupted) or its holder (running elsewhere).
-std::string unfinished_reason(const Workspace& ws, const std::string& id) {
+std::string unfinished_reason(const Workspace& ws, const std::string& id,
+                              const std::map<std::string, std::string>& queue) {
   const fs::path dir = ws.job_dir(id);
-  const std::string status = job_status(dir);
+  const std::string status = effective_status(dir, queue);
   const Json doc = read_document(dir);
   const std::string log = (dir / "run.log").string();
   if (status == "failed")
     return "failed (exit status " + std::to_string(doc.value("exit_code", -1)) + "; log " + log +
            ")";
   if (status == "interrupted") return "interrupted (continue with sweep run; log " + log + ")";
-  if (status == "running")
-    return "running elsewhere (pid " + std::to_string(doc.value("pid", -1)) + " on " +
-           doc.value("host", std::string("?")) + " since " +
-           doc.value("started_at", std::string("?")) + "; log " + log + ")";
+  if (status == "running") {
+    const std::string slurm = doc.value("slurm_job_id", "");
+    return "running elsewhere (" + (slurm.empty() ? "" : "Slurm job " + slurm + ", ") + "pid " +
+           std::to_string(doc.value("pid", -1)) + " on " + doc.value("host", std::string("?")) +
+           " since " + doc.value("started_at", std::string("?")) + "; log " + log + ")";
+  }
   if (status == "submitted" || status == "queued") return status + " to Slurm";
   return "not started (" + status + ")";
 }
@@ -223,8 +227,9 @@ int run_local(const Workspace& ws, const LocalRunSettings& settings, std::ostrea
     return 0;
   }
   out << "; " << left.size() << " not done:\n";
+  const auto queue = slurm_queue();
   for (const auto& id : left)
-    out << "  " << point_label(ws, id) << ": " << unfinished_reason(ws, id) << '\n';
+    out << "  " << point_label(ws, id) << ": " << unfinished_reason(ws, id, queue) << '\n';
   return 1;
 }
 

@@ -37,6 +37,15 @@ std::string effective_status(const fs::path& job_dir,
   return job_status(job_dir);
 }
 
+std::string running_slurm_job(const fs::path& job_dir, const std::string& own_slurm_id) {
+  const Json doc = read_document(job_dir);
+  const std::string other = doc.value("slurm_job_id", "");
+  if (doc.value("status", "") != "running" || other.empty() || other == own_slurm_id) return "";
+  const auto queue = slurm_queue();
+  const auto it = queue.find(other);
+  return it != queue.end() && (it->second == "RUNNING" || it->second == "COMPLETING") ? other : "";
+}
+
 int print_status(const Workspace& ws, std::ostream& out) {
   const auto queue = slurm_queue();
   std::map<std::string, int> counts;

@@ -21,6 +21,11 @@ std::string effective_status(const fs::path& job_dir,
                              const std::map<std::string, std::string>& queue);
 
 // Prints the counts (and the failed jobs' logs); returns 0.
+// The Slurm job that runs the point in `job_dir` by its document ("running" with a
+// slurm_job_id the queue shows RUNNING) other than `own_slurm_id`, or "": the guard for file
+// systems whose flock does not reach across nodes (a second node would take the lock too).
+std::string running_slurm_job(const fs::path& job_dir, const std::string& own_slurm_id);
+
 int print_status(const Workspace& ws, std::ostream& out);
 
 }  // namespace invasim::sweep

@@ -230,4 +230,24 @@ grep -l '"requeues": 1' res/workspace/*/signac_job_document.json > /dev/null ||
   fail "no point recorded a requeue" status6.log
 grep -q "requeued as Slurm job ${array6}_[0-9]* (requeue 1 of 3)" res/workspace/*/run.log ||
   fail "no point logged its requeue" status6.log
+
+# 9. The guard where flock does not reach across nodes: a point whose document says it runs as
+#    a Slurm job that the queue shows RUNNING is refused by `sweep job` (exit 75) although its
+#    lock is free here, and `sweep run` lists it as running elsewhere.
+"$invasim" sweep init "$specs/tiny.lua" --workspace guard > /dev/null
+other=$(sbatch --parsable --wrap "sleep 300" | cut -d';' -f1)
+other_running() { [ "$(squeue -h -j "$other" -o %T 2> /dev/null)" = RUNNING ]; }
+within 60 "the other Slurm job $other running" other_running
+gid=$(ls guard/workspace | head -1)
+echo "{\"status\": \"running\", \"slurm_job_id\": \"$other\", \"host\": \"node-b\"}" \
+  > "guard/workspace/$gid/signac_job_document.json"
+status=0
+"$invasim" sweep job guard "$gid" > guard_job.log 2>&1 || status=$?
+[ $status -eq 75 ] || fail "sweep job on a point running elsewhere exited $status, not 75" guard_job.log
+grep -q "is running as Slurm job $other on node-b" guard_job.log || fail "the guard's message" guard_job.log
+status=0
+"$invasim" sweep run guard --jobs 2 --threads 1 > guard_run.log 2>&1 || status=$?
+[ $status -eq 1 ] && grep -q "^  ${gid:0:8} (.*): running elsewhere (Slurm job $other, pid -1 on node-b" guard_run.log ||
+  fail "sweep run did not list the guarded point as running elsewhere" guard_run.log
+scancel "$other"
 echo "sweep slurm: OK"
