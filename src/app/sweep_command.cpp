@@ -16,6 +16,7 @@
 #include "app/cli.hpp"
 #include "app/error_report.hpp"
 #include "app/sweep_analyze.hpp"
+#include "app/tee_output.hpp"
 #include "core/errors.hpp"
 #include "core/stop_request.hpp"
 #include "lua/lua_state.hpp"
@@ -289,13 +290,21 @@ int job(const std::vector<std::string>& args) {
     run_args.push_back("--threads");
     run_args.push_back(std::to_string(positive("--threads", *threads)));
   }
-  std::cout << "sweep job: " << id << ": output in " << (dir / "run.log").string() << '\n'
-            << std::flush;
-  const int log = ::open((dir / "run.log").c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-  if (log >= 0) {
-    ::dup2(log, 1);
-    ::dup2(log, 2);
-    ::close(log);
+  // Under Slurm the output goes to the task's slurm-%A_%a.out as well as to run.log.
+  std::optional<TeeOutput> tee;
+  if (std::getenv("SLURM_JOB_ID")) {
+    std::cout << "sweep job: " << id << ": output also in " << (dir / "run.log").string() << '\n'
+              << std::flush;
+    tee.emplace((dir / "run.log").string());
+  } else {
+    std::cout << "sweep job: " << id << ": output in " << (dir / "run.log").string() << '\n'
+              << std::flush;
+    const int log = ::open((dir / "run.log").c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+    if (log >= 0) {
+      ::dup2(log, 1);
+      ::dup2(log, 2);
+      ::close(log);
+    }
   }
   std::cout << "== " << sweep::utc_now() << " invasim sweep job:";
   for (const auto& a : run_args) std::cout << ' ' << a;

@@ -122,6 +122,9 @@ within 600 "the end of the second array $array2" queue_empty "$array2"
 "$invasim" sweep status ws > status2.log
 grep -q "done: 4" status2.log || { cat ws/slurm/submit-*/slurm-*.out; fail "not every point is done" status2.log; }
 grep -q '"slurm_job_id"' ws/workspace/*/signac_job_document.json || fail "no Slurm job id recorded"
+# A task's slurm-%A_%a.out holds the point's own output (as its run.log does), not a pointer.
+grep -l "results in" ws/slurm/submit-2/slurm-*_*.out > /dev/null ||
+  fail "no slurm-%A_%a.out holds its point's output" "$(ls ws/slurm/submit-2/slurm-*_*.out | head -1)"
 
 # 5. The same sweep locally (1 thread per point, as --cpus-per-task 1).
 "$invasim" sweep init "$specs/tiny.lua" --workspace local > /dev/null

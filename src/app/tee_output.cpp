@@ -1,0 +1,70 @@
+#include "app/tee_output.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <iostream>
+
+#include "core/errors.hpp"
+
+namespace invasim::app {
+
+namespace {
+
+// Writes all of [data, data + size) to fd (retrying short writes); gives up on an error.
+void write_all(int fd, const char* data, ssize_t size) {
+  while (size > 0) {
+    const ssize_t n = ::write(fd, data, static_cast<std::size_t>(size));
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return;
+    data += n;
+    size -= n;
+  }
+}
+
+}  // namespace
+
+TeeOutput::TeeOutput(const std::string& log_path) {
+  log_ = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  if (log_ < 0) fail_input("cannot open ", log_path, " for appending");
+  int fds[2];
+  if (::pipe2(fds, O_CLOEXEC) != 0) fail_input("cannot make a pipe for ", log_path);
+  std::cout.flush();
+  std::cerr.flush();
+  std::fflush(nullptr);
+  saved_out_ = ::fcntl(1, F_DUPFD_CLOEXEC, 3);
+  saved_err_ = ::fcntl(2, F_DUPFD_CLOEXEC, 3);
+  pipe_read_ = fds[0];
+  ::dup2(fds[1], 1);
+  ::dup2(fds[1], 2);
+  ::close(fds[1]);
+  copier_ = std::thread([this] {
+    char buffer[8192];
+    for (;;) {
+      const ssize_t n = ::read(pipe_read_, buffer, sizeof buffer);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;
+      write_all(log_, buffer, n);
+      write_all(saved_out_, buffer, n);
+    }
+  });
+}
+
+TeeOutput::~TeeOutput() {
+  std::cout.flush();
+  std::cerr.flush();
+  std::fflush(nullptr);
+  // The pipe's last write ends go with the old descriptors back in place: the copier reads
+  // what is left, then end of file.
+  ::dup2(saved_out_, 1);
+  ::dup2(saved_err_, 2);
+  copier_.join();
+  ::close(pipe_read_);
+  ::close(saved_out_);
+  ::close(saved_err_);
+  ::close(log_);
+}
+
+}  // namespace invasim::app
