@@ -17,8 +17,7 @@ std::string site_kind(const System& sys, std::size_t i) {
   if (s.kind[i] == SiteKind::kCancer || b < 0 || std::size_t(b) >= sys.bodies().size())
     return "cancer cell";
   return "vertex " + std::to_string(sys.site_of_slot(int(i)) - sys.bodies()[b].first_site) +
-         " of adipocyte " +
-         std::to_string(b);
+         " of adipocyte " + std::to_string(b);
 }
 
 std::string triple(const Vec3& v) {

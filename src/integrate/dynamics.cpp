@@ -165,10 +165,10 @@ void Method::add_drive(System& sys, double dt, const GroupSlots& slots) const {
 #pragma omp parallel for schedule(static) if (parallel_light(std::size_t(n)))
   for (int k = 0; k < n; ++k) {
     const int i = slots.slot[k];
-    const Vec3 g = noise > 0.0 ? RandomKey(seed, step, std::uint32_t(slots.site[k]),
-                                           RngStream::kThermal)
-                                     .normal3()
-                       : Vec3::Zero();
+    const Vec3 g =
+        noise > 0.0
+            ? RandomKey(seed, step, std::uint32_t(slots.site[k]), RngStream::kThermal).normal3()
+            : Vec3::Zero();
     s.force[i] += drive_force(params_, noise, s, i, g);
   }
 }
@@ -233,7 +233,8 @@ void Method::kick_team(System& sys, double dt, std::uint64_t step, const MethodP
     if (p.f0 > 0.0) rotate_chunk(s, slot + lo, site + lo, hi - lo, dt, p.tau_p, seed, step);
     // The chunk's thermal draws in vector lanes (normal3's numbers).
     double g[3][RandomKey::kBatch];
-    if (noise > 0.0) RandomKey::normal3_batch(seed, step, site + lo, hi - lo, RngStream::kThermal, g);
+    if (noise > 0.0)
+      RandomKey::normal3_batch(seed, step, site + lo, hi - lo, RngStream::kThermal, g);
     for (int k = lo; k < hi; ++k) {
       const int i = slot[k];
       const Vec3 gk = noise > 0.0 ? Vec3(g[0][k - lo], g[1][k - lo], g[2][k - lo]) : Vec3::Zero();

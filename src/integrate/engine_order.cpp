@@ -12,35 +12,44 @@ namespace invasim {
 std::vector<int> spatial_order(const System& sys) {
   const Sites& s = sys.sites();
   const std::size_t n = s.size();
-  double width = 0.0;
-  for (double d : s.diameter) width = std::max(width, d);
-  // The grid: the box on periodic axes, the sites' span between walls; axes ordered slab axis
-  // first (slowest), then the other two.
+  // Each kind's grid: cells one of its largest diameter wide (a cell then holds about one site
+  // of the kind), over the box on periodic axes and the sites' span between walls; the axes
+  // ordered slab axis first (slowest), then the other two.
+  constexpr int kKinds = 2;
+  double width[kKinds] = {0.0, 0.0};
+  for (std::size_t k = 0; k < n; ++k)
+    width[int(s.kind[k])] = std::max(width[int(s.kind[k])], s.diameter[k]);
   const int major = slab_axis(sys, 2);
   const int axes[3] = {major, (major + 1) % 3, (major + 2) % 3};
-  double lo[3], per_length[3];  // lower end and cells per unit length of each grid axis
+  double lo[3], len[3];
   for (int q = 0; q < 3; ++q) {
     const int a = axes[q];
-    double l = sys.box().lo()[a], len = sys.box().length(a);
-    if (!sys.box().periodic(a)) {
-      l = INFINITY;
-      double h = -INFINITY;
+    lo[q] = sys.box().lo()[a];
+    len[q] = sys.box().length(a);
+    if (!sys.box().periodic(a) && n > 0) {
+      double l = INFINITY, h = -INFINITY;
       for (const Vec3& r : s.pos) l = std::min(l, r[a]), h = std::max(h, r[a]);
-      len = n ? h - l : 0.0;
+      lo[q] = l;
+      len[q] = h - l;
     }
-    // At most 1024 cells per axis (the keys then fit in 64 bits whatever the box).
-    const double cells = std::clamp(std::floor(len / std::max(width, 1e-300)), 1.0, 1024.0);
-    lo[q] = l;
-    per_length[q] = len > 0.0 ? cells / len : 0.0;
   }
-  // (key, permanent index) of every site, sorted.
+  // Cells per unit length of each kind and axis, at most 1024 per axis (the keys then fit in
+  // 64 bits whatever the box).
+  double per_length[kKinds][3];
+  for (int c = 0; c < kKinds; ++c)
+    for (int q = 0; q < 3; ++q) {
+      const double cells = std::clamp(std::floor(len[q] / std::max(width[c], 1e-300)), 1.0, 1024.0);
+      per_length[c][q] = len[q] > 0.0 ? cells / len[q] : 0.0;
+    }
+  // (key, permanent index) of every site, sorted: kind, then cell, then permanent index.
   std::vector<std::pair<std::uint64_t, int>> key(n);
   for (std::size_t k = 0; k < n; ++k) {
     const Vec3& r = s.pos[k];
-    std::uint64_t cell = std::uint64_t(s.kind[k]);
+    const int c = int(s.kind[k]);
+    std::uint64_t cell = std::uint64_t(c);
     for (int q = 0; q < 3; ++q) {
-      const double c = std::floor((r[axes[q]] - lo[q]) * per_length[q]);
-      cell = cell * 1025 + std::uint64_t(std::clamp(c, 0.0, 1024.0));
+      const double x = std::floor((r[axes[q]] - lo[q]) * per_length[c][q]);
+      cell = cell * 1025 + std::uint64_t(std::clamp(x, 0.0, 1024.0));
     }
     key[k] = {cell, sys.site_of_slot(int(k))};
   }

@@ -1,11 +1,11 @@
 #pragma once
 // The engine order of the sites (docs/performance.md, "Sites in cell order"): the order in
 // which Dynamics stores them during its steps (System::to_engine). Sites are sorted by kind (as
-// the neighbour list bins them), then by cell of a grid of cells one largest diameter wide,
-// with the axis along which the contact kernel cuts its thread slabs (slab_axis) varying
-// slowest, so that a slab is a contiguous range of slots; ties by permanent index. The order is
-// a function of the state alone (positions, kinds, diameters, box), never of the storage
-// layout, the history or the thread count.
+// the neighbour list bins them), then by cell of a grid of cells one largest diameter of the
+// kind wide, with the axis along which the contact kernel cuts its thread slabs (slab_axis)
+// varying slowest, so that a slab is a contiguous range of slots; ties by permanent index. The
+// order is a function of the state alone (positions, kinds, diameters, box), never of the
+// storage layout, the history or the thread count.
 #include <vector>
 
 #include "state/system.hpp"

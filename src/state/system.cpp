@@ -44,14 +44,14 @@ std::uint64_t next_engine_id() {
 
 void System::require_user_layout(const char* what) const {
   if (engine_layout_)
-    throw std::logic_error(std::string(what) + ": the sites are in the engine layout (only a "
-                                               "Dynamics step stores them so)");
+    throw std::logic_error(std::string(what) +
+                           ": the sites are in the engine layout (only a "
+                           "Dynamics step stores them so)");
 }
 
 void System::set_engine_order(std::vector<int> order) {
   const std::size_t n = sites_.size();
-  if (order.size() != n)
-    fail_input("engine order: ", order.size(), " entries for ", n, " sites");
+  if (order.size() != n) fail_input("engine order: ", order.size(), " entries for ", n, " sites");
   std::vector<int> slot(n, -1);
   for (std::size_t k = 0; k < n; ++k) {
     const int i = order[k];
@@ -225,8 +225,9 @@ void System::validate() const {
     for (int a = 0; a < 3; ++a)
       if (!box_.periodic(a) && (sites_.pos[i][a] < box_.lo()[a] - sites_.diameter[i] ||
                                 sites_.pos[i][a] > box_.hi()[a] + sites_.diameter[i]))
-        fail_simulation("site ", site_of_slot(int(i)), " escaped through the wall: ", "xyz"[a], " = ",
-                        sites_.pos[i][a], ", walls at [", box_.lo()[a], ", ", box_.hi()[a], "]");
+        fail_simulation("site ", site_of_slot(int(i)), " escaped through the wall: ", "xyz"[a],
+                        " = ", sites_.pos[i][a], ", walls at [", box_.lo()[a], ", ", box_.hi()[a],
+                        "]");
   }
 }
 
