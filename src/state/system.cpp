@@ -14,24 +14,25 @@ System::System(const Box& box, std::uint64_t seed) : box_(box), seed_(seed) {}
 
 namespace {
 
-// out[k] = v[from[k]] for every k (v becomes out).
+// v[k] becomes v[from[k]] for every k, through `spare` (its storage reused from call to call:
+// the layouts change twice per run of steps).
 template <typename T>
-void gather(std::vector<T>& v, const std::vector<int>& from) {
-  std::vector<T> out(v.size());
-  for (std::size_t k = 0; k < from.size(); ++k) out[k] = v[std::size_t(from[k])];
-  v.swap(out);
+void gather(std::vector<T>& v, std::vector<T>& spare, const std::vector<int>& from) {
+  spare.resize(from.size());
+  for (std::size_t k = 0; k < from.size(); ++k) spare[k] = v[std::size_t(from[k])];
+  v.swap(spare);
 }
 
-void gather_sites(Sites& s, const std::vector<int>& from) {
-  gather(s.pos, from);
-  gather(s.vel, from);
-  gather(s.force, from);
-  gather(s.orient, from);
-  gather(s.image, from);
-  gather(s.diameter, from);
-  gather(s.mass, from);
-  gather(s.body, from);
-  gather(s.kind, from);
+void gather_sites(Sites& s, Sites& spare, const std::vector<int>& from) {
+  gather(s.pos, spare.pos, from);
+  gather(s.vel, spare.vel, from);
+  gather(s.force, spare.force, from);
+  gather(s.orient, spare.orient, from);
+  gather(s.image, spare.image, from);
+  gather(s.diameter, spare.diameter, from);
+  gather(s.mass, spare.mass, from);
+  gather(s.body, spare.body, from);
+  gather(s.kind, spare.kind, from);
 }
 
 // Numbers of the engine orders, unique in the process (never 0, the user layout's id).
@@ -65,7 +66,7 @@ void System::set_engine_order(std::vector<int> order) {
     // The site of new slot k is at old slot slot_[order[k]].
     std::vector<int> from(n);
     for (std::size_t k = 0; k < n; ++k) from[k] = slot_[std::size_t(order[k])];
-    gather_sites(sites_, from);
+    gather_sites(sites_, spare_, from);
   }
   order_ = std::move(order);
   slot_ = std::move(slot);
@@ -76,13 +77,13 @@ void System::to_engine() {
   if (engine_layout_) return;
   if (order_.size() != sites_.size())
     throw std::logic_error("System::to_engine: no engine order for the current sites");
-  gather_sites(sites_, order_);
+  gather_sites(sites_, spare_, order_);
   engine_layout_ = true;
 }
 
 void System::to_user() {
   if (!engine_layout_) return;
-  gather_sites(sites_, slot_);
+  gather_sites(sites_, spare_, slot_);
   engine_layout_ = false;
 }
 

@@ -128,6 +128,7 @@ class System {
   std::vector<int> order_, slot_;
   bool engine_layout_ = false;
   std::uint64_t engine_id_ = 0;
+  Sites spare_;  // storage reused by the changes of layout (no state)
 };
 
 }  // namespace invasim
