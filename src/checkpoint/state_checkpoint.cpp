@@ -1,6 +1,7 @@
 #include "checkpoint/state_checkpoint.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace invasim {
 
@@ -148,6 +149,8 @@ void rebuild_sites(const CheckpointReader& in, System& sys, const Sites& s, cons
 }  // namespace
 
 void write_system(CheckpointWriter& out, const System& sys, const std::string& prefix) {
+  if (sys.engine_layout())
+    throw std::logic_error("write_system: the sites are in the engine layout (inside a step)");
   const Keys key{prefix};
   const Box& box = sys.box();
   out.put_vec3s(key("box.lo"), {box.lo()});
@@ -170,6 +173,9 @@ void write_system(CheckpointWriter& out, const System& sys, const std::string& p
   std::vector<int> kind(s.kind.size());
   std::transform(s.kind.begin(), s.kind.end(), kind.begin(), [](SiteKind k) { return int(k); });
   out.put_i32s(key("sites.kind"), kind);
+  // The engine order of the sites (Dynamics' storage order during its steps): a restored run
+  // then sums its forces in the same order as the run that wrote the checkpoint.
+  if (!sys.engine_order().empty()) out.put_i32s(key("sites.engine_order"), sys.engine_order());
 
   // Distinct topologies (by content), then each body's index into them.
   std::vector<const MeshTopology*> topologies;
@@ -242,6 +248,14 @@ System read_system(const CheckpointReader& in, const std::string& prefix) {
     b.outer_volume = bodies.outer_volume[k];
   }
   sys.sites() = std::move(s);
+  // (Absent from checkpoints written before the engine order existed: the next run chooses one.)
+  if (in.has(key("sites.engine_order"))) {
+    try {
+      sys.set_engine_order(in.get_i32s(key("sites.engine_order")));
+    } catch (const InputError& e) {
+      in.fail("section '", key("sites.engine_order"), "': ", e.what());
+    }
+  }
   // Box::version counts set_bounds calls: restored as stored (any value is a valid count, and
   // the System rebuilt above has not yet counted any change).
   const std::uint64_t version = in.get_u64(key("box.version"));

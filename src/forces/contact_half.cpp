@@ -43,11 +43,7 @@ Extent site_extent(const System& sys) {
 
 }  // namespace
 
-void partition_sites(const System& sys, const VerletList& list, int parts,
-                     std::vector<int>& owner) {
-  const std::size_t n = sys.n_sites();
-  owner.assign(n, 0);
-  if (parts <= 1 || n == 0) return;
+int slab_axis(const System& sys, int parts) {
   // The axis whose cuts cross the least area: parts - 1 cuts between walls, parts cuts around
   // a periodic axis (the last slab meets the first).
   const Extent e = site_extent(sys);
@@ -61,6 +57,16 @@ void partition_sites(const System& sys, const VerletList& list, int parts,
       axis = a;
     }
   }
+  return axis;
+}
+
+void partition_sites(const System& sys, const VerletList& list, int parts,
+                     std::vector<int>& owner) {
+  const std::size_t n = sys.n_sites();
+  owner.assign(n, 0);
+  if (parts <= 1 || n == 0) return;
+  const Extent e = site_extent(sys);
+  const int axis = slab_axis(sys, parts);
   // Slabs of equal work: a histogram of the row lengths (each row's pairs are computed once,
   // its half) along the axis, cut at the quantiles.
   const int bins = int(std::clamp<std::size_t>(n / 4, 16, 4096));

@@ -45,6 +45,10 @@ struct HalfRowsPlan {
   std::vector<unsigned char> halo;   // plan_half_rows' scratch (all zero between calls)
 };
 
+// The axis along which partition_sites cuts `parts` slabs: the one whose cuts cross the least
+// area (positions are wrapped on periodic axes).
+int slab_axis(const System& sys, int parts);
+
 // The owner (0 .. parts-1) of every site: slabs along the axis whose cuts cross the least
 // area (positions are wrapped on periodic axes), balanced by the sites' row lengths.
 void partition_sites(const System& sys, const VerletList& list, int parts, std::vector<int>& owner);

@@ -66,7 +66,7 @@ ForceResult ShapeForce::add_forces_team(System& sys, const ForceFlags& flags) {
     r.energy = body_shape_energy(body, x.data(), eps_v_, eps_a_, grad.data());
     const Vec3 c = vertex_centroid(nv, x.data());
     for (int v = 0; v < nv; ++v) {
-      s.force[body.first_site + v] -= grad[v];
+      s.force[sys.body_slot(b, v)] -= grad[v];
       r.virial -= (x[v] - c).cwiseProduct(grad[v]);
     }
     per_body_[b] = r;

@@ -131,7 +131,7 @@ ForceResult TetherForce::add_forces_team(System& sys, const ForceFlags& flags) {
         body_force -= f;
     }
     const Vec3 share = body_force / double(bodies[b].n_vertices());
-    for (int v = 0; v < bodies[b].n_vertices(); ++v) s.force[bodies[b].first_site + v] += share;
+    for (int v = 0; v < bodies[b].n_vertices(); ++v) s.force[sys.body_slot(b, v)] += share;
   }
   team_barrier();
   if (!team_leader() || !(flags.energy || flags.virial)) return out;

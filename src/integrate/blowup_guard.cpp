@@ -10,14 +10,14 @@ namespace invasim {
 
 namespace {
 
-// "cancer cell" or "vertex 5 of adipocyte 3".
+// "cancer cell" or "vertex 5 of adipocyte 3", for the site in storage slot i.
 std::string site_kind(const System& sys, std::size_t i) {
   const Sites& s = sys.sites();
   const int b = s.body[i];
   if (s.kind[i] == SiteKind::kCancer || b < 0 || std::size_t(b) >= sys.bodies().size())
     return "cancer cell";
-  return "vertex " + std::to_string(int(i) - sys.bodies()[b].first_site) + " of adipocyte " +
-         std::to_string(b);
+  return "vertex " + std::to_string(sys.site_of_slot(int(i)) - sys.bodies()[b].first_site) +
+         " of adipocyte " + std::to_string(b);
 }
 
 std::string triple(const Vec3& v) {
@@ -31,7 +31,8 @@ bool finite(const Vec3& v) {
 }
 
 [[noreturn]] void fail_site(const System& sys, std::size_t i, const std::string& what) {
-  fail_simulation("blow-up at step ", sys.step, ": site ", i, " (", site_kind(sys, i), ") ", what);
+  fail_simulation("blow-up at step ", sys.step, ": site ", sys.site_of_slot(int(i)), " (",
+                  site_kind(sys, i), ") ", what);
 }
 
 }  // namespace
@@ -39,7 +40,9 @@ bool finite(const Vec3& v) {
 void check_blowup(const System& sys) {
   const Box& box = sys.box();  // always finite: Box refuses non-finite bounds
   const Sites& s = sys.sites();
-  for (std::size_t i = 0; i < s.size(); ++i) {
+  // In permanent-index order (the first blown-up site is the same in either storage layout).
+  for (std::size_t site = 0; site < s.size(); ++site) {
+    const std::size_t i = std::size_t(sys.slot_of(int(site)));
     const Vec3& r = s.pos[i];
     if (!finite(r)) fail_site(sys, i, "has a non-finite position " + triple(r));
     if (!finite(s.vel[i])) fail_site(sys, i, "has a non-finite velocity " + triple(s.vel[i]));

@@ -10,6 +10,7 @@
 #include "core/fast_trig.hpp"
 #include "core/rng.hpp"
 #include "core/team_barrier.hpp"
+#include "integrate/engine_order.hpp"
 
 namespace invasim {
 
@@ -108,22 +109,32 @@ Vec3 rotate_orientation(const Vec3& n, double dt, double tau_p, const std::array
   return out;
 }
 
+GroupSlots GroupSlots::of(const System& sys, const std::vector<int>& group) {
+  GroupSlots g;
+  g.slot.reserve(group.size());
+  for (int i : group) g.slot.push_back(sys.slot_of(i));
+  std::sort(g.slot.begin(), g.slot.end());
+  g.site.reserve(group.size());
+  for (int k : g.slot) g.site.push_back(sys.site_of_slot(k));
+  return g;
+}
+
 void Method::randomize_orientations(System& sys, std::uint64_t stream_step) const {
   auto& s = sys.sites();
   for (int i : group_) {
     const auto u =
         RandomKey(sys.seed(), stream_step, std::uint32_t(i), RngStream::kOrientation, 1).uniform4();
-    s.orient[i] = uniform_on_sphere(u[0], u[1]);
+    s.orient[sys.slot_of(i)] = uniform_on_sphere(u[0], u[1]);
   }
 }
 
-void Method::drift_team(System& sys, double dt) const {
+void Method::drift_team(System& sys, double dt, const GroupSlots& slots) const {
   Sites& s = sys.sites();
   const Box& box = sys.box();
-  const int n = int(group_.size());
+  const int n = int(slots.slot.size());
 #pragma omp for schedule(static) nowait
   for (int k = 0; k < n; ++k) {
-    const int i = group_[k];
+    const int i = slots.slot[k];
     s.vel[i] += 0.5 * dt / s.mass[i] * s.force[i];
     s.pos[i] += dt * s.vel[i];
     box.wrap(s.pos[i], s.image[i]);
@@ -146,17 +157,18 @@ inline double noise_amplitude(const MethodParams& p, double dt) {
 }
 }  // namespace
 
-void Method::add_drive(System& sys, double dt) const {
+void Method::add_drive(System& sys, double dt, const GroupSlots& slots) const {
   Sites& s = sys.sites();
   const double noise = noise_amplitude(params_, dt);
   const std::uint64_t seed = sys.seed(), step = sys.step;
-  const int n = int(group_.size());
+  const int n = int(slots.slot.size());
 #pragma omp parallel for schedule(static) if (parallel_light(std::size_t(n)))
   for (int k = 0; k < n; ++k) {
-    const int i = group_[k];
-    const Vec3 g = noise > 0.0
-                       ? RandomKey(seed, step, std::uint32_t(i), RngStream::kThermal).normal3()
-                       : Vec3::Zero();
+    const int i = slots.slot[k];
+    const Vec3 g =
+        noise > 0.0
+            ? RandomKey(seed, step, std::uint32_t(slots.site[k]), RngStream::kThermal).normal3()
+            : Vec3::Zero();
     s.force[i] += drive_force(params_, noise, s, i, g);
   }
 }
@@ -167,15 +179,17 @@ namespace {
 constexpr int kKickChunk = 128;
 static_assert(kKickChunk <= RandomKey::kBatch, "a kick chunk's thermal draws are one batch");
 
-// The orientation update of the cells idx[0, m), m <= kKickChunk, at `step`: each cell's
-// Philox block, the logarithms (libm), then the rotations, in loops the compiler vectorises
-// (the per-cell scalar version, with libm's sin and cos, was ~20 % of an active run).
-void rotate_chunk(Sites& s, const int* idx, int m, double dt, double tau_p, std::uint64_t seed,
-                  std::uint64_t step) {
+// The orientation update of the cells in slots idx[0, m), m <= kKickChunk, of permanent indices
+// site[0, m), at `step`: each cell's Philox block, the logarithms (libm), then the rotations, in
+// loops the compiler vectorises (the per-cell scalar version, with libm's sin and cos, was
+// ~20 % of an active run).
+void rotate_chunk(Sites& s, const int* idx, const int* site, int m, double dt, double tau_p,
+                  std::uint64_t seed, std::uint64_t step) {
   if (tau_p == 0.0 || std::isinf(tau_p)) {  // redrawn or frozen: no rotation to vectorise
     for (int q = 0; q < m; ++q) {
       const int i = idx[q];
-      const auto u = RandomKey(seed, step, std::uint32_t(i), RngStream::kOrientation).uniform4();
+      const auto u =
+          RandomKey(seed, step, std::uint32_t(site[q]), RngStream::kOrientation).uniform4();
       s.orient[i] = rotate_orientation(s.orient[i], dt, tau_p, u);
     }
     return;
@@ -186,7 +200,7 @@ void rotate_chunk(Sites& s, const int* idx, int m, double dt, double tau_p, std:
 #pragma omp simd
   for (int q = 0; q < m; ++q) {
     std::uint32_t w0, w1, w2, w3;
-    RandomKey::block_words(seed, step, std::uint32_t(idx[q]), RngStream::kOrientation, w0, w1, w2,
+    RandomKey::block_words(seed, step, std::uint32_t(site[q]), RngStream::kOrientation, w0, w1, w2,
                            w3);
     u0[q] = RandomKey::uniform(w0), u1[q] = RandomKey::uniform(w1), u2[q] = RandomKey::uniform(w2);
   }
@@ -203,23 +217,26 @@ void rotate_chunk(Sites& s, const int* idx, int m, double dt, double tau_p, std:
 }
 }  // namespace
 
-void Method::kick_team(System& sys, double dt, std::uint64_t step, const MethodParams& p) const {
+void Method::kick_team(System& sys, double dt, std::uint64_t step, const MethodParams& p,
+                       const GroupSlots& slots) const {
   Sites& s = sys.sites();
   const double noise = noise_amplitude(p, dt);
   const std::uint64_t seed = sys.seed();
-  const int n = int(group_.size()), chunks = (n + kKickChunk - 1) / kKickChunk;
+  const int n = int(slots.slot.size()), chunks = (n + kKickChunk - 1) / kKickChunk;
+  const int* slot = slots.slot.data();
+  const int* site = slots.site.data();
   // Dynamic: the random numbers make this the heaviest of the light loops, and a thread
   // slowed by another process on its core takes fewer chunks.
 #pragma omp for schedule(dynamic, 1) nowait
   for (int c = 0; c < chunks; ++c) {
     const int lo = c * kKickChunk, hi = std::min(n, lo + kKickChunk);
-    if (p.f0 > 0.0) rotate_chunk(s, group_.data() + lo, hi - lo, dt, p.tau_p, seed, step);
+    if (p.f0 > 0.0) rotate_chunk(s, slot + lo, site + lo, hi - lo, dt, p.tau_p, seed, step);
     // The chunk's thermal draws in vector lanes (normal3's numbers).
     double g[3][RandomKey::kBatch];
     if (noise > 0.0)
-      RandomKey::normal3_batch(seed, step, group_.data() + lo, hi - lo, RngStream::kThermal, g);
+      RandomKey::normal3_batch(seed, step, site + lo, hi - lo, RngStream::kThermal, g);
     for (int k = lo; k < hi; ++k) {
-      const int i = group_[k];
+      const int i = slot[k];
       const Vec3 gk = noise > 0.0 ? Vec3(g[0][k - lo], g[1][k - lo], g[2][k - lo]) : Vec3::Zero();
       s.force[i] += drive_force(p, noise, s, i, gk);
       s.vel[i] += 0.5 * dt / s.mass[i] * s.force[i];
@@ -284,24 +301,25 @@ void Dynamics::apply_ramps(std::uint64_t step) {
   if (wall_ && wall_->pressure_ramp) wall_->pressure = wall_->pressure_ramp->value(step);
 }
 
+void Dynamics::set_sort_every(std::uint64_t n) {
+  if (n < 1) fail_input("sort_every = ", n, " must be >= 1 step");
+  sort_every_ = n;
+}
+
 void Dynamics::prepare(System& sys, ForceField& ff) {
-  std::vector<char> owner(sys.n_sites(), 0);
-  for (const auto& m : methods_)
-    for (int i : m->group()) {
-      if (i < 0 || std::size_t(i) >= sys.n_sites())
-        fail_input("integrator: site ", i, " of a group is outside [0, ", sys.n_sites(), ")");
-      if (owner[i]++) fail_input("integrator: site ", i, " belongs to two integration methods");
-    }
+  slots_valid_ = false;  // (sync_slots checks the groups)
+  sync_slots(sys);
   if (wall_) wall_->validate();
   apply_ramps(sys.step);
   ff.compute(sys);
-  for (const auto& m : methods_) m->add_drive(sys, dt_);
+  for (std::size_t k = 0; k < methods_.size(); ++k) methods_[k]->add_drive(sys, dt_, slots_[k]);
   if (wall_) wall_->update_force(sys, dt_);
   prepared_ = true;
 }
 
-void Dynamics::update_free_sites(const System& sys) {
-  // (The groups are checked as in prepare: the drift of different groups runs concurrently.)
+void Dynamics::sync_slots(const System& sys) {
+  if (slots_valid_ && slots_n_ == sys.n_sites() && slots_layout_ == sys.layout_id()) return;
+  // The groups must be disjoint (the drift of different groups runs concurrently).
   std::vector<char> owned(sys.n_sites(), 0);
   for (const auto& m : methods_)
     for (int i : m->group()) {
@@ -309,11 +327,15 @@ void Dynamics::update_free_sites(const System& sys) {
         fail_input("integrator: site ", i, " of a group is outside [0, ", sys.n_sites(), ")");
       if (owned[i]++) fail_input("integrator: site ", i, " belongs to two integration methods");
     }
+  slots_.clear();
+  for (const auto& m : methods_) slots_.push_back(GroupSlots::of(sys, m->group()));
   free_sites_.clear();
   for (std::size_t i = 0; i < owned.size(); ++i)
-    if (!owned[i]) free_sites_.push_back(int(i));
-  free_sites_n_ = sys.n_sites();
-  free_sites_valid_ = true;
+    if (!owned[i]) free_sites_.push_back(sys.slot_of(int(i)));
+  std::sort(free_sites_.begin(), free_sites_.end());
+  slots_n_ = sys.n_sites();
+  slots_layout_ = sys.layout_id();
+  slots_valid_ = true;
 }
 
 void Dynamics::begin_step_serial(System& sys) {
@@ -323,7 +345,9 @@ void Dynamics::begin_step_serial(System& sys) {
     wall_->half_kick(dt_);
     wall_->move(sys.box(), dt_);
   }
-  if (!free_sites_valid_ || free_sites_n_ != sys.n_sites()) update_free_sites(sys);
+  // A new engine order at every multiple of sort_every (a function of the step and the state).
+  if (sys.engine_layout() && sys.step % sort_every_ == 0) sys.set_engine_order(spatial_order(sys));
+  sync_slots(sys);
   next_step_ = sys.step + 1;
   next_params_.clear();
   for (const auto& m : methods_) next_params_.push_back(m->params_at(next_step_));
@@ -336,7 +360,7 @@ TeamHooks Dynamics::step_hooks(System& sys) {
   // The drift zeroes the forces of its sites; the sites of no method are zeroed alongside.
   hooks.zeroes_forces = true;
   hooks.before = [this, &sys] {
-    for (const auto& m : methods_) m->drift_team(sys, dt_);
+    for (std::size_t k = 0; k < methods_.size(); ++k) methods_[k]->drift_team(sys, dt_, slots_[k]);
     auto& f = sys.sites().force;
     const int n_free = int(free_sites_.size());
 #pragma omp for schedule(static) nowait
@@ -344,7 +368,7 @@ TeamHooks Dynamics::step_hooks(System& sys) {
   };
   hooks.after = [this, &sys] {
     for (std::size_t k = 0; k < methods_.size(); ++k)
-      methods_[k]->kick_team(sys, dt_, next_step_, next_params_[k]);
+      methods_[k]->kick_team(sys, dt_, next_step_, next_params_[k], slots_[k]);
   };
   return hooks;
 }
@@ -360,6 +384,7 @@ void Dynamics::end_step_serial(System& sys) {
 }
 
 void Dynamics::step(System& sys, ForceField& ff) {
+  const EngineLayoutScope layout(sys);
   if (!prepared_) prepare(sys, ff);
   // 1 thread or all, as measured to be faster (integrate/step_threads.hpp); same results.
   const ThreadCountScope threads(step_threads_.begin_step());
@@ -422,6 +447,7 @@ std::uint64_t Dynamics::run_team(System& sys, ForceField& ff, std::uint64_t max_
 }
 
 void Dynamics::run(System& sys, ForceField& ff, std::uint64_t n_steps) {
+  const EngineLayoutScope layout(sys);
   std::uint64_t k = 0;
   while (k < n_steps) {
     // Consecutive team steps share one parallel region (docs/performance.md "Round 7").

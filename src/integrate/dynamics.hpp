@@ -26,6 +26,14 @@ struct MethodParams {
   void validate() const;
 };
 
+// A group's sites in the System's current storage layout (System::layout_id): their storage
+// slots in increasing order and, for each, its permanent index, which keys its random numbers
+// (so that they do not depend on the layout).
+struct GroupSlots {
+  std::vector<int> slot, site;
+  static GroupSlots of(const System& sys, const std::vector<int>& group);
+};
+
 // One group of sites and how it moves.
 class Method {
  public:
@@ -49,19 +57,22 @@ class Method {
   // The parameters apply_ramps(step) would set, without setting them (a ramp used for the
   // first time is anchored at `step`, as apply_ramps would).
   MethodParams params_at(std::uint64_t step);
-  // Gives every site of the group a random orientation (for active methods).
+  // Gives every site of the group a random orientation (for active methods), keyed by its
+  // permanent index.
   void randomize_orientations(System& sys, std::uint64_t stream_step = 0) const;
 
   // The two halves of a step, called by every thread of a parallel region (ForceField's
-  // TeamHooks): the group's sites shared with an orphaned `omp for nowait` (groups of different
-  // methods are disjoint), so the caller adds the barrier.
+  // TeamHooks): the group's sites (`slots`: this group in the current layout) shared with an
+  // orphaned `omp for nowait` (groups of different methods are disjoint), so the caller adds
+  // the barrier.
   // v_h = v + dt/2 F/m; x += v_h dt (positions wrapped); then F = 0 (the next evaluation adds
   // into it).
-  void drift_team(System& sys, double dt) const;
+  void drift_team(System& sys, double dt, const GroupSlots& slots) const;
   // Orientation update and drive of step `step` with parameters p; then v = v_h + dt/2 F/m.
-  void kick_team(System& sys, double dt, std::uint64_t step, const MethodParams& p) const;
+  void kick_team(System& sys, double dt, std::uint64_t step, const MethodParams& p,
+                 const GroupSlots& slots) const;
   // Adds -gamma v + drive to the site forces (used to start a run from the current v).
-  void add_drive(System& sys, double dt) const;
+  void add_drive(System& sys, double dt, const GroupSlots& slots) const;
 
  private:
   std::vector<int> group_;
@@ -80,7 +91,7 @@ class Dynamics {
   void set_dt(double dt);
   void add(std::shared_ptr<Method> method) {
     methods_.push_back(std::move(method));
-    free_sites_valid_ = false;
+    slots_valid_ = false;
   }
   const std::vector<std::shared_ptr<Method>>& methods() const { return methods_; }
   void set_pressure_wall(std::shared_ptr<PressureWall> wall) { wall_ = std::move(wall); }
@@ -105,6 +116,13 @@ class Dynamics {
   StepThreads& step_threads() { return step_threads_; }
   const StepThreads& step_threads() const { return step_threads_; }
   void set_check_every(std::uint64_t n) { blowup_guard_.set_every(n); }
+  // The steps store the sites in the engine order (integrate/engine_order.hpp, System's
+  // layouts), chosen again before every step that starts at a multiple of sort_every() (and
+  // when the sites have none: on the first step after sites were added), so that the order,
+  // and with it every sum, is a function of the step and the state: a run restarted from a
+  // checkpoint (which stores the order) continues bit for bit.
+  std::uint64_t sort_every() const { return sort_every_; }
+  void set_sort_every(std::uint64_t n);
   // Parallel regions opened by run() for runs of team steps (each holds consecutive steps that
   // use all threads; for tests and benchmarks).
   std::uint64_t team_regions() const { return team_regions_; }
@@ -129,11 +147,15 @@ class Dynamics {
   std::vector<MethodParams> next_params_;  // each method's parameters for the step being made
   std::uint64_t next_step_ = 0;            // the number of the step being made
   std::uint64_t team_regions_ = 0;
-  // Sites in no method (their forces are zeroed next to the drift), for free_sites_n_ sites.
-  void update_free_sites(const System& sys);
+  // The methods' groups and the sites in no method (their forces are zeroed next to the drift)
+  // as storage slots, for the layout slots_layout_ of slots_n_ sites.
+  void sync_slots(const System& sys);
+  std::vector<GroupSlots> slots_;
   std::vector<int> free_sites_;
-  std::size_t free_sites_n_ = 0;
-  bool free_sites_valid_ = false;
+  std::uint64_t slots_layout_ = 0;
+  std::size_t slots_n_ = 0;
+  bool slots_valid_ = false;
+  std::uint64_t sort_every_ = 1000;
 };
 
 }  // namespace invasim

@@ -196,6 +196,14 @@ int l_set_dt(lua_State* L) {
   return 0;
 }
 
+// dyn:set_sort_every(n): steps between two choices of the engine order (Dynamics::sort_every).
+int l_set_sort_every(lua_State* L) {
+  DynamicsHandle& d = check<DynamicsHandle>(L, 1);
+  const long long n = arg_integer(L, 2, 1, std::numeric_limits<long long>::max());
+  engine_call("set_sort_every", [&] { d.dynamics.set_sort_every(std::uint64_t(n)); });
+  return 0;
+}
+
 int l_dt(lua_State* L) {
   lua_pushnumber(L, check<DynamicsHandle>(L, 1).dynamics.dt());
   return 1;
@@ -264,6 +272,7 @@ const luaL_Reg kMethods[] = {
     {"wall_state", &lua_wrap<&l_wall_state>},
     {"dt", &lua_wrap<&l_dt>},
     {"set_dt", &lua_wrap<&l_set_dt>},
+    {"set_sort_every", &lua_wrap<&l_set_sort_every>},
     {"set_pressure", &lua_wrap<&l_set_pressure>},
     {"set_wall_kT", &lua_wrap<&l_set_wall_kT>},
     {"methods", &lua_wrap<&l_methods>},

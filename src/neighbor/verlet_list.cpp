@@ -26,7 +26,9 @@ void VerletList::set_cutoff_rule(const CutoffRule& rule) {
 }
 
 void VerletList::prepare_update(const System& sys) {
-  forced_ = !valid_ || sys.n_sites() != counts_.size() || sys.box().version() != box_version_;
+  // (A new storage layout moves the sites to other slots: the rows name slots.)
+  forced_ = !valid_ || sys.n_sites() != counts_.size() || sys.box().version() != box_version_ ||
+            sys.layout_id() != layout_id_;
   if (forced_) {
     valid_ = false;  // (stays forced if the region does not run, e.g. another term throws)
     setup_grid(sys);
@@ -290,6 +292,7 @@ void VerletList::build_team(const System& sys) {
     max_count_ = std::size_t(max_count);
     candidates_ = candidates;
     box_version_ = sys.box().version();
+    layout_id_ = sys.layout_id();
     valid_ = true;
     forced_ = false;
     ++builds_;

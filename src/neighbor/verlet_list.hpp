@@ -4,14 +4,14 @@
 // no atomics, and a summation order that does not depend on the thread count), in increasing
 // index order. Vertices of the same adipocyte are excluded. The list rebuilds itself only when
 // some site has moved more than half the skin since the last build, the periodic box changed,
-// or sites were added. The build sorts the sites by class (kind) and cell, with their data
-// copied in that order, and scans for each site only the cells of its class pair's stencil
-// (cell_stencil.hpp): contiguous runs of candidates, about the volume of the pair's reach.
-// Each pair is tested once, from the site first in that order, and entered in both rows
-// (the cutoff rule must be symmetric; each thread mirrors its own rows' entries, placing
-// them with an atomic per-row counter); then the rows are sorted, so the rows do not depend
-// on the thread count. The test and the build can run inside a caller's parallel region
-// (prepare_update / update_team).
+// sites were added or their storage layout changed (System::layout_id: rows hold storage slots).
+// The build sorts the sites by class (kind) and cell, with their data copied in that order, and
+// scans for each site only the cells of its class pair's stencil (cell_stencil.hpp): contiguous
+// runs of candidates, about the volume of the pair's reach. Each pair is tested once, from the site
+// first in that order, and entered in both rows (the cutoff rule must be symmetric; each thread
+// mirrors its own rows' entries, placing them with an atomic per-row counter); then the rows are
+// sorted, so the rows do not depend on the thread count. The test and the build can run inside a
+// caller's parallel region (prepare_update / update_team).
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -88,6 +88,7 @@ class VerletList {
   bool forced_ = false;
   std::uint64_t builds_ = 0;
   std::uint64_t box_version_ = 0;
+  std::uint64_t layout_id_ = 0;
   std::size_t stride_ = 64;
   std::size_t max_count_ = 0;
   std::uint64_t candidates_ = 0;

@@ -1,6 +1,9 @@
 #include "state/system.hpp"
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <stdexcept>
 
 #include "core/errors.hpp"
 #include "mesh/geometry.hpp"
@@ -9,8 +12,84 @@ namespace invasim {
 
 System::System(const Box& box, std::uint64_t seed) : box_(box), seed_(seed) {}
 
+namespace {
+
+// v[k] becomes v[from[k]] for every k, through `spare` (its storage reused from call to call:
+// the layouts change twice per run of steps).
+template <typename T>
+void gather(std::vector<T>& v, std::vector<T>& spare, const std::vector<int>& from) {
+  spare.resize(from.size());
+  for (std::size_t k = 0; k < from.size(); ++k) spare[k] = v[std::size_t(from[k])];
+  v.swap(spare);
+}
+
+void gather_sites(Sites& s, Sites& spare, const std::vector<int>& from) {
+  gather(s.pos, spare.pos, from);
+  gather(s.vel, spare.vel, from);
+  gather(s.force, spare.force, from);
+  gather(s.orient, spare.orient, from);
+  gather(s.image, spare.image, from);
+  gather(s.diameter, spare.diameter, from);
+  gather(s.mass, spare.mass, from);
+  gather(s.body, spare.body, from);
+  gather(s.kind, spare.kind, from);
+}
+
+// Numbers of the engine orders, unique in the process (never 0, the user layout's id).
+std::uint64_t next_engine_id() {
+  static std::atomic<std::uint64_t> last{0};
+  return ++last;
+}
+
+}  // namespace
+
+void System::require_user_layout(const char* what) const {
+  if (engine_layout_)
+    throw std::logic_error(std::string(what) +
+                           ": the sites are in the engine layout (only a "
+                           "Dynamics step stores them so)");
+}
+
+void System::set_engine_order(std::vector<int> order) {
+  const std::size_t n = sites_.size();
+  if (order.size() != n) fail_input("engine order: ", order.size(), " entries for ", n, " sites");
+  std::vector<int> slot(n, -1);
+  for (std::size_t k = 0; k < n; ++k) {
+    const int i = order[k];
+    if (i < 0 || std::size_t(i) >= n || slot[std::size_t(i)] >= 0)
+      fail_input("engine order: entry ", k, " = ", i,
+                 " is outside [0, n_sites) or repeats a site; it must be a permutation");
+    slot[std::size_t(i)] = int(k);
+  }
+  if (order == order_) return;
+  if (engine_layout_) {
+    // The site of new slot k is at old slot slot_[order[k]].
+    std::vector<int> from(n);
+    for (std::size_t k = 0; k < n; ++k) from[k] = slot_[std::size_t(order[k])];
+    gather_sites(sites_, spare_, from);
+  }
+  order_ = std::move(order);
+  slot_ = std::move(slot);
+  engine_id_ = next_engine_id();
+}
+
+void System::to_engine() {
+  if (engine_layout_) return;
+  if (order_.size() != sites_.size())
+    throw std::logic_error("System::to_engine: no engine order for the current sites");
+  gather_sites(sites_, spare_, order_);
+  engine_layout_ = true;
+}
+
+void System::to_user() {
+  if (!engine_layout_) return;
+  gather_sites(sites_, spare_, slot_);
+  engine_layout_ = false;
+}
+
 int System::push_site(const Vec3& r, double diameter, double mass, int body, SiteKind kind,
                       const Vec3& orientation) {
+  require_user_layout("adding a site");
   const std::size_t id = sites_.size();
   if (!(diameter > 0.0) || !std::isfinite(diameter))
     fail_input("site ", id, ": diameter = ", diameter, " must be finite and > 0");
@@ -34,6 +113,9 @@ int System::push_site(const Vec3& r, double diameter, double mass, int body, Sit
   sites_.mass.push_back(mass);
   sites_.body.push_back(body);
   sites_.kind.push_back(kind);
+  // A new site: the engine order is chosen again (by Dynamics) for the new set of sites.
+  order_.clear();
+  slot_.clear();
   return int(id);
 }
 
@@ -44,6 +126,7 @@ int System::add_sphere(const Vec3& r, double diameter, double mass, const Vec3& 
 int System::add_mesh(std::shared_ptr<const MeshTopology> topology,
                      const std::vector<Vec3>& vertices, double vertex_diameter,
                      std::vector<double> ref_area, double ref_volume, double mass) {
+  require_user_layout("adding an adipocyte");
   if (!topology) fail_input("add_mesh: no mesh topology given");
   const int body = int(bodies_.size());
   if (int(vertices.size()) != topology->n_vertices())
@@ -97,7 +180,7 @@ int System::add_mesh_scaled(const MeshShape& shape, const Vec3& center, double r
 
 void System::body_vertices(int b, Vec3* out) const {
   const MeshBody& body = bodies_[b];
-  for (int v = 0; v < body.n_vertices(); ++v) out[v] = unwrapped(body.first_site + v);
+  for (int v = 0; v < body.n_vertices(); ++v) out[v] = unwrapped(slot_of(body.first_site + v));
 }
 
 void System::wrap_all() {
@@ -107,7 +190,8 @@ void System::wrap_all() {
 std::vector<int> System::sites_of_kind(SiteKind kind) const {
   std::vector<int> out;
   for (std::size_t i = 0; i < sites_.size(); ++i)
-    if (sites_.kind[i] == kind) out.push_back(int(i));
+    if (sites_.kind[i] == kind) out.push_back(site_of_slot(int(i)));
+  std::sort(out.begin(), out.end());
   return out;
 }
 
@@ -121,9 +205,11 @@ void System::scale(const Vec3& s, bool rigid_bodies) {
     if (sites_.body[i] < 0 || !rigid_bodies) u[i] = map(u[i]);
   if (rigid_bodies)
     for (const MeshBody& b : bodies_) {
-      const Vec3 c = vertex_centroid(b.n_vertices(), &u[b.first_site]);
+      std::vector<Vec3> x(std::size_t(b.n_vertices()));
+      for (int v = 0; v < b.n_vertices(); ++v) x[v] = u[slot_of(b.first_site + v)];
+      const Vec3 c = vertex_centroid(b.n_vertices(), x.data());
       const Vec3 shift = map(c) - c;
-      for (int v = 0; v < b.n_vertices(); ++v) u[b.first_site + v] += shift;
+      for (int v = 0; v < b.n_vertices(); ++v) u[slot_of(b.first_site + v)] += shift;
     }
   box_.set_bounds(lo, map(box_.hi()));
   for (std::size_t i = 0; i < sites_.size(); ++i) {
@@ -136,12 +222,13 @@ void System::scale(const Vec3& s, bool rigid_bodies) {
 void System::validate() const {
   for (std::size_t i = 0; i < sites_.size(); ++i) {
     if (!sites_.pos[i].allFinite() || !sites_.vel[i].allFinite())
-      fail_simulation("site ", i, ": position or velocity is not finite");
+      fail_simulation("site ", site_of_slot(int(i)), ": position or velocity is not finite");
     for (int a = 0; a < 3; ++a)
       if (!box_.periodic(a) && (sites_.pos[i][a] < box_.lo()[a] - sites_.diameter[i] ||
                                 sites_.pos[i][a] > box_.hi()[a] + sites_.diameter[i]))
-        fail_simulation("site ", i, " escaped through the wall: ", "xyz"[a], " = ",
-                        sites_.pos[i][a], ", walls at [", box_.lo()[a], ", ", box_.hi()[a], "]");
+        fail_simulation("site ", site_of_slot(int(i)), " escaped through the wall: ", "xyz"[a],
+                        " = ", sites_.pos[i][a], ", walls at [", box_.lo()[a], ", ", box_.hi()[a],
+                        "]");
   }
 }
 

@@ -3,6 +3,13 @@
 // vertices are all "sites" in one structure-of-arrays store so a single neighbour list serves
 // every contact; an adipocyte is a contiguous block of sites plus its reference geometry.
 // Positions are kept wrapped on periodic axes, with image counters to unwrap them.
+//
+// Two storage layouts (docs/performance.md, "Sites in cell order"): the user layout, in which a
+// site's storage index is its permanent index (the order of creation, which every interface,
+// group, body block, output and checkpoint uses), and the engine layout, in which the sites are
+// stored in the engine order (by kind, then spatially, set by Dynamics), so that neighbours are
+// near in memory and index ranges are slabs. Dynamics switches to the engine layout for its
+// steps (to_engine) and back at their end (to_user); everything else sees the user layout.
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -53,6 +60,27 @@ class System {
   std::uint64_t step = 0;  // completed time steps
   double time = 0.0;       // simulated time
 
+  // The storage layouts (see the header comment). In the engine layout, slot k holds the site of
+  // permanent index engine_order()[k]; layout_id() is 0 in the user layout and, in the engine
+  // layout, a number unique to the current engine order (process-wide), so that a cache keyed
+  // by site slots (neighbour lists, groups) knows when to rebuild.
+  bool engine_layout() const { return engine_layout_; }
+  std::uint64_t layout_id() const { return engine_layout_ ? engine_id_ : 0; }
+  // The engine order (permanent index of every slot), empty until set_engine_order.
+  const std::vector<int>& engine_order() const { return order_; }
+  // Sets the engine order: a permutation of [0, n_sites) (throws InputError otherwise). In the
+  // engine layout the sites move to their new slots at once; an equal order changes nothing.
+  void set_engine_order(std::vector<int> order);
+  // Moves the sites into the engine order (set_engine_order first) / back to the user order.
+  // No-ops when already there.
+  void to_engine();
+  void to_user();
+  // Permanent index of the site in storage slot `slot`, and the slot of permanent index `site`.
+  int site_of_slot(int slot) const { return engine_layout_ ? order_[slot] : slot; }
+  int slot_of(int site) const { return engine_layout_ ? slot_[site] : site; }
+  // Storage slot of vertex v of body b.
+  int body_slot(int b, int v) const { return slot_of(bodies_[b].first_site + v); }
+
   // Adds a cancer cell (or any free sphere); returns its site index. Diameter and mass must
   // be > 0, and the position inside the walls. orientation (if non-zero) is normalised.
   int add_sphere(const Vec3& r, double diameter, double mass = 1.0,
@@ -68,13 +96,13 @@ class System {
   int add_mesh_scaled(const MeshShape& shape, const Vec3& center, double radius,
                       double vertex_diameter, double shape_param, double mass = 1.0);
 
-  // Unwrapped position of site i.
+  // Unwrapped position of the site in storage slot i.
   Vec3 unwrapped(std::size_t i) const { return box_.unwrap(sites_.pos[i], sites_.image[i]); }
   // Unwrapped vertex positions of body b, written to out (size n_vertices).
   void body_vertices(int b, Vec3* out) const;
   // Wraps every site into the box on periodic axes.
   void wrap_all();
-  // Indices of all sites of a kind (e.g. the cancer-cell group).
+  // Permanent indices of all sites of a kind (e.g. the cancer-cell group).
   std::vector<int> sites_of_kind(SiteKind kind) const;
 
   // Scales the box about its lower corner by factors s (per axis) and moves every cancer
@@ -88,10 +116,19 @@ class System {
  private:
   int push_site(const Vec3& r, double diameter, double mass, int body, SiteKind kind,
                 const Vec3& orientation);
+  // Throws std::logic_error naming `what` in the engine layout (for the functions that take
+  // permanent indices as storage indices).
+  void require_user_layout(const char* what) const;
   Box box_;
   Sites sites_;
   std::vector<MeshBody> bodies_;
   std::uint64_t seed_;
+  // The engine order (slot -> permanent index) and its inverse, the layout in use, and the
+  // engine order's process-wide number.
+  std::vector<int> order_, slot_;
+  bool engine_layout_ = false;
+  std::uint64_t engine_id_ = 0;
+  Sites spare_;  // storage reused by the changes of layout (no state)
 };
 
 }  // namespace invasim

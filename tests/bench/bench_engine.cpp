@@ -5,6 +5,7 @@
 // Each with 1 and 2 OpenMP threads. Usage: bench_engine [steps=2000]
 // `bench_engine lammps-data N FILE` writes workload (a)'s relaxed start as a LAMMPS data file
 // (types 1/2 = diameters 0.9/1.1) so compare_lammps.sh can time LAMMPS on the same state.
+// BENCH_CHUNK=n times the steps in runs of n steps (a production's operations cut it so).
 // For scripts (OMP_NUM_THREADS sets the threads), each printing "<wall rate> <CPU rate>"
 // (particle-steps per second of wall time and of the process's CPU time; on a loaded machine
 // the CPU rate at 1 thread is the one to compare):
@@ -16,6 +17,7 @@
 #include <omp.h>
 #include <time.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -72,9 +74,14 @@ void apply_contact_kernel_env(ContactForce& contacts) {
 
 // Times `steps` steps of dyn on sys (prints the steps run with all threads on stderr).
 Rate time_steps(System& sys, ForceField& ff, Dynamics& dyn, int steps) {
+  // BENCH_CHUNK=n: the steps in runs of n (as a production's operations every n steps cut them;
+  // each run stores the sites in the engine order and back, docs/performance.md "Sites in cell
+  // order"); default: one run.
+  const char* chunk_env = std::getenv("BENCH_CHUNK");
+  const int chunk = chunk_env ? std::max(1, std::atoi(chunk_env)) : steps;
   const auto t0 = std::chrono::steady_clock::now();
   const double c0 = cpu_seconds();
-  dyn.run(sys, ff, steps);
+  for (int done = 0; done < steps; done += chunk) dyn.run(sys, ff, std::min(chunk, steps - done));
   const double cpu = cpu_seconds() - c0, wall = seconds_since(t0);
   const double work = double(sys.n_sites()) * steps;
   std::fprintf(
