@@ -192,14 +192,15 @@ def block_error(y):
 
 def window(job, rows=None):
     """(first, end) row indices of the averaging window of the run's first `rows` rows (all by
-    default): the last half of them; for a finished run, summary.json's `samples` of the
+    default): the last half of them (floor(n/2), as the protocols' summary, at least one);
+    for a finished run, summary.json's `samples` of the
     column A_t when it states them."""
     n = len(job.series["time"]) if rows is None else rows
     samples = job.summary.get("averages", {}).get("A_t", {})
     samples = samples.get("samples") if isinstance(samples, dict) else None
     if rows is None and job.status == "done" and isinstance(samples, int) and 0 < samples <= n:
         return n - samples, n
-    return n - n // 2, n
+    return n - max(1, n // 2), n
 
 
 def steadiness(job, column="A_t", rows=None):
@@ -316,7 +317,7 @@ def window_mean(job, column, end_fraction):
     rows (at least one row)."""
     y = job.series[column]
     end = max(1, int(round(end_fraction * len(y))))
-    return float(np.mean(y[end - end // 2:end]))
+    return float(np.mean(y[end - max(1, end // 2):end]))
 
 
 def normalise(points):

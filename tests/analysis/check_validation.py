@@ -1,8 +1,11 @@
 #!/usr/bin/env python3
 """Unit checks of scripts/validation_lib (docs/validation.md, "Method"): the verdict criteria
-on hand-picked numbers, the A_n normalisation and the steady-state test on a hand-made run,
-the plan's cost model and its replay of `sweep run --jobs N`, the citation checks
-(paper figure numbers, sources in the paper) and the figure command's errors.
+on hand-picked numbers, the A_n normalisation and the steady-state criterion on hand-made
+runs, the plan's cost model and its replay of `sweep run --jobs N`, the citation checks
+(paper figure numbers, sources in the paper), the figure command's errors, and the
+paper-scale records (paper_scale.py) on synthetic workspaces (tests/analysis/synthetic.py):
+steady and drifting runs, disagreeing starts, running and pending runs, the cost, and the
+side-by-side rows of the page.
 Usage: check_validation.py SCRIPTS_DIR WORKDIR. Without numpy/scipy/matplotlib: skipped (77),
 or a failure under INVASIM_REQUIRE_ALL_TESTS=1 (tests/support/prerequisites.py)."""
 
