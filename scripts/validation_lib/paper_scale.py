@@ -5,10 +5,12 @@ scale (the same figure functions, the same steady-state criterion of runs.py) an
 DIR/paper_<figure>.json beside the A_n(t) panels (panels.py).
 
 A point is done, running (its series.csv has rows, but the run has not finished: running,
-stopped or submitted) or pending (no row yet); a failed run is listed as failed and left out.
+stopped or submitted) or pending (no row yet); a failed run is listed as failed and left out
+of the values (`sweep run` tries it again).
 Running runs enter with their averages so far (runs.Job.provisional); a row that rests on a
 run that is not done gets the verdict "running" (the verdict its values would give is kept
-as `provisional`), a row with no run yet "pending"."""
+as `provisional`; so does a row while a run of its figure is pending or failed), a row
+with no run yet "pending"."""
 
 import math
 import os
@@ -64,6 +66,12 @@ def progress_text(p):
     return p["class"]
 
 
+def _order(job):
+    """Runs in the order of their varied parameters (numbers numerically, then by name)."""
+    return [(0, float(v), "") if isinstance(v, (int, float)) else (1, 0.0, str(v))
+            for v in (job.sp.get(k) for k in ("kT", "f0", "start", "seed")) if v is not None]
+
+
 def point_name(p):
     """A run by its varied parameters (the paper-scale files vary kT, f0 or start, and seed)."""
     sp = p["sp"]
@@ -76,14 +84,14 @@ def _finalise(rows, progresses, used_ids):
     all done, the verdict stands; one not done, "running" (the verdict kept as provisional)."""
     running = [p for p in progresses if p["class"] == RUNNING and p["job"] in used_ids]
     pending = [p for p in progresses if p["class"] == PENDING]
+    failed = [p for p in progresses if p["class"] == FAILED]  # sweep run tries them again
     for r in rows:
-        if running or pending:
+        if running or pending or failed:
             r["provisional"] = r["verdict"]
             r["verdict"] = verdict.RUNNING
-            r["why"] += "; provisional (%s): %s" % (
-                ", ".join(filter(None, ["%d running" % len(running) if running else "",
-                                        "%d pending" % len(pending) if pending else ""])),
-                r["provisional"])
+            r["why"] += "; provisional (%s): %s" % (", ".join(
+                "%d %s" % (len(ps), what) for ps, what in ((running, "running"), (pending, "pending"),
+                                                         (failed, "failed")) if ps), r["provisional"])
     return rows
 
 
@@ -162,7 +170,8 @@ def record(name, root, out, invasim):
     if not present[0]:
         rec["rows"] = _pending_rows(name, "workspace %s not started" % (PREFIX + SWEEPS[name][0]))
         return rec
-    all_sets = [runs.load_all(w) if here else [] for w, here in zip(wss, present)]
+    all_sets = [sorted(runs.load_all(w), key=_order) if here else []
+                for w, here in zip(wss, present)]
     progresses = [[progress(j) for j in jobs] for jobs in all_sets]
     usable = [[j.provisional() for j, p in zip(jobs, ps) if p["class"] in (DONE, RUNNING)]
               for jobs, ps in zip(all_sets, progresses)]

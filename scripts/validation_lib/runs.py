@@ -86,13 +86,14 @@ class Job:
             if not os.path.exists(path):
                 raise InputError("%s: no series.csv (the run wrote none)" % self.path)
             with open(path) as f:
-                rows = list(csv.reader(f))
+                text = f.read()
+            if self.status != "done" and not text.endswith("\n"):
+                text = text[:text.rfind("\n") + 1]  # a run still writing: a partial last line
+            rows = list(csv.reader(text.splitlines()))
             if len(rows) < 2:
                 raise InputError("%s: series.csv has no rows" % path)
             names = [h.split(" [")[0] for h in rows[0]]
             body = [r for r in rows[1:] if r]
-            if self.status != "done" and body and len(body[-1]) != len(names):
-                body = body[:-1]  # a run still writing: its last line may be partial
             if not body:
                 raise InputError("%s: series.csv has no complete row" % path)
             data = np.array([[float(v) for v in r] for r in body], float)

@@ -459,6 +459,14 @@ check(paper_scale.progress_text(run[0]) == "running, t = 200 of 400 (50 %)",
 for sid in ("fig4b_An_at_0.3", "fig4b_inset_starts"):
     check(rows[sid]["verdict"] == v.RUNNING and rows[sid]["provisional"] == v.AGREES
           and "provisional (1 running): agrees" in rows[sid]["why"], rows[sid])
+# A run still writing: the partial last line of its series.csv is not read (a done run's is).
+running_job = [j for j in runs.load_all(os.path.join(work, "root", "paper_fig4b_starts"))
+               if j.status == "running"][0]
+with open(os.path.join(running_job.path, "series.csv"), "a") as f:
+    f.write("4200,210.0,5e")
+check(runs.Job(running_job.path).rows() == 40, runs.Job(running_job.path).rows())
+check(runs.Job(running_job.path).provisional().mean("A_t")[0] == float(np.mean(
+    runs.Job(running_job.path).series["A_t"][20:40])))
 # A pending run (no row yet) is listed as pending and left out of the values.
 pend = starts(level(500.0), level(500.0))
 pend[3] = (pend[3][0], "pending", [], 1000.0, 0.3)
