@@ -36,9 +36,9 @@ def _an_axis(ax, job, extremes, first, end):
     sec.tick_params(labelsize=6)
 
 
-def draw(jobs, extremes, out, name, states):
-    """One PNG of panels, one per run (jobs with rows); states: {job id: "done" / "running,
-    t = ... of ..."} for the titles. Returns [name], or [] without runs."""
+def draw(jobs, extremes, out, name, titles):
+    """One PNG of panels, one per run (jobs with rows); titles: {job id: the run's name and
+    state ("kT = ..., seed = 1: running, t = ... of ...")}. Returns [name], or [] without runs."""
     if not jobs:
         return []
     ncols = min(COLUMNS, len(jobs))
@@ -59,10 +59,8 @@ def draw(jobs, extremes, out, name, states):
                 if math.isfinite(e):
                     ax.fill_between([t[i0], t[i1 - 1]], m - e, m + e, color=c, alpha=0.3, lw=0)
         verdict_text = {True: "steady", False: "drifting", None: "not judged"}[s["steady"]]
-        sp = job.sp
-        what = ", ".join("%s=%s" % (k, sp[k]) for k in ("kT", "f0", "start", "seed") if k in sp)
-        ax.set_title("%s\n%s; %s (m4-m3 = %.3g +- %.2g)" % (
-            what, states.get(job.id, job.status), verdict_text, s["drift"], s["error"]), fontsize=6)
+        ax.set_title("%s\n%s (m4 - m3 = %.3g +- %.2g)" % (
+            titles.get(job.id, job.id[:8]), verdict_text, s["drift"], s["error"]), fontsize=6)
         ax.tick_params(labelsize=6)
         ax.set_xlabel(label("time", "tau") + " (production)", fontsize=7)
         ax.set_ylabel(label("A_t", "sigma^2"), fontsize=7)

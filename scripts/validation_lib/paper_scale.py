@@ -72,11 +72,15 @@ def _order(job):
             for v in (job.sp.get(k) for k in ("kT", "f0", "start", "seed")) if v is not None]
 
 
-def point_name(p):
-    """A run by its varied parameters (the paper-scale files vary kT, f0 or start, and seed)."""
-    sp = p["sp"]
-    keys = [k for k in ("kT", "f0", "start", "seed") if k in sp]
-    return ", ".join("%s = %s" % (k, sp[k]) for k in keys)
+def point_name(p, keys):
+    """A run by the parameters `keys` (its sweep's varied ones: varied_keys)."""
+    return ", ".join("%s = %s" % (k, p["sp"][k]) for k in keys if k in p["sp"]) or p["job"][:8]
+
+
+def varied_keys(progresses):
+    """The parameters that tell a sweep's runs apart (of kT, f0, start, seed), seed always."""
+    return [k for k in ("kT", "f0", "start", "seed")
+            if k == "seed" or len({str(p["sp"].get(k)) for p in progresses}) > 1]
 
 
 def _finalise(rows, progresses, used_ids):
@@ -186,7 +190,8 @@ def record(name, root, out, invasim):
             p["steadiness"] = {k: s.get(k) for k in ("steady", "drift", "error", "m3", "m4",
                                                      "negligible", "samples")}
     rec["runs"] = [{k: v for k, v in p.items() if k != "sp"} | {
-        "name": point_name(p) if k == 0 else "%s: %s" % (rec["workspaces"][k], point_name(p))}
+        "name": point_name(p, varied_keys(ps)) if k == 0 else "%s: %s" % (
+            rec["workspaces"][k], point_name(p, varied_keys(ps)))}
         for k, ps in enumerate(progresses) for p in ps]
     if not usable[0]:
         rec["rows"] = _pending_rows(name, "no run of %s has written a row yet" % rec["workspaces"][0])
@@ -199,8 +204,8 @@ def record(name, root, out, invasim):
             verdict.row(sid, "n/a", verdict.NO_DATA, str(e)) for sid in STATEMENTS[name]], [], {}, None
     rec["rows"] = _finalise(rows, flat, used)
     rec["numbers"] = numbers
-    rec["images"] = images + panels.draw(usable[0], extremes, out, "%s_runs.png" % name,
-                                 {p["job"]: progress_text(p) for p in flat})
+    rec["images"] = images + panels.draw(usable[0], extremes, out, "%s_runs.png" % name, {
+        r["job"]: "%s: %s" % (r["name"], progress_text(r)) for r in rec["runs"]})
     return rec
 
 

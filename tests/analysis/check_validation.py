@@ -516,7 +516,8 @@ part = text[text.index("## At the paper's scale"):text.index("## Where the paper
 check("| `fig4b_An_at_0.3` | A_n = 0.0262 +- 0.022 | disagrees | A_n = " in part
       and "| running | not yet: running (provisionally disagrees -> agrees) |" in part, part)
 check("| `fig4b_inset_starts` | n/a | n/a |" in part, part)
-check("| f0 = 0.0019, start = mixed, seed = 2 | running, t = 200 of 400 (50 %) |" in part, part)
+check("| start = mixed, seed = 2 | running, t = 200 of 400 (50 %) |" in part
+      and "| paper_fig5_cohesive: f0 = 0.004, seed = 1 | done |" in part, part)
 check("| `protocols/sweeps/paper_scale/fig4b_starts.lua` | 4 | 3 | 1 | 0 | 0 | 3.50 | 4.00 | 2.67 |"
       in part and "**101 core-hours** in all" in part, part)
 check("![fig4b](records/paper/fig4b_runs.png)" in part, part)
