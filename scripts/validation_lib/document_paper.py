@@ -98,10 +98,11 @@ def _cost(cost):
         return ["(no cost record: `scripts/validation.py paper ROOT -o DIR --plan "
                 "docs/validation/plan_paper_scale.json`)", ""]
     lines = ["Core-hours used are the recorded wall times of the runs (`wall_seconds` of the job "
-             "documents, summed over attempts; one thread per point as the plan assumes; a "
-             "run's current attempt counts once it stops). The projected total adds, for each "
-             "point not done, the mean wall time of the done points of its sweep (before any "
-             "is done: the plan's cost per point) times the fraction of its run still to go.", "",
+             "documents, summed over attempts; a run's current attempt counts once it stops) "
+             "times the threads each was given (`--threads` of its last attempt in its "
+             "`run.log`). The projected total adds, for each point not done, the mean core "
+             "time of the done points of its sweep (before any is done: the plan's cost per "
+             "point at one thread) times the fraction of its run still to go.", "",
              "| sweep file | points | done | running | pending | failed | core-hours used | "
              "projected total | plan |", "|---|---|---|---|---|---|---|---|---|"]
     for c in cost["sweeps"]:

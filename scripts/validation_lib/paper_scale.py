@@ -14,6 +14,7 @@ with no run yet "pending"."""
 
 import math
 import os
+import re
 
 from . import panels, runs, verdict
 from .figures_master import fig5 as reduced_fig5
@@ -35,6 +36,7 @@ STATEMENTS = {"fig3": ["fig3_invasion_grows", "fig3_At_min_over_max"],
               "fig4b": ["fig4b_An_at_0.3", "fig4b_inset_starts"],
               "fig5": ["fig5_b_range"]}
 DONE, RUNNING, PENDING, FAILED = "done", "running", "pending", "failed"
+THREADS = re.compile(r"--threads (\d+)")  # of an attempt's line in run.log
 
 
 def workspace_path(root, sweep):
@@ -49,12 +51,25 @@ def progress(job):
     cls = (DONE if status == "done" else FAILED if status == "failed"
            else RUNNING if rows else PENDING)
     out = {"job": job.id, "class": cls, "status": status, "rows": rows,
-           "wall_seconds": float(job.doc.get("wall_seconds") or 0.0),
+           "wall_seconds": float(job.doc.get("wall_seconds") or 0.0), "threads": threads(job),
            "started_at": job.doc.get("started_at"), "sp": job.sp}
     if rows:
         out["t"] = float(production_time(job)[-1])
         out["t_target"] = float(int(job.sp.get("steps", 0)) * time_step(job))
     return out
+
+
+def threads(job):
+    """The threads the run was given: `--threads N` of the last attempt that `sweep run`
+    logged in run.log ("== <time> invasim sweep run: ... --threads N"), else 1."""
+    path = os.path.join(job.path, "run.log")
+    n = 1
+    if os.path.exists(path):
+        with open(path, errors="replace") as f:
+            for line in f:
+                m = THREADS.search(line) if line.startswith("== ") else None
+                n = int(m.group(1)) if m else n
+    return n
 
 
 def progress_text(p):
@@ -210,16 +225,18 @@ def record(name, root, out, invasim):
 
 
 def cost(sweep, progresses, plan_entries):
-    """A sweep's cost: core-hours used (the recorded wall_seconds of its runs, one thread per
-    point as the plan assumes), the points by state, and the projected total: the done
-    points' mean wall time for each point not done (scaled by what it has left), or the plan's
-    projected cost per point (plan_paper_scale.json) before any is done."""
+    """A sweep's cost: core-hours used (the recorded wall_seconds of its runs times the
+    threads each was given), the points by state, and the projected total: the done points'
+    mean core time for each point not done (scaled by what it has left), or the plan's
+    projected cost per point (plan_paper_scale.json, one thread per point) before any is
+    done."""
     plan = next((e for e in plan_entries or [] if os.path.splitext(
         os.path.basename(e["spec"]))[0] == sweep), None)
     counts = {c: sum(1 for p in progresses if p["class"] == c)
               for c in (DONE, RUNNING, PENDING, FAILED)}
-    used = sum(p["wall_seconds"] for p in progresses)
-    done = [p["wall_seconds"] for p in progresses if p["class"] == DONE and p["wall_seconds"] > 0]
+    used = sum(p["wall_seconds"] * p["threads"] for p in progresses)
+    done = [p["wall_seconds"] * p["threads"] for p in progresses
+            if p["class"] == DONE and p["wall_seconds"] > 0]
     per_point = (sum(done) / len(done) if done else
                  plan["core_seconds"] / plan["points"] if plan else math.nan)
     points = len(progresses) or (plan["points"] if plan else 0)
