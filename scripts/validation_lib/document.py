@@ -224,7 +224,9 @@ def render(fig_dir, plan_entries, out_path, ci_size=False, done_entries=None, pa
               "points (column 'from'). One thread per point, %d points at a time. The tissue "
               "figures use the reduced system (8 adipocytes, 400 cells); Fig. 6 has 500 cells "
               "and no adipocytes. The paper's size (28, 1500) is about four times the cost per "
-              "step and does not fit the budget (about 6 core-hours)."
+              "step and does not fit the budget (about 6 core-hours); the statements that "
+              "need it are run at the paper's scale apart (section \"At the paper's scale\", "
+              "when its records are given)."
               % plan_entries[0]["jobs"], "", plan_mod.table(plan_entries), ""]
     else:
         L += ["(no plan given: `scripts/validation.py document ... --plan plan.json`)", ""]
