@@ -10,7 +10,9 @@ import numpy as np
 
 from . import runs
 from .figures_tissue import production_time
-from .plotting import figure, label, save
+from .plotting import label, save  # (sets the Agg backend before pyplot)
+
+import matplotlib.pyplot as plt  # noqa: E402
 
 COLUMNS = 4
 
@@ -43,7 +45,6 @@ def draw(jobs, extremes, out, name, titles):
         return []
     ncols = min(COLUMNS, len(jobs))
     nrows = int(math.ceil(len(jobs) / ncols))
-    import matplotlib.pyplot as plt
     fig, axes = plt.subplots(nrows, ncols, figsize=(3.4 * ncols, 2.7 * nrows), squeeze=False)
     for ax, job in zip(axes.flat, jobs):
         t = production_time(job)
