@@ -16,8 +16,18 @@ Usage:
   validation.py plan --workspace WS... [--jobs N] [-o plan.json]
       points x steps x measured rate = core-hours and wall time with N jobs, by timing two
       short runs of each spec's first point, or from the wall_seconds of done points
-  validation.py document DIR [--plan plan.json] -o docs/validation.md [--ci-size]
-      assembles the page from DIR/*.json and the plan (--ci-size: the tiny-CI banner)
+  validation.py paper ROOT -o DIR [--plan plan_paper_scale.json] [--invasim PATH]
+      the paper-scale records from the workspaces ROOT/paper_<sweep file> of
+      protocols/sweeps/paper_scale/ (fig3_passive_slices, fig4a_passive, fig4b_starts,
+      fig5_cohesive), read as they are, points done, running or pending: DIR/paper_fig3.json,
+      paper_fig4a.json, paper_fig4b.json, paper_fig5.json (rows with verdicts, a running run's
+      values marked provisional; each run's progress and steadiness), the figures and the
+      A_n(t) panels (DIR/<figure>_runs.png), and DIR/paper_cost.json (core-hours used and
+      projected per sweep file; the whole paper at its scale from --plan)
+  validation.py document DIR [--plan plan.json] [--done plan_done.json] [--paper PDIR]
+                         -o docs/validation.md [--ci-size]
+      assembles the page from DIR/*.json and the plan (--paper: the paper-scale records of
+      `paper ... -o PDIR`, shown beside the reduced ones; --ci-size: the tiny-CI banner)
 
 Needs numpy, scipy and matplotlib; if the python3 running it lacks them, it re-runs itself
 with /usr/bin/python3. Exit status 0; 1 on bad input (named); 2 on a bad command line."""
@@ -154,11 +164,52 @@ def figure(name, workspaces, out, invasim, argv):
                 "specs": specs,
                 "runs": len(jobs), "steps_range": "%d" % steps[0] if steps[0] == steps[-1]
                 else "%d-%d" % (steps[0], steps[-1])})
-    with open(os.path.join(out, name + ".json"), "w") as f:
-        json.dump(rec, f, indent=1, default=float)
+    write_json(os.path.join(out, name + ".json"), rec)
     for r in rec["rows"]:
         print("%s: %s: %s (%s)" % (name, r["id"], r["verdict"], r["ours"]))
     return rec
+
+
+def paper(root, out, invasim, plan_path, argv):
+    """The paper-scale records (validation_lib/paper_scale.py), written atomically."""
+    from validation_lib import paper_scale, runs
+    if not os.path.isdir(root):
+        raise runs.InputError("paper: %s is not a directory (the root of the workspaces "
+                              "paper_<sweep file>)" % root)
+    entries = None
+    if plan_path:
+        with open(plan_path) as fh:
+            entries = json.load(fh)
+    os.makedirs(out, exist_ok=True)
+    shown = ["paper", shown_path(root, "ROOT"), "-o", shown_path(out, "DIR")]
+    if plan_path:
+        shown += ["--plan", shown_path(plan_path, "plan_paper_scale.json")]
+    for name in paper_scale.SWEEPS:
+        rec = paper_scale.record(name, root, out, invasim)
+        rec["command"] = command_text(shown)
+        write_json(os.path.join(out, "paper_%s.json" % name), rec)
+        for r in rec["rows"]:
+            print("paper %s: %s: %s (%s)" % (name, r["id"], r["verdict"], r["ours"]))
+    cost = paper_scale.cost_record(root, entries)
+    write_json(os.path.join(out, "paper_cost.json"), cost)
+    print("paper: %.2f core-hours used, %.2f projected for this machine's list; the whole "
+          "paper %.0f" % (cost["used_core_hours"], cost["projected_core_hours"],
+                          cost["whole_paper"]["core_hours"]))
+
+
+def shown_path(path, placeholder):
+    """A path as the page shows it: relative to the repository when inside it, else the
+    placeholder (the page never names a path outside the repository)."""
+    rel = os.path.relpath(os.path.abspath(path), REPO)
+    return placeholder if rel.startswith("..") else rel
+
+
+def write_json(path, obj):
+    """JSON written atomically (a temporary file renamed into place)."""
+    tmp = "%s.tmp.%d" % (path, os.getpid())
+    with open(tmp, "w") as f:
+        json.dump(obj, f, indent=1, default=float)
+    os.replace(tmp, path)
 
 
 def main(argv):
@@ -182,10 +233,16 @@ def main(argv):
     p.add_argument("--scratch", default="out/plan")
     p.add_argument("-o", dest="out")
     p.add_argument("--invasim", default=default_invasim())
+    q = sub.add_parser("paper")
+    q.add_argument("root")
+    q.add_argument("-o", dest="out", required=True)
+    q.add_argument("--plan", help="plan JSON of the paper-scale sweep files (projected cost)")
+    q.add_argument("--invasim", default=default_invasim())
     d = sub.add_parser("document")
     d.add_argument("dir")
     d.add_argument("--plan")
     d.add_argument("--done", help="plan JSON of the done workspaces (plan --workspace): the campaign as run")
+    d.add_argument("--paper", help="directory of the paper-scale records (validation.py paper)")
     d.add_argument("-o", dest="out", required=True)
     d.add_argument("--ci-size", action="store_true")
     args = ap.parse_args(argv)
@@ -224,6 +281,8 @@ def main(argv):
                 os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
                 with open(args.out, "w") as fh:
                     json.dump(entries, fh, indent=1)
+        elif args.verb == "paper":
+            paper(args.root, args.out, args.invasim, args.plan, argv)
         elif args.verb == "document":
             from validation_lib import document
             entries = None
@@ -234,7 +293,7 @@ def main(argv):
             if args.done:
                 with open(args.done) as fh:
                     done = json.load(fh)
-            counts = document.render(args.dir, entries, args.out, args.ci_size, done)
+            counts = document.render(args.dir, entries, args.out, args.ci_size, done, args.paper)
             print("document: %s (%s)" % (args.out, ", ".join("%d %s" % (n, v) for v, n in counts.items())))
     except runs.InputError as e:
         print("validation.py: error: %s" % e, file=sys.stderr)

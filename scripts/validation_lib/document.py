@@ -5,7 +5,7 @@ Prose lives here (the template); every number comes from the records."""
 import json
 import os
 
-from . import citations
+from . import citations, document_paper
 from . import plan as plan_mod
 from .runs import InputError
 from .verdict import CRITERIA, DISAGREES, VERDICTS, is_code_check, paper, paper_verdict
@@ -79,8 +79,18 @@ for s in fig3_passive_slices fig4a_passive fig4b_cohesive fig4b_inset fig5_activ
 done
 scripts/validation.py all out -o docs/validation     # every figure command below, then:
 scripts/validation.py plan --workspace out/fig3_passive_slices ... -o docs/validation/plan_done.json
-scripts/validation.py document docs/validation --plan docs/validation/plan.json --done docs/validation/plan_done.json -o docs/validation.md
+scripts/validation.py document docs/validation --plan docs/validation/plan.json --done docs/validation/plan_done.json --paper docs/validation/paper -o docs/validation.md
 ```
+
+At the paper's scale (section "At the paper's scale"), the workspaces `ROOT/paper_<sweep
+file>` of `protocols/sweeps/paper_scale/` (each file's header gives its `sweep init` and
+`sweep run` lines) are read as they are, while the campaign runs:
+
+```sh
+scripts/validation.py paper ROOT -o docs/validation/paper --plan docs/validation/plan_paper_scale.json
+```
+
+and the `document` line above with `--paper docs/validation/paper` puts them on the page.
 
 The analysis reads the run directories of each workspace (`summary.json`: block-averaged
 means and errors over the last half of the production; `series.csv`; `shapes.csv`;
@@ -104,20 +114,31 @@ The two plan files are kept beside the figure records (`docs/validation/plan.jso
 workspaces themselves (about 1 GB) are not kept. A figure without a record says so ("Not
 generated"); a record from older criteria is marked under its figure.
 
-**Steady state.** For every run, `A_t` over the last half of the production: the mean of its
-last quarter minus that of its third quarter (the drift) against the block error of the
-last-half mean; a run is steady when `|drift| <= 4 x error` (the difference of two quarter
-means has about twice the error of the half mean: a 2-sigma test), or when the drift is
-negligible, below 1 % of the run's `A_t^max` (it moves `A_n` by less than about 0.015, under
-the precision of every statement here: a caged, de-mixed tissue ages by a few tenths of
-`sigma^2` per quarter with a block error smaller still, which the 2-sigma test alone would
-call drifting forever); a run whose error is not
-finite cannot be judged and does not count as steady. A state point is steady when all its
-runs are. Each figure says how many of its runs pass. A row that rests on state points (its
-criterion names them: Fig. 4b's two points bracketing 0.3, the inset's runs, every point of
-a Fig. 5 curve) gets the verdict *not steady* when one of them is not steady, and names them;
-a Fig. 5 curve that is not steady is drawn hollow and left out of the collapse and of the fit
-of `a`.
+**Steady state** (`scripts/validation_lib/runs.py`, `steadiness`, `point_steadiness`; the
+one criterion of every figure, every verdict and the paper-scale rows). The averaging window
+of a run is the last half of its production rows (what `summary.json` averages; for a run
+still going, the last half of the rows written so far). Its two halves are the run's last
+two quarters: the run is steady when the means of `A_t` over them, `m3` and `m4`, agree
+within twice their combined error, `|m4 - m3| <= 2 sqrt(e3^2 + e4^2)` (each `e` the block
+error of its quarter's mean, computed as `summary.json`'s errors are:
+`src/measure/block_average.hpp`), or when the drift is negligible, `|m4 - m3| <= 1 %` of the
+window's mean `A_t^max` (it moves `A_n` by less than about 0.015, under the precision of
+every statement here: a caged, de-mixed tissue ages by a few tenths of `sigma^2` per quarter
+with a block error smaller still, which the 2-sigma test alone would call drifting forever).
+A run with fewer than two rows per quarter or without a finite error cannot be judged and
+does not count as steady. A state point is steady when all its runs are and, where it was
+run from two starts (Fig. 4b's de-mixed and mixed starts), when the starts agree by the same
+test: their means of `A_t` over the averaging windows (each start's mean over its seeds, its
+error the standard error over the seeds, or the run's block error with one seed) differ by at
+most twice the combined error, or by less than 1 % of `A_t^max`. Each figure says how many
+of its runs pass. A row that rests on state points (its criterion names them: Fig. 4b's two
+points bracketing 0.3, the inset's state point, every point of a Fig. 5 curve) gets the
+verdict *not steady* when one of them is not steady, and names the runs and the starts that
+fail; a Fig. 5 curve that is not steady is drawn hollow and left out of the collapse and of
+the fit of `a`. Rows about the approach in time (Fig. 3's `A_t(t)`, Fig. 4a's curve at three
+times) do not rest on a steady state. A value at an earlier time (Fig. 4a's curves at a
+quarter and half of the run, or at `t = 1e4` and `1e5` at the paper's scale) is the mean over
+the averaging window the run would have had, had it ended there.
 
 **Verdicts** (`scripts/validation_lib/verdict.py`). The paper's statements and their stated
 precision are in `scripts/validation_paper.json` (each citing its place in the paper: section, figure, equation). A number agrees when
@@ -180,7 +201,9 @@ def _rel(path, base):
     return os.path.relpath(path, base)
 
 
-def render(fig_dir, plan_entries, out_path, ci_size=False, done_entries=None):
+def render(fig_dir, plan_entries, out_path, ci_size=False, done_entries=None, paper_dir=None):
+    """Writes the page; paper_dir: the paper-scale records (validation.py paper), whose
+    section stands after the verdicts."""
     recs = _load(fig_dir)
     base = os.path.dirname(os.path.abspath(out_path))
     L = ["# Validation: the paper's figures at reduced scale", ""]
@@ -201,7 +224,9 @@ def render(fig_dir, plan_entries, out_path, ci_size=False, done_entries=None):
               "points (column 'from'). One thread per point, %d points at a time. The tissue "
               "figures use the reduced system (8 adipocytes, 400 cells); Fig. 6 has 500 cells "
               "and no adipocytes. The paper's size (28, 1500) is about four times the cost per "
-              "step and does not fit the budget (about 6 core-hours)."
+              "step and does not fit the budget (about 6 core-hours); the statements that "
+              "need it are run at the paper's scale apart (section \"At the paper's scale\", "
+              "when its records are given)."
               % plan_entries[0]["jobs"], "", plan_mod.table(plan_entries), ""]
     else:
         L += ["(no plan given: `scripts/validation.py document ... --plan plan.json`)", ""]
@@ -227,7 +252,8 @@ def render(fig_dir, plan_entries, out_path, ci_size=False, done_entries=None):
             rec["runs"], rec["steps_range"]), ""]
         if rec.get("criteria", 1) < CRITERIA:
             L += ["**Record from older criteria.** This record was written before the current "
-                  "criteria (Method: one temperature axis, the per-point rows, *not steady*); "
+                  "criteria (Method: one temperature axis, the per-point rows, *not steady*, "
+                  "the steady-state criterion of the two quarter means); "
                   "its rows, texts and figures are as it computed them, only the verdict classes "
                   "*paper inconsistent* and the checks of our code are applied here. Rerun the "
                   "command below on the workspaces to update it.", ""]
@@ -243,8 +269,11 @@ def render(fig_dir, plan_entries, out_path, ci_size=False, done_entries=None):
         L += ["", "Regenerate: `%s`" % rec["command"], ""]
         st = rec.get("steadiness")
         if st:
+            # Records before criteria 3 hold |drift| over the last-half mean's error.
+            ratio = ("|m4 - m3|/(combined error)" if rec.get("criteria", 1) >= 3
+                     else "|drift|/error")
             L += ["Steady state: %d of %d runs steady by the criterion (%d judged); largest "
-                  "|drift|/error %s." % (st["steady"], st["jobs"], st["judged"],
+                  "%s %s." % (st["steady"], st["jobs"], st["judged"], ratio,
                                          "%.2g" % st["max_drift_over_error"]
                                          if st["max_drift_over_error"] is not None else "n/a"), ""]
         L += ["| paper | ours | verdict | criterion |", "|---|---|---|---|"]
@@ -276,7 +305,10 @@ def render(fig_dir, plan_entries, out_path, ci_size=False, done_entries=None):
             r["figure"], _statement(r), r["ours"], r["verdict"])) for r in checks]
     else:
         L += ["(none in the records)"]
-    L += ["", CONTRADICTIONS, METHOD]
+    L.append("")
+    if paper_dir:
+        L += document_paper.section(paper_dir, recs, fig_dir, base)
+    L += [CONTRADICTIONS, METHOD]
     text = "\n".join(L)
     _check_citations(list(paper().values()) + all_rows, text, out_path)
     with open(out_path, "w") as f:

@@ -111,7 +111,7 @@ def _fit_curve(key, pts, plain, jobs_by_id, extremes):
     sig = _pooled_errors(pts, jobs_by_id, extremes)
     for p, e in zip(pts, sig):
         p["A_n_error"] = e
-        p["steady"] = not runs.unsteady_jobs([jobs_by_id[i] for i in p["jobs"]])
+        p["steady"] = runs.point_steadiness([jobs_by_id[i] for i in p["jobs"]])[0]
     entry = {"curve": plain, "key": list(key), "points": len(pts),
              "unsteady_points": ["2T_c/P = %.3g" % p["x"] for p in pts if not p["steady"]],
              "beta": key[1] if key[0] == "passive" else key[0]}

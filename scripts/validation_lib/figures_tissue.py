@@ -36,23 +36,57 @@ def x_measured(job, end_fraction=None):
     return runs.window_mean(job, "kT_c_paper", end_fraction) / pressure(job)
 
 
-def an_over_time(jobs, keys, xfun, fractions):
-    """A_n of every state point (keys) at several times (fractions of the run), normalised
-    together (one set of extremes over all points and times, so that curves at different
-    times compare). Returns {fraction: [points]}, extremes."""
+def an_over_time(jobs, keys, xfun, fractions, fraction_of=None):
+    """A_n of every state point (keys) at several times, normalised together (one set of
+    extremes over all points and times, so that curves at different times compare). A time
+    is a fraction of each run's rows, or (fraction_of(job, mark) given) a mark each run maps
+    to its own fraction (production_fraction: a time t). The values at a time are those of
+    the averaging window ending there (runs.window_mean). Returns {mark: [points]}, extremes."""
     table, flat = {}, []
     for f in fractions:
         table[f] = []
         for key, reps in runs.group(jobs, keys).items():
-            p = runs.state_point(reps, lambda j: {
-                "x": xfun(j, f), "A_t": runs.window_mean(j, "A_t", f),
-                "A_t_max": runs.window_mean(j, "A_t_max", f),
-                "A_t_error": j.mean("A_t")[1]})
+            p = runs.state_point(reps, lambda j: _window_values(j, xfun, fraction_of(j, f)
+                                                                if fraction_of else f))
             p["key"] = list(key)
             table[f].append(p)
             flat.append(p)
     extremes = runs.normalise(flat)
     return table, extremes
+
+
+def _window_values(job, xfun, fraction):
+    return {"x": xfun(job, fraction), "A_t": runs.window_mean(job, "A_t", fraction),
+            "A_t_max": runs.window_mean(job, "A_t_max", fraction),
+            "A_t_error": job.mean("A_t")[1]}
+
+
+def fmt_time(t):
+    """A time as the paper writes it: 1e4, 5e5 (%g below 1000)."""
+    if t < 1000:
+        return "%g" % t
+    m, e = ("%.1e" % t).split("e")
+    return "%se%d" % (m.rstrip("0").rstrip("."), int(e))
+
+
+def production_time(job):
+    """The production time of every row of series.csv (time since the production began:
+    the state point's quench_steps and equilibrate_steps are before it; dt from the rows)."""
+    start = sum(int(job.sp.get(k, 0)) for k in ("quench_steps", "equilibrate_steps"))
+    return (job.series["step"] - start) * time_step(job)
+
+
+def time_step(job):
+    """dt of a run: the state point's, else time/step of its first row (time = step x dt)."""
+    s = job.series
+    return float(job.sp["dt"]) if "dt" in job.sp else float(s["time"][0] / s["step"][0])
+
+
+def production_fraction(job, t):
+    """The fraction of the run's rows written by production time t (at least one row; a
+    run that has not reached t gives all its rows: its latest window)."""
+    pt = production_time(job)
+    return max(1, int(np.searchsorted(pt, t, side="right"))) / len(pt)
 
 
 def run_time(jobs, fraction):
@@ -61,13 +95,14 @@ def run_time(jobs, fraction):
     return float(t[max(0, int(round(fraction * len(t))) - 1)])
 
 
-def plot_an_times(ax, table, xlabel, jobs):
+def plot_an_times(ax, table, xlabel, jobs, times=False):
     for f, pts in sorted(table.items()):
         pts = sorted(pts, key=lambda p: p["x"])
         ax.errorbar([p["x"] for p in pts], [p["A_n"] for p in pts],
                     yerr=[p["A_n_error"] if verdict.finite(p["A_n_error"]) else 0 for p in pts],
                     marker="o", capsize=2,
-                    label=r"$t$ = %.4g $\tau$ (%.0f%% of the run)" % (run_time(jobs, f), 100 * f))
+                    label=(r"$t$ = %s $\tau$" % fmt_time(f)) if times else
+                    r"$t$ = %.4g $\tau$ (%.0f%% of the run)" % (run_time(jobs, f), 100 * f))
     xs = [p["x"] for pts in table.values() for p in pts]
     if xs and min(xs) > 0:
         log_axis(ax, xs)
@@ -128,9 +163,10 @@ def fig3(jobs, out, invasim):
 
 
 def render_slice(job, out, name, invasim):
-    """`invasim render` of the job's last snapshot at z = L_z/2 (none without snapshots)."""
+    """`invasim render` of the job's last snapshot at z = L_z/2 (none without snapshots or
+    without a binary, invasim None)."""
     snap_dir = os.path.join(job.path, "snapshots")
-    if not os.path.isdir(snap_dir):
+    if invasim is None or not os.path.isdir(snap_dir):
         return []
     frames = sorted(f for f in os.listdir(snap_dir) if re.match(r"cells_\d+\.xyz$", f))
     if not frames:
@@ -142,12 +178,15 @@ def render_slice(job, out, name, invasim):
     return [name]
 
 
-def fig4a(jobs, out, invasim):
-    """A_n against the measured 2 T_c/P at three times; the midpoint's move and T_g."""
-    fractions = (0.25, 0.5, 1.0)
-    table, extremes = an_over_time(jobs, ["kT"], x_measured, fractions)
+def fig4a(jobs, out, invasim, times=None):
+    """A_n against the measured 2 T_c/P at three times (a quarter, half and all of the run;
+    or the production times `times`, the paper's t = 1e4, 1e5, 5e5); the midpoint's move
+    between the first and the last, and T_g at the last."""
+    fractions = tuple(times) if times else (0.25, 0.5, 1.0)
+    table, extremes = an_over_time(jobs, ["kT"], x_measured, fractions,
+                                   production_fraction if times else None)
     fig, (ax,) = figure()
-    plot_an_times(ax, table, T_PAPER, jobs)
+    plot_an_times(ax, table, T_PAPER, jobs, times=bool(times))
     st = verdict.paper()["fig4a_Tg"]
     ax.axvline(st["value"], color="0.4", ls="--", lw=0.8)
     ax.text(st["value"], 0.98, r" paper's $T_g$", fontsize=7, va="top", color="0.3",
@@ -157,20 +196,26 @@ def fig4a(jobs, out, invasim):
             for f, pts in table.items()}
     errs = {f: runs.crossing_log_error([p["x"] for p in pts], [p["A_n"] for p in pts],
                                        [p["A_n_error"] for p in pts]) for f, pts in table.items()}
-    moves = mids[0.25] > mids[1.0] if verdict.finite(mids[0.25], mids[1.0]) else None
-    shift = math.log10(mids[0.25] / mids[1.0]) if moves is not None else math.nan
-    shift_err = math.hypot(errs[0.25], errs[1.0])
-    end_err = mids[1.0] * math.log(10) * errs[1.0] if verdict.finite(mids[1.0], errs[1.0]) else math.nan
+    first, last = fractions[0], fractions[-1]
+    moves = mids[first] > mids[last] if verdict.finite(mids[first], mids[last]) else None
+    shift = math.log10(mids[first] / mids[last]) if moves is not None else math.nan
+    shift_err = math.hypot(errs[first], errs[last])
+    end_err = (mids[last] * math.log(10) * errs[last] if verdict.finite(mids[last], errs[last])
+               else math.nan)
     rows = [
         verdict.row("fig4a_moves_left",
                     "midpoint (A_n = 1/2) at 2T_c/P = %s" % ", ".join(
-                        "%s (t = %.0f%%)" % (verdict.fmt(mids[f]), 100 * f) for f in fractions),
+                        "%s (%s)" % (verdict.fmt(mids[f]), ("t = %s" % fmt_time(f)) if times else
+                                     "t = %.0f%%" % (100 * f)) for f in fractions),
                     verdict.trend_verdict(shift, shift_err),
-                    "log10 of the midpoint's ratio, first quarter over the end: %s (> 2 errors; "
+                    "log10 of the midpoint's ratio, %s over the end: %s (> 2 errors; "
                     "the error from the A_n errors and the slope at the crossing)"
-                    % verdict.fmt(shift, shift_err)),
-        verdict.row("fig4a_Tg", "midpoint at the end: %s" % verdict.fmt_temperature(mids[1.0], end_err),
-                    verdict.log_verdict(mids[1.0], end_err, st["value"], st["log_factor"], moves),
+                    % ("t = %s" % fmt_time(first) if times else "first quarter",
+                       verdict.fmt(shift, shift_err))),
+        verdict.row("fig4a_Tg", "midpoint at the end%s: %s" % (
+                        " (t = %s)" % fmt_time(last) if times else "",
+                        verdict.fmt_temperature(mids[last], end_err)),
+                    verdict.log_verdict(mids[last], end_err, st["value"], st["log_factor"], moves),
                     "2T_c/P within a factor %g of %g (+ 2 errors), the paper's convention"
                     % (st["log_factor"], st["value"])),
         tc_equals_ta_row("fig4a_Tc_equals_Ta", jobs, ["kT"])]
@@ -251,7 +296,8 @@ def fig4b(jobs, out, invasim, inset_jobs=None):
                                float(vals.std(ddof=1) / math.sqrt(len(vals))) if len(vals) > 1
                                else pts[0]["A_n_error"], float(np.mean([x_measured(j) for j in reps])))
             axes[1].plot([start] * len(vals), vals, "o", alpha=0.6)
-            axes[1].errorbar([start], [by_start[start][0]], yerr=[by_start[start][1]], fmt="s",
+            axes[1].errorbar([start], [by_start[start][0]], yerr=[by_start[start][1] if
+                             verdict.finite(by_start[start][1]) else 0], fmt="s",
                              color="k", capsize=3)
         axes[1].set_ylabel(label("A_n", ""))
         axes[1].set_xlabel("initial placement (start)")
@@ -282,10 +328,9 @@ def fig4b(jobs, out, invasim, inset_jobs=None):
                     verdict.fmt(*by_start["demixed"][:2]), verdict.fmt(*by_start["mixed"][:2]),
                     verdict.fmt_temperature(by_start["demixed"][2])),
                 verdict.value_verdict(d, e, si["value"], si["tolerance"]),
-                "difference %s; |difference| <= 0.1 + 2 errors; rests on every inset run, "
-                "each steady" % verdict.fmt(d, e),
-                unsteady=["%s start, seed %s" % (j.sp.get("start"), j.sp.get("seed"))
-                          for j in inset_jobs if j.id in runs.unsteady_jobs(inset_jobs)]))
+                "difference %s; |difference| <= 0.1 + 2 errors; rests on the inset's state "
+                "point: every run steady and the two starts agreeing (Method)" % verdict.fmt(d, e),
+                unsteady=runs.point_steadiness(inset_jobs)[1]))
         numbers["inset"] = by_start
     images = [save(fig, out, "fig4b_An.png")] + images_extra
     return {"images": images, "rows": rows, "numbers": numbers, "steadiness": steady}

@@ -16,8 +16,13 @@ Two classes say why a number is not compared:
 - paper inconsistent  the paper contradicts itself on the statement (its `inconsistent` in
                       validation_paper.json says how); the row shows ours and what the
                       number's verdict against one of the paper's values would be
-- not steady          a state point the row rests on (named in the row's criterion) has a run
-                      that is not steady by runs.steadiness (or cannot be judged)
+- not steady          a state point the row rests on (named in the row's criterion) is not
+                      steady by runs.point_steadiness: a run drifting or not judged, or its
+                      two starts disagreeing
+Two more say why a paper-scale row (paper_scale.py) has no final verdict yet:
+- running             a run the row rests on has not finished: the row shows the values so
+                      far and the verdict they would give (provisional), never as final
+- pending             no run the row rests on has written a row yet
 A statement with `"check": "code"` tests our code, not the paper (e.g. the factor 2 of k_B T):
 docs/validation.md lists it apart and leaves it out of the verdict counts."""
 
@@ -28,10 +33,13 @@ import os
 AGREES, TREND, DISAGREES, NO_DATA, UNTESTABLE = (
     "agrees", "agrees in trend only", "disagrees", "no data", "not testable")
 PAPER_INCONSISTENT, NOT_STEADY = "paper inconsistent", "not steady"
+RUNNING, PENDING = "running", "pending"
 # The version of the criteria a figure record was computed with (its "criteria"): 2 is the
 # measured 2 T_c/P axis for every figure, the classes above and the per-point criteria of
-# Figs. 5-8; records without it are older (docs/validation.md says so under the figure).
-CRITERIA = 2
+# Figs. 5-8; 3 the steady-state criterion of runs.py (the two quarter means, the starts
+# agreeing) and the values at earlier times over the averaging window ending there; records
+# without it are older (docs/validation.md says so under the figure).
+CRITERIA = 3
 # Every verdict, in the order of the page's counts.
 VERDICTS = (AGREES, TREND, DISAGREES, PAPER_INCONSISTENT, NOT_STEADY, NO_DATA, UNTESTABLE)
 
@@ -107,7 +115,7 @@ def paper_verdict(statement, verdict, why):
     what it would have been. Idempotent, so that records written before a class existed read
     the same (docs/validation.md is regenerated from them)."""
     if statement.get("inconsistent") and verdict not in (NO_DATA, UNTESTABLE, NOT_STEADY,
-                                                          PAPER_INCONSISTENT):
+                                                          PAPER_INCONSISTENT, RUNNING, PENDING):
         return PAPER_INCONSISTENT, "%s; against %s alone: %s" % (
             statement["inconsistent"], statement.get("compared", "the paper's value"), verdict)
     return verdict, why

@@ -1,8 +1,11 @@
 #!/usr/bin/env python3
 """Unit checks of scripts/validation_lib (docs/validation.md, "Method"): the verdict criteria
-on hand-picked numbers, the A_n normalisation and the steady-state test on a hand-made run,
-the plan's cost model and its replay of `sweep run --jobs N`, the citation checks
-(paper figure numbers, sources in the paper) and the figure command's errors.
+on hand-picked numbers, the A_n normalisation and the steady-state criterion on hand-made
+runs, the plan's cost model and its replay of `sweep run --jobs N`, the citation checks
+(paper figure numbers, sources in the paper), the figure command's errors, and the
+paper-scale records (paper_scale.py) on synthetic workspaces (tests/analysis/synthetic.py):
+steady and drifting runs, disagreeing starts, running and pending runs, the cost, and the
+side-by-side rows of the page.
 Usage: check_validation.py SCRIPTS_DIR WORKDIR. Without numpy/scipy/matplotlib: skipped (77),
 or a failure under INVASIM_REQUIRE_ALL_TESTS=1 (tests/support/prerequisites.py)."""
 
@@ -163,9 +166,21 @@ s = runs.steadiness(flat)
 check(s["steady"] is True and abs(s["drift"]) < 1e-12, s)
 s = runs.steadiness(rising)
 check(s["steady"] is False and abs(s["drift"] - 20.0) < 1e-12, s)   # 10 rows x 2 apart
+# The quarters' errors are their block errors (10 rows: level 0, the naive error of a linear
+# rise, std/sqrt(10) = sqrt(165/9/10)), combined: sqrt(2) x that.
+e_quarter = math.sqrt(sum((2 * i - 9.0) ** 2 for i in range(10)) / 10 / 9)
+check(abs(s["e3"] - e_quarter) < 1e-9 and abs(s["error"] - math.sqrt(2) * e_quarter) < 1e-9, s)
 summary = runs.steadiness_summary([flat, rising])
-check(summary["steady"] == 1 and summary["jobs"] == 2 and summary["max_drift_over_error"] == 20.0)
-check(abs(runs.window_mean(rising, "A_t", 1.0, 0.1) - np.mean([600.0 + 2 * i for i in range(16, 20)])) < 1e-12)
+check(summary["steady"] == 1 and summary["jobs"] == 2
+      and abs(summary["max_drift_over_error"] - 20.0 / (math.sqrt(2) * e_quarter)) < 1e-9, summary)
+# A value at an earlier time is the mean over the averaging window ending there: at the end,
+# the last half of the rows; at half the run (20 rows), rows 10-19 of the flat start.
+check(abs(runs.window_mean(rising, "A_t", 1.0) - np.mean([600.0 + 2 * i for i in range(20)])) < 1e-12)
+check(runs.window_mean(rising, "A_t", 0.5) == 500.0)
+# The block error is that of src/measure/block_average.cpp: 64 alternating values, whose
+# pair means are all equal: the plateau at block size 2, error 0 (naive error 1/sqrt(63)).
+alt = [1.0 if i % 2 else -1.0 for i in range(64)]
+check(runs.block_error(alt) == 0.0 and abs(runs.block_error(alt[:10]) - math.sqrt(10 / 10 / 9)) < 1e-12)
 # A drift of 20 error bars that is below 1 % of A_t^max (a caged tissue ageing) is negligible:
 # steady; the same rise against a smaller A_t^max (20 > 1 % of 1500) is not.
 creeping = fake_job(os.path.join(work, "creeping"), [600.0 + 0.2 * i for i in range(20)], 0.1, 2500.0)
@@ -355,4 +370,165 @@ check(cli.repo_spec_path("/elsewhere/clone/protocols/sweeps/fig3_passive_slices.
 check(cli.repo_spec_path(os.path.join(cli.REPO, "protocols/sweeps/fig4a_passive.lua"))
       == "protocols/sweeps/fig4a_passive.lua")
 check(cli.repo_spec_path("/elsewhere/clone/protocols/sweeps/no_such_sweep.lua").startswith(".."))
+
+# The paper-scale records (validation_lib/paper_scale.py, `validation.py paper`) on synthetic
+# workspaces ROOT/paper_<sweep>: 80 rows per finished run (t = 0.05 x 100 steps per row, to
+# t = 400), noise +-1 around its level, A_t^max = 1000 (the negligible drift: 10).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__))))
+import synthetic  # noqa: E402
+from validation_lib import document_paper, paper_scale  # noqa: E402
+rng = np.random.default_rng(7)
+
+
+def level(a, n=80, slope=0.0):
+    """A_t rows: a steady level with noise, or (slope) a steady rise per row."""
+    return [a + slope * i + rng.uniform(-1, 1) for i in range(n)]
+
+
+CURVE = [({"f0": 0.001, "beta": 0.01, "tau_p": 25.0, "seed": 1, "steps": 8000}, "done",
+          level(200.0), 1000.0, 0.1),
+         ({"f0": 0.0019, "beta": 0.01, "tau_p": 25.0, "seed": 1, "steps": 8000}, "done",
+          level(500.0), 1000.0, 0.3),
+         ({"f0": 0.004, "beta": 0.01, "tau_p": 25.0, "seed": 1, "steps": 8000}, "done",
+          level(800.0), 1000.0, 0.6)]
+
+
+def starts(demixed, mixed, status="done"):
+    """Fig. 4b's point from both starts, two seeds each; the last run (mixed, seed 2) has
+    `status` (running: 40 of its 80 rows)."""
+    pts = []
+    for start, rows in (("demixed", demixed), ("mixed", mixed)):
+        for seed in (1, 2):
+            last = start == "mixed" and seed == 2
+            pts.append(({"f0": 0.0019, "start": start, "seed": seed, "steps": 8000},
+                        status if last else "done",
+                        rows[:40] if last and status == "running" else rows, 1000.0, 0.3))
+    return pts
+
+
+def paper_record(start_points, curve=CURVE, name="fig4b"):
+    root = os.path.join(work, "root")
+    shutil.rmtree(root, ignore_errors=True)
+    synthetic.write_workspace(os.path.join(root, "paper_fig4b_starts"), start_points)
+    synthetic.write_workspace(os.path.join(root, "paper_fig5_cohesive"), curve)
+    rec = paper_scale.record(name, root, os.path.join(work, "paper"), None)
+    return {r["id"]: r for r in rec["rows"]}, rec
+
+
+shutil.rmtree(work, ignore_errors=True)
+# A steady run and a drifting one (2 per row: the quarters 40 apart, beyond 2 errors and the
+# negligible 10) get their verdicts from the criterion.
+synthetic.write_workspace(os.path.join(work, "one"), [
+    ({"seed": 1, "steps": 8000}, "done", level(500.0), 1000.0, 0.3),
+    ({"seed": 2, "steps": 8000}, "done", level(420.0, slope=2.0), 1000.0, 0.3)])
+steady_job, drifting_job = runs.load(os.path.join(work, "one"))
+s = runs.steadiness(steady_job)
+check(s["steady"] is True and abs(s["drift"]) < 2 * s["error"] and s["samples"] == 40, s)
+s = runs.steadiness(drifting_job)
+check(s["steady"] is False and abs(s["drift"] - 40.0) < 2.0 and s["negligible"] == 10.0, s)
+# At the paper's 0.55 point: all runs steady, both starts at A_t = 500, A_n = 0.5 (the curve
+# normalises 200 -> 0, 800 -> 1): agrees.
+rows, rec = paper_record(starts(level(500.0), level(500.0)))
+check(rows["fig4b_An_at_0.3"]["verdict"] == v.AGREES
+      and abs(rec["numbers"]["A_n"] - 0.5) < 0.01, rows["fig4b_An_at_0.3"])
+check(rows["fig4b_inset_starts"]["verdict"] == v.AGREES, rows["fig4b_inset_starts"])
+check(all(p["class"] == "done" and p["steadiness"]["steady"] for p in rec["runs"]), rec["runs"])
+check("fig4b_runs.png" in rec["images"]
+      and os.path.getsize(os.path.join(work, "paper", "fig4b_runs.png")) > 1000, rec["images"])
+# One drifting run makes the point, hence both rows, not steady, naming the run.
+drift = starts(level(500.0), level(500.0))
+drift[0] = (drift[0][0], "done", level(440.0, slope=1.5), 1000.0, 0.3)
+rows, rec = paper_record(drift)
+check(rows["fig4b_An_at_0.3"]["verdict"] == v.NOT_STEADY
+      and "run demixed start, seed 1 drifts" in rows["fig4b_An_at_0.3"]["why"], rows["fig4b_An_at_0.3"])
+# Two starts, each steady, that disagree (de-mixed at 400, mixed at 600): not steady, however
+# far the paper's tolerance (0.1 in A_n) would let the A_n of their mean agree.
+rows, rec = paper_record(starts(level(400.0), level(600.0)))
+check(all(p["steadiness"]["steady"] for p in rec["runs"]), rec["runs"])
+for sid in ("fig4b_An_at_0.3", "fig4b_inset_starts"):
+    check(rows[sid]["verdict"] == v.NOT_STEADY and "the starts disagree" in rows[sid]["why"], rows[sid])
+agreement = runs.start_agreement(runs.load(os.path.join(work, "root", "paper_fig4b_starts")))
+check(agreement["agree"] is False and abs(agreement["difference"] - 200.0) < 1.0, agreement)
+# A running run (mixed, seed 2: 40 of 80 rows, no summary.json): reported as running with
+# its progress, its values provisional; the rows are "running", never a final verdict.
+rows, rec = paper_record(starts(level(500.0), level(500.0), status="running"))
+run = [p for p in rec["runs"] if p["class"] == "running"]
+check(len(run) == 1 and run[0]["t"] == 200.0 and run[0]["t_target"] == 400.0, rec["runs"])
+check(paper_scale.progress_text(run[0]) == "running, t = 200 of 400 (50 %)",
+      paper_scale.progress_text(run[0]))
+for sid in ("fig4b_An_at_0.3", "fig4b_inset_starts"):
+    check(rows[sid]["verdict"] == v.RUNNING and rows[sid]["provisional"] == v.AGREES
+          and "provisional (1 running): agrees" in rows[sid]["why"], rows[sid])
+# A run still writing: the partial last line of its series.csv is not read (a done run's is).
+running_job = [j for j in runs.load_all(os.path.join(work, "root", "paper_fig4b_starts"))
+               if j.status == "running"][0]
+with open(os.path.join(running_job.path, "series.csv"), "a") as f:
+    f.write("4200,210.0,5e")
+check(runs.Job(running_job.path).rows() == 40, runs.Job(running_job.path).rows())
+check(runs.Job(running_job.path).provisional().mean("A_t")[0] == float(np.mean(
+    runs.Job(running_job.path).series["A_t"][20:40])))
+# A pending run (no row yet) is listed as pending and left out of the values.
+pend = starts(level(500.0), level(500.0))
+pend[3] = (pend[3][0], "pending", [], 1000.0, 0.3)
+rows, rec = paper_record(pend)
+check([p["class"] for p in rec["runs"]].count("pending") == 1
+      and rows["fig4b_An_at_0.3"]["verdict"] == v.RUNNING
+      and "1 pending" in rows["fig4b_An_at_0.3"]["why"], rows)
+# A figure whose workspace does not exist yet: its rows are pending.
+rec3 = paper_scale.record("fig3", os.path.join(work, "root"), os.path.join(work, "paper"), None)
+check(rec3["missing"] == ["paper_fig3_passive_slices"]
+      and {r["verdict"] for r in rec3["rows"]} == {v.PENDING}, rec3)
+
+# The page: the paper-scale row beside the reduced one, with whether the scale changes the
+# verdict, the running run's progress and the cost. Reduced: fig4b_An_at_0.3 disagrees.
+shutil.rmtree(work, ignore_errors=True)
+root = os.path.join(work, "root")
+synthetic.write_workspace(os.path.join(root, "paper_fig4b_starts"),
+                          starts(level(500.0), level(500.0), status="running"))
+synthetic.write_workspace(os.path.join(root, "paper_fig5_cohesive"), CURVE)
+with open(os.path.join(root, "paper_fig4b_starts", "workspace", "%032x" % 1, "run.log"), "w") as f:
+    f.write("== 2026-12-04T18:59:33Z invasim sweep run: invasim run x.lua --threads 1\n"
+            "run: 1 threads\n== 2026-12-05T08:00:00Z invasim sweep run: invasim run --resume "
+            "x --threads 2\n")
+os.makedirs(os.path.join(work, "records"))
+with open(os.path.join(work, "records", "fig4b.json"), "w") as f:
+    red = dict(rec_row("fig4b_An_at_0.3", v.DISAGREES), ours="A_n = 0.0262 +- 0.022")
+    json.dump({"rows": [red], "specs": ["s"], "runs": 1, "steps_range": "1", "images": [],
+               "command": "c", "criteria": v.CRITERIA}, f)
+plan_paper = [{"spec": "protocols/sweeps/paper_scale/%s.lua" % n, "points": k,
+               "core_seconds": k * 2400.0} for n, k in (("fig4b_starts", 4), ("fig5_cohesive", 3),
+                                                        ("fig5_all_curves", 144))]
+with open(os.path.join(work, "plan_paper.json"), "w") as f:
+    json.dump(plan_paper, f)
+out = subprocess.run([sys.executable, os.path.join(scripts, "validation.py"), "paper", root,
+                      "-o", os.path.join(work, "records", "paper"), "--plan",
+                      os.path.join(work, "plan_paper.json")], capture_output=True, text=True)
+check(out.returncode == 0 and "paper fig4b: fig4b_An_at_0.3: running" in out.stdout, out.stdout + out.stderr)
+cost = json.load(open(os.path.join(work, "records", "paper", "paper_cost.json")))
+c4b = [c for c in cost["sweeps"] if c["sweep"] == "fig4b_starts"][0]
+# 3 done runs at 3600 s (the first with 2 threads at its last attempt), one at half way with
+# 1800 s recorded: used 4 h + 0.5 h, projected + the half left of the done runs' mean core
+# time (4/3 h); the whole paper: the plan's 151 x 2400 s.
+check(abs(c4b["used_core_hours"] - 4.5) < 1e-9 and abs(c4b["projected_core_hours"] - 4.5 - 2 / 3) < 1e-9
+      and c4b["counts"] == {"done": 3, "running": 1, "pending": 0, "failed": 0}, c4b)
+check(abs(cost["whole_paper"]["core_hours"] - 151 * 2400 / 3600) < 1e-9, cost["whole_paper"])
+c3 = [c for c in cost["sweeps"] if c["sweep"] == "fig3_passive_slices"][0]
+check(c3["points"] == 0 and c3["projected_core_hours"] is None, c3)  # no workspace, no plan
+page = os.path.join(work, "page.md")
+document.render(os.path.join(work, "records"), None, page, paper_dir=os.path.join(work, "records", "paper"))
+text = open(page).read()
+part = text[text.index("## At the paper's scale"):text.index("## Where the paper")]
+check("| `fig4b_An_at_0.3` | A_n = 0.0262 +- 0.022 | disagrees | A_n = " in part
+      and "| running | not yet: running (provisionally disagrees -> agrees) |" in part, part)
+check("| `fig4b_inset_starts` | n/a | n/a |" in part, part)
+check("| start = mixed, seed = 2 | running, t = 200 of 400 (50 %) |" in part
+      and "| paper_fig5_cohesive: f0 = 0.004, seed = 1 | done |" in part, part)
+check("| `protocols/sweeps/paper_scale/fig4b_starts.lua` | 4 | 3 | 1 | 0 | 0 | 4.50 | 5.17 | 2.67 |"
+      in part and "**101 core-hours** in all" in part, part)
+check("![fig4b](records/paper/fig4b_runs.png)" in part, part)
+check(document_paper.change(v.AGREES, {"verdict": v.DISAGREES}) == "yes: agrees -> disagrees")
+check(document_paper.change(v.AGREES, {"verdict": v.AGREES}) == "no")
+check(document_paper.change(v.AGREES, {"verdict": v.PENDING}) == "not yet: pending")
+# The Method states the criterion once.
+check(text.count("|m4 - m3| <= 2 sqrt(e3^2 + e4^2)") == 1, text)
 print("check_validation: all checks passed")

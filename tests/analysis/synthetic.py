@@ -70,3 +70,50 @@ def write_table(path, rng, truth, points=13, span=2.6, replicates=4, noise=0.08,
         w.writerow(HEADER)
         w.writerows(rows)
     return true_an
+
+
+def write_workspace(path, points, every=100, quench_steps=100, dt=0.05):
+    """A sweep workspace as `invasim sweep init`/`run` leave it (docs/sweeps.md), for the tests
+    of scripts/validation_lib: points is a list of (state point, status, A_t series,
+    A_t_max, x) with x the measured 2 T_c/P. A point's series.csv has one row per A_t value
+    (step = quench_steps + every (i + 1), time = step x dt); a done point also has summary.json
+    (the mean and block error over the last half of the rows, as the protocols write it, with
+    runs.block_error); a pending point has neither. Returns the job ids."""
+    import json
+    import os
+    import sys
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
+                                    "scripts"))
+    from validation_lib import runs
+    ids = []
+    for k, (sp, status, a_t, a_t_max, x) in enumerate(points):
+        sp = dict({"P": P, "quench_steps": quench_steps, "every": every}, **sp)
+        job = "%032x" % (k + 1)
+        d = os.path.join(path, "workspace", job)
+        os.makedirs(d)
+        ids.append(job)
+        with open(os.path.join(d, "signac_statepoint.json"), "w") as f:
+            json.dump(sp, f)
+        with open(os.path.join(d, "signac_job_document.json"), "w") as f:
+            json.dump({"status": status, "wall_seconds": 3600.0 if status == "done" else 1800.0
+                       if len(a_t) else 0.0}, f)
+        if not len(a_t):
+            continue
+        cols = {"A_t": list(a_t), "A_t_max": [a_t_max] * len(a_t), "kT_c_paper": [x * P] * len(a_t),
+                "A_ratio": [a / a_t_max for a in a_t]}
+        with open(os.path.join(d, "series.csv"), "w") as f:
+            f.write("step,time [tau],A_t [sigma^2],A_t_max [sigma^2],kT_c_paper [eps_c],A_ratio\n")
+            for i in range(len(a_t)):
+                step = quench_steps + every * (i + 1)
+                f.write("%d,%r,%r,%r,%r,%r\n" % (step, step * dt, cols["A_t"][i], cols["A_t_max"][i],
+                                                 cols["kT_c_paper"][i], cols["A_ratio"][i]))
+        if status == "done":
+            half = len(a_t) // 2
+            averages = {n: {"mean": float(np.mean(v[-half:])), "error": runs.block_error(v[-half:]),
+                            "samples": half} for n, v in cols.items()}
+            with open(os.path.join(d, "summary.json"), "w") as f:
+                json.dump({"averages": averages}, f)
+    with open(os.path.join(path, "invasim_sweep.json"), "w") as f:
+        json.dump({"points": ids, "prep": None, "protocol": "invasion.lua",
+                   "spec": "protocols/sweeps/paper_scale/x.lua"}, f)
+    return ids

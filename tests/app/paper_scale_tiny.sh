@@ -2,7 +2,12 @@
 # The paper-scale sweep files (protocols/sweeps/paper_scale/) at their CI size: each must
 # initialise at its full size (the point count its header promises is what `sweep init`
 # makes) and run its `tiny = {...}` points to the end, so that no file rots before the
-# cluster or the long campaign uses it.
+# cluster or the long campaign uses it. Then the paper-scale analysis (`scripts/validation.py
+# paper`, docs/validation.md "At the paper's scale") reads the tiny workspaces under the
+# campaign's names (ROOT/paper_<file>): a record per figure with its rows and the A_n(t)
+# panels, the cost record, and a page with the section; and the block errors of the
+# steady-state criterion (scripts/validation_lib/runs.py, block_error) are those summary.json
+# holds (src/measure/block_average.cpp).
 # Usage: paper_scale_tiny.sh INVASIM REPO WORKDIR
 set -euo pipefail
 invasim=$1 repo=$2 work=$3
@@ -23,4 +28,43 @@ for spec in "$repo"/protocols/sweeps/paper_scale/*.lua; do
   n=$((n + 1))
 done
 [ "$n" -ge 6 ] || fail "only $n paper-scale sweep files"
+
+mkdir -p root
+for name in fig3_passive_slices fig4a_passive fig4b_starts fig5_cohesive; do
+  ln -s "../ws_$name" "root/paper_$name"
+done
+"$repo/scripts/validation.py" paper root -o records/paper --invasim "$invasim" \
+  --plan "$repo/docs/validation/plan_paper_scale.json" > paper.log 2>&1 || { cat paper.log; fail "validation.py paper"; }
+"$repo/scripts/validation.py" document records --paper records/paper -o page.md > document.log 2>&1 \
+  || { cat document.log; fail "validation.py document --paper"; }
+/usr/bin/python3 - "$repo/scripts" root records page.md <<'PY' || fail "the paper-scale records"
+import json, math, os, sys
+sys.path.insert(0, sys.argv[1])
+from validation_lib import runs
+root, records, page = sys.argv[2:5]
+problems = []
+for fig in ("fig3", "fig4a", "fig4b", "fig5"):
+    rec = json.load(open(os.path.join(records, "paper", "paper_%s.json" % fig)))
+    if not rec["rows"] or not rec["runs"] or any(p["class"] != "done" for p in rec["runs"]):
+        problems.append("%s: rows %r, runs %r" % (fig, rec["rows"], rec["runs"]))
+    if not os.path.getsize(os.path.join(records, "paper", "%s_runs.png" % fig)) > 1000:
+        problems.append("%s: no A_n(t) panels" % fig)
+cost = json.load(open(os.path.join(records, "paper", "paper_cost.json")))
+if not (cost["used_core_hours"] > 0 and cost["whole_paper"]["core_hours"] > 100):
+    problems.append("cost %r" % cost)
+text = open(page).read()
+if "## At the paper's scale" not in text or "| `fig4b_An_at_0.3` |" not in text:
+    problems.append("the page has no paper-scale section with the fig4b_An_at_0.3 row")
+for ws in sorted(os.listdir(root)):
+    for j in runs.load(os.path.join(root, ws)):
+        first, end = runs.window(j)
+        got, want = runs.block_error(j.series["A_t"][first:end]), j.mean("A_t")[1]
+        # series.csv holds 10 significant digits: the means it gives differ from the
+        # protocol's by ~1e-10 of A_t
+        if not abs(got - want) <= 1e-6 * abs(want) + 1e-8 * abs(j.mean("A_t")[0]):
+            problems.append("%s %s: block error %r, summary.json %r" % (ws, j.id, got, want))
+if problems:
+    sys.exit("\n".join(problems))
+PY
+echo "ok: validation.py paper ($(grep -c '' paper.log) lines)"
 echo "paper_scale_tiny: $n sweep files initialise and run at their CI size"
