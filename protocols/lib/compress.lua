@@ -53,7 +53,7 @@ local resume = require("lib.resume")
 -- unstable in it between dt = 0.2 and 0.25. With the engine's dt_max = 0.5, FIRE grew dt into
 -- that instability, reset, and grew it again, over and over: the reduced system took 114160
 -- iterations, the paper's 484720 (375000 of them in the final FIRE); with 0.15, 22840 and
--- 45944 (docs/performance.md, "Compression and measurements"). The mode's frequency grows as
+-- 45944 (docs/performance.md, "Compression"). The mode's frequency grows as
 -- sqrt(eps_v), so the step shrinks as 1/sqrt(eps_v); it never exceeds 0.15 (softer meshes leave the contacts'
 -- own limit, not measured beyond that). Without adipocytes (or eps_v = 0): the engine's.
 local function default_dt_max(tissue)

@@ -17,7 +17,7 @@ inline constexpr std::size_t kParallelLightItems = 16384;
 // Loops with ~0.1-1 microsecond per item (pair forces of one site, neighbour-list rows).
 inline constexpr std::size_t kParallelHeavyItems = 1024;
 // A time step's team regions (ForceField::compute with the integrator's drift and kick inside,
-// docs/performance.md "Round 2"): one region carries the whole step's light work (drift,
+// docs/performance.md "The parallel step"): one region carries the whole step's light work (drift,
 // zeroing, wall and shape forces, Langevin kick with its random numbers: ~0.1 microsecond
 // per site), so it pays from the same size as a heavy loop on an idle machine. Whether a time
 // step gets more than one thread at all is measured by Dynamics (integrate/step_threads.hpp):

@@ -1,8 +1,8 @@
 #pragma once
-// The barrier inside a time step's parallel region (docs/performance.md, "Round 7").
-// libgomp's own barriers follow the wait policy: passive (invasim's default, for shared cores)
-// puts a waiting thread to sleep at once, and waking it costs ~20-40 us on a virtual machine,
-// about a tenth of a whole step of the paper's system at 2 threads; a spinning policy
+// The barrier inside a time step's parallel region (docs/performance.md, "Team steps and the
+// barrier"). libgomp's own barriers follow the wait policy: passive (invasim's default, for shared
+// cores) puts a waiting thread to sleep at once, and waking it costs ~20-40 us on a virtual
+// machine, about a tenth of a whole step of the paper's system at 2 threads; a spinning policy
 // (GOMP_SPINCOUNT) would also make the pool's idle thread spin between steps that the measured
 // choice runs on one thread, which costs other processes' cores. This barrier spins for a
 // bounded time (about one wake-up's cost: the most a wait can waste is then twice the least it

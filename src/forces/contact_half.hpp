@@ -1,7 +1,7 @@
 #pragma once
 // The contact kernel with each pair evaluated once (LAMMPS's half list, newton on), on any
-// number of threads, bit-identical to the full-row kernel of ContactForce (docs/performance.md,
-// "Round 4: half-list kernel on one thread" and "Round 5: half rows on every thread").
+// number of threads, bit-identical to the full-row kernel of ContactForce
+// (docs/performance.md, "Half rows").
 //
 // The full kernel sums site i's pair terms over its whole row in increasing index order. The
 // half rows give every site the same additions in the same order: rows are processed in

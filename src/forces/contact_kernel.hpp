@@ -2,8 +2,8 @@
 // The pair terms of the contact kernel for its two drivers: the full-row gather
 // (contact_force.cpp: row_terms) and the half-row scatter (contact_half.cpp: stream_terms),
 // both on any number of threads. The two loops compute every pair term with the same
-// expressions, so that the terms are the same bits in both (docs/performance.md, "Round 4:
-// half-list kernel on one thread", "Round 5"; test unit_contact_half).
+// expressions, so that the terms are the same bits in both (docs/performance.md, "Half rows";
+// test unit_contact_half).
 // Translation units including it need -fno-math-errno (CMakeLists.txt), or the square root
 // keeps a scalar call and the loop does not vectorise.
 #include <cmath>

@@ -75,10 +75,10 @@ class ForceField {
   ForceResult compute(System& sys, const ForceFlags& flags = {},
                       std::vector<ForceResult>* per_term = nullptr, const TeamHooks& hooks = {});
   // compute() split for a caller that keeps one parallel region over many time steps
-  // (Dynamics::run, docs/performance.md "Round 7"); only if supports_team(). The team's leader
-  // calls prepare_team_step (it may throw; the other threads wait at a barrier after it), then
-  // every thread of the team calls compute_team, which ends with the hook `after` (no barrier
-  // after it); team_result() then gives the leader the total, as compute returns it.
+  // (Dynamics::run, docs/performance.md "Team steps and the barrier"); only if supports_team(). The
+  // team's leader calls prepare_team_step (it may throw; the other threads wait at a barrier after
+  // it), then every thread of the team calls compute_team, which ends with the hook `after` (no
+  // barrier after it); team_result() then gives the leader the total, as compute returns it.
   bool supports_team() const;
   void prepare_team_step(System& sys, const ForceFlags& flags);
   void compute_team(System& sys, const ForceFlags& flags, const TeamHooks& hooks);

@@ -355,7 +355,7 @@ void Dynamics::begin_step_serial(System& sys) {
 
 TeamHooks Dynamics::step_hooks(System& sys) {
   // Drift and kick run inside the force field's parallel region (docs/performance.md
-  // "Round 2"), not in regions of their own.
+  // "The parallel step"), not in regions of their own.
   TeamHooks hooks;
   // The drift zeroes the forces of its sites; the sites of no method are zeroed alongside.
   hooks.zeroes_forces = true;
@@ -450,8 +450,8 @@ void Dynamics::run(System& sys, ForceField& ff, std::uint64_t n_steps) {
   const EngineLayoutScope layout(sys);
   std::uint64_t k = 0;
   while (k < n_steps) {
-    // Consecutive team steps share one parallel region (docs/performance.md "Round 7").
-    // (The thread choice first: while it keeps one thread, a step asks nothing else.)
+    // Consecutive team steps share one parallel region (docs/performance.md "Team steps and the
+    // barrier"). (The thread choice first: while it keeps one thread, a step asks nothing else.)
     if (prepared_) {
       const int threads = step_threads_.begin_step();
       if (threads > 1 && parallel_team(sys.n_sites()) && ff.supports_team()) {

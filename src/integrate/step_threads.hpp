@@ -1,5 +1,5 @@
 #pragma once
-// How many OpenMP threads a time step uses (docs/performance.md, "Round 2: parallel step").
+// How many OpenMP threads a time step uses (docs/performance.md, "The parallel step").
 // A step's parallel regions pay only if their work outweighs waking the other threads and
 // waiting for them at the barriers: on an idle machine that holds for ~1 ms steps, but next to
 // a busy core a woken thread may wait for a time slice, and a light step (6000 free particles,

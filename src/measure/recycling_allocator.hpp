@@ -1,6 +1,6 @@
 #pragma once
 // An allocator that keeps freed large blocks for reuse by the same thread (docs/performance.md,
-// "Round 2: measurements"). The Voronoi measurement builds a fresh CGAL triangulation on every
+// "Measurements"). The Voronoi measurement builds a fresh CGAL triangulation on every
 // call; CGAL's Compact_container allocates its cells and vertices in blocks whose sizes follow
 // the same sequence every time, and freeing them returns the memory to the system, so each
 // call paid page faults on fresh memory (~40 % of its time). voronoi.cpp makes this CGAL's

@@ -64,7 +64,7 @@ bool VerletList::moved_team(const System& sys) const {
   // Every thread tests all sites (a few microseconds: one vectorised pass over positions that
   // are in cache) and so reaches the same answer without a barrier; sharing the loop would
   // need one to combine the threads' flags, and a barrier at which a thread sleeps costs a
-  // futex wake-up (docs/performance.md, "Round 4").
+  // futex wake-up (docs/performance.md, "The parallel step").
   const double limit2 = 0.25 * skin_ * skin_;
   const auto& pos = sys.sites().pos;
   const MinimumImage image(sys.box());

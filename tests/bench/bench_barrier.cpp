@@ -1,8 +1,8 @@
-// What a barrier costs inside a parallel region (docs/performance.md, "Round 7"): libgomp's
-// `omp barrier` under the process's wait policy (passive by default, as invasim runs) against
-// invasim's TeamBarrier (core/team_barrier.hpp). Each region splits a fixed amount of work
-// (divisions) over the team in k + 1 parts with a barrier between parts; prints microseconds
-// per region for k = 0 and k = 8 with each barrier, and the work alone on one thread.
+// What a barrier costs inside a parallel region (docs/performance.md, "Team steps and the
+// barrier"): libgomp's `omp barrier` under the process's wait policy (passive by default, as
+// invasim runs) against invasim's TeamBarrier (core/team_barrier.hpp). Each region splits a fixed
+// amount of work (divisions) over the team in k + 1 parts with a barrier between parts; prints
+// microseconds per region for k = 0 and k = 8 with each barrier, and the work alone on one thread.
 // Usage: bench_barrier [regions = 5000] [work = 200000]
 //        (OMP_WAIT_POLICY=active or GOMP_SPINCOUNT=N in the environment to compare policies)
 #include <omp.h>

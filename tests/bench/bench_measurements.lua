@@ -1,4 +1,4 @@
--- Cost of the main job's measurements relative to its dynamics (docs/performance.md, target 5), at the
+-- Cost of the main job's measurements relative to its dynamics (docs/performance.md, target 3), at the
 -- main job's cadence (protocols/invasion.lua defaults; --set changes them as there):
 --   thermo columns and the Voronoi measurement (A_t) every `every` steps, the cells'
 --   correlators every `correlate_every` steps, and at the end of the run the 3D shape

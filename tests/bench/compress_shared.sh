@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Target 3 of docs/performance.md ("Targets") for the compression: the paper-size init + compress (bench_compression,
+# The shared-core check of docs/performance.md ("Targets", standing checks) for the compression: the paper-size init + compress (bench_compression,
 # the protocol's dt_max = 0.15) with 1 and with 2 threads while a busy loop keeps core 0 busy,
 # with the default passive wait policy and with a bounded spin (GOMP_SPINCOUNT=10000).
 # Prints wall seconds per run (the iteration counts and final energy must agree).

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Target 3 of docs/performance.md ("Targets"): with a busy loop on core 0, is `--threads 2` ever more than 10 % slower
+# The shared-core check of docs/performance.md ("Targets", standing checks): with a busy loop on core 0, is `--threads 2` ever more than 10 % slower
 # than `--threads 1`? Times bench_engine's workloads (repulsive spheres N = 1500 and 7000 at
 # kT = 1e-3, the full system 28 + 1500, 6000 free active particles: a light step) with 1 and 2
 # threads, interleaved, next to the busy loop; prints wall-time rates and their ratio.

@@ -1,7 +1,6 @@
-// The contact kernel's two drivers (docs/performance.md, "Round 4: half-list kernel on one
-// thread", "Round 5: half rows on every thread"): the half rows (each pair once, scattered, on
-// any number of threads and for any owner of the sites) and the full rows give exactly the
-// same forces, energy and virial, bit for bit.
+// The contact kernel's two drivers (docs/performance.md, "Half rows"): the half rows (each pair
+// once, scattered, on any number of threads and for any owner of the sites) and the full rows give
+// exactly the same forces, energy and virial, bit for bit.
 #include <omp.h>
 #include <catch2/catch.hpp>
 

@@ -1,8 +1,8 @@
-// The parallel time step (docs/performance.md, "Round 2: parallel step", "Round 4: one region
-// per step"): ForceField::compute runs consecutive team-capable terms, the zeroing and the
-// integrator's drift and kick in shared parallel regions (every term of the full system is
-// team-capable: one region per step); the results are bit-identical to the unfused sequence of
-// loops and do not depend on the thread count.
+// The parallel time step (docs/performance.md, "The parallel step", "Team steps and the
+// barrier"): ForceField::compute runs consecutive team-capable terms, the
+// zeroing and the integrator's drift and kick in shared parallel regions (every term of the full
+// system is team-capable: one region per step); the results are bit-identical to the unfused
+// sequence of loops and do not depend on the thread count.
 #include <omp.h>
 #include <catch2/catch.hpp>
 
