@@ -272,12 +272,7 @@ int job(const std::vector<std::string>& args) {
     std::cout << "sweep job: " << id << " is done already\n";
     return 0;
   }
-  const char* array_job = std::getenv("SLURM_ARRAY_JOB_ID");
-  const char* task = std::getenv("SLURM_ARRAY_TASK_ID");
-  const char* slurm_job = std::getenv("SLURM_JOB_ID");
-  const std::string own = array_job && task ? std::string(array_job) + "_" + task
-                          : slurm_job       ? std::string(slurm_job)
-                                            : "";
+  const std::string own = sweep::current_slurm_job_id();
   if (const std::string other = sweep::running_slurm_job(dir, own); !other.empty()) {
     std::cerr << "sweep job: " << id << " is running as Slurm job " << other << " on "
               << sweep::read_document(dir).value("host", std::string("?"))

@@ -40,14 +40,16 @@ JobRecord::JobRecord(const fs::path& job_dir, int pid)
   doc["invasim_version"] = kInvasimVersion;
   doc["git_revision"] = kInvasimGitRevision;
   doc["log"] = log_path().string();
+  if (const std::string slurm = current_slurm_job_id(); !slurm.empty()) doc["slurm_job_id"] = slurm;
+  write_document(dir_, doc);
+}
+
+std::string current_slurm_job_id() {
   const char* array_job = std::getenv("SLURM_ARRAY_JOB_ID");
   const char* task = std::getenv("SLURM_ARRAY_TASK_ID");
   const char* job = std::getenv("SLURM_JOB_ID");
-  if (array_job && task)
-    doc["slurm_job_id"] = std::string(array_job) + "_" + task;
-  else if (job)
-    doc["slurm_job_id"] = job;
-  write_document(dir_, doc);
+  if (array_job && task) return std::string(array_job) + "_" + task;
+  return job ? std::string(job) : std::string();
 }
 
 std::string record_end(const fs::path& job_dir, int exit_code, bool stopped, double seconds) {

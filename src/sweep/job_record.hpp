@@ -35,6 +35,10 @@ std::string record_end(const fs::path& job_dir, int exit_code, bool stopped, dou
 // of the point, which `sweep run` reports as running elsewhere.
 inline constexpr int kJobBusyExitCode = 75;
 
+// This process's Slurm job: "ARRAYJOB_TASK" (SLURM_ARRAY_JOB_ID, SLURM_ARRAY_TASK_ID), else
+// SLURM_JOB_ID, else "" (not under Slurm).
+std::string current_slurm_job_id();
+
 // Now as an ISO 8601 UTC time stamp.
 std::string utc_now();
 

@@ -243,12 +243,7 @@ void check_slurm_options(const SlurmOptions& o) {
 
 bool requeue_stopped_point(const Workspace& ws, const std::string& id, int max_requeues,
                            std::ostream& out) {
-  const char* array_job = std::getenv("SLURM_ARRAY_JOB_ID");
-  const char* task = std::getenv("SLURM_ARRAY_TASK_ID");
-  const char* job = std::getenv("SLURM_JOB_ID");
-  const std::string slurm_id = array_job && task ? std::string(array_job) + "_" + task
-                               : job             ? std::string(job)
-                                                 : "";
+  const std::string slurm_id = current_slurm_job_id();
   if (slurm_id.empty()) return false;
   const fs::path dir = ws.job_dir(id);
   Json doc = read_document(dir);

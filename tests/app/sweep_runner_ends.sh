@@ -13,6 +13,18 @@ invasim=$1 specs=$2 work=$3
 source "$(dirname "$0")/../lua/wait_for.sh"
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 
+# signal_once_running WS SIGNAL: a new workspace WS of tiny.lua run by `sweep run` (output in
+# WS.log), sent SIGNAL once a point has written a checkpoint; returns when the runner ended.
+signal_once_running() {
+  "$invasim" sweep init "$specs/tiny.lua" --workspace "$1" > /dev/null
+  "$invasim" sweep run "$1" --jobs 2 --threads 1 > "$1.log" 2>&1 &
+  local runner=$!
+  wait_for $runner "a checkpoint of a point" \
+    bash -c "ls $1/workspace/*/checkpoint/state.ckpt > /dev/null 2>&1"
+  kill -"$2" $runner
+  wait $runner 2> /dev/null || true
+}
+
 # 1. One point held elsewhere.
 "$invasim" sweep init "$specs/tiny.lua" --workspace ws > /dev/null
 held=$(ls ws/workspace | head -1)
@@ -34,13 +46,7 @@ wait $holder 2> /dev/null || true
 grep -q "4 of 4 points done$" run2.log || fail "the second run did not finish" run2.log
 
 # 2. The runner SIGKILLed while points run.
-"$invasim" sweep init "$specs/tiny.lua" --workspace killed > /dev/null
-"$invasim" sweep run killed --jobs 2 --threads 1 > killed.log 2>&1 &
-runner=$!
-wait_for $runner "a checkpoint of a point" \
-  bash -c 'ls killed/workspace/*/checkpoint/state.ckpt > /dev/null 2>&1'
-kill -KILL $runner
-wait $runner 2> /dev/null || true
+signal_once_running killed KILL
 sleep 600 &
 guard=$!
 trap 'kill $guard 2> /dev/null || true' EXIT
@@ -60,13 +66,7 @@ grep -q "interrupted: 0" killed_status.log && grep -q "running: 0" killed_status
   fail "status after the killed runner" killed_status.log
 
 # 3. A stop by SIGINT names the sweep's command.
-"$invasim" sweep init "$specs/tiny.lua" --workspace stopped > /dev/null
-"$invasim" sweep run stopped --jobs 2 --threads 1 > stopped.log 2>&1 &
-runner=$!
-wait_for $runner "a checkpoint of a point" \
-  bash -c 'ls stopped/workspace/*/checkpoint/state.ckpt > /dev/null 2>&1'
-kill -INT $runner
-wait $runner 2> /dev/null || true
+signal_once_running stopped INT
 log=$(grep -l "stopped by SIGINT" stopped/workspace/*/run.log | head -1)
 [ -n "$log" ] || fail "no point logged its stop" stopped.log
 grep -q "^invasim: stopped by SIGINT at step .*continue with: invasim sweep run $PWD/stopped$" "$log" ||
