@@ -245,7 +245,8 @@ def cost(sweep, progresses, plan_entries):
         if p["class"] != DONE:
             f = p["t"] / p["t_target"] if verdict.finite(p.get("t"), p.get("t_target")) and p["t_target"] > 0 else 0.0
             left += (1 - min(1.0, f)) * per_point
-    if not progresses:  # no workspace yet: the plan's projection, or unknown without one
+    if not progresses:  # no workspace yet: every point pending; the plan's projection
+        counts[PENDING] = points
         left = points * per_point if plan else None
     return {"sweep": sweep, "points": points, "counts": counts, "used_core_hours": used / 3600,
             "projected_core_hours": (used + left) / 3600 if verdict.finite(left) else None,

@@ -497,7 +497,8 @@ with open(os.path.join(work, "records", "fig4b.json"), "w") as f:
                "command": "c", "criteria": v.CRITERIA}, f)
 plan_paper = [{"spec": "protocols/sweeps/paper_scale/%s.lua" % n, "points": k,
                "core_seconds": k * 2400.0} for n, k in (("fig4b_starts", 4), ("fig5_cohesive", 3),
-                                                        ("fig5_all_curves", 144))]
+                                                        ("fig5_all_curves", 144),
+                                                        ("fig4a_passive", 8))]
 with open(os.path.join(work, "plan_paper.json"), "w") as f:
     json.dump(plan_paper, f)
 out = subprocess.run([sys.executable, os.path.join(scripts, "validation.py"), "paper", root,
@@ -508,10 +509,14 @@ cost = json.load(open(os.path.join(work, "records", "paper", "paper_cost.json"))
 c4b = [c for c in cost["sweeps"] if c["sweep"] == "fig4b_starts"][0]
 # 3 done runs at 3600 s (the first with 2 threads at its last attempt), one at half way with
 # 1800 s recorded: used 4 h + 0.5 h, projected + the half left of the done runs' mean core
-# time (4/3 h); the whole paper: the plan's 151 x 2400 s.
+# time (4/3 h); the whole paper: the plan's 159 x 2400 s.
 check(abs(c4b["used_core_hours"] - 4.5) < 1e-9 and abs(c4b["projected_core_hours"] - 4.5 - 2 / 3) < 1e-9
       and c4b["counts"] == {"done": 3, "running": 1, "pending": 0, "failed": 0}, c4b)
-check(abs(cost["whole_paper"]["core_hours"] - 151 * 2400 / 3600) < 1e-9, cost["whole_paper"])
+check(abs(cost["whole_paper"]["core_hours"] - 159 * 2400 / 3600) < 1e-9, cost["whole_paper"])
+# A sweep of the list with a plan but no workspace yet: all its points pending, the plan's cost.
+c4a = [c for c in cost["sweeps"] if c["sweep"] == "fig4a_passive"][0]
+check(c4a["counts"]["pending"] == 8 and abs(c4a["projected_core_hours"] - 8 * 2400 / 3600) < 1e-9,
+      c4a)
 c3 = [c for c in cost["sweeps"] if c["sweep"] == "fig3_passive_slices"][0]
 check(c3["points"] == 0 and c3["projected_core_hours"] is None, c3)  # no workspace, no plan
 page = os.path.join(work, "page.md")
@@ -524,7 +529,7 @@ check("| `fig4b_inset_starts` | n/a | n/a |" in part, part)
 check("| start = mixed, seed = 2 | running, t = 200 of 400 (50 %) |" in part
       and "| paper_fig5_cohesive: f0 = 0.004, seed = 1 | done |" in part, part)
 check("| `protocols/sweeps/paper_scale/fig4b_starts.lua` | 4 | 3 | 1 | 0 | 0 | 4.50 | 5.17 | 2.67 |"
-      in part and "**101 core-hours** in all" in part, part)
+      in part and "**106 core-hours** in all" in part, part)
 check("![fig4b](records/paper/fig4b_runs.png)" in part, part)
 check(document_paper.change(v.AGREES, {"verdict": v.DISAGREES}) == "yes: agrees -> disagrees")
 check(document_paper.change(v.AGREES, {"verdict": v.AGREES}) == "no")
