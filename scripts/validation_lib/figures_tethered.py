@@ -57,6 +57,9 @@ def fig7(jobs, out, name):
             runs.scale_like(p, extremes)
     fig, axes = figure(2)
     plateau, onsets = [], []
+    # The state points each row rests on: the plateau row on each K_ecm's top point, the onset
+    # row on each K_ecm's points up to its onset (all of them where it has none).
+    plateau_points, onset_points = [], []
     ks = sorted({p["K_ecm"] for p in pts})
     greens = [matplotlib.cm.Greens(0.45 + 0.5 * (1 - i / max(1, len(ks) - 1))) for i in range(len(ks))]
     for i, k in enumerate(ks):
@@ -69,6 +72,9 @@ def fig7(jobs, out, name):
         plateau.append((k, top["A_n"], top["A_n_error"]))
         axes[0].axhline(top["A_n"], color=colour, ls="--", lw=0.8)  # this K_ecm's A_n^max
         onsets.append((k, onset([p["x"] for p in c], [p["A_n"] for p in c], errs)))
+        plateau_points.append(top)
+        reached = [p for p in c if not verdict.finite(onsets[-1][1]) or p["x"] <= onsets[-1][1]]
+        onset_points += reached + [p for p in c if p not in reached][:1]
     log_axis(axes[0], [p["x"] for p in pts])
     axes[0].set_xlabel(T_PAPER)
     axes[0].set_ylabel(label("A_n", "") + "\n" + r"(normalised by $K_\mathrm{ecm}$ = 0)")
@@ -86,17 +92,24 @@ def fig7(jobs, out, name):
     base = onsets[0][1]
     ratios = [(k, x / base if verdict.finite(x, base) else math.nan) for k, x in onsets[1:]]
     each = [verdict.log_verdict(r, math.nan, 1.0, so["log_factor"]) for _, r in ratios]
+    jobs_by_id = {j.id: j for j in jobs}
+    point_name = lambda p: "K_ecm = %g, 2T_c/P = %.3g" % (p["K_ecm"], p["x"])  # noqa: E731
     rows = [verdict.row(name + "_plateau_falls", "A_n^max = " + ", ".join(
                 "%s (K_ecm = %g)" % (verdict.fmt(v, e_), k) for k, v, e_ in plateau),
                 verdict.trend_verdict(d, e) if len(plateau) > 1 else verdict.NO_DATA,
-                "A_n^max(K_ecm = 0) - A_n^max(largest K_ecm) = %s (> 2 errors)" % verdict.fmt(d, e)),
+                "A_n^max(K_ecm = 0) - A_n^max(largest K_ecm) = %s (> 2 errors); rests on each "
+                "K_ecm's top state point, each steady" % verdict.fmt(d, e),
+                unsteady=runs.unsteady_points(plateau_points, jobs_by_id, point_name)),
             verdict.row(name + "_onset", "onset at 2T_c/P = " + ", ".join(
                 "%s (K_ecm = %g)" % (verdict.fmt(x), k) for k, x in onsets),
                 verdict.all_of(each) if ratios else verdict.NO_DATA,
                 "the onset is where A_n first exceeds its lowest-temperature value by more than "
                 "2 combined errors (log-interpolated); onset(K_ecm)/onset(0) = %s, each within "
-                "a factor %g" % (", ".join("%s (K_ecm = %g)" % (verdict.fmt(r), k)
-                                          for k, r in ratios) or "n/a", so["log_factor"]))]
+                "a factor %g; rests on each K_ecm's state points up to its onset (and the one "
+                "that crosses), each steady" % (", ".join("%s (K_ecm = %g)" % (verdict.fmt(r), k)
+                                                         for k, r in ratios) or "n/a",
+                                                so["log_factor"]),
+                unsteady=runs.unsteady_points(onset_points, jobs_by_id, point_name))]
     return {"images": images, "rows": rows,
             "numbers": {"plateau": plateau, "onset": onsets, "normalisation": extremes,
                         "points": pts}, "steadiness": runs.steadiness_summary(jobs)}

@@ -331,6 +331,19 @@ rec7 = figures_tethered.fig7b(jobs7, work, None)
 r7 = [r for r in rec7["rows"] if r["id"] == "fig7b_onset"][0]
 check(r7["verdict"] == v.AGREES, r7)
 check(os.path.exists(os.path.join(work, "fig7b_An.png")))
+# ... and rest on their state points: a drifting K_ecm = 0.1 top point makes the plateau row
+# "not steady"; the onset row (onsets near 0.011: it rests on the points up to the one that
+# crosses, 0.01 and 0.1) keeps its verdict.
+shutil.rmtree(work, ignore_errors=True)
+jobs7 = [tissue_job(os.path.join(work, "k%dp%d" % (i, n)), 0.001 * (n + 1), x, a,
+                    k == 0.1 and n == 2, {"K_ecm": k})
+         for i, (k, ats) in enumerate([(0.0, (100.0, 150.0, 900.0)), (0.1, (100.0, 150.0, 400.0))])
+         for n, (x, a) in enumerate(zip((0.01, 0.1, 1.0), ats))]
+rec7 = figures_tethered.fig7b(jobs7, work, None)
+r7 = {r["id"]: r for r in rec7["rows"]}
+check(r7["fig7b_plateau_falls"]["verdict"] == v.NOT_STEADY
+      and "not steady: K_ecm = 0.1, 2T_c/P = 1" in r7["fig7b_plateau_falls"]["why"], r7)
+check(r7["fig7b_onset"]["verdict"] == v.AGREES, r7["fig7b_onset"])
 
 # Fig. 5: a curve with a drifting state point gets "not steady" for its b and is left out of
 # the collapse and the fit of a; the other curve keeps a number's verdict.
