@@ -142,7 +142,7 @@ def _fig8_scan(jobs, out, box, image, variant):
                              key=lambda p: p["phi_a_measured"])
                  for lam in sorted({p["lambda"] for p in pts})}
     images = [_fig8_plot(by_lambda, box, out, image)]
-    rows = _fig8_rows(pts, by_lambda, box, variant)
+    rows = _fig8_rows(pts, by_lambda, box, variant, {j.id: j for j in jobs})
     return images, rows, {"points": pts, "normalisation": extremes}
 
 
@@ -176,12 +176,16 @@ def _fig8_plot(by_lambda, box, out, image):
     return save(fig, out, image)
 
 
-def _fig8_rows(pts, by_lambda, box, variant):
-    """The verdict rows of one box's scan (variant: the box's name when both are shown)."""
+def _fig8_rows(pts, by_lambda, box, variant, jobs_by_id):
+    """The verdict rows of one box's scan (variant: the box's name when both are shown). Each
+    row rests on the state points it names (`on`): not steady if one of them is not."""
     rows = []
 
-    def add(sid, ours, v, why):
-        r = verdict.row(sid, ours, v, why)
+    def add(sid, ours, v, why, on=()):
+        unsteady = runs.unsteady_points(list(on), jobs_by_id, lambda p: "lambda = %g, phi_a = %g"
+                                        % (p["lambda"], p["phi_a_target"]))
+        r = verdict.row(sid, ours, v, why + ("; rests on the state points it names, each steady"
+                                             if on else ""), unsteady=unsteady)
         if variant:
             r["variant"] = variant
         rows.append(r)
@@ -208,7 +212,7 @@ def _fig8_rows(pts, by_lambda, box, variant):
             "A_n <= 0.1 + 2 errors; " + drift + ("" if box == "pressure" else
             "; A_n is normalised with the scan's smallest A_t^max (Appendix C), i.e. the "
             "densest box's, so where A_t^max shrinks with the box faster than A_t, A_n rises "
-            "though A_t falls (third panel)"))
+            "though A_t falls (third panel)"), on=[m])
     else:
         add("fig8_zero_above", "no point with a target phi_a >= 0.85",
             verdict.NO_DATA, "needs a target phi_a >= 0.85")
@@ -230,7 +234,8 @@ def _fig8_rows(pts, by_lambda, box, variant):
                 for lam, q0, q in pairs) or "no shared phi_a", verdict.fmt(mean, err)),
             verdict.trend_verdict(mean, err) if ds else verdict.NO_DATA,
             "pointwise at each target phi_a shared by lambda = %g and a larger lambda, then "
-            "the mean of the differences > 2 errors" % lams[0])
+            "the mean of the differences > 2 errors" % lams[0],
+            on=list({id(q): q for _, q0, q in pairs for q in (q0, q)}.values()))
         tops = [(lam, max(by_lambda[lam], key=lambda p: p["dphi"])) for lam in lams]
         steps = [(b[1]["dphi"] - a[1]["dphi"], math.hypot(*(e if verdict.finite(e) else 0.0 for e in (
             a[1]["dphi_error"], b[1]["dphi_error"])))) for a, b in zip(tops, tops[1:])]
@@ -238,7 +243,7 @@ def _fig8_rows(pts, by_lambda, box, variant):
             "%s (lambda = %g)" % (verdict.fmt(t["dphi"], t["dphi_error"]), lam) for lam, t in tops),
             verdict.all_of([verdict.trend_verdict(d, e) for d, e in steps]),
             "each step in lambda raises max Delta phi_a by > 2 errors (trend only: every step "
-            "positive)")
+            "positive)", on=[t for _, t in tops])
     for sid in ("fig8_dphi_0", "fig8_dphi_0.3", "fig8_dphi_1"):
         s = verdict.paper()[sid]
         c = by_lambda.get(s["lambda"])
@@ -249,7 +254,7 @@ def _fig8_rows(pts, by_lambda, box, variant):
         add(sid, "max Delta phi_a = %s (at phi_a = %.3g)" % (
             verdict.fmt(m["dphi"], m["dphi_error"]), m["phi_a_measured"]),
             verdict.value_verdict(m["dphi"], m["dphi_error"], s["value"], s["tolerance"]),
-            "|ours - %g| <= %g + 2 errors" % (s["value"], s["tolerance"]))
+            "|ours - %g| <= %g + 2 errors" % (s["value"], s["tolerance"]), on=[m])
     return rows
 
 
