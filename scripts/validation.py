@@ -43,6 +43,8 @@ SYSTEM_PYTHON = "/usr/bin/python3"
 NO_REEXEC = "INVASIM_ANALYSIS_NO_REEXEC"
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
+from validation_lib.repo_paths import repo_path  # noqa: E402  (needs HERE on the path)
 
 # figure -> the sweep files (workspace names) it reads, in argument order
 FIGURES = {
@@ -75,22 +77,6 @@ def ensure_modules():
 
 def default_invasim():
     return os.path.join(REPO, "build", "invasim")
-
-
-def repo_spec_path(spec):
-    """The spec as a path in this repository: a workspace made from another checkout (a
-    campaign's own clone) cites the same file under protocols/sweeps/, so that the page never
-    names a path outside the repository."""
-    rel = os.path.relpath(spec, REPO)
-    if not rel.startswith(".."):
-        return rel
-    parts = os.path.normpath(spec).split(os.sep)
-    if "protocols" in parts:
-        k = len(parts) - 1 - parts[::-1].index("protocols")
-        inside = os.path.join(*parts[k:])
-        if os.path.exists(os.path.join(REPO, inside)):
-            return inside
-    return rel
 
 
 def command_text(argv):
@@ -157,7 +143,7 @@ def figure(name, workspaces, out, invasim, argv):
     specs = []
     for ws in [w for w in workspaces if w != NOT_GIVEN]:
         with open(os.path.join(ws, "invasim_sweep.json")) as f:
-            specs.append(repo_spec_path(json.load(f)["spec"]))
+            specs.append(repo_path(json.load(f)["spec"]))
     jobs = [j for s in sets if s for j in s]
     steps = sorted(int(j.sp.get("steps", j.scalar("steps"))) for j in jobs)
     rec.update({"figure": name, "criteria": verdict.CRITERIA, "command": command_text(argv),
@@ -181,9 +167,9 @@ def paper(root, out, invasim, plan_path, argv):
         with open(plan_path) as fh:
             entries = json.load(fh)
     os.makedirs(out, exist_ok=True)
-    shown = ["paper", shown_path(root, "ROOT"), "-o", shown_path(out, "DIR")]
+    shown = ["paper", repo_path(root, "ROOT"), "-o", repo_path(out, "DIR")]
     if plan_path:
-        shown += ["--plan", shown_path(plan_path, "plan_paper_scale.json")]
+        shown += ["--plan", repo_path(plan_path, "plan_paper_scale.json")]
     for name in paper_scale.SWEEPS:
         rec = paper_scale.record(name, root, out, invasim)
         rec["command"] = command_text(shown)
@@ -195,13 +181,6 @@ def paper(root, out, invasim, plan_path, argv):
     print("paper: %.2f core-hours used, %.2f projected for this machine's list; the whole "
           "paper %.0f" % (cost["used_core_hours"], cost["projected_core_hours"],
                           cost["whole_paper"]["core_hours"]))
-
-
-def shown_path(path, placeholder):
-    """A path as the page shows it: relative to the repository when inside it, else the
-    placeholder (the page never names a path outside the repository)."""
-    rel = os.path.relpath(os.path.abspath(path), REPO)
-    return placeholder if rel.startswith("..") else rel
 
 
 def write_json(path, obj):
@@ -247,7 +226,6 @@ def main(argv):
     d.add_argument("--ci-size", action="store_true")
     args = ap.parse_args(argv)
 
-    sys.path.insert(0, HERE)
     from validation_lib import runs
     try:
         if args.verb == "figure":

@@ -25,6 +25,7 @@ import shutil
 import subprocess
 
 from .runs import InputError
+from .repo_paths import repo_path
 
 
 def declared_steps(invasim, protocol):
@@ -129,7 +130,7 @@ def time_spec(invasim, spec, scratch, delta):
     how = "CPU time of %d and %d steps" % (s_a, s_a + delta)
     shutil.rmtree(os.path.join(scratch, name), ignore_errors=True)
     counts = [point_steps(sp, steps, spec) for _, sp in sps]
-    return {"spec": spec, "points": len(sps), "steps": counts, "rate": rate, "fixed": fixed,
+    return {"spec": repo_path(spec), "points": len(sps), "steps": counts, "rate": rate, "fixed": fixed,
             "prep": prep, "source": "timing of the first point (%s)" % how,
             "costs": [fixed + n / rate for n in counts]}
 
@@ -148,7 +149,7 @@ def from_workspace(invasim, ws):
     per_step = sum(w for w, _ in done) / max(1, sum(n for _, n in done))
     costs = [w if w is not None else n * per_step for w, n in zip(walls, counts)]
     prep = _doc(os.path.join(ws, "prep")).get("wall_seconds", 0.0) if meta.get("prep") else 0.0
-    return {"spec": meta.get("spec", ws), "workspace": ws, "points": len(sps), "steps": counts,
+    return {"spec": repo_path(meta.get("spec", ws)), "workspace": os.path.basename(os.path.normpath(ws)), "points": len(sps), "steps": counts,
             "rate": sum(n for _, n in done) / max(1e-9, sum(w for w, _ in done)), "fixed": None,
             "prep": prep, "source": "wall_seconds of %d done points" % len(done), "costs": costs}
 
@@ -160,18 +161,6 @@ def finish(entry, jobs):
     return entry
 
 
-REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-
-
-def shown_spec(spec):
-    """A sweep file as the page shows it: relative to the repository when it lies inside it
-    (whatever the directory the plan was made in), else as recorded."""
-    if not os.path.isabs(spec):
-        return spec
-    rel = os.path.relpath(spec, REPO)
-    return spec if rel.startswith(os.pardir) else rel
-
-
 def table(entries):
     """The plan as Markdown."""
     lines = ["| sweep file | points | steps per point | rate [steps/s] | fixed [s/point] | "
@@ -179,7 +168,7 @@ def table(entries):
     for e in entries:
         lo, hi = min(e["steps"]), max(e["steps"])
         lines.append("| `%s` | %d | %s | %.0f | %s | %.1f | %.2f | %.2f (%d) | %s |" % (
-            shown_spec(e["spec"]), e["points"],
+            repo_path(e["spec"]), e["points"],
             "%d" % lo if lo == hi else "%d-%d" % (lo, hi), e["rate"],
             "%.1f" % e["fixed"] if e["fixed"] is not None else "-", e["prep"],
             e["core_seconds"] / 3600, e["wall_seconds"] / 3600, e["jobs"], e["source"]))

@@ -196,9 +196,12 @@ check(plan.wall_time(5.0, [10, 1, 1, 1], 2) == 15.0)
 check(plan.wall_time(5.0, [], 2) == 5.0)
 # A sweep file inside the repository is shown relative to it, whatever the plan's directory.
 os.chdir(work)
-check(plan.shown_spec(os.path.join(plan.REPO, "protocols", "sweeps", "x.lua"))
+from validation_lib import repo_paths  # noqa: E402
+check(repo_paths.repo_path(os.path.join(repo_paths.REPO, "protocols", "sweeps", "x.lua"))
       == os.path.join("protocols", "sweeps", "x.lua"))
-check(plan.shown_spec("/elsewhere/x.lua") == "/elsewhere/x.lua")
+check(repo_paths.repo_path("/elsewhere/x.lua") == "/elsewhere/x.lua")
+check(repo_paths.repo_path("/elsewhere/x.lua", "DIR") == "DIR")
+check(repo_paths.repo_path("protocols/sweeps/recorded.lua") == "protocols/sweeps/recorded.lua")
 check(plan.point_steps({"quench_steps": 10, "steps": 100}, {"quench_steps": 5, "steps": 1,
                                                              "equilibrate_steps": 7}, "x") == 117)
 try:
@@ -392,11 +395,12 @@ import importlib.util  # noqa: E402
 cli_spec = importlib.util.spec_from_file_location("validation_cli", os.path.join(scripts, "validation.py"))
 cli = importlib.util.module_from_spec(cli_spec)
 cli_spec.loader.exec_module(cli)
-check(cli.repo_spec_path("/elsewhere/clone/protocols/sweeps/fig3_passive_slices.lua")
+check(cli.repo_path("/elsewhere/clone/protocols/sweeps/fig3_passive_slices.lua")
       == "protocols/sweeps/fig3_passive_slices.lua")
-check(cli.repo_spec_path(os.path.join(cli.REPO, "protocols/sweeps/fig4a_passive.lua"))
+check(cli.repo_path(os.path.join(cli.REPO, "protocols/sweeps/fig4a_passive.lua"))
       == "protocols/sweeps/fig4a_passive.lua")
-check(cli.repo_spec_path("/elsewhere/clone/protocols/sweeps/no_such_sweep.lua").startswith(".."))
+check(cli.repo_path("/elsewhere/clone/protocols/sweeps/no_such_sweep.lua")
+      == "/elsewhere/clone/protocols/sweeps/no_such_sweep.lua")
 
 # The paper-scale records (validation_lib/paper_scale.py, `validation.py paper`) on synthetic
 # workspaces ROOT/paper_<sweep>: 80 rows per finished run (t = 0.05 x 100 steps per row, to

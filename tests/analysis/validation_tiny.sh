@@ -132,6 +132,11 @@ for fig in ["fig3", "fig4a", "fig4b", "fig5", "fig6", "fig7a", "fig7b", "fig8", 
         problems.append(fig + ": its command is not under it")
     if "scripts/validation.py figure " + fig not in rec["command"]:
         problems.append(fig + ": command " + rec["command"])
+# The plan of the done workspaces (made outside the repository) cites each sweep file inside it.
+for e in json.load(open(os.path.join(work, "plan.json"))):
+    if not e["spec"].startswith("protocols/sweeps/") or "/" in e["workspace"]:
+        problems.append("plan entry %s (%s) names a path outside the repository"
+                        % (e["spec"], e["workspace"]))
 for text in ["CI size, not the campaign", "## The plan", "### As run", "| **total** |", "## Verdicts",
              "## Where the paper contradicts itself", "L_f"]:
     if text not in doc:
