@@ -190,35 +190,75 @@ double TimeCorrelator::libm_fs_term(const Vec3& r, const double* r0, double fast
 
 void TimeCorrelator::add_sample(const Vec3* v, const Vec3* n, const Vec3* r) {
   const std::uint64_t s = state_.samples, E = std::uint64_t(params_.origin_every);
-  const std::uint64_t L = std::uint64_t(params_.lags), S = slots();
-  if (s % E == 0) store_origin(std::size_t((s / E) % S), v, n, r);
-  // Origins j (taken at sample j E) still within the window: s - j E <= L - 1.
-  const std::uint64_t j_hi = s / E;
-  const std::uint64_t j_lo = s + 1 >= L ? (s + 1 - L + E - 1) / E : 0;
-  const std::size_t n_orig = std::size_t(j_hi - j_lo + 1);
-  const std::size_t N = group_.size(), blocks = (N + kSumBlock - 1) / kSumBlock;
-  // Every (origin, block of sites) pair is one task with its own partial sum; the partials
-  // are then added in a fixed order, so the result is independent of the thread count.
-  std::vector<Partial> partial(n_orig * blocks);
-  const std::int64_t tasks = std::int64_t(partial.size());
-  // Small work is not worth waking the thread team (core/parallel.hpp).
-#pragma omp parallel for schedule(static) if (parallel_light(n_orig * N))
-  for (std::int64_t task = 0; task < tasks; ++task) {
-    const std::size_t o = std::size_t(task) / blocks, b = std::size_t(task) % blocks;
-    const std::size_t slot = std::size_t((j_lo + o) % S);
-    partial[task] = block_terms(slot, b * kSumBlock, std::min(N, (b + 1) * kSumBlock), v, n, r);
+  const std::size_t N = group_.size();
+  // The kept samples use origins up to (s - 1) / E; origin s / E replaces the oldest slot.
+  if (s % E == 0) {
+    flush();
+    store_origin(std::size_t((s / E) % slots()), v, n, r);
   }
-  for (std::size_t o = 0; o < n_orig; ++o) {
-    Partial total;
-    for (std::size_t b = 0; b < blocks; ++b) total += partial[o * blocks + b];
-    const std::size_t lag = std::size_t(s - (j_lo + o) * E);
-    for (int t = 0; t < kTerms; ++t) state_.sums[lag * kTerms + t] += total.t[t];
-    ++state_.origins[lag];
+  if (kept_v_.empty()) {  // allocated at the first sample: E samples of each channel
+    const std::size_t cap = std::size_t(E) * N;
+    if (params_.velocity) kept_v_.resize(cap);
+    if (params_.orientation) kept_n_.resize(cap);
+    if (params_.position) kept_r_.resize(cap);
   }
+  const std::size_t at = kept_ * N;
+  if (params_.velocity) std::copy(v, v + N, kept_v_.begin() + std::ptrdiff_t(at));
+  if (params_.orientation) std::copy(n, n + N, kept_n_.begin() + std::ptrdiff_t(at));
+  if (params_.position) std::copy(r, r + N, kept_r_.begin() + std::ptrdiff_t(at));
+  ++kept_;
   ++state_.samples;
 }
 
+void TimeCorrelator::flush() const {
+  if (kept_ == 0) return;
+  const std::uint64_t E = std::uint64_t(params_.origin_every);
+  const std::uint64_t L = std::uint64_t(params_.lags), S = slots();
+  const std::uint64_t first = state_.samples - kept_;
+  // Origins j (taken at sample j E) within the window of sample s: s - L + 1 <= j E <= s.
+  auto j_lo = [&](std::uint64_t s) { return s + 1 >= L ? (s + 1 - L + E - 1) / E : 0; };
+  auto j_hi = [&](std::uint64_t s) { return s / E; };
+  const std::uint64_t o_lo = j_lo(first), o_hi = j_hi(state_.samples - 1);
+  const std::size_t n_orig = std::size_t(o_hi - o_lo + 1), K = kept_;
+  const std::size_t N = group_.size(), blocks = (N + kSumBlock - 1) / kSumBlock;
+  // Every (origin, block of sites) pair is one task, holding the origin's block in cache over
+  // the kept samples, with one partial sum per sample; the partials are then added in a fixed
+  // order, so the result is independent of the thread count.
+  std::vector<Partial> partial(K * n_orig * blocks);
+  const std::int64_t tasks = std::int64_t(n_orig * blocks);
+  auto at = [&](const std::vector<Vec3>& a, std::size_t k) {
+    return a.empty() ? nullptr : a.data() + k * N;
+  };
+  // Small work is not worth waking the thread team (core/parallel.hpp).
+#pragma omp parallel for schedule(static) if (parallel_light(K * n_orig * N))
+  for (std::int64_t task = 0; task < tasks; ++task) {
+    const std::size_t o = std::size_t(task) / blocks, b = std::size_t(task) % blocks;
+    const std::uint64_t j = o_lo + o;
+    const std::size_t slot = std::size_t(j % S);
+    const std::size_t lo = b * kSumBlock, hi = std::min(N, (b + 1) * kSumBlock);
+    for (std::size_t k = 0; k < K; ++k) {
+      const std::uint64_t s = first + k;
+      if (j < j_lo(s) || j > j_hi(s)) continue;
+      partial[(k * n_orig + o) * blocks + b] =
+          block_terms(slot, lo, hi, at(kept_v_, k), at(kept_n_, k), at(kept_r_, k));
+    }
+  }
+  for (std::size_t k = 0; k < K; ++k) {
+    const std::uint64_t s = first + k;
+    for (std::uint64_t j = j_lo(s); j <= j_hi(s); ++j) {
+      const std::size_t o = std::size_t(j - o_lo);
+      Partial total;
+      for (std::size_t b = 0; b < blocks; ++b) total += partial[(k * n_orig + o) * blocks + b];
+      const std::size_t lag = std::size_t(s - j * E);
+      for (int t = 0; t < kTerms; ++t) state_.sums[lag * kTerms + t] += total.t[t];
+      ++state_.origins[lag];
+    }
+  }
+  kept_ = 0;
+}
+
 CorrelationFunctions TimeCorrelator::result() const {
+  flush();
   CorrelationFunctions f;
   const double N = double(group_.size());
   const std::size_t reached =
@@ -301,6 +341,7 @@ void TimeCorrelator::restore(CorrelatorState state) {
   check("origin counts", state.origins.size(), std::size_t(params_.lags));
   check("sums", state.sums.size(), std::size_t(params_.lags) * kTerms);
   state_ = std::move(state);
+  kept_ = 0;
 }
 
 std::optional<double> decay_time(const std::vector<double>& t, const std::vector<double>& y,

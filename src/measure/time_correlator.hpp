@@ -12,6 +12,12 @@
 // run. Pure measurement: reads the System, never changes it. The sums over sites are done
 // in fixed-size blocks and reduced in a fixed order, so results do not depend on the number
 // of OpenMP threads.
+//
+// The samples between two origins are kept and correlated with the stored origins together,
+// when the next origin is taken or the state is read: each origin snapshot is then read from
+// memory once per origin_every samples instead of once per sample (the ring of a paper-size
+// group does not fit in cache). The sums receive the same terms in the same order as when
+// each sample is correlated at once, so the results are the same bits.
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -99,7 +105,11 @@ class TimeCorrelator {
   std::optional<double> tau_d_standard() const;
   std::optional<double> tau_r() const;
 
-  const CorrelatorState& state() const { return state_; }
+  // The accumulated state, with the kept samples correlated first (see above).
+  const CorrelatorState& state() const {
+    flush();
+    return state_;
+  }
   // Replaces the accumulated state (from a checkpoint); throws InputError if its sizes do not
   // match this correlator's group and parameters.
   void restore(CorrelatorState state);
@@ -108,6 +118,9 @@ class TimeCorrelator {
   struct Partial;
   struct Scratch;
   void store_origin(std::size_t slot, const Vec3* v, const Vec3* n, const Vec3* r);
+  // Correlates the kept samples with the stored origins and adds them to the sums in sample
+  // order; logically const (the sums are what they would have been without the wait).
+  void flush() const;
   Partial block_terms(std::size_t slot, std::size_t lo, std::size_t hi, const Vec3* v,
                       const Vec3* n, const Vec3* r) const;
   // F_s's term of one site (position r, origin r0) from libm if its argument is beyond
@@ -116,8 +129,12 @@ class TimeCorrelator {
   std::size_t slots() const;
   std::vector<int> group_;
   TimeCorrelatorParams params_;
-  CorrelatorState state_;
+  mutable CorrelatorState state_;
   std::vector<Vec3> v_now_, n_now_, r_now_;  // gather buffers for sample()
+  // Samples taken but not yet correlated (at most origin_every), sample-major: value
+  // (k * N + site) of the k-th kept sample; the first is sample state_.samples - kept_.
+  mutable std::size_t kept_ = 0;
+  std::vector<Vec3> kept_v_, kept_n_, kept_r_;
 };
 
 // First time at which y falls to `level` or below, linearly interpolated between the two
