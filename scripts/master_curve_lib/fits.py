@@ -63,7 +63,10 @@ def fit_sigmoid(x, y, sigma, name):
     dof = len(x) - 2
     scale = max(1.0, math.sqrt(chi2 / dof)) if dof > 0 else 1.0
     err = err * scale
-    a = 10.0 ** p[0]
+    # A flat curve (b ~ 0) puts its midpoint anywhere: log10 a may be beyond a double's range,
+    # and a is then inf or 0 (numpy's values, not_a_fit names the curve) without a warning.
+    with np.errstate(over="ignore"):
+        a = np.float64(10.0) ** np.float64(p[0])
     return {"a": a, "a_error": a * math.log(10) * err[0], "log10_a": p[0],
             "log10_a_error": err[0], "b": p[1], "b_error": err[1], "chi2": chi2,
             "dof": dof, "error_scale": scale, "fit_note": note}
