@@ -106,9 +106,13 @@ void VerletList::setup_grid(const System& sys) {
       fail_input("box length along ", "xyz"[a], " = ", box.length(a),
                  " is shorter than twice the largest pair cutoff + skin (", reach_max,
                  "); enlarge the box or reduce the skin");
-  // Cells half the smallest reach wide: the stencils then follow the spheres of reach closely;
-  // at most ~4 cells per site (empty cells cost little: a strip is one contiguous run).
-  grid_.setup(box, 0.5 * reach_min, reach, kClasses,
+  // Cells one smallest reach wide: a bin's candidate runs are found once for the several
+  // sites it holds, and the runs are long enough for the vectorised test. Half as wide, the
+  // stencils follow the spheres of reach closer (half the candidates) but a bin holds one
+  // site or none and finding its runs cost more than the candidates saved: 1-thread rates
+  // 3.8e6 -> 4.8e6 site-steps/s for hot spheres (N = 7000, kT = 0.05, a build every 3
+  // steps), 1.13e7 -> 1.22e7 cold (N = 1500), the full system about 8 % (docs/performance.md).
+  grid_.setup(box, reach_min, reach, kClasses,
               int(std::min<std::size_t>(4 * n + 64, std::size_t(1) << 24)));
   // (The grid, the classes' reach and the site count stay as they are until the next forced
   // build: the diameters and kinds change only with the sites.)
@@ -182,7 +186,6 @@ void VerletList::build_team(const System& sys) {
       std::vector<unsigned char> flags;
       const double hx = image.half(0), hy = image.half(1), hz = image.half(2);
       const double lx = image.length(0), ly = image.length(1), lz = image.length(2);
-      const auto wrap = MinimumImage::wrap;
       const double* __restrict px = cell_x_.data();
       const double* __restrict py = cell_y_.data();
       const double* __restrict pz = cell_z_.data();
@@ -215,10 +218,11 @@ void VerletList::build_team(const System& sys) {
             const double half_factor = 0.5 * rule_.factor[int(ca)][run[2]];
 #pragma omp simd
             for (int p = p0; p < p1; ++p) {
-              const double dx = wrap(xi - px[p], hx, lx), dy = wrap(yi - py[p], hy, ly),
-                           dz = wrap(zi - pz[p], hz, lz);
+              const double dx = MinimumImage::wrap(xi - px[p], hx, lx),
+                           dy = MinimumImage::wrap(yi - py[p], hy, ly),
+                           dz = MinimumImage::wrap(zi - pz[p], hz, lz);
               const double rc = half_factor * (di + pd[p]) + skin;
-              near[p] = (dx * dx + dy * dy + dz * dz < rc * rc) & (bi < 0 || pb[p] != bi);
+              near[p] = (dx * dx + dy * dy + dz * dz < rc * rc) & ((bi < 0) | (pb[p] != bi));
             }
             for (int p = p0; p < p1; ++p) {
               out[std::min(m, last)] = cell_sites_[p];

@@ -385,10 +385,12 @@ TEST_CASE(
     "Verlet list: per-class-pair stencils scan about the reach's volume, rows exact, in mixed "
     "systems") {
   // Cancer cells (cohesive: list radius 1.2 s + skin) next to adipocyte vertices (diameter 2):
-  // the largest reach is the vertex-vertex one (2.3), the cells' own is 1.62. Cells of half
-  // the smallest reach and stencils per class pair scan ~5.7 candidates per listed pair here,
-  // and testing each pair once (from the site first in the binned order) halves that; cells as
-  // wide as the largest reach (the former grid), every pair tested from both sides, scan ~29.
+  // the largest reach is the vertex-vertex one (2.3), the cells' own is 1.62. Cells as wide as
+  // the smallest reach and stencils per class pair scan ~10 candidates per listed pair here,
+  // and testing each pair once (from the site first in the binned order) halves that (5.1;
+  // cells of half the smallest reach scanned 2.9 but cost more per site to find their runs,
+  // verlet_list.cpp); cells as wide as the largest reach, every pair tested from both sides,
+  // scan ~29.
   const CutoffRule rule = rule_of(1.2, 1.0, 1.0);
   SECTION("slab of 2 x 2 x 2 adipocytes and 1500 cells") {
     System sys = test::slab_system(2, 2, 1500, 5.2, 0.6, 11);
@@ -400,7 +402,7 @@ TEST_CASE(
     for (std::size_t i = 0; i < sys.n_sites(); ++i) entries += list.count(i);
     const double per_entry = double(list.candidates()) / entries;
     INFO("candidates per listed pair " << per_entry);
-    CHECK(per_entry < 4.0);
+    CHECK(per_entry < 6.0);
   }
   auto build_and_require_exact = [&](const System& sys) {
     VerletList list(0.3);
