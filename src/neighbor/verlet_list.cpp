@@ -179,11 +179,9 @@ void VerletList::build_team(const System& sys) {
     candidates = 0;
     {
       // Bin by bin: the candidate runs (of one class each) are found once per bin and its
-      // sites scanned while hot. A run's candidates are tested in a vectorisable loop into
-      // flags, then compacted without branches (the slot at the row's count is written and
-      // overwritten: it lies inside the row, and a row that overflows its stride is redone).
+      // sites scanned while hot; a run's candidates are tested and compacted in one
+      // branch-free pass.
       std::vector<std::array<int, 3>> runs;
-      std::vector<unsigned char> flags;
       const double hx = image.half(0), hy = image.half(1), hz = image.half(2);
       const double lx = image.length(0), ly = image.length(1), lz = image.length(2);
       const double* __restrict px = cell_x_.data();
@@ -213,20 +211,24 @@ void VerletList::build_team(const System& sys) {
             const int p0 = std::max(run[0], q + 1), p1 = run[1];  // partners after q only
             if (p0 >= p1) continue;
             candidates += std::uint64_t(p1 - p0);
-            if (flags.size() < std::size_t(p1 - p0)) flags.resize(std::size_t(p1 - p0));
-            unsigned char* __restrict near = flags.data() - p0;
             const double half_factor = 0.5 * rule_.factor[int(ca)][run[2]];
-#pragma omp simd
+            // One branch-free pass (runs are a few candidates long: a vector loop would run
+            // mostly in its scalar remainder): the minimum image as arithmetic on the
+            // comparisons (d - l or d + l exactly where the ternary gives them, d itself
+            // otherwise; a walled axis has l = 0 and an infinite half), and the compaction,
+            // which writes the slot at the row's count whether or not the pair is kept (it
+            // lies inside the row, and a row that overflows its stride is redone).
+            auto nearest_image = [](double d, double half, double len) {
+              return d - len * double(d > half) + len * double(d < -half);
+            };
             for (int p = p0; p < p1; ++p) {
-              const double dx = MinimumImage::wrap(xi - px[p], hx, lx),
-                           dy = MinimumImage::wrap(yi - py[p], hy, ly),
-                           dz = MinimumImage::wrap(zi - pz[p], hz, lz);
+              const double dx = nearest_image(xi - px[p], hx, lx),
+                           dy = nearest_image(yi - py[p], hy, ly),
+                           dz = nearest_image(zi - pz[p], hz, lz);
               const double rc = half_factor * (di + pd[p]) + skin;
-              near[p] = (dx * dx + dy * dy + dz * dz < rc * rc) & ((bi < 0) | (pb[p] != bi));
-            }
-            for (int p = p0; p < p1; ++p) {
+              const int keep = (dx * dx + dy * dy + dz * dz < rc * rc) & ((bi < 0) | (pb[p] != bi));
               out[std::min(m, last)] = cell_sites_[p];
-              m += near[p];
+              m += keep;
             }
           }
           upper_[i] = m;
