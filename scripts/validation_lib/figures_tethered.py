@@ -7,6 +7,7 @@ import math
 
 import matplotlib
 import numpy as np
+from matplotlib.lines import Line2D
 
 from . import runs, verdict
 from .figures_tissue import x_measured
@@ -56,6 +57,7 @@ def fig7(jobs, out, name):
         if p["K_ecm"] != 0.0:
             runs.scale_like(p, extremes)
     fig, axes = figure(2)
+    jobs_by_id = {j.id: j for j in jobs}
     plateau, onsets = [], []
     # The state points each row rests on: the plateau row on each K_ecm's top point, the onset
     # row on each K_ecm's points up to its onset (all of them where it has none).
@@ -68,6 +70,9 @@ def fig7(jobs, out, name):
         colour = "k" if k == 0 else greens[i]
         axes[0].errorbar([p["x"] for p in c], [p["A_n"] for p in c], yerr=errs, marker="o",
                          capsize=2, color=colour, label=state({"K_ecm": "%g" % k}))
+        unsteady = [p for p in c if not runs.point_steadiness([jobs_by_id[i] for i in p["jobs"]])[0]]
+        axes[0].plot([p["x"] for p in unsteady], [p["A_n"] for p in unsteady], "o", mfc="white",
+                     mec=colour, zorder=3)  # hollow: not steady
         top = max(c, key=lambda p: p["A_n"])
         plateau.append((k, top["A_n"], top["A_n_error"]))
         axes[0].axhline(top["A_n"], color=colour, ls="--", lw=0.8)  # this K_ecm's A_n^max
@@ -78,7 +83,10 @@ def fig7(jobs, out, name):
     log_axis(axes[0], [p["x"] for p in pts])
     axes[0].set_xlabel(T_PAPER)
     axes[0].set_ylabel(label("A_n", "") + "\n" + r"(normalised by $K_\mathrm{ecm}$ = 0)")
-    axes[0].legend(fontsize=7, title="dashed: each $A_n^\\mathrm{max}$", title_fontsize=7)
+    handles, _ = axes[0].get_legend_handles_labels()
+    handles.append(Line2D([], [], marker="o", ls="", mfc="white", mec="k", label="not steady"))
+    axes[0].legend(handles=handles, fontsize=7, title="dashed: each $A_n^\\mathrm{max}$",
+                   title_fontsize=7)
     axes[1].errorbar([k for k, _, _ in plateau], [v for _, v, _ in plateau],
                      yerr=[e if verdict.finite(e) else 0 for _, _, e in plateau], marker="s",
                      color="k")
@@ -92,7 +100,6 @@ def fig7(jobs, out, name):
     base = onsets[0][1]
     ratios = [(k, x / base if verdict.finite(x, base) else math.nan) for k, x in onsets[1:]]
     each = [verdict.log_verdict(r, math.nan, 1.0, so["log_factor"]) for _, r in ratios]
-    jobs_by_id = {j.id: j for j in jobs}
     point_name = lambda p: "K_ecm = %g, 2T_c/P = %.3g" % (p["K_ecm"], p["x"])  # noqa: E731
     rows = [verdict.row(name + "_plateau_falls", "A_n^max = " + ", ".join(
                 "%s (K_ecm = %g)" % (verdict.fmt(v, e_), k) for k, v, e_ in plateau),
