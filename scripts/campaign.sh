@@ -5,14 +5,16 @@
 # run`, and keeps its done points in KEEP/<name> every 5 minutes and at the end, so that a
 # fresh machine redoes only the points that had not finished. <name> is the sweep file's name,
 # prefixed "paper_" for protocols/sweeps/paper_scale/. A file OUT/stop stops the campaign
-# before its next sweep. Run it in the background, detached, with a core left free, e.g.
+# before its next sweep. Run it from a clone of its own at a fixed revision, with a copy of the
+# binary (a workspace records its protocol's path, and a resumed point refuses a protocol
+# edited since it started), in the background, detached, with a core left free, e.g.
 #   JOBS=1 nohup setsid scripts/campaign.sh out docs/data/runs protocols/sweeps/fig5_long.lua \
 #     protocols/sweeps/paper_scale/fig4b_starts.lua >> campaign.log 2>&1 < /dev/null &
 # Environment: JOBS (points at a time, default 1), THREADS (per point, default 1), INVASIM
 # (the binary, default build/invasim; give it a copy if you rebuild meanwhile).
 # Usage: scripts/campaign.sh OUT KEEP SPEC...
 set -u
-[ $# -ge 3 ] || { sed -n '2,14p' "$0" >&2; exit 2; }
+[ $# -ge 3 ] || { sed -n '2,15p' "$0" >&2; exit 2; }
 out=$1 keep=$2
 shift 2
 here=$(cd "$(dirname "$0")" && pwd)
@@ -31,7 +33,8 @@ for spec in "$@"; do
   saver=$!
   echo "=== $(date -u +%FT%TZ) $ws start"
   "$bin" sweep run "$ws" --jobs "${JOBS:-1}" --threads "${THREADS:-1}"
-  echo "=== $(date -u +%FT%TZ) $ws end (exit status $?)"
+  status=$?
+  echo "=== $(date -u +%FT%TZ) $ws end (exit status $status)"
   kill $saver 2> /dev/null
   "$python" "$here/sweep_results.py" save "$ws" "$keep/$name"
 done
