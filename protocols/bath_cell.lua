@@ -17,9 +17,7 @@ local N_a, N_c, L0 = parameters.size(p)
 local out = require("lib.run_dir").open(p)
 
 -- The main job's chain up to the production (invasion.lua), from the --from tissue.
-local tissue = stage.init{ N_a = N_a, N_c = N_c, L0 = L0, seed = p.seed, start = p.start,
-                           shape_param = p.A_0, eps_v = p.eps_v, eps_a = p.eps_a,
-                           alpha = p.alpha, beta = p.beta }
+local tissue = stage.init(parameters.init_options(p, N_a, N_c, L0))
 stage.compress(tissue, { to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.final_ftol,
                          cohesion = p.cohesive_compression, out = out, from = iv.from })
 stage.quench(tissue, motion.quench_options(p, { steps = p.quench_steps }))

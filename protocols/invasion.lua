@@ -24,9 +24,7 @@ local out = require("lib.run_dir").open(p)
 
 -- Initial configuration: dilute and de-mixed, cancer cells left of the adipocytes, in a
 -- cubic box of side L0 with walls in x and periodic y and z.
-local tissue = stage.init{ N_a = N_a, N_c = N_c, L0 = L0, seed = p.seed, start = p.start,
-                           shape_param = p.A_0, eps_v = p.eps_v, eps_a = p.eps_a,
-                           alpha = p.alpha, beta = p.beta }
+local tissue = stage.init(parameters.init_options(p, N_a, N_c, L0))
 
 -- Athermal isotropic compression to the packing fraction phi in steps of 3 %, each followed
 -- by FIRE, with the cells' cohesion off (or the compressed tissue of --from).

@@ -31,9 +31,7 @@ local clock = iv.clock()
 local out = require("lib.run_dir").open(p)
 
 -- Initial configuration and compression to phi, as in invasion.lua.
-local tissue = stage.init{ N_a = N_a, N_c = N_c, L0 = L0, seed = p.seed, start = p.start,
-                           shape_param = p.A_0, eps_v = p.eps_v, eps_a = p.eps_a,
-                           alpha = p.alpha, beta = p.beta }
+local tissue = stage.init(parameters.init_options(p, N_a, N_c, L0))
 stage.compress(tissue, { to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.final_ftol,
                          cohesion = p.cohesive_compression, out = out, from = iv.from })
 

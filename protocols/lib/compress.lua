@@ -5,10 +5,11 @@
 -- target is phi, not the paper's stated L_f = 34, which its own numbers contradict
 -- (docs/model.md).
 --
--- Cohesion is off during compression unless `cohesion = true` (athermal packing of repulsive
--- bodies, as in the DPM literature): the stage hands `contacts = {beta = 0}` to the engine's
--- compression and final FIRE, which apply it for their own duration only and give the
--- contacts their own beta back on every exit (return, stop signal, error).
+-- Cohesion (and the optional cell-adipocyte adhesion) is off during compression unless
+-- `cohesion = true` (athermal packing of repulsive bodies, as in the DPM literature): the
+-- stage hands `contacts = {beta = 0, beta_cv = 0}` to the engine's compression and final
+-- FIRE, which apply it for their own duration only and give the contacts their own values
+-- back on every exit (return, stop signal, error).
 --
 -- In a run directory (`out`), the compressed tissue is saved to out/checkpoint/compressed.ckpt
 -- for runs started with --from this run. A stop signal (SIGINT/SIGTERM) stops the compression
@@ -37,7 +38,7 @@ local log = require("lib.log")
 -- step and max_steps default to the engine's (invasim.compress.defaults, invasim.Fire.defaults).
 local spec = {
   to_phi = 0.72, step = iv.compress.defaults.step, ftol = 1e-3, final_ftol = 1e-6,
-  cohesion = false,           -- keep the cancer cells' cohesion (beta) on while compressing
+  cohesion = false,           -- keep the cancer cells' cohesion (beta) and adhesion (beta_cv) on while compressing
   max_steps = iv.Fire.defaults.max_steps,  -- FIRE iterations per minimisation
   dt_max = { "number", range = "(0, inf)" },  -- FIRE's largest time step (default: default_dt_max)
   progress = true,
@@ -101,12 +102,15 @@ local function compress(tissue, o)
   local sys = tissue.sys
   local save = o.out and resume.compressed_path(o.out) or nil
   o.checkpoint = o.out and resume.compressing_path(o.out) or nil
-  -- Cohesion off: the engine applies this for the compression and the final FIRE only.
-  local during = (not o.cohesion and tissue.contacts) and { contacts = { beta = 0.0 } } or nil
-  local beta = tissue.contacts and (during and 0.0 or tissue.contacts:params().beta) or 0.0
+  -- Cohesion and adhesion off: the engine applies this for the compression and the final FIRE
+  -- only.
+  local during = (not o.cohesion and tissue.contacts) and { contacts = { beta = 0.0, beta_cv = 0.0 } } or nil
+  local now = tissue.contacts and tissue.contacts:params() or { beta = 0.0, beta_cv = 0.0 }
+  local beta, beta_cv = during and 0.0 or now.beta, during and 0.0 or now.beta_cv
   local dt_max = o.dt_max or default_dt_max(tissue)
-  log.say("compress", "to phi = %g in steps of %g, FIRE to %g (final %g, dt_max %g), cohesion beta = %g during compression",
-          o.to_phi, o.step, o.ftol, o.final_ftol, dt_max, beta)
+  log.say("compress", "to phi = %g in steps of %g, FIRE to %g (final %g, dt_max %g), cohesion beta = %g%s during compression",
+          o.to_phi, o.step, o.ftol, o.final_ftol, dt_max, beta,
+          beta_cv > 0 and string.format(", adhesion beta_cv = %g", beta_cv) or "")
   local saved  -- the state of a compression stopped by a signal, when resuming it
   if o.checkpoint and resume.compression_pending() then
     saved = resume.deserialize(iv.load_checkpoint(o.checkpoint, { system = sys }), o.checkpoint)

@@ -28,6 +28,7 @@ local spec = {
   start = { "string", default = "demixed", choices = { "demixed", "mixed" } },  -- or "mixed": cells and adipocytes over the whole box
   eps_v = 1e3, eps_a = 1.0,        -- shape energy (docs/model.md: defaults and why)
   alpha = contact.alpha, beta = contact.beta,  -- cohesion of cancer cells (the compress stage may override)
+  alpha_cv = contact.alpha_cv, beta_cv = contact.beta_cv,  -- adhesion of cells to adipocytes (0: the paper's repulsion)
   eps_cc = contact.eps_cc, eps_cv = contact.eps_cv, eps_vv = contact.eps_vv,
   wall_eps = iv.Walls.defaults.eps,
 }
@@ -54,11 +55,16 @@ return function(opts)
     cells = sys:group("cancer"),
     vertices = sys:group("vertices"),
     walls = sys:add(iv.Walls{ eps = o.wall_eps }),
-    contacts = sys:add(iv.Contacts{ alpha = o.alpha, beta = o.beta, eps_cc = o.eps_cc,
-                                    eps_cv = o.eps_cv, eps_vv = o.eps_vv }),
+    contacts = sys:add(iv.Contacts{ alpha = o.alpha, beta = o.beta, alpha_cv = o.alpha_cv,
+                                    beta_cv = o.beta_cv, eps_cc = o.eps_cc, eps_cv = o.eps_cv,
+                                    eps_vv = o.eps_vv }),
     shape = sys:add(iv.Shape{ eps_v = o.eps_v, eps_a = o.eps_a }),
     params = o,
   }
+  if o.beta_cv > 0 then  -- beyond the paper (docs/model.md): said, so that no run hides it
+    log.say("init", "cancer-adipocyte adhesion: beta_cv = %g, alpha_cv = %g (eps_cv = %g)",
+            o.beta_cv, o.alpha_cv, o.eps_cv)
+  end
   local phi = sys:packing()
   log.say("init", "%d cancer cells, %d adipocytes in a box %s, %s start, A_0 = %g; phi = %.4f (cells %.4f, adipocytes %.4f)",
           tissue.cells:size(), placed.adipocytes, log.box(sys:box().lengths), o.start, o.shape_param,

@@ -30,6 +30,8 @@ function M.declarations()
     P = { 1.3e-3, range = "[0, inf)", unit = "eps_c/sigma^3", help = "pressure on the left wall" },
     beta = { 1e-2, range = "[0, inf)", help = "cancer-cell cohesion depth (0: repulsive; below alpha)" },
     alpha = { 0.2, range = "[0, inf)", help = "cancer-cell cohesion range" },
+    beta_cv = { 0.0, range = "[0, inf)", help = "cancer-adipocyte adhesion depth (0: repulsive, the paper; below alpha_cv; docs/model.md, Beyond the paper)" },
+    alpha_cv = { 0.2, range = "[0, inf)", help = "cancer-adipocyte adhesion range" },
     f0 = { 0.002, range = "[0, inf)", unit = "eps_c/sigma", help = "self-propulsion force (0: passive cells; 0.002 with the default background: 2 k_B T_c/(P sigma^3) ~ 0.3, the paper's Fig. 4b point)" },
     tau_p = { 25.0, range = "[0, inf)", unit = "tau", help = "persistence time of the active orientation (0: uncorrelated)" },
     kT = { 0.0, range = "[0, inf)", unit = "eps_c", help = "background temperature of the cells and the langevin vertices (passive cells: their bath; active cells: only with background_factor = 0)" },
@@ -63,6 +65,13 @@ function M.merge(own)
   return all
 end
 
+-- The init stage's keywords (lib/init.lua) from the parameters and the resolved size.
+function M.init_options(p, N_a, N_c, L0)
+  return { N_a = N_a, N_c = N_c, L0 = L0, seed = p.seed, start = p.start, shape_param = p.A_0,
+           eps_v = p.eps_v, eps_a = p.eps_a, alpha = p.alpha, beta = p.beta,
+           alpha_cv = p.alpha_cv, beta_cv = p.beta_cv }
+end
+
 -- The system size after the preset and the explicit overrides.
 function M.size(p)
   local preset = presets[p.system]
@@ -82,6 +91,10 @@ function M.validate(p)
   if p.beta > 0 and p.beta >= p.alpha then
     error(string.format("cohesion: beta = %g must be smaller than alpha = %g (--set beta=... or --set alpha=...; beta = 0 switches cohesion off)",
                         p.beta, p.alpha), 0)
+  end
+  if p.beta_cv > 0 and p.beta_cv >= p.alpha_cv then
+    error(string.format("adhesion: beta_cv = %g must be smaller than alpha_cv = %g (--set beta_cv=... or --set alpha_cv=...; beta_cv = 0 switches adhesion off)",
+                        p.beta_cv, p.alpha_cv), 0)
   end
   -- The step counter is a 64-bit integer (2^63 - 1 = math.maxinteger): the quench's and the
   -- production's steps together must fit in it.

@@ -20,10 +20,15 @@ void ContactParams::validate() const {
   require_positive("eps_vv", eps_vv);
   require_non_negative("alpha", alpha);
   require_non_negative("beta", beta);
+  require_non_negative("alpha_cv", alpha_cv);
+  require_non_negative("beta_cv", beta_cv);
   require_non_negative("skin", skin);
   if (beta > 0.0 && !(beta < alpha))
     fail_input("cohesion: beta = ", beta, " must be smaller than alpha = ", alpha,
                " (attraction peaks at r_b = (1+beta)s inside the range r_a = (1+alpha)s)");
+  if (beta_cv > 0.0 && !(beta_cv < alpha_cv))
+    fail_input("adhesion: beta_cv = ", beta_cv, " must be smaller than alpha_cv = ", alpha_cv,
+               " (attraction peaks at r_b = (1+beta_cv)s inside the range r_a = (1+alpha_cv)s)");
 }
 
 PairEval linear_spring(double r, double s, double eps) {
@@ -56,6 +61,7 @@ void ContactForce::set_params(const ContactParams& params) {
   plan_builds_ = ~std::uint64_t(0);  // (the new list counts its builds from 0 again)
   CutoffRule rule;
   rule.factor[0][0] = params_.beta > 0.0 ? 1.0 + params_.alpha : 1.0;
+  rule.factor[0][1] = rule.factor[1][0] = params_.beta_cv > 0.0 ? 1.0 + params_.alpha_cv : 1.0;
   list_.set_cutoff_rule(rule);
 }
 
@@ -145,8 +151,8 @@ void ContactForce::add_forces_impl(System& sys, RowScratch& scratch) {
                                                  s.force[i], e, w);
     } else {
       const DirectPairs pairs{s.diameter.data(), table_.site_kind(), eps[int(s.kind[i])],
-                              params_.alpha,     params_.beta,       s.diameter[i],
-                              int(s.kind[i])};
+                              params_.alpha,     params_.beta,       params_.alpha_cv,
+                              params_.beta_cv,   s.diameter[i],      int(s.kind[i])};
       site_contacts<kCohesive, kEnergy, kVirial>(int(i), pos, nb, m, image, pairs, scratch,
                                                  s.force[i], e, w);
     }
@@ -176,7 +182,7 @@ ForceResult ContactForce::add_forces_team(System& sys, const ForceFlags& flags) 
   RowScratch& scratch = scratch_[omp_get_thread_num()];
   scratch.reserve(list_.max_count());
   // One instantiation of the kernel per combination of the flags.
-  const bool cohesive = params_.beta > 0.0;
+  const bool cohesive = params_.attractive();
   const bool want_e = flags.energy, want_v = flags.virial;
   using Impl = void (ContactForce::*)(System&, RowScratch&);
   static constexpr Impl impls[8] = {&ContactForce::add_forces_impl<false, false, false>,

@@ -3,6 +3,9 @@
 //   vertex-vertex of different adipocytes and vertex-cancer: F = (eps/s)(1 - r/s) for r <= s;
 //   cancer-cancer: the same repulsion plus cohesion, attractive from s to r_b = (1+beta)s and
 //   falling linearly to zero at r_a = (1+alpha)s.
+//   cancer-vertex: optionally the same form with its own (alpha_cv, beta_cv): the adhesion of
+//   cancer cells to adipocytes, which the paper leaves purely repulsive (beta_cv = 0, the
+//   default; docs/model.md, "Beyond the paper").
 // s is the mean of the two diameters. One pass over one neighbour list serves all kinds.
 #include "forces/contact_half.hpp"
 #include "forces/contact_kernel.hpp"
@@ -13,14 +16,24 @@
 namespace invasim {
 
 struct ContactParams {
-  double eps_cc = 1.0;  // cancer-cancer contact energy
-  double eps_cv = 1.0;  // cancer-vertex
-  double eps_vv = 1.0;  // vertex-vertex (different adipocytes)
-  double alpha = 0.2;   // cohesion range: r_a = (1 + alpha) s
-  double beta = 0.0;    // cohesion depth: r_b = (1 + beta) s; 0 = purely repulsive
-  double skin = 0.3;    // neighbour-list skin
+  double eps_cc = 1.0;    // cancer-cancer contact energy
+  double eps_cv = 1.0;    // cancer-vertex
+  double eps_vv = 1.0;    // vertex-vertex (different adipocytes)
+  double alpha = 0.2;     // cohesion range: r_a = (1 + alpha) s
+  double beta = 0.0;      // cohesion depth: r_b = (1 + beta) s; 0 = purely repulsive
+  double alpha_cv = 0.2;  // cancer-vertex adhesion range: r_a = (1 + alpha_cv) s
+  double beta_cv = 0.0;   // cancer-vertex adhesion depth; 0 = purely repulsive (the paper)
+  double skin = 0.3;      // neighbour-list skin
   // Throws InputError naming the bad value.
   void validate() const;
+  // Whether any pair kind attracts (the kernel's cohesive branch is needed).
+  bool attractive() const { return beta > 0.0 || beta_cv > 0.0; }
+  // The (alpha, beta) of a pair of kinds: cancer-cancer (alpha, beta), cancer-vertex
+  // (alpha_cv, beta_cv) or vertex-vertex (beta 0: alpha is not used).
+  double pair_alpha(bool cancer_vertex) const { return cancer_vertex ? alpha_cv : alpha; }
+  double pair_beta(bool cancer_cancer, bool cancer_vertex) const {
+    return cancer_cancer ? beta : (cancer_vertex ? beta_cv : 0.0);
+  }
 };
 
 // Pair force magnitude along r_hat (positive = repulsive) and pair energy, for separation r,

@@ -247,8 +247,9 @@ void contact_half_rows(System& sys, HalfRowsPlan& plan, std::size_t max_count,
                                            site_energy, site_virial);
   } else {
     const double eps[4] = {params.eps_cc, params.eps_cv, params.eps_cv, params.eps_vv};
-    const contact_detail::DirectStreamPairs pairs{s.diameter.data(), table.site_kind(), eps,
-                                                  params.alpha, params.beta};
+    const contact_detail::DirectStreamPairs pairs{
+        s.diameter.data(), table.site_kind(), eps,           params.alpha,
+        params.beta,       params.alpha_cv,   params.beta_cv};
     half_rows<kCohesive, kEnergy, kVirial>(plan, pos, image, pairs, scratch, s.force.data(),
                                            site_energy, site_virial);
   }

@@ -57,13 +57,15 @@ struct DirectPairs {
   const double* diam;
   const int* kind;
   const double* eps;  // the energies of site i's kind with kinds 0 and 1
-  double alpha, beta, di;
+  double alpha, beta, alpha_cv, beta_cv, di;
   int ki;
   template <bool kCohesive>
   PairBranch branch(int j, double r2) const {
     const int kj = kind[j];
-    const double cc = (ki | kj) == 0 ? 1.0 : 0.0;  // cohesion between cancer cells only
-    const PairCoefficients c = pair_coefficients(0.5 * (di + diam[j]), eps[kj], alpha, cc * beta);
+    // Cohesion between cancer cells, adhesion between a cancer cell and a vertex.
+    const bool cc = (ki | kj) == 0, cv = ki != kj;
+    const PairCoefficients c = pair_coefficients(
+        0.5 * (di + diam[j]), eps[kj], cv ? alpha_cv : alpha, cc ? beta : (cv ? beta_cv : 0.0));
     return coefficient_branch<kCohesive>(c, r2);
   }
 };
@@ -84,13 +86,14 @@ struct DirectStreamPairs {
   const double* diam;
   const int* kind;
   const double* eps;  // eps[2 kind_i + kind_j]: the energies of the kind pairs
-  double alpha, beta;
+  double alpha, beta, alpha_cv, beta_cv;
   template <bool kCohesive>
   PairBranch branch(int i, int j, double r2) const {
     const int ki = kind[i], kj = kind[j];
-    const double cc = (ki | kj) == 0 ? 1.0 : 0.0;  // cohesion between cancer cells only
+    const bool cc = (ki | kj) == 0, cv = ki != kj;  // as DirectPairs
     const PairCoefficients c =
-        pair_coefficients(0.5 * (diam[i] + diam[j]), eps[2 * ki + kj], alpha, cc * beta);
+        pair_coefficients(0.5 * (diam[i] + diam[j]), eps[2 * ki + kj], cv ? alpha_cv : alpha,
+                          cc ? beta : (cv ? beta_cv : 0.0));
     return coefficient_branch<kCohesive>(c, r2);
   }
 };

@@ -9,7 +9,7 @@ PairCoefficients pair_coefficients(const ContactParams& p, SiteKind ka, SiteKind
   const bool cc = ka == SiteKind::kCancer && kb == SiteKind::kCancer;
   const bool cv = ka != kb;
   const double eps = cc ? p.eps_cc : (cv ? p.eps_cv : p.eps_vv);
-  return pair_coefficients(0.5 * (da + db), eps, p.alpha, cc ? p.beta : 0.0);
+  return pair_coefficients(0.5 * (da + db), eps, p.pair_alpha(cv), p.pair_beta(cc, cv));
 }
 
 bool PairTable::build(const Sites& s, const ContactParams& p) {

@@ -51,8 +51,8 @@ inline PairCoefficients pair_coefficients(double s, double eps, double alpha, do
   return c;
 }
 
-// The pair type's constants for sites of kinds ka, kb and diameters da, db (cohesion only
-// between two cancer cells).
+// The pair type's constants for sites of kinds ka, kb and diameters da, db (cohesion between
+// two cancer cells, adhesion between a cancer cell and a vertex: ContactParams::pair_beta).
 PairCoefficients pair_coefficients(const ContactParams& p, SiteKind ka, SiteKind kb, double da,
                                    double db);
 

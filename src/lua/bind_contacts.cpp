@@ -1,5 +1,6 @@
-// invasim.Contacts{alpha =, beta =, eps_cc =, eps_cv =, eps_vv =, skin =}: contact springs of
-// every pair kind with cancer-cancer cohesion (ContactForce).
+// invasim.Contacts{alpha =, beta =, alpha_cv =, beta_cv =, eps_cc =, eps_cv =, eps_vv =,
+// skin =}: contact springs of every pair kind with cancer-cancer cohesion and optional
+// cancer-vertex adhesion (ContactForce).
 #include <lua.hpp>
 
 #include "lua/engine_types.hpp"
@@ -21,6 +22,11 @@ const FieldTable<ContactParams>& contact_fields() {
                     "cohesion range: cells attract out to r_a = (1 + alpha) s"),
           number<P>("beta", &P::beta, Range::non_negative(), "1",
                     "cohesion depth: r_b = (1 + beta) s; 0 = purely repulsive"),
+          number<P>("alpha_cv", &P::alpha_cv, Range::non_negative(), "1",
+                    "adhesion range: cells and adipocyte vertices attract out to "
+                    "r_a = (1 + alpha_cv) s"),
+          number<P>("beta_cv", &P::beta_cv, Range::non_negative(), "1",
+                    "adhesion depth: r_b = (1 + beta_cv) s; 0 = purely repulsive (the paper)"),
           number<P>("eps_cc", &P::eps_cc, Range::positive(), "eps_c",
                     "cancer-cancer contact energy"),
           number<P>("eps_cv", &P::eps_cv, Range::positive(), "eps_c",
@@ -66,7 +72,7 @@ int l_set(lua_State* L) {
   return 0;
 }
 
-// c:params() -> {alpha =, beta =, eps_cc =, eps_cv =, eps_vv =, skin =}
+// c:params() -> {alpha =, beta =, alpha_cv =, beta_cv =, eps_cc =, eps_cv =, eps_vv =, skin =}
 int l_params(lua_State* L) {
   contact_fields().push_params(L, check<Contacts>(L, 1).force->params());
   return 1;

@@ -20,9 +20,7 @@ local p = iv.params(parameters.merge{
 })
 parameters.validate(p)
 local N_a, N_c, L0 = parameters.size(p)
-local tissue = stage.init{ N_a = N_a, N_c = N_c, L0 = L0, seed = p.seed, start = p.start,
-                           shape_param = p.A_0, eps_v = p.eps_v, eps_a = p.eps_a,
-                           alpha = p.alpha, beta = p.beta }
+local tissue = stage.init(parameters.init_options(p, N_a, N_c, L0))
 stage.compress(tissue, { to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.final_ftol,
                          cohesion = p.cohesive_compression, progress = false })
 stage.quench(tissue, require("lib.motion").quench_options(p, { steps = p.quench_steps }))

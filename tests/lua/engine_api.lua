@@ -74,6 +74,12 @@ check(iv.Contacts{}:params().beta == 0, "Contacts default: purely repulsive")
 expect_error("Contacts: key 'alpha' must be a number, got string", iv.Contacts, { alpha = "x" })
 expect_error("Contacts: key 'eps_cc' = 0 is out of range %(must be > 0%)", iv.Contacts, { eps_cc = 0 })
 expect_error("Contacts: cohesion: beta = 0.3 must be smaller than alpha = 0.2", iv.Contacts, { beta = 0.3 })
+-- Cancer-adipocyte adhesion: off by default, its own range, the same rule as cohesion.
+check(iv.Contacts{}:params().beta_cv == 0 and iv.Contacts.defaults.alpha_cv == 0.2, "Contacts default: no adhesion")
+local adhesive = iv.Contacts{ alpha_cv = 0.3, beta_cv = 0.05 }
+check(adhesive:params().alpha_cv == 0.3 and adhesive:params().beta_cv == 0.05 and adhesive:params().beta == 0)
+expect_error("Contacts: adhesion: beta_cv = 0.2 must be smaller than alpha_cv = 0.2", iv.Contacts, { beta_cv = 0.2 })
+expect_error("Contacts: key 'beta_cv' = %-1 is out of range %(must be >= 0%)", iv.Contacts, { beta_cv = -1 })
 expect_error("Walls: key 'left' must be a boolean", iv.Walls, { left = 1 })
 expect_error("Walls: unknown key 'eps_w' %(did you mean 'eps'%?%)", iv.Walls, { eps_w = 1 })
 expect_error("Shape: missing required key 'eps_a' %(a number%)", iv.Shape, { eps_v = 1 })

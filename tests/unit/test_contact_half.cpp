@@ -157,6 +157,20 @@ TEST_CASE(
     CHECK(count_pairs(sys, cohesive).first > 50);
     check_drivers_agree(sys, cohesive);
   }
+  SECTION("cancer-vertex adhesion beside the cells' cohesion, with and without the table") {
+    ContactParams adhesive = cohesive;
+    adhesive.alpha_cv = 0.3;
+    adhesive.beta_cv = 0.05;
+    System sys = mixed_system(3, 400, 4.6, 0.4, 13);
+    PairTable table;
+    REQUIRE(table.build(sys.sites(), adhesive));
+    check_drivers_agree(sys, adhesive);
+    for (std::size_t i = 0; i < sys.n_sites(); ++i)  // more classes than the table holds
+      if (sys.sites().kind[i] == SiteKind::kCancer)
+        sys.sites().diameter[i] = 0.9 + 0.01 * double(i % 20);
+    REQUIRE_FALSE(table.build(sys.sites(), adhesive));
+    check_drivers_agree(sys, adhesive);
+  }
   SECTION("more than 16 diameter classes: the constants from the diameters (no table)") {
     System sys = mixed_system(3, 400, 4.6, 0.4, 12);
     for (std::size_t i = 0; i < sys.n_sites(); ++i)

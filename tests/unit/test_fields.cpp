@@ -128,7 +128,7 @@ TEST_CASE("invasim.X.defaults is read-only and X stays a constructor", "[lua][fi
     -- pairs() walks the defaults
     local n = 0
     for k, v in pairs(iv.Contacts.defaults) do n = n + 1 end
-    assert(n == 6, n)
+    assert(n == 8, n)  -- alpha, beta, alpha_cv, beta_cv, eps_cc, eps_cv, eps_vv, skin
     -- the constructor is still called as before, and errors keep their form
     assert(tostring(iv.Contacts{ beta = 0.01 }):find("^Contacts%(alpha=0.2, beta=0.01,"))
     ok, err = pcall(iv.Contacts, { bta = 1 })

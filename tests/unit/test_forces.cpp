@@ -61,7 +61,10 @@ double brute_contact_energy(const System& sys, const ContactParams& p, std::arra
       const double r = sys.box().minimum_image(s.pos[i] - s.pos[j]).norm();
       const double sig = 0.5 * (s.diameter[i] + s.diameter[j]);
       const int kinds = int(s.kind[i]) + int(s.kind[j]);
-      if (kinds == 0 && p.beta > 0.0) {
+      if (kinds == 1 && p.beta_cv > 0.0) {  // cancer-vertex adhesion (its own branch count)
+        e += model_cohesive_energy(r, sig, p.eps_cv, p.alpha_cv, p.beta_cv);
+        if (n && r < sig) ++(*n)[3];
+      } else if (kinds == 0 && p.beta > 0.0) {
         e += model_cohesive_energy(r, sig, p.eps_cc, p.alpha, p.beta);
         if (n) {
           if (r < sig)
@@ -91,9 +94,10 @@ std::vector<Vec3> brute_contact_forces(const System& sys, const ContactParams& p
       const double r = d.norm(), sig = 0.5 * (s.diameter[i] + s.diameter[j]);
       const int kinds = int(s.kind[i]) + int(s.kind[j]);
       const double eps = kinds == 0 ? p.eps_cc : kinds == 1 ? p.eps_cv : p.eps_vv;
-      const double mag = kinds == 0 && p.beta > 0.0
-                             ? model_cohesive_force(r, sig, eps, p.alpha, p.beta)
-                             : model_linear_force(r, sig, eps);
+      const double mag =
+          kinds == 0 && p.beta > 0.0      ? model_cohesive_force(r, sig, eps, p.alpha, p.beta)
+          : kinds == 1 && p.beta_cv > 0.0 ? model_cohesive_force(r, sig, eps, p.alpha_cv, p.beta_cv)
+                                          : model_linear_force(r, sig, eps);
       f[i] += mag * d / r;
       f[j] -= mag * d / r;
     }
@@ -438,6 +442,8 @@ TEST_CASE(
   ContactParams p = cohesive_params();
   p.eps_cv = 0.7;
   p.eps_vv = 1.3;
+  p.alpha_cv = 0.3;  // cancer-vertex pairs on their own attractive branch
+  p.beta_cv = 0.05;
   PairTable table;
   REQUIRE(table.build(sys.sites(), p));
   const int nc = table.n_classes();
@@ -508,6 +514,53 @@ TEST_CASE("contact forces are minus the gradient of the contact energy (finite d
     CHECK(r.max_force > 0.1);
     CHECK(r.rel_err < 1e-6);
     report("FD contact mixed (cc, cv, vv)", r.rel_err);
+  }
+  SECTION("cancer-vertex adhesion (alpha_cv, beta_cv) beside the cells' cohesion") {
+    ContactParams p = cohesive_params();
+    p.eps_cv = 0.7;
+    p.alpha_cv = 0.3;
+    p.beta_cv = 0.05;
+    System sys = mixed_system(2, 50, 4.6, 0.4, 25);
+    // cancer-vertex pairs on each branch: overlapping, s < r < r_b, r_b < r < r_a
+    std::array<int, 3> cv{0, 0, 0};
+    const Sites& s = sys.sites();
+    for (std::size_t i = 0; i < s.size(); ++i)
+      for (std::size_t j = i + 1; j < s.size(); ++j) {
+        if (s.kind[i] == s.kind[j]) continue;
+        const double r = sys.box().minimum_image(s.pos[i] - s.pos[j]).norm();
+        const double sig = 0.5 * (s.diameter[i] + s.diameter[j]);
+        if (r < sig)
+          ++cv[0];
+        else if (r < (1 + p.beta_cv) * sig)
+          ++cv[1];
+        else if (r < (1 + p.alpha_cv) * sig)
+          ++cv[2];
+      }
+    INFO("cancer-vertex pairs: r<s " << cv[0] << ", s<r<r_b " << cv[1] << ", r_b<r<r_a " << cv[2]);
+    REQUIRE(cv[0] > 20);
+    REQUIRE(cv[1] >= 3);
+    REQUIRE(cv[2] > 20);
+    ForceField ff = field_of(std::make_shared<ContactForce>(p));
+    const FdCheck r = fd_check(sys, ff);
+    CHECK(r.max_force > 0.1);
+    CHECK(r.rel_err < 1e-6);
+    // The energy is the model's, adhesion included (and differs from the repulsive one).
+    const double e = ff.compute(sys, {true, false}).energy;
+    CHECK(e == Approx(brute_contact_energy(sys, p, nullptr)).epsilon(1e-12));
+    ContactParams no_adhesion = p;
+    no_adhesion.beta_cv = 0.0;
+    CHECK(e < brute_contact_energy(sys, no_adhesion, nullptr) - 1e-3);
+    report("FD contact with cancer-vertex adhesion", r.rel_err);
+    // The same through the per-pair constants (more diameter classes than the table holds).
+    for (std::size_t i = 0; i < sys.n_sites(); ++i)
+      if (sys.sites().kind[i] == SiteKind::kCancer)
+        sys.sites().diameter[i] = 0.9 + 0.01 * double(i % 20);
+    PairTable table;
+    REQUIRE_FALSE(table.build(sys.sites(), p));
+    ForceField direct = field_of(std::make_shared<ContactForce>(p));
+    CHECK(direct.compute(sys, {true, false}).energy ==
+          Approx(brute_contact_energy(sys, p, nullptr)).epsilon(1e-12));
+    CHECK(fd_check(sys, direct).rel_err < 1e-6);
   }
   SECTION("purely repulsive (beta = 0)") {
     ContactParams p;
@@ -875,6 +928,15 @@ TEST_CASE("bad input is refused with a message naming the problem") {
   CHECK_THROWS_WITH(ContactForce(p), Contains("smaller than alpha"));
   p.beta = -0.01;
   CHECK_THROWS_WITH(ContactForce(p), Contains("beta = -0.01 must be >= 0"));
+  {
+    ContactParams q;
+    q.alpha_cv = 0.1;
+    q.beta_cv = 0.1;
+    CHECK_THROWS_WITH(ContactForce(q),
+                      Contains("adhesion: beta_cv = 0.1 must be smaller than alpha_cv = 0.1"));
+    q.beta_cv = -0.5;
+    CHECK_THROWS_WITH(ContactForce(q), Contains("beta_cv = -0.5 must be >= 0"));
+  }
   p.beta = 0.01;
   CHECK_NOTHROW(ContactForce(p));
 
