@@ -29,8 +29,7 @@ import shutil
 import subprocess
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
-from prerequisites import skip_test  # noqa: E402
+from prerequisites import skip_test  # tests/support, on PYTHONPATH (tests/analysis/CMakeLists.txt)
 
 failures = []
 
@@ -82,7 +81,6 @@ def check_pulls(pulls, what):
 def case_synthetic(script, scratch):
     import numpy as np
 
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import synthetic
 
     truth = synthetic.make_truth(c1=0.06, c2=0.1)
@@ -140,8 +138,7 @@ def case_synthetic(script, scratch):
 def check_figure_labels(path, script):
     """The labels the figures show: curves named by their keys' symbols (no raw key or column
     names), a unit (here: dimensionless) on every axis, log scales on the temperature axes."""
-    sys.path.insert(0, os.path.dirname(os.path.abspath(script)))
-    import plot_labels
+    from invasim_analysis import plot_labels
 
     check(os.path.isfile(path), "figure_labels.json written")
     if not os.path.isfile(path):
@@ -169,9 +166,8 @@ def calibration(np, synthetic, truth, scratch):
     test of check_pulls, i.e. the stated errors are right, not merely large."""
     import argparse
 
-    sys.path.insert(0, os.path.dirname(os.path.abspath(SCRIPT)))
-    from master_curve_lib import analysis
-    from master_curve_lib.table import Table
+    from invasim_analysis.master_curve import analysis
+    from invasim_analysis.master_curve.table import Table
 
     opts = argparse.Namespace(group=["beta", "tau_p"], within=[], selector=[], fixed={},
                               temperature="kT_c_paper", replicate_key="seed", tau_g=None,
@@ -453,7 +449,6 @@ def flat_table(np, synthetic, truth, path, flat_curves):
 def case_not_a_fit(script, scratch):
     import numpy as np
 
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import synthetic
 
     truth = synthetic.make_truth(c1=0.06, c2=0.1)
@@ -549,9 +544,8 @@ def replica_pulls(np, synthetic, truth, scratch, tables, plateaus="fitted", **no
     tables of 4 replicates (seeds 3000...), through the library (--plateaus `plateaus`)."""
     import argparse
 
-    sys.path.insert(0, os.path.dirname(os.path.abspath(SCRIPT)))
-    from master_curve_lib import analysis
-    from master_curve_lib.table import Table
+    from invasim_analysis.master_curve import analysis
+    from invasim_analysis.master_curve.table import Table
 
     opts = argparse.Namespace(group=["beta", "tau_p"], within=[], selector=[], fixed={},
                               temperature="kT_c_paper", replicate_key="seed", tau_g=None,
@@ -578,7 +572,6 @@ def case_plateau_bias(script, scratch):
     A_n of synthetic.py's default b -0.9 (docs/sweeps_analysis.md)."""
     import numpy as np
 
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import synthetic
 
     truth = synthetic.make_truth(c1=0.06, c2=0.1)

@@ -5,9 +5,9 @@ import math
 
 import numpy as np
 
-from .normalise import normalise
+from ..normalise import normalise_group
 from .selection import Keys, canonical, group_indices, matches
-from .table import InputError
+from ..errors import InputError
 
 # --temperature: column read per row, and the axis label (the convention said plainly).
 TEMPERATURES = {
@@ -123,7 +123,7 @@ def normalise_rows(keys, rows, opts, a_t, a_max, err_t, err_max, point_of, stead
     for part, idx in parts.items():
         where = ", ".join("%s=%s" % kv for kv in zip(opts.within, part)) or "the whole sweep"
         sel = [matches(keys, rows[i], opts.selector) and steady[i] for i in idx]
-        res = normalise(a_t[idx], a_max[idx], [point_of[i] for i in idx], sel,
+        res = normalise_group(a_t[idx], a_max[idx], [point_of[i] for i in idx], sel,
                         None if err_t is None else err_t[idx],
                         None if err_max is None else err_max[idx], where)
         r_a[idx], a_n[idx], run_err[idx] = res["rA_t"], res["A_n"], res["A_n_run_error"]

@@ -24,8 +24,8 @@ import resource
 import shutil
 import subprocess
 
-from .runs import InputError
-from .repo_paths import repo_path
+from ..errors import InputError
+from ..repo_paths import repo_path
 
 
 def declared_steps(invasim, protocol):
