@@ -16,10 +16,11 @@ only the points still unfinished are then redone. A restored point whose statepo
 from the workspace's point of the same id is refused: the sweep file changed.
 """
 
-import json
 import os
 import shutil
 import sys
+
+from . import workspace
 
 KEPT_SUFFIXES = (".json", ".csv", ".txt", ".log")
 SKIPPED_NAMES = {"run.lock", ".lock", "resume.txt"}
@@ -30,16 +31,11 @@ class UsageError(Exception):
 
 
 def job_status(job_dir):
-    path = os.path.join(job_dir, "signac_job_document.json")
-    if not os.path.isfile(path):
-        return None
-    with open(path) as f:
-        return json.load(f).get("status")
+    return workspace.document(job_dir).get("status")
 
 
 def read_statepoint(job_dir):
-    with open(os.path.join(job_dir, "signac_statepoint.json")) as f:
-        return json.load(f)
+    return workspace.statepoint(job_dir)
 
 
 def workspace_jobs(ws):

@@ -4,16 +4,47 @@ validation page read jobs only through it.
 
 A Job is read from WS/workspace/<id>/. The figures of the reduced scale take the jobs whose
 document says `done` (load); the paper-scale records take every job (load_all), a run still
-going with its provisional averages (Job.provisional)."""
+going with its provisional averages (Job.provisional). The workspace's own files: meta
+(invasim_sweep.json), document (a job's or the preparation's), prep_summary. numpy is
+imported only to read series.csv: the rest serves plain python3 (sweep_results.py)."""
 
 import csv
 import json
 import math
 import os
 
-import numpy as np
-
 from .errors import InputError
+
+
+def _json(path, missing=None):
+    """The JSON file at `path`; `missing` when it does not exist and that is not None."""
+    if missing is not None and not os.path.exists(path):
+        return missing
+    with open(path) as f:
+        return json.load(f)
+
+
+def meta(ws):
+    """WS/invasim_sweep.json (InputError if WS is not a sweep workspace)."""
+    path = os.path.join(ws, "invasim_sweep.json")
+    if not os.path.exists(path):
+        raise InputError("%s is not a sweep workspace (no invasim_sweep.json)" % ws)
+    return _json(path)
+
+
+def statepoint(job_dir):
+    """A job's state point (signac_statepoint.json)."""
+    return _json(os.path.join(job_dir, "signac_statepoint.json"))
+
+
+def document(job_dir):
+    """A job's (or the preparation's, WS/prep) document, {} when it has none."""
+    return _json(os.path.join(job_dir, "signac_job_document.json"), {})
+
+
+def prep_summary(ws):
+    """The shared preparation's summary.json (WS/prep), or None."""
+    return _json(os.path.join(ws, "prep", "summary.json"), False) or None
 
 class Job:
     """One point: sp (state point), doc, status, summary, series (lazy), path."""
@@ -21,15 +52,9 @@ class Job:
     def __init__(self, path):
         self.path = path
         self.id = os.path.basename(path)
-        with open(os.path.join(path, "signac_statepoint.json")) as f:
-            self.sp = json.load(f)
-        with open(os.path.join(path, "signac_job_document.json")) as f:
-            self.doc = json.load(f)
-        summary = os.path.join(path, "summary.json")
-        self.summary = {}
-        if os.path.exists(summary):
-            with open(summary) as f:
-                self.summary = json.load(f)
+        self.sp = statepoint(path)
+        self.doc = document(path)
+        self.summary = _json(os.path.join(path, "summary.json"), {})
         self._series = None
 
     @property
@@ -53,6 +78,8 @@ class Job:
         written so far (window()), as summary.json would hold them had it ended there."""
         if self.summary.get("averages") or not self.rows():
             return self
+        import numpy as np
+
         from .steady import block_error, window
         first, end = window(self)
         self.summary = {"averages": {
@@ -95,6 +122,8 @@ class Job:
             body = [r for r in rows[1:] if r]
             if not body:
                 raise InputError("%s: series.csv has no complete row" % path)
+            import numpy as np
+
             data = np.array([[float(v) for v in r] for r in body], float)
             self._series = {n: data[:, i] for i, n in enumerate(names)}
         return self._series

@@ -64,17 +64,16 @@ def command_text(argv):
 
 def lf_row(ws, verdict):
     """The L_f contradiction from the workspace's shared preparation (the compressed box)."""
-    path = os.path.join(ws, "prep", "summary.json")
-    if not os.path.exists(path):
+    from .. import workspace
+    prep = workspace.prep_summary(ws)
+    if prep is None:
         return None
-    with open(path) as f:
-        comp = json.load(f).get("compression", {})
+    comp = prep.get("compression", {})
     box, phi = comp.get("box"), comp.get("phi")
     with open(os.path.join(REPO, "protocols", "lib", "presets.lua")) as f:
         presets = {m.group(1): (int(m.group(2)), int(m.group(3))) for m in re.finditer(
             r"(\w+) = \{ N_a = (\d+), N_c = (\d+)", f.read())}
-    with open(os.path.join(ws, "invasim_sweep.json")) as f:
-        system = json.load(f).get("prep", {}).get("set", {}).get("system", "reduced")
+    system = workspace.meta(ws).get("prep", {}).get("set", {}).get("system", "reduced")
     if not box or system not in presets:
         return None
     n_a, n_c = presets[system]
@@ -121,8 +120,7 @@ def figure(name, workspaces, out, invasim, argv):
             rec["rows"].append(row)
     specs = []
     for ws in [w for w in workspaces if w != NOT_GIVEN]:
-        with open(os.path.join(ws, "invasim_sweep.json")) as f:
-            specs.append(repo_path(json.load(f)["spec"]))
+        specs.append(repo_path(workspace.meta(ws)["spec"]))
     jobs = [j for s in sets if s for j in s]
     steps = sorted(int(j.sp.get("steps", j.scalar("steps"))) for j in jobs)
     rec.update({"figure": name, "criteria": verdict.CRITERIA, "command": command_text(argv),
