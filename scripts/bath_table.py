@@ -3,8 +3,6 @@
 Usage and options: bath_table.py --help. A thin entry point: Python's path starts with this
 file's directory, which holds the package invasim_analysis."""
 
-import sys
-
 from invasim_analysis.bath_table import main
 
 if __name__ == "__main__":
