@@ -11,7 +11,7 @@
 set -euo pipefail
 repo=${1:-$(cd "$(dirname "$0")/.." && pwd)}
 cd "$repo"
-ALLOWED='^(tests/analysis/check_validation\.py|scripts/validation_lib/citations\.py|scripts/check_citations\.sh|tests/app/check_citations_test\.sh)$'
+ALLOWED='^(tests/analysis/check_validation\.py|scripts/invasim_analysis/validation/citations\.py|scripts/check_citations\.sh|tests/app/check_citations_test\.sh)$'
 RUN_RECORDS='^docs/data/runs/[^/]+/[0-9a-f]{32}/'
 pattern='\b[Ii]ssues? #?[0-9]+|\b[Ii]ssue #[0-9]+|MODEL\.md|ARCHITECTURE\.md|SLURM\.md|\.\./shared/|/work/shared|/work/main|/work/wt/'
 # The tracked files of a git checkout; any other tree (or a directory inside one): all files.

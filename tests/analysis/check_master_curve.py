@@ -7,6 +7,8 @@ Usage: check_master_curve.py CASE MASTER_CURVE_PY SCRATCH_DIR, CASE one of
                  the temperature conventions and the outputs);
   steadiness     jobs whose L_x drifts beyond --max-drift are scaled but neither normalise
                  nor enter a fit; a unitless _drift column is not taken for a state-point key;
+  workspace      the runs of the workspace holding the table are judged by the one
+                 steady-state criterion (steady.point_steadiness);
   errors         bad input: each case exits with status 1 (2: command line) and names the
                  problem;
   not_a_fit      curves whose fit is not a fit (b not positive, an error above its value)
@@ -29,8 +31,7 @@ import shutil
 import subprocess
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
-from prerequisites import skip_test  # noqa: E402
+from prerequisites import skip_test  # tests/support, on PYTHONPATH (tests/analysis/CMakeLists.txt)
 
 failures = []
 
@@ -82,7 +83,6 @@ def check_pulls(pulls, what):
 def case_synthetic(script, scratch):
     import numpy as np
 
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import synthetic
 
     truth = synthetic.make_truth(c1=0.06, c2=0.1)
@@ -140,8 +140,7 @@ def case_synthetic(script, scratch):
 def check_figure_labels(path, script):
     """The labels the figures show: curves named by their keys' symbols (no raw key or column
     names), a unit (here: dimensionless) on every axis, log scales on the temperature axes."""
-    sys.path.insert(0, os.path.dirname(os.path.abspath(script)))
-    import plot_labels
+    from invasim_analysis import plot_labels
 
     check(os.path.isfile(path), "figure_labels.json written")
     if not os.path.isfile(path):
@@ -169,9 +168,8 @@ def calibration(np, synthetic, truth, scratch):
     test of check_pulls, i.e. the stated errors are right, not merely large."""
     import argparse
 
-    sys.path.insert(0, os.path.dirname(os.path.abspath(SCRIPT)))
-    from master_curve_lib import analysis
-    from master_curve_lib.table import Table
+    from invasim_analysis.master_curve import analysis
+    from invasim_analysis.master_curve.table import Table
 
     opts = argparse.Namespace(group=["beta", "tau_p"], within=[], selector=[], fixed={},
                               temperature="kT_c_paper", replicate_key="seed", tau_g=None,
@@ -367,6 +365,75 @@ def case_steadiness(script, scratch):
           in p.stderr, "a negative --max-drift is refused")
 
 
+# --- (c2) steadiness of A_t, judged from the workspace's runs ------------------------------
+def case_workspace(script, scratch):
+    """A workspace of 6 temperatures x 2 seeds whose A_t is flat but for one run that rises
+    over its last quarters: master_curve.py, given the table collected into the workspace,
+    judges its runs by the one criterion (steady.point_steadiness, docs/validation.md) and
+    leaves that state point out; a table elsewhere is not judged unless --workspace says."""
+    import numpy as np
+    import synthetic
+    from invasim_analysis import steady, workspace
+
+    rng = np.random.default_rng(11)
+    xs = [0.01 * 10 ** (k * 0.6) for k in range(6)]
+    points = []
+    for k, x in enumerate(xs):
+        level = 400 + 600 * synthetic.sigmoid(x, 0.3, 1.5)
+        for seed in (1, 2):
+            a_t = level + rng.normal(0, 1, 80)
+            if k == 3 and seed == 2:
+                a_t = a_t + np.concatenate([np.zeros(40), np.linspace(0, 40, 40)])
+            points.append(({"kT": x * synthetic.P / 2, "seed": seed}, "done", a_t, 1000.0, x))
+    ws = os.path.join(scratch, "ws")
+    ids = synthetic.write_workspace(ws, points)
+    lines = ["job_id,status,wall_seconds [s],P,kT,seed,A_t [sigma^2],A_t_error [sigma^2],"
+             "A_t_max [sigma^2],A_t_max_error [sigma^2],kT_c_paper [eps_c],"
+             "kT_c_paper_error [eps_c],tau_d [tau],tau_r [tau]"]
+    for job_id, (sp, _, _, _, _) in zip(ids, points):
+        job = workspace.Job(os.path.join(ws, "workspace", job_id))
+        values = [v for name in ("A_t", "A_t_max", "kT_c_paper") for v in job.mean(name)]
+        lines.append(",".join([job_id, "done", "1.0", repr(synthetic.P), repr(sp["kT"]),
+                               str(sp["seed"])] + [repr(v) for v in values] + ["", ""]))
+    table = os.path.join(ws, "results.csv")
+    with open(table, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    out = os.path.join(scratch, "out")
+    p = run(script, [table, "-o", out, "--no-figures"])
+    check(p.returncode == 0, "the table collected into the workspace is analysed")
+    if p.returncode != 0:
+        return
+    rows = {r["job_id"]: r for r in read_csv(os.path.join(out, "rows.csv"))}
+    drifting = [ids[6], ids[7]]
+    _, why = steady.point_steadiness([workspace.Job(os.path.join(ws, "workspace", i))
+                                      for i in drifting])
+    check(all(rows[i]["steady"] == "false" for i in drifting)
+          and rows[ids[6]]["not_steady_because"] == "A_t not steady: " + "; ".join(why)
+          and "run seed 2 drifts: m4 - m3 = " in rows[ids[6]]["not_steady_because"],
+          "the state point with a drifting run is not steady, for steady.point_steadiness's "
+          "reason: %s" % rows[ids[6]]["not_steady_because"])
+    check(all(rows[i]["steady"] == "true" for i in ids if i not in drifting),
+          "the other state points are steady")
+    with open(os.path.join(out, "fits.json")) as f:
+        fits = json.load(f)
+    check(fits["settings"].get("workspace") == os.path.abspath(ws)
+          and sorted(j["job_id"] for j in fits["not_steady"]) == sorted(drifting),
+          "fits.json names the workspace and the jobs not steady")
+    elsewhere = os.path.join(scratch, "results.csv")
+    shutil.copy(table, elsewhere)
+    p = run(script, [elsewhere, "-o", out, "--no-figures"])
+    rows = {r["job_id"]: r for r in read_csv(os.path.join(out, "rows.csv"))}
+    check(p.returncode == 0 and "the steadiness of A_t not judged" in p.stdout
+          and rows[ids[7]]["steady"] == "true",
+          "a table outside the workspace: A_t's steadiness not judged, and said")
+    p = run(script, [elsewhere, "-o", out, "--no-figures", "--workspace", ws])
+    rows = {r["job_id"]: r for r in read_csv(os.path.join(out, "rows.csv"))}
+    check(p.returncode == 0 and rows[ids[7]]["steady"] == "false",
+          "--workspace WS: judged again")
+    p = run(script, [elsewhere, "-o", out, "--no-figures", "--workspace", scratch])
+    check(p.returncode == 1 and "is not a sweep workspace" in p.stderr,
+          "--workspace that is not one is refused")
+
 # --- (d) bad input -----------------------------------------------------------------------
 def write(scratch, name, lines):
     path = os.path.join(scratch, name)
@@ -453,7 +520,6 @@ def flat_table(np, synthetic, truth, path, flat_curves):
 def case_not_a_fit(script, scratch):
     import numpy as np
 
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import synthetic
 
     truth = synthetic.make_truth(c1=0.06, c2=0.1)
@@ -549,9 +615,8 @@ def replica_pulls(np, synthetic, truth, scratch, tables, plateaus="fitted", **no
     tables of 4 replicates (seeds 3000...), through the library (--plateaus `plateaus`)."""
     import argparse
 
-    sys.path.insert(0, os.path.dirname(os.path.abspath(SCRIPT)))
-    from master_curve_lib import analysis
-    from master_curve_lib.table import Table
+    from invasim_analysis.master_curve import analysis
+    from invasim_analysis.master_curve.table import Table
 
     opts = argparse.Namespace(group=["beta", "tau_p"], within=[], selector=[], fixed={},
                               temperature="kT_c_paper", replicate_key="seed", tau_g=None,
@@ -578,7 +643,6 @@ def case_plateau_bias(script, scratch):
     A_n of synthetic.py's default b -0.9 (docs/sweeps_analysis.md)."""
     import numpy as np
 
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import synthetic
 
     truth = synthetic.make_truth(c1=0.06, c2=0.1)
@@ -613,7 +677,7 @@ def main():
     shutil.rmtree(scratch, ignore_errors=True)
     os.makedirs(scratch)
     {"synthetic": case_synthetic, "normalisation": case_normalisation,
-     "steadiness": case_steadiness, "errors": case_errors,
+     "steadiness": case_steadiness, "workspace": case_workspace, "errors": case_errors,
      "not_a_fit": case_not_a_fit, "plateau_bias": case_plateau_bias}[case](SCRIPT, scratch)
     if failures:
         print("%d check(s) FAILED" % len(failures))

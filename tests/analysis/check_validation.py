@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Unit checks of scripts/validation_lib (docs/validation.md, "Method"): the verdict criteria
+"""Unit checks of scripts/invasim_analysis (docs/validation.md, "Method"): the verdict criteria
 on hand-picked numbers, the A_n normalisation and the steady-state criterion on hand-made
 runs, the plan's cost model and its replay of `sweep run --jobs N`, the citation checks
 (paper figure numbers, sources in the paper), the figure command's errors, and the
@@ -16,7 +16,6 @@ import shutil
 import subprocess
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 from prerequisites import skip_test  # noqa: E402
 
 try:
@@ -38,8 +37,8 @@ def check(condition, detail=None):
 
 
 scripts, work = sys.argv[1], sys.argv[2]
-sys.path.insert(0, scripts)
-from validation_lib import plan, runs, verdict as v  # noqa: E402
+from invasim_analysis import normalise, steady, workspace  # noqa: E402
+from invasim_analysis.validation import plan, points, verdict as v  # noqa: E402
 
 # Verdicts: numbers against the paper's value +- tolerance (+ 2 errors).
 check(v.value_verdict(0.60, 0.01, 0.55, 0.1) == v.AGREES)
@@ -66,8 +65,8 @@ for needed in ["fig3_invasion_grows", "fig4a_Tg", "fig4b_An_at_0.3", "fig5_b_ran
                "fig8_dphi_1", "fig9_tissue", "L_f"]:
     check(needed in ids and ids[needed]["source"], needed)
 
-# Citations (validation_lib/citations.py): the paper's figure numbers, sources in the paper.
-from validation_lib import citations, document  # noqa: E402
+# Citations (invasim_analysis/validation/citations.py): the paper's figure numbers, sources in the paper.
+from invasim_analysis.validation import citations, document  # noqa: E402
 count, figures = citations.paper_figures()
 check(count == 11 and figures == {"fig3", "fig4a", "fig4b", "fig5", "fig6", "fig7a", "fig7b",
                                   "fig8", "fig9"}, (count, figures))
@@ -103,7 +102,7 @@ page = os.path.join(work, "page.md")
 try:
     document.render(os.path.join(work, "records"), None, page)
     check(False, "a page citing a file outside the repository was written")
-except runs.InputError as e:
+except workspace.InputError as e:
     check("not written: 1 citation problem" in str(e) and "statement fig3_x: source" in str(e), e)
 check(not os.path.exists(page))
 with open(os.path.join(work, "records", "fig3.json"), "w") as f:
@@ -115,7 +114,7 @@ check(os.path.exists(page))
 # The midpoint a of a sigmoid enters the fit of a = c1 (1 + c2 beta/P) tau_g/tau_d only for a
 # rising curve (b > 0 and the data rising by more than 2 errors) whose midpoint the
 # temperatures bracket (a factor 2 either side).
-from master_curve_lib import fits  # noqa: E402
+from invasim_analysis.master_curve import fits  # noqa: E402
 xs, up, flat, e = [0.01, 0.1, 1.0], [0.1, 0.5, 0.9], [0.1, 0.12, 0.09], [0.02, 0.02, 0.02]
 check(fits.midpoint_not_located(0.1, 0.01, 1.2, 0.1, xs, up, e) is None)
 check(fits.midpoint_not_located(0.1, 0.05, 2.2, 1.2, xs, up, e) is None)          # b uncertain
@@ -131,17 +130,17 @@ check("finite" in fits.midpoint_not_located(math.inf, math.inf, 1e-5, 0.4, xs, u
 pts = [{"A_t": 200.0, "A_t_max": 1000.0, "A_t_error": 10.0},
        {"A_t": 500.0, "A_t_max": 1100.0, "A_t_error": 10.0},
        {"A_t": 800.0, "A_t_max": 1000.0, "A_t_error": 10.0}]
-ext = runs.normalise(pts)
+ext = normalise.normalise(pts)
 r = [1 - (1000 - 200) / 1000, 1 - (1100 - 500) / 1000, 1 - (1000 - 800) / 1000]  # .2 .4 .8
 check(ext["min_A_t_max"] == 1000.0)
 for p, want in zip(pts, [(x - 0.2) / 0.6 for x in r]):
     check(abs(p["A_n"] - want) < 1e-12, (p, want))
     check(abs(p["A_n_error"] - 10.0 / 1000 / 0.6) < 1e-12)
-other = runs.scale_like({"A_t": 650.0, "A_t_max": 1000.0, "A_t_error": 0.0}, ext)
+other = normalise.scale_like({"A_t": 650.0, "A_t_max": 1000.0, "A_t_error": 0.0}, ext)
 check(abs(other["A_n"] - (0.65 - 0.2) / 0.6) < 1e-12)
-check(abs(runs.crossing([0.01, 0.1, 1.0], [0.0, 0.25, 0.75]) - 10 ** -0.5) < 1e-12)
+check(abs(points.crossing([0.01, 0.1, 1.0], [0.0, 0.25, 0.75]) - 10 ** -0.5) < 1e-12)
 # its error in log10: the larger bracketing error over the slope (0.5 per decade)
-check(abs(runs.crossing_log_error([0.01, 0.1, 1.0], [0.0, 0.25, 0.75], [0.1, 0.02, 0.05])
+check(abs(points.crossing_log_error([0.01, 0.1, 1.0], [0.0, 0.25, 0.75], [0.1, 0.02, 0.05])
            - 0.05 / 0.5) < 1e-12)
 
 # Steadiness on a hand-made run: 40 rows, the last half flat (steady) or rising (not).
@@ -157,37 +156,37 @@ def fake_job(path, last_half, error, a_t_max=None):
     if a_t_max is not None:
         averages["A_t_max"] = {"mean": a_t_max, "error": 0.1}
     json.dump({"averages": averages}, open(os.path.join(path, "summary.json"), "w"))
-    return runs.Job(path)
+    return workspace.Job(path)
 
 shutil.rmtree(work, ignore_errors=True)
 flat = fake_job(os.path.join(work, "flat"), [600.0 + (1 if i % 2 else -1) for i in range(20)], 1.0)
 rising = fake_job(os.path.join(work, "rising"), [600.0 + 2 * i for i in range(20)], 1.0)
-s = runs.steadiness(flat)
+s = steady.steadiness(flat)
 check(s["steady"] is True and abs(s["drift"]) < 1e-12, s)
-s = runs.steadiness(rising)
+s = steady.steadiness(rising)
 check(s["steady"] is False and abs(s["drift"] - 20.0) < 1e-12, s)   # 10 rows x 2 apart
 # The quarters' errors are their block errors (10 rows: level 0, the naive error of a linear
 # rise, std/sqrt(10) = sqrt(165/9/10)), combined: sqrt(2) x that.
 e_quarter = math.sqrt(sum((2 * i - 9.0) ** 2 for i in range(10)) / 10 / 9)
 check(abs(s["e3"] - e_quarter) < 1e-9 and abs(s["error"] - math.sqrt(2) * e_quarter) < 1e-9, s)
-summary = runs.steadiness_summary([flat, rising])
+summary = steady.steadiness_summary([flat, rising])
 check(summary["steady"] == 1 and summary["jobs"] == 2
       and abs(summary["max_drift_over_error"] - 20.0 / (math.sqrt(2) * e_quarter)) < 1e-9, summary)
 # A value at an earlier time is the mean over the averaging window ending there: at the end,
 # the last half of the rows; at half the run (20 rows), rows 10-19 of the flat start.
-check(abs(runs.window_mean(rising, "A_t", 1.0) - np.mean([600.0 + 2 * i for i in range(20)])) < 1e-12)
-check(runs.window_mean(rising, "A_t", 0.5) == 500.0)
+check(abs(steady.window_mean(rising, "A_t", 1.0) - np.mean([600.0 + 2 * i for i in range(20)])) < 1e-12)
+check(steady.window_mean(rising, "A_t", 0.5) == 500.0)
 # The block error is that of src/measure/block_average.cpp: 64 alternating values, whose
 # pair means are all equal: the plateau at block size 2, error 0 (naive error 1/sqrt(63)).
 alt = [1.0 if i % 2 else -1.0 for i in range(64)]
-check(runs.block_error(alt) == 0.0 and abs(runs.block_error(alt[:10]) - math.sqrt(10 / 10 / 9)) < 1e-12)
+check(steady.block_error(alt) == 0.0 and abs(steady.block_error(alt[:10]) - math.sqrt(10 / 10 / 9)) < 1e-12)
 # A drift of 20 error bars that is below 1 % of A_t^max (a caged tissue ageing) is negligible:
 # steady; the same rise against a smaller A_t^max (20 > 1 % of 1500) is not.
 creeping = fake_job(os.path.join(work, "creeping"), [600.0 + 0.2 * i for i in range(20)], 0.1, 2500.0)
-s = runs.steadiness(creeping)
+s = steady.steadiness(creeping)
 check(s["steady"] is True and abs(s["drift"] - 2.0) < 1e-9 and s["negligible"] == 25.0, s)
 rising_big = fake_job(os.path.join(work, "rising_big"), [600.0 + 2 * i for i in range(20)], 1.0, 1500.0)
-s = runs.steadiness(rising_big)
+s = steady.steadiness(rising_big)
 check(s["steady"] is False and s["negligible"] == 15.0, s)
 
 # The plan: sweep run's order on N slots after the preparation.
@@ -196,7 +195,7 @@ check(plan.wall_time(5.0, [10, 1, 1, 1], 2) == 15.0)
 check(plan.wall_time(5.0, [], 2) == 5.0)
 # A sweep file inside the repository is shown relative to it, whatever the plan's directory.
 os.chdir(work)
-from validation_lib import repo_paths  # noqa: E402
+from invasim_analysis import repo_paths  # noqa: E402
 check(repo_paths.repo_path(os.path.join(repo_paths.REPO, "protocols", "sweeps", "x.lua"))
       == os.path.join("protocols", "sweeps", "x.lua"))
 check(repo_paths.repo_path("/elsewhere/x.lua") == "/elsewhere/x.lua")
@@ -207,7 +206,7 @@ check(plan.point_steps({"quench_steps": 10, "steps": 100}, {"quench_steps": 5, "
 try:
     plan.point_steps({"steps": -1}, {"steps": 1}, "x.lua")
     raise AssertionError("steps = -1 accepted")
-except runs.InputError as e:
+except workspace.InputError as e:
     check("x.lua: steps = -1 (automatic)" in str(e), e)
 
 # The verdict classes (verdict.py): where the paper contradicts itself, a number's verdict
@@ -263,7 +262,7 @@ check(text.count("**Record from older criteria.**") == 2, text)  # neither recor
 
 # Fig. 7's onset: where A_n first rises above its lowest-temperature value by more than 2
 # combined errors (here 0.0566, crossed between 0.1 and 1), not the A_n = 0.25 crossing.
-from validation_lib import figures_other, figures_tethered, figures_tissue  # noqa: E402
+from invasim_analysis.validation import figures_other, figures_tethered, figures_tissue  # noqa: E402
 got = figures_tethered.onset([0.01, 0.1, 1.0], [0.0, 0.05, 0.8], [0.02, 0.02, 0.02])
 want = 10 ** (-1 + (2 * math.hypot(0.02, 0.02) - 0.05) / 0.75)
 check(abs(got - want) < 1e-9, (got, want))
@@ -296,7 +295,7 @@ def tissue_job(path, f0, x, a_t, rising, sp=None):
                             "A_t_max": {"mean": 1000.0, "error": 1.0},
                             "kT_c_paper": {"mean": x * P, "error": 0.0}}},
               open(os.path.join(path, "summary.json"), "w"))
-    return runs.Job(path)
+    return workspace.Job(path)
 
 for drifting, want in ((True, {v.NOT_STEADY}), (False, {v.AGREES, v.DISAGREES})):
     shutil.rmtree(work, ignore_errors=True)
@@ -364,7 +363,7 @@ check(r7["fig7b_onset"]["verdict"] == v.AGREES, r7["fig7b_onset"])
 
 # Fig. 5: a curve with a drifting state point gets "not steady" for its b and is left out of
 # the collapse and the fit of a; the other curve keeps a number's verdict.
-from validation_lib import figures_master  # noqa: E402
+from invasim_analysis.validation import figures_master  # noqa: E402
 shutil.rmtree(work, ignore_errors=True)
 jobs5 = []
 for c, (beta, tau_p) in enumerate([(1e-3, 25.0), (1e-3, 2500.0)]):
@@ -391,10 +390,7 @@ check(out.returncode == 1 and "unknown figure 'fig10'" in out.stderr, out.stderr
 # A workspace made from another checkout of the repository (a campaign's own clone) cites its
 # spec by the same path inside this repository; a spec found nowhere here keeps its own path
 # (and the page's citation check then refuses it).
-import importlib.util  # noqa: E402
-cli_spec = importlib.util.spec_from_file_location("validation_cli", os.path.join(scripts, "validation.py"))
-cli = importlib.util.module_from_spec(cli_spec)
-cli_spec.loader.exec_module(cli)
+from invasim_analysis.validation import cli  # noqa: E402
 check(cli.repo_path("/elsewhere/clone/protocols/sweeps/fig3_passive_slices.lua")
       == "protocols/sweeps/fig3_passive_slices.lua")
 check(cli.repo_path(os.path.join(cli.REPO, "protocols/sweeps/fig4a_passive.lua"))
@@ -402,12 +398,11 @@ check(cli.repo_path(os.path.join(cli.REPO, "protocols/sweeps/fig4a_passive.lua")
 check(cli.repo_path("/elsewhere/clone/protocols/sweeps/no_such_sweep.lua")
       == "/elsewhere/clone/protocols/sweeps/no_such_sweep.lua")
 
-# The paper-scale records (validation_lib/paper_scale.py, `validation.py paper`) on synthetic
+# The paper-scale records (invasim_analysis/validation/paper_scale.py, `validation.py paper`) on synthetic
 # workspaces ROOT/paper_<sweep>: 80 rows per finished run (t = 0.05 x 100 steps per row, to
 # t = 400), noise +-1 around its level, A_t^max = 1000 (the negligible drift: 10).
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__))))
 import synthetic  # noqa: E402
-from validation_lib import document_paper, paper_scale  # noqa: E402
+from invasim_analysis.validation import document_paper, paper_scale  # noqa: E402
 rng = np.random.default_rng(7)
 
 
@@ -452,10 +447,10 @@ shutil.rmtree(work, ignore_errors=True)
 synthetic.write_workspace(os.path.join(work, "one"), [
     ({"seed": 1, "steps": 8000}, "done", level(500.0), 1000.0, 0.3),
     ({"seed": 2, "steps": 8000}, "done", level(420.0, slope=2.0), 1000.0, 0.3)])
-steady_job, drifting_job = runs.load(os.path.join(work, "one"))
-s = runs.steadiness(steady_job)
+steady_job, drifting_job = workspace.load(os.path.join(work, "one"))
+s = steady.steadiness(steady_job)
 check(s["steady"] is True and abs(s["drift"]) < 2 * s["error"] and s["samples"] == 40, s)
-s = runs.steadiness(drifting_job)
+s = steady.steadiness(drifting_job)
 check(s["steady"] is False and abs(s["drift"] - 40.0) < 2.0 and s["negligible"] == 10.0, s)
 # At the paper's 0.55 point: all runs steady, both starts at A_t = 500, A_n = 0.5 (the curve
 # normalises 200 -> 0, 800 -> 1): agrees.
@@ -478,7 +473,7 @@ rows, rec = paper_record(starts(level(400.0), level(600.0)))
 check(all(p["steadiness"]["steady"] for p in rec["runs"]), rec["runs"])
 for sid in ("fig4b_An_at_0.3", "fig4b_inset_starts"):
     check(rows[sid]["verdict"] == v.NOT_STEADY and "the starts disagree" in rows[sid]["why"], rows[sid])
-agreement = runs.start_agreement(runs.load(os.path.join(work, "root", "paper_fig4b_starts")))
+agreement = steady.start_agreement(workspace.load(os.path.join(work, "root", "paper_fig4b_starts")))
 check(agreement["agree"] is False and abs(agreement["difference"] - 200.0) < 1.0, agreement)
 # A running run (mixed, seed 2: 40 of 80 rows, no summary.json): reported as running with
 # its progress, its values provisional; the rows are "running", never a final verdict.
@@ -491,13 +486,13 @@ for sid in ("fig4b_An_at_0.3", "fig4b_inset_starts"):
     check(rows[sid]["verdict"] == v.RUNNING and rows[sid]["provisional"] == v.AGREES
           and "provisional (1 running): agrees" in rows[sid]["why"], rows[sid])
 # A run still writing: the partial last line of its series.csv is not read (a done run's is).
-running_job = [j for j in runs.load_all(os.path.join(work, "root", "paper_fig4b_starts"))
+running_job = [j for j in workspace.load_all(os.path.join(work, "root", "paper_fig4b_starts"))
                if j.status == "running"][0]
 with open(os.path.join(running_job.path, "series.csv"), "a") as f:
     f.write("4200,210.0,5e")
-check(runs.Job(running_job.path).rows() == 40, runs.Job(running_job.path).rows())
-check(runs.Job(running_job.path).provisional().mean("A_t")[0] == float(np.mean(
-    runs.Job(running_job.path).series["A_t"][20:40])))
+check(workspace.Job(running_job.path).rows() == 40, workspace.Job(running_job.path).rows())
+check(workspace.Job(running_job.path).provisional().mean("A_t")[0] == float(np.mean(
+    workspace.Job(running_job.path).series["A_t"][20:40])))
 # A pending run (no row yet) is listed as pending and left out of the values.
 pend = starts(level(500.0), level(500.0))
 pend[3] = (pend[3][0], "pending", [], 1000.0, 0.3)

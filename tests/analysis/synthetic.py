@@ -74,17 +74,14 @@ def write_table(path, rng, truth, points=13, span=2.6, replicates=4, noise=0.08,
 
 def write_workspace(path, points, every=100, quench_steps=100, dt=0.05):
     """A sweep workspace as `invasim sweep init`/`run` leave it (docs/sweeps.md), for the tests
-    of scripts/validation_lib: points is a list of (state point, status, A_t series,
+    of scripts/invasim_analysis: points is a list of (state point, status, A_t series,
     A_t_max, x) with x the measured 2 T_c/P. A point's series.csv has one row per A_t value
     (step = quench_steps + every (i + 1), time = step x dt); a done point also has summary.json
     (the mean and block error over the last half of the rows, as the protocols write it, with
-    runs.block_error); a pending point has neither. Returns the job ids."""
+    steady.block_error); a pending point has neither. Returns the job ids."""
     import json
     import os
-    import sys
-    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..",
-                                    "scripts"))
-    from validation_lib import runs
+    from invasim_analysis import steady
     ids = []
     for k, (sp, status, a_t, a_t_max, x) in enumerate(points):
         sp = dict({"P": P, "quench_steps": quench_steps, "every": every}, **sp)
@@ -109,7 +106,7 @@ def write_workspace(path, points, every=100, quench_steps=100, dt=0.05):
                                                  cols["kT_c_paper"][i], cols["A_ratio"][i]))
         if status == "done":
             half = len(a_t) // 2
-            averages = {n: {"mean": float(np.mean(v[-half:])), "error": runs.block_error(v[-half:]),
+            averages = {n: {"mean": float(np.mean(v[-half:])), "error": steady.block_error(v[-half:]),
                             "samples": half} for n, v in cols.items()}
             with open(os.path.join(d, "summary.json"), "w") as f:
                 json.dump({"averages": averages}, f)

@@ -37,21 +37,20 @@ done
 # for Fig. 3's end points; the series window for Fig. 4a's times), passive runs included.
 /usr/bin/python3 - "$repo/scripts" ws figures <<'PY' || fail "a figure's temperature is not the measured 2 T_c/P"
 import json, math, os, sys
-sys.path.insert(0, sys.argv[1])
-from validation_lib import runs
+from invasim_analysis import steady, workspace
 ws, figs = sys.argv[2], sys.argv[3]
 problems = []
-jobs = runs.load(os.path.join(ws, "fig3_passive_slices"))
+jobs = workspace.load(os.path.join(ws, "fig3_passive_slices"))
 want = sorted(j.mean("kT_c_paper")[0] / float(j.sp["P"]) for j in jobs)
 got = sorted(e[0] for e in json.load(open(os.path.join(figs, "fig3.json")))["numbers"]["end_points"])
 if not all(abs(a - b) <= 1e-9 * abs(b) for a, b in zip(got, want)):
     problems.append("fig3 end points at %r, measured %r" % (got, want))
-jobs = runs.load(os.path.join(ws, "fig4a_passive"))
+jobs = workspace.load(os.path.join(ws, "fig4a_passive"))
 by_kT = {j.sp["kT"]: j for j in jobs}
 for f, pts in json.load(open(os.path.join(figs, "fig4a.json")))["numbers"]["points"].items():
     for p in pts:
         j = by_kT[p["key"][0]]
-        m = runs.window_mean(j, "kT_c_paper", float(f)) / float(j.sp["P"])
+        m = steady.window_mean(j, "kT_c_paper", float(f)) / float(j.sp["P"])
         if not abs(p["x"] - m) <= 1e-9 * abs(m):
             problems.append("fig4a at t = %s: x = %r, measured %r" % (f, p["x"], m))
 if problems:
@@ -164,12 +163,11 @@ print("validation_tiny: document and %d figure records complete" % 9)
 PY
 # Citations: every statement (the paper file and the figure records) cites its place in the
 # paper and the paper's own figure numbers, and no text of the page cites a path outside the
-# repository (the patterns of scripts/validation_lib/citations.py, OUTSIDE). The generator refuses such a page; this checks
+# repository (the patterns of scripts/invasim_analysis/validation/citations.py, OUTSIDE). The generator refuses such a page; this checks
 # the page it wrote, independently of it.
 /usr/bin/python3 - "$repo/scripts" "$work" <<'PY' || fail "a statement or the page cites outside the paper and the repository"
 import glob, json, os, sys
-sys.path.insert(0, sys.argv[1])
-from validation_lib import citations, verdict
+from invasim_analysis.validation import citations, verdict
 work = sys.argv[2]
 count, figures = citations.paper_figures()
 statements, problems = list(verdict.paper().values()), []

@@ -15,9 +15,7 @@ printf 'before\n<!-- bath_table.py: begin -->\nOLD TABLE\n<!-- bath_table.py: en
    --csv "$work/bath.csv" --model "$page") > "$work/log" 2>&1 || { cat "$work/log"; fail "the quick table did not run"; }
 
 readings=$(grep -c '' <("$python" - "$repo" <<'PY'
-import sys
-sys.path.insert(0, sys.argv[1] + "/scripts")
-import bath_table
+from invasim_analysis import bath_table
 for r in bath_table.readings(4.4):
     print(r[0])
 PY

@@ -16,7 +16,6 @@ import struct
 import subprocess
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
 from prerequisites import skip_test  # noqa: E402
 FULL_HEADER = ("step,time [tau],T_c [eps_c],T_a [eps_c],P_left [eps_c/sigma^3],"
                "P_right [eps_c/sigma^3],L_x [sigma],phi,phi_c,phi_a,A_t [sigma^2],"
@@ -64,8 +63,7 @@ def png_size(path):
 
 def check_labels(path, script):
     """The labels plot_run.py recorded for the main job's figures, and its label table."""
-    sys.path.insert(0, os.path.dirname(os.path.abspath(script)))
-    import plot_labels
+    from invasim_analysis import plot_labels
 
     # The table: every column of the main job's series.csv has a human label; an unknown
     # name is an error naming it, never printed raw.

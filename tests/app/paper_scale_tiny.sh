@@ -6,7 +6,7 @@
 # paper`, docs/validation.md "At the paper's scale") reads the tiny workspaces under the
 # campaign's names (ROOT/paper_<file>): a record per figure with its rows and the A_n(t)
 # panels, the cost record, and a page with the section; and the block errors of the
-# steady-state criterion (scripts/validation_lib/runs.py, block_error) are those summary.json
+# steady-state criterion (scripts/invasim_analysis/steady.py, block_error) are those summary.json
 # holds (src/measure/block_average.cpp).
 # Usage: paper_scale_tiny.sh INVASIM REPO WORKDIR
 set -euo pipefail
@@ -39,8 +39,7 @@ done
   || { cat document.log; fail "validation.py document --paper"; }
 /usr/bin/python3 - "$repo/scripts" root records page.md <<'PY' || fail "the paper-scale records"
 import json, math, os, sys
-sys.path.insert(0, sys.argv[1])
-from validation_lib import runs
+from invasim_analysis import steady, workspace
 root, records, page = sys.argv[2:5]
 problems = []
 for fig in ("fig3", "fig4a", "fig4b", "fig5"):
@@ -56,9 +55,9 @@ text = open(page).read()
 if "## At the paper's scale" not in text or "| `fig4b_An_at_0.3` |" not in text:
     problems.append("the page has no paper-scale section with the fig4b_An_at_0.3 row")
 for ws in sorted(os.listdir(root)):
-    for j in runs.load(os.path.join(root, ws)):
-        first, end = runs.window(j)
-        got, want = runs.block_error(j.series["A_t"][first:end]), j.mean("A_t")[1]
+    for j in workspace.load(os.path.join(root, ws)):
+        first, end = steady.window(j)
+        got, want = steady.block_error(j.series["A_t"][first:end]), j.mean("A_t")[1]
         # series.csv holds 10 significant digits: the means it gives differ from the
         # protocol's by ~1e-10 of A_t
         if not abs(got - want) <= 1e-6 * abs(want) + 1e-8 * abs(j.mean("A_t")[0]):

@@ -126,14 +126,14 @@ grep -rq "beta = 0.5 must be smaller than alpha" failing/workspace/*/run.log || 
 # 7. analyze: collects into ws/results.csv (the same table as collect) and runs
 #    scripts/master_curve.py on it, with the user's options passed on and the protocol's
 #    defaults of the parameters the fits need (beta, gamma: this sweep does not set them)
-#    merged into the user's --fixed; two temperatures are too few for the sigmoid fit, and the
-#    script says so (exit status 1).
+#    merged into the user's --fixed; two temperatures, one of them not steady in runs this
+#    short, are too few for the fit, and the script says so (exit status 1).
 status=0
 "$invasim" sweep analyze ws --no-figures --fixed P=0.002 > analyze.log 2>&1 || status=$?
 [ $status -eq 1 ] || fail "analyze of 2 temperatures exited with $status (expected 1)" analyze.log
 grep -q "sweep analyze: 6 rows in [^ ]*ws/results.csv$" analyze.log || fail "analyze: collect" analyze.log
 grep -q -- "master_curve.py [^ ]*ws/results.csv -o [^ ]*ws/analysis --fixed P=0.002,beta=0.01,gamma=0.2 --no-figures$" \
   analyze.log || fail "analyze: the script's command line" analyze.log
-grep -q "needs at least 3" analyze.log || fail "analyze: the script's verdict" analyze.log
+grep -q "needs at least 3\|A_n is undefined" analyze.log || fail "analyze: the script's verdict" analyze.log
 cmp ws/results.csv results.csv || fail "analyze's results.csv differs from collect's"
 echo "sweep local: OK"

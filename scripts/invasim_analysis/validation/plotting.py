@@ -1,16 +1,14 @@
 """Figure helpers of the validation figures: one matplotlib style, labels from
-scripts/plot_labels.py (no raw column names), log axes where a quantity spans decades."""
+invasim_analysis/plot_labels.py (no raw column names), log axes where a quantity spans decades."""
 
 import os
-import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-import plot_labels  # noqa: E402
+from .. import plot_labels
 
 # The one temperature axis of every figure: the measured cancer-cell temperature in the
 # paper's convention (its Eq. (14): twice the equipartition T_c), for passive runs too.

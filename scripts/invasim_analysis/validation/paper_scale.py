@@ -1,13 +1,13 @@
 """The paper-scale records (docs/validation.md, "At the paper's scale"): the runs of
 protocols/sweeps/paper_scale/ (28 adipocytes, 1500 cells, to t = 5e5) read while a campaign
 runs them, each statement of Figs. 3, 4a, 4b and 5 that they test computed as at the reduced
-scale (the same figure functions, the same steady-state criterion of runs.py) and written as
+scale (the same figure functions, the same steady-state criterion of steady.py) and written as
 DIR/paper_<figure>.json beside the A_n(t) panels (panels.py).
 
 A point is done, running (its series.csv has rows, but the run has not finished: running,
 stopped or submitted) or pending (no row yet); a failed run is listed as failed and left out
 of the values (`sweep run` tries it again).
-Running runs enter with their averages so far (runs.Job.provisional); a row that rests on a
+Running runs enter with their averages so far (workspace.Job.provisional); a row that rests on a
 run that is not done gets the verdict "running" (the verdict its values would give is kept
 as `provisional`; so does a row while a run of its figure is pending or failed), a row
 with no run yet "pending"."""
@@ -16,7 +16,8 @@ import math
 import os
 import re
 
-from . import panels, runs, verdict
+from .. import normalise, steady, workspace
+from . import panels, verdict
 from .figures_master import fig5 as reduced_fig5
 from .figures_tissue import fig3 as reduced_fig3
 from .figures_tissue import fig4a as reduced_fig4a
@@ -140,12 +141,12 @@ def fig4b(sets, out, invasim):
     agreement (the reduced figure's inset row)."""
     starts, curve = sets[0], sets[1] if len(sets) > 1 else None
     if not curve or len({j.sp.get("f0") for j in curve}) < 2:
-        raise runs.InputError("A_n needs the normalisation of the beta = 1e-2, tau_p = 25 "
+        raise workspace.InputError("A_n needs the normalisation of the beta = 1e-2, tau_p = 25 "
                               "curve at the paper's scale (%s): fewer than two of its state "
                               "points have rows" % (PREFIX + SWEEPS["fig4b"][1]))
     rec = reduced_fig4b(curve, out, invasim, inset_jobs=starts)
     extremes = rec["numbers"]["normalisation"]
-    pts = [runs.scale_like({"A_t": j.mean("A_t")[0], "A_t_max": j.mean("A_t_max")[0],
+    pts = [normalise.scale_like({"A_t": j.mean("A_t")[0], "A_t_max": j.mean("A_t_max")[0],
                             "A_t_error": j.mean("A_t")[1]}, extremes) for j in starts]
     vals = [p["A_n"] for p in pts]
     mean = sum(vals) / len(vals)
@@ -153,7 +154,7 @@ def fig4b(sets, out, invasim):
            if len(vals) > 1 else pts[0]["A_n_error"])
     x = sum(x_measured(j) for j in starts) / len(starts)
     st = verdict.paper()["fig4b_An_at_0.3"]
-    steady, reasons = runs.point_steadiness(starts)
+    is_steady, reasons = steady.point_steadiness(starts)
     row = verdict.row(
         "fig4b_An_at_0.3", "A_n = %s at %s (the state point run from both starts: %d runs, "
         "normalised with the paper-scale curve)" % (verdict.fmt(mean, err),
@@ -189,7 +190,7 @@ def record(name, root, out, invasim):
     if not present[0]:
         rec["rows"] = _pending_rows(name, "workspace %s not started" % (PREFIX + SWEEPS[name][0]))
         return rec
-    all_sets = [sorted(runs.load_all(w), key=_order) if here else []
+    all_sets = [sorted(workspace.load_all(w), key=_order) if here else []
                 for w, here in zip(wss, present)]
     progresses = [[progress(j) for j in jobs] for jobs in all_sets]
     usable = [[j.provisional() for j, p in zip(jobs, ps) if p["class"] in (DONE, RUNNING)]
@@ -201,7 +202,7 @@ def record(name, root, out, invasim):
     by_id = {j.id: j for js in usable for j in js}
     for p in flat:
         if p["job"] in by_id:
-            s = runs.steadiness(by_id[p["job"]])
+            s = steady.steadiness(by_id[p["job"]])
             p["steadiness"] = {k: s.get(k) for k in ("steady", "drift", "error", "m3", "m4",
                                                      "negligible", "samples")}
     rec["runs"] = [{k: v for k, v in p.items() if k != "sp"} | {
@@ -214,7 +215,7 @@ def record(name, root, out, invasim):
     os.makedirs(out, exist_ok=True)
     try:
         rows, images, numbers, extremes = FUNCS[name](usable, out, invasim)
-    except (runs.InputError, ValueError, ZeroDivisionError) as e:
+    except (workspace.InputError, ValueError, ZeroDivisionError) as e:
         rows, images, numbers, extremes = [
             verdict.row(sid, "n/a", verdict.NO_DATA, str(e)) for sid in STATEMENTS[name]], [], {}, None
     rec["rows"] = _finalise(rows, flat, used)
@@ -260,7 +261,7 @@ def cost_record(root, plan_entries):
     sweeps = []
     for s in dict.fromkeys(x for names in SWEEPS.values() for x in names):
         ws = workspace_path(root, s)
-        jobs = runs.load_all(ws) if os.path.exists(os.path.join(ws, "invasim_sweep.json")) else []
+        jobs = workspace.load_all(ws) if os.path.exists(os.path.join(ws, "invasim_sweep.json")) else []
         sweeps.append(cost(s, [progress(j) for j in jobs], plan_entries))
     return {"sweeps": sweeps, "whole_paper": whole_paper(plan_entries),
             "used_core_hours": sum(c["used_core_hours"] for c in sweeps),

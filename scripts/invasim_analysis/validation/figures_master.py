@@ -7,21 +7,19 @@ neither the collapse nor the fit of a; a curve whose midpoint a is not located (
 rise, outside the temperatures; fits.midpoint_not_located) is drawn as data only."""
 
 import math
-import os
-import sys
 import textwrap
 
 import numpy as np
 from matplotlib.lines import Line2D
 
-from . import runs, verdict
+from .. import normalise, steady, workspace
+from . import points, verdict
 from .figures_tissue import tc_equals_ta_row, x_measured
 from .plotting import T_PAPER, figure, label, log_axis, save
 
-sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from master_curve_lib import fits  # noqa: E402
-from master_curve_lib.analysis import build_points  # noqa: E402
-from master_curve_lib.table import InputError as FitError  # noqa: E402
+from ..errors import InputError as FitError
+from ..master_curve import fits
+from ..master_curve.analysis import build_points
 
 MIN_ERROR = 1e-3  # floor of a state point's A_n error in the fits (as master_curve.py)
 POOL = 1  # neighbours on each side whose replicate variance is pooled (master_curve.py --pool)
@@ -52,8 +50,8 @@ def marker(beta):
 
 def _curve_points(jobs, keys):
     out = {}
-    for key, reps in runs.group(jobs, keys + ["f0", "kT"]).items():
-        p = runs.state_point(reps, lambda j: {
+    for key, reps in workspace.group(jobs, keys + ["f0", "kT"]).items():
+        p = points.state_point(reps, lambda j: {
             "x": x_measured(j), "A_t": j.mean("A_t")[0], "A_t_max": j.mean("A_t_max")[0],
             "A_t_error": j.mean("A_t")[1], "tau_d": j.scalar("tau_d"),
             "T_c_over_T_a": j.mean("T_c_over_T_a")[0],
@@ -69,7 +67,7 @@ def _pooled_errors(pts, jobs_by_id, extremes):
     alone can be near zero by chance and then dominates a fit), floored at MIN_ERROR."""
     groups = [[jobs_by_id[i] for i in p["jobs"]] for p in pts]
     rows = [j for g in groups for j in g]
-    scaled = [runs.scale_like({"A_t": j.mean("A_t")[0], "A_t_max": j.mean("A_t_max")[0],
+    scaled = [normalise.scale_like({"A_t": j.mean("A_t")[0], "A_t_max": j.mean("A_t_max")[0],
                                "A_t_error": j.mean("A_t")[1]}, extremes) for j in rows]
     idx, k = [], 0
     for g in groups:
@@ -111,7 +109,7 @@ def _fit_curve(key, pts, plain, jobs_by_id, extremes):
     sig = _pooled_errors(pts, jobs_by_id, extremes)
     for p, e in zip(pts, sig):
         p["A_n_error"] = e
-        p["steady"] = runs.point_steadiness([jobs_by_id[i] for i in p["jobs"]])[0]
+        p["steady"] = steady.point_steadiness([jobs_by_id[i] for i in p["jobs"]])[0]
     entry = {"curve": plain, "key": list(key), "points": len(pts),
              "unsteady_points": ["2T_c/P = %.3g" % p["x"] for p in pts if not p["steady"]],
              "beta": key[1] if key[0] == "passive" else key[0]}
@@ -221,10 +219,10 @@ def fig5(jobs, out, invasim, passive_jobs=None, long_jobs=None, extra_jobs=None)
     and tau_p of jobs, which is drawn for comparison (grey, hollow) but not fitted.
     extra_jobs (fig5_extra_curves.lua): further curves, fitted like those of jobs."""
     curves, replaced = _curves(jobs, passive_jobs, long_jobs, extra_jobs)
-    extremes = runs.normalise([p for pts in curves.values() for p in pts])
+    extremes = normalise.normalise([p for pts in curves.values() for p in pts])
     for pts in replaced.values():
         for p in pts:
-            p.update(runs.scale_like(p, extremes))
+            p.update(normalise.scale_like(p, extremes))
     jobs_by_id = {j.id: j for j in jobs + (passive_jobs or []) + (long_jobs or []) + (extra_jobs or [])}
     short_t, long_t = _run_time(jobs), _run_time(long_jobs) if long_jobs else None
     fitted = []
@@ -255,7 +253,7 @@ def fig5(jobs, out, invasim, passive_jobs=None, long_jobs=None, extra_jobs=None)
                                          for j in passive_jobs if float(j.sp.get("kT", 0)) > 0]
     kept = [j for j in jobs if (float(j.sp["beta"]), float(j.sp["tau_p"])) not in replaced]
     return {"images": images, "rows": rows, "numbers": numbers,
-            "steadiness": runs.steadiness_summary(kept + (passive_jobs or []) + (long_jobs or [])
+            "steadiness": steady.steadiness_summary(kept + (passive_jobs or []) + (long_jobs or [])
                                                   + (extra_jobs or []))}
 
 

@@ -7,7 +7,8 @@ import os
 
 import numpy as np
 
-from . import runs, verdict
+from .. import normalise, steady, workspace
+from . import points, verdict
 from .plotting import figure, label, log_axis, log_if_spans, save, state
 
 INTERMEDIATE = 10.0  # tau_p <= 10 tau_g: small and intermediate persistence (Fig. 6(b))
@@ -17,7 +18,7 @@ def fig6(jobs, out, invasim):
     """tau_d against tau_p per phi_c beside the exact free-particle value (Eq. (18))."""
     fig, (ax,) = figure()
     rows, table = [], []
-    for (phi_c,), reps in runs.group(jobs, ["phi_c"]).items():
+    for (phi_c,), reps in workspace.group(jobs, ["phi_c"]).items():
         reps.sort(key=lambda j: float(j.sp["tau_p"]))
         tp = [float(j.sp["tau_p"]) for j in reps]
         td = [j.scalar("tau_d") for j in reps]
@@ -120,15 +121,15 @@ def fig8(jobs, out, invasim):
         rows += r
         numbers[box] = num
     return {"images": images, "rows": rows, "numbers": numbers,
-            "steadiness": runs.steadiness_summary(jobs)}
+            "steadiness": steady.steadiness_summary(jobs)}
 
 
 def _fig8_scan(jobs, out, box, image, variant):
     """One box's scan: its state points (replicate means), normalised over the scan, its
     figure and its verdict rows."""
     pts = []
-    for (lam, phi_a), reps in runs.group(jobs, ["lambda", "phi_a"]).items():
-        p = runs.state_point(reps, lambda j: {
+    for (lam, phi_a), reps in workspace.group(jobs, ["lambda", "phi_a"]).items():
+        p = points.state_point(reps, lambda j: {
             "phi_a_measured": j.mean("phi_a")[0], "A_t": j.mean("A_t")[0],
             "A_t_max": j.mean("A_t_max")[0], "A_t_error": j.mean("A_t")[1],
             "phi_a_local_mean": j.mean("phi_a_local_mean")[0],
@@ -137,7 +138,7 @@ def _fig8_scan(jobs, out, box, image, variant):
             "dphi": j.mean("phi_a_local_std")[0], "dphi_error": j.mean("phi_a_local_std")[1]})
         p["lambda"], p["phi_a_target"] = float(lam), float(phi_a)
         pts.append(p)
-    extremes = runs.normalise(pts)
+    extremes = normalise.normalise(pts)
     by_lambda = {lam: sorted((p for p in pts if p["lambda"] == lam),
                              key=lambda p: p["phi_a_measured"])
                  for lam in sorted({p["lambda"] for p in pts})}
@@ -182,7 +183,7 @@ def _fig8_rows(pts, by_lambda, box, variant, jobs_by_id):
     rows = []
 
     def add(sid, ours, v, why, on=()):
-        unsteady = runs.unsteady_points(list(on), jobs_by_id, lambda p: "lambda = %g, phi_a = %g"
+        unsteady = steady.unsteady_points(list(on), jobs_by_id, lambda p: "lambda = %g, phi_a = %g"
                                         % (p["lambda"], p["phi_a_target"]))
         r = verdict.row(sid, ours, v, why + ("; rests on the state points it names, each steady"
                                              if on else ""), unsteady=unsteady)
@@ -270,7 +271,7 @@ def fig9(jobs, out, invasim):
     fig, (ax,) = figure()
     means = []
     stat = "median"
-    for (a0,), reps in runs.group(jobs, ["A_0"]).items():
+    for (a0,), reps in workspace.group(jobs, ["A_0"]).items():
         lo, hi, count = read_shapes(reps[0])
         for j in reps[1:]:
             count = count + read_shapes(j)[2]
@@ -302,4 +303,4 @@ def fig9(jobs, out, invasim):
             verdict.fmt(means[0][1]), means[0][0], verdict.fmt(means[-1][1]), means[-1][0]),
             verdict.trend_verdict(d, e), "difference > 2 errors (replicate scatter)"))
     return {"images": images, "rows": rows, "numbers": {"means": means},
-            "steadiness": runs.steadiness_summary(jobs)}
+            "steadiness": steady.steadiness_summary(jobs)}

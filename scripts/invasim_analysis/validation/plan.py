@@ -18,14 +18,14 @@ where the spec leaves one out). Two ways to get `fixed` and `rate`:
 The wall time with N jobs replays `sweep run`: the preparation alone, then the points in
 order, each on the first free of N slots."""
 
-import json
 import os
 import resource
 import shutil
 import subprocess
 
-from .runs import InputError
-from .repo_paths import repo_path
+from .. import workspace
+from ..errors import InputError
+from ..repo_paths import repo_path
 
 
 def declared_steps(invasim, protocol):
@@ -52,21 +52,9 @@ def point_steps(sp, steps_defaults, spec):
 
 
 def statepoints(ws):
-    with open(os.path.join(ws, "invasim_sweep.json")) as f:
-        meta = json.load(f)
-    sps = []
-    for i in meta["points"]:
-        with open(os.path.join(ws, "workspace", i, "signac_statepoint.json")) as f:
-            sps.append((i, json.load(f)))
-    return meta, sps
-
-
-def _doc(path):
-    p = os.path.join(path, "signac_job_document.json")
-    if not os.path.exists(p):
-        return {}
-    with open(p) as f:
-        return json.load(f)
+    meta = workspace.meta(ws)
+    return meta, [(i, workspace.statepoint(os.path.join(ws, "workspace", i)))
+                  for i in meta["points"]]
 
 
 def _cpu_seconds(cmd):
@@ -140,15 +128,15 @@ def from_workspace(invasim, ws):
     meta, sps = statepoints(ws)
     steps = declared_steps(invasim, meta["protocol"])
     counts = [point_steps(sp, steps, ws) for _, sp in sps]
-    walls = [_doc(os.path.join(ws, "workspace", i)).get("wall_seconds")
-             if _doc(os.path.join(ws, "workspace", i)).get("status") == "done" else None
+    walls = [workspace.document(os.path.join(ws, "workspace", i)).get("wall_seconds")
+             if workspace.document(os.path.join(ws, "workspace", i)).get("status") == "done" else None
              for i, _ in sps]
     done = [(w, n) for w, n in zip(walls, counts) if w is not None]
     if not done:
         raise InputError("%s: no point is done: run it, or plan the spec (timing)" % ws)
     per_step = sum(w for w, _ in done) / max(1, sum(n for _, n in done))
     costs = [w if w is not None else n * per_step for w, n in zip(walls, counts)]
-    prep = _doc(os.path.join(ws, "prep")).get("wall_seconds", 0.0) if meta.get("prep") else 0.0
+    prep = workspace.document(os.path.join(ws, "prep")).get("wall_seconds", 0.0) if meta.get("prep") else 0.0
     return {"spec": repo_path(meta.get("spec", ws)), "workspace": os.path.basename(os.path.normpath(ws)), "points": len(sps), "steps": counts,
             "rate": sum(n for _, n in done) / max(1e-9, sum(w for w, _ in done)), "fixed": None,
             "prep": prep, "source": "wall_seconds of %d done points" % len(done), "costs": costs}

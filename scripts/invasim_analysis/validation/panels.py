@@ -1,6 +1,6 @@
 """A_n(t) panels of single runs (docs/validation.md, "At the paper's scale"): per run, A_t(t)
 over its production with the averaging window shaded and the two quarter means of the
-steady-state criterion (runs.steadiness) drawn as bars with their errors; the right axis
+steady-state criterion (steady.steadiness) drawn as bars with their errors; the right axis
 reads A_n, the same A_t through the figure's normalisation (Appendix C, at the window's mean
 A_t^max), so the panel shows A_n(t) and exactly what the criterion compares."""
 
@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from . import runs
+from .. import steady
 from .figures_tissue import production_time
 from .plotting import label, save  # (sets the Agg backend before pyplot)
 
@@ -50,8 +50,8 @@ def draw(jobs, extremes, out, name, titles):
         t = production_time(job)
         y = job.series["A_t"]
         ax.plot(t, y, lw=0.7, color="0.3")
-        first, end = runs.window(job)
-        s = runs.steadiness(job)
+        first, end = steady.window(job)
+        s = steady.steadiness(job)
         ax.axvspan(t[first], t[end - 1], color="0.92", zorder=0)
         if "m3" in s:
             for (i0, i1), m, e, c in ((s["rows3"], s["m3"], s["e3"], "C0"),

@@ -2,12 +2,14 @@
 points (replicate means), curves and their fits, the fit of the scale a across curves."""
 
 import math
+import os
 
 import numpy as np
 
-from .normalise import normalise
+from .. import steady, workspace
+from ..errors import InputError
+from ..normalise import normalise_group
 from .selection import Keys, canonical, group_indices, matches
-from .table import InputError
 
 # --temperature: column read per row, and the axis label (the convention said plainly).
 TEMPERATURES = {
@@ -84,7 +86,7 @@ def same_number_written_twice(keys, rows):
     return out
 
 
-def steadiness(table, rows, max_drift, point_of):
+def drift_steadiness(table, rows, max_drift, point_of):
     """Per row: None if its state point is steady, else why not. A state point is not steady
     when a quantity's relative drift over the averaging window, averaged over its replicates,
     exceeds the limit: mean over replicates of K_drift/K > limit in magnitude (K_drift: the
@@ -112,7 +114,42 @@ def steadiness(table, rows, max_drift, point_of):
     return reasons, unchecked
 
 
-def normalise_rows(keys, rows, opts, a_t, a_max, err_t, err_max, point_of, steady):
+def find_workspace(option, results):
+    """The sweep workspace whose jobs the table lists: `option` (--workspace), else the
+    directory holding the table when it is one, else None."""
+    if option:
+        if not os.path.exists(os.path.join(option, "invasim_sweep.json")):
+            raise InputError("--workspace %s is not a sweep workspace (no invasim_sweep.json)"
+                             % option)
+        return option
+    here = os.path.dirname(os.path.abspath(results))
+    return here if os.path.exists(os.path.join(here, "invasim_sweep.json")) else None
+
+
+def runs_steadiness(table, rows, point_of, ws):
+    """Per row: None if its state point is steady by the one steady-state criterion
+    (steady.point_steadiness: A_t's two quarter means, its runs read from the workspace's job
+    files through workspace.Job), else why not. Without a workspace: None (not judged)."""
+    if ws is None:
+        return None
+    reasons = [None] * len(rows)
+    for idx in group_indices(point_of).values():
+        jobs = []
+        for i in idx:
+            path = os.path.join(ws, "workspace", rows[i].get("job_id", ""))
+            if not rows[i].get("job_id") or not os.path.isdir(path):
+                raise InputError("%s: the job is not in the workspace %s (give the one the "
+                                 "table was collected from with --workspace)"
+                                 % (table.where(rows[i]), ws))
+            jobs.append(workspace.Job(path))
+        ok, why = steady.point_steadiness(jobs)
+        if not ok:
+            for i in idx:
+                reasons[i] = "A_t not steady: " + "; ".join(why)
+    return reasons
+
+
+def a_n_by_partition(keys, rows, opts, a_t, a_max, err_t, err_max, point_of, is_steady):
     """A_n per row, normalised separately in each --normalise-within partition; rows that
     are not steady are scaled like the others but never set the normalisation."""
     n = len(rows)
@@ -122,8 +159,8 @@ def normalise_rows(keys, rows, opts, a_t, a_max, err_t, err_max, point_of, stead
     parts = group_indices([keys.label(r, opts.within) for r in rows])
     for part, idx in parts.items():
         where = ", ".join("%s=%s" % kv for kv in zip(opts.within, part)) or "the whole sweep"
-        sel = [matches(keys, rows[i], opts.selector) and steady[i] for i in idx]
-        res = normalise(a_t[idx], a_max[idx], [point_of[i] for i in idx], sel,
+        sel = [matches(keys, rows[i], opts.selector) and is_steady[i] for i in idx]
+        res = normalise_group(a_t[idx], a_max[idx], [point_of[i] for i in idx], sel,
                         None if err_t is None else err_t[idx],
                         None if err_max is None else err_max[idx], where)
         r_a[idx], a_n[idx], run_err[idx] = res["rA_t"], res["A_n"], res["A_n_run_error"]
@@ -220,13 +257,18 @@ def analyse(table, opts):
     point_of = [keys.label(r, point_keys) for r in rows]
     warnings = same_number_written_twice(keys, rows)
     x, a_t, a_max, err_t, err_max = row_values(table, keys, rows, opts.temperature)
-    unsteady, unchecked = steadiness(table, rows, opts.max_drift, point_of)
-    steady = [why is None for why in unsteady]
-    if not any(steady):
-        raise InputError("%s: no finished job is steady (--max-drift %s): %s" % (
+    unsteady, unchecked = drift_steadiness(table, rows, opts.max_drift, point_of)
+    ws = find_workspace(getattr(opts, "workspace", None), table.path)
+    by_runs = runs_steadiness(table, rows, point_of, ws)
+    if by_runs is not None:
+        unsteady = [a if b is None else b if a is None else b + "; " + a
+                    for a, b in zip(unsteady, by_runs)]
+    is_steady = [why is None for why in unsteady]
+    if not any(is_steady):
+        raise InputError("%s: no finished job is steady (A_t, --max-drift %s): %s" % (
             table.path, ",".join("%s=%g" % kv for kv in opts.max_drift), unsteady[0]))
-    r_a, a_n, run_err, norm_err, norm_info = normalise_rows(keys, rows, opts, a_t, a_max, err_t,
-                                                            err_max, point_of, steady)
+    r_a, a_n, run_err, norm_err, norm_info = a_n_by_partition(keys, rows, opts, a_t, a_max,
+                                                              err_t, err_max, point_of, is_steady)
     from . import fits  # scipy: imported only once the input has been read and checked
 
     curves, curve_of = [], [None] * len(rows)
@@ -235,7 +277,7 @@ def analyse(table, opts):
         name = ", ".join("%s=%s" % kv for kv in zip(opts.group, label)) or "all"
         for i in all_idx:
             curve_of[i] = name
-        idx = [i for i in all_idx if steady[i]]
+        idx = [i for i in all_idx if is_steady[i]]
         if not idx:
             continue
         by_point = group_indices([point_of[i] for i in idx])
@@ -283,6 +325,7 @@ def analyse(table, opts):
     scale = scale_fit(curves, fits)
     return {"rows": rows, "x": x, "rA_t": r_a, "A_n": a_n, "curves": curves,
             "curve_of": curve_of, "unsteady": unsteady, "unchecked_drift": unchecked,
+            "workspace": ws,
             "scale_fit": scale, "normalisation": norm_info, "plateau_fits": plateau_fits,
             "warnings": warnings,
             "state_keys": keys.state_keys}

@@ -1,6 +1,6 @@
 """The figures of the master-curve analysis (PNG, matplotlib's Agg backend): A_n against
 k_B T/(P sigma^3) per curve with its fit, the collapse on E_c^b, a against tau_g/tau_d.
-Legends name the curves by their state-point keys' symbols (scripts/plot_labels.py); the
+Legends name the curves by their state-point keys' symbols (plot_labels.py); the
 labels drawn are recorded in figure_labels.json."""
 
 import json
@@ -12,7 +12,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from plot_labels import state_label, unit_text  # noqa: E402  (scripts/ is on sys.path)
+from ..plot_labels import state_label, unit_text  # noqa: E402
 
 from .fits import sigmoid  # noqa: E402
 

@@ -10,7 +10,7 @@ import warnings
 import numpy as np
 from scipy.optimize import OptimizeWarning, curve_fit
 
-from .table import InputError
+from ..errors import InputError
 
 
 def sigmoid(x, a, b):

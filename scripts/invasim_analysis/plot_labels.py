@@ -85,7 +85,7 @@ def _entry(name):
     if m and (m.group(1) in QUANTITIES or m.group(1).startswith("E_")):
         base = _entry(m.group(1))
         return (base[0], "%s of %s" % ("error" if m.group(2) == "error" else "drift", base[1]))
-    raise LabelError("no label for '%s': add it to QUANTITIES in scripts/plot_labels.py"
+    raise LabelError("no label for '%s': add it to QUANTITIES in scripts/invasim_analysis/plot_labels.py"
                      % name)
 
 

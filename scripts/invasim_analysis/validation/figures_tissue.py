@@ -12,11 +12,11 @@ import subprocess
 
 import numpy as np
 
-from . import runs, verdict
+from .. import normalise, steady, workspace
+from . import points, verdict
 from .plotting import T_PAPER, figure, label, log_axis, save
 
 P_DEFAULT = 1.3e-3
-REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
 def pressure(job):
@@ -33,7 +33,7 @@ def x_measured(job, end_fraction=None):
     """2 k_B T_c/(P sigma^3), measured (over the averaging window, or a window of series)."""
     if end_fraction is None:
         return job.mean("kT_c_paper")[0] / pressure(job)
-    return runs.window_mean(job, "kT_c_paper", end_fraction) / pressure(job)
+    return steady.window_mean(job, "kT_c_paper", end_fraction) / pressure(job)
 
 
 def an_over_time(jobs, keys, xfun, fractions, fraction_of=None):
@@ -41,23 +41,23 @@ def an_over_time(jobs, keys, xfun, fractions, fraction_of=None):
     extremes over all points and times, so that curves at different times compare). A time
     is a fraction of each run's rows, or (fraction_of(job, mark) given) a mark each run maps
     to its own fraction (production_fraction: a time t). The values at a time are those of
-    the averaging window ending there (runs.window_mean). Returns {mark: [points]}, extremes."""
+    the averaging window ending there (steady.window_mean). Returns {mark: [points]}, extremes."""
     table, flat = {}, []
     for f in fractions:
         table[f] = []
-        for key, reps in runs.group(jobs, keys).items():
-            p = runs.state_point(reps, lambda j: _window_values(j, xfun, fraction_of(j, f)
+        for key, reps in workspace.group(jobs, keys).items():
+            p = points.state_point(reps, lambda j: _window_values(j, xfun, fraction_of(j, f)
                                                                 if fraction_of else f))
             p["key"] = list(key)
             table[f].append(p)
             flat.append(p)
-    extremes = runs.normalise(flat)
+    extremes = normalise.normalise(flat)
     return table, extremes
 
 
 def _window_values(job, xfun, fraction):
-    return {"x": xfun(job, fraction), "A_t": runs.window_mean(job, "A_t", fraction),
-            "A_t_max": runs.window_mean(job, "A_t_max", fraction),
+    return {"x": xfun(job, fraction), "A_t": steady.window_mean(job, "A_t", fraction),
+            "A_t_max": steady.window_mean(job, "A_t_max", fraction),
             "A_t_error": job.mean("A_t")[1]}
 
 
@@ -117,7 +117,7 @@ def fig3(jobs, out, invasim):
     for and the measured one (both 2 T_c/P), and slices of each run's last snapshot."""
     fig, (ax,) = figure()
     ends, captions = [], {}
-    for (kT,), reps in runs.group(jobs, ["kT"]).items():
+    for (kT,), reps in workspace.group(jobs, ["kT"]).items():
         j = reps[0]
         s = j.series
         ax.plot(s["time"], s["A_ratio"], label=r"paper %.3g, measured %.3g" % (
@@ -128,7 +128,7 @@ def fig3(jobs, out, invasim):
     ax.set_ylabel(label("A_ratio", ""))
     ax.legend(fontsize=7, title=r"$2 k_B T_c/(P\sigma^3)$", title_fontsize=7)
     images = [save(fig, out, "fig3_At.png")]
-    for (kT,), reps in runs.group(jobs, ["kT"]).items():
+    for (kT,), reps in workspace.group(jobs, ["kT"]).items():
         j = reps[0]
         name = "fig3_slice_T%.3g.svg" % x_stands_for(j)
         made = render_slice(j, out, name, invasim)
@@ -159,7 +159,7 @@ def fig3(jobs, out, invasim):
             verdict.value_verdict(lo[1], lo[2], st["value"], st["tolerance"]),
             "ours follows the paper's definition of A_t^max; A_n does not depend on the ratio"))
     return {"images": images, "captions": captions, "rows": rows,
-            "numbers": {"end_points": ends}, "steadiness": runs.steadiness_summary(jobs)}
+            "numbers": {"end_points": ends}, "steadiness": steady.steadiness_summary(jobs)}
 
 
 def render_slice(job, out, name, invasim):
@@ -192,9 +192,9 @@ def fig4a(jobs, out, invasim, times=None):
     ax.text(st["value"], 0.98, r" paper's $T_g$", fontsize=7, va="top", color="0.3",
             transform=ax.get_xaxis_transform())
     images = [save(fig, out, "fig4a_An.png")]
-    mids = {f: runs.crossing([p["x"] for p in pts], [p["A_n"] for p in pts])
+    mids = {f: points.crossing([p["x"] for p in pts], [p["A_n"] for p in pts])
             for f, pts in table.items()}
-    errs = {f: runs.crossing_log_error([p["x"] for p in pts], [p["A_n"] for p in pts],
+    errs = {f: points.crossing_log_error([p["x"] for p in pts], [p["A_n"] for p in pts],
                                        [p["A_n_error"] for p in pts]) for f, pts in table.items()}
     first, last = fractions[0], fractions[-1]
     moves = mids[first] > mids[last] if verdict.finite(mids[first], mids[last]) else None
@@ -222,7 +222,7 @@ def fig4a(jobs, out, invasim, times=None):
     return {"images": images, "rows": rows,
             "numbers": {"midpoints": {str(f): m for f, m in mids.items()},
                         "normalisation": extremes, "points": table},
-            "steadiness": runs.steadiness_summary(jobs)}
+            "steadiness": steady.steadiness_summary(jobs)}
 
 
 def tc_equals_ta_row(sid, jobs, keys):
@@ -231,8 +231,8 @@ def tc_equals_ta_row(sid, jobs, keys):
     equilibrated bath) + 2 errors (replicate scatter, or the run's block error)."""
     tolerance = verdict.paper()[sid]["tolerance"]
     pts = []
-    for key, reps in runs.group(jobs, keys).items():
-        p = runs.state_point(reps, lambda j: {
+    for key, reps in workspace.group(jobs, keys).items():
+        p = points.state_point(reps, lambda j: {
             "r": j.mean("T_c_over_T_a")[0], "r_error": j.mean("T_c_over_T_a")[1],
             "x": x_measured(j)})
         pts.append(p)
@@ -257,16 +257,16 @@ def fig4b(jobs, out, invasim, inset_jobs=None):
     for ax in axes:  # the paper's steady A_n ~ 0.55 (its black dashed line)
         ax.axhline(st["value"], color="k", ls="--", lw=0.9)
     axes[0].axvline(st["at"], color="0.5", ls=":", lw=0.8)
-    an03 = runs.interpolate_log([p["x"] for p in end], [p["A_n"] for p in end], st["at"])
+    an03 = points.interpolate_log([p["x"] for p in end], [p["A_n"] for p in end], st["at"])
     err03 = float(np.nanmax([p["A_n_error"] for p in end])) if end else math.nan
     # The row rests on the two end-of-run state points that bracket 0.3 (the interpolation's).
     jobs_by_id = {j.id: j for j in jobs}
     below = [p for p in end if p["x"] <= st["at"]]
     above = [p for p in end if p["x"] > st["at"]]
     bracket = ([below[-1]] if below else []) + ([above[0]] if above else [])
-    unsteady03 = runs.unsteady_points(bracket, jobs_by_id, lambda p: "f0 = %g (2T_c/P = %.3g)"
+    unsteady03 = steady.unsteady_points(bracket, jobs_by_id, lambda p: "f0 = %g (2T_c/P = %.3g)"
                                       % (p["key"][0], p["x"])) if len(bracket) == 2 else []
-    mids = {f: runs.crossing([p["x"] for p in pts], [p["A_n"] for p in pts])
+    mids = {f: points.crossing([p["x"] for p in pts], [p["A_n"] for p in pts])
             for f, pts in table.items()}
     sw = verdict.paper()["fig4b_weak_time"]
     ratio = mids[0.5] / mids[1.0] if verdict.finite(mids[0.5], mids[1.0]) else math.nan
@@ -285,11 +285,11 @@ def fig4b(jobs, out, invasim, inset_jobs=None):
     numbers = {"midpoints": {str(f): m for f, m in mids.items()}, "normalisation": extremes,
                "A_n_at_0.3": an03, "points": table}
     images_extra = []
-    steady = runs.steadiness_summary(jobs + (inset_jobs or []))
+    evidence = steady.steadiness_summary(jobs + (inset_jobs or []))
     if inset_jobs:
         by_start = {}
-        for (start,), reps in runs.group(inset_jobs, ["start"]).items():
-            pts = [runs.scale_like({"A_t": j.mean("A_t")[0], "A_t_max": j.mean("A_t_max")[0],
+        for (start,), reps in workspace.group(inset_jobs, ["start"]).items():
+            pts = [normalise.scale_like({"A_t": j.mean("A_t")[0], "A_t_max": j.mean("A_t_max")[0],
                                     "A_t_error": j.mean("A_t")[1]}, extremes) for j in reps]
             vals = np.array([p["A_n"] for p in pts])
             by_start[start] = (float(vals.mean()),
@@ -307,7 +307,7 @@ def fig4b(jobs, out, invasim, inset_jobs=None):
         colours = {"demixed": "C0", "mixed": "C3"}
         for j in inset_jobs:
             ser = j.series
-            trace = [runs.scale_like({"A_t": a, "A_t_max": m}, extremes)["A_n"]
+            trace = [normalise.scale_like({"A_t": a, "A_t_max": m}, extremes)["A_n"]
                      for a, m in zip(ser["A_t"], ser["A_t_max"])]
             start = str(j.sp.get("start"))
             axes[2].plot(ser["time"], trace, lw=0.8, color=colours.get(start, "k"),
@@ -330,7 +330,7 @@ def fig4b(jobs, out, invasim, inset_jobs=None):
                 verdict.value_verdict(d, e, si["value"], si["tolerance"]),
                 "difference %s; |difference| <= 0.1 + 2 errors; rests on the inset's state "
                 "point: every run steady and the two starts agreeing (Method)" % verdict.fmt(d, e),
-                unsteady=runs.point_steadiness(inset_jobs)[1]))
+                unsteady=steady.point_steadiness(inset_jobs)[1]))
         numbers["inset"] = by_start
     images = [save(fig, out, "fig4b_An.png")] + images_extra
-    return {"images": images, "rows": rows, "numbers": numbers, "steadiness": steady}
+    return {"images": images, "rows": rows, "numbers": numbers, "steadiness": evidence}

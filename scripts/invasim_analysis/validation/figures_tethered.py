@@ -9,7 +9,8 @@ import matplotlib
 import numpy as np
 from matplotlib.lines import Line2D
 
-from . import runs, verdict
+from .. import normalise, steady, workspace
+from . import points, verdict
 from .figures_tissue import x_measured
 from .plotting import T_PAPER, figure, label, log_axis, save, state
 
@@ -43,19 +44,19 @@ def fig7(jobs, out, name):
     """Fig. 7a or 7b (the same statements at another tau_p and beta): A_n per K_ecm,
     normalised by the K_ecm = 0 sweep; the plateau A_n^max and the onset against K_ecm."""
     pts = []
-    for (k, f0), reps in runs.group(jobs, ["K_ecm", "f0"]).items():
-        p = runs.state_point(reps, lambda j: {"x": x_measured(j), "A_t": j.mean("A_t")[0],
+    for (k, f0), reps in workspace.group(jobs, ["K_ecm", "f0"]).items():
+        p = points.state_point(reps, lambda j: {"x": x_measured(j), "A_t": j.mean("A_t")[0],
                                               "A_t_max": j.mean("A_t_max")[0],
                                               "A_t_error": j.mean("A_t")[1]})
         p["K_ecm"] = float(k)
         pts.append(p)
     free = [p for p in pts if p["K_ecm"] == 0.0]
     if not free:
-        raise runs.InputError("%s: no K_ecm = 0 points to normalise by" % name)
-    extremes = runs.normalise(free)
+        raise workspace.InputError("%s: no K_ecm = 0 points to normalise by" % name)
+    extremes = normalise.normalise(free)
     for p in pts:
         if p["K_ecm"] != 0.0:
-            runs.scale_like(p, extremes)
+            normalise.scale_like(p, extremes)
     fig, axes = figure(2)
     jobs_by_id = {j.id: j for j in jobs}
     plateau, onsets = [], []
@@ -70,7 +71,7 @@ def fig7(jobs, out, name):
         colour = "k" if k == 0 else greens[i]
         axes[0].errorbar([p["x"] for p in c], [p["A_n"] for p in c], yerr=errs, marker="o",
                          capsize=2, color=colour, label=state({"K_ecm": "%g" % k}))
-        unsteady = [p for p in c if not runs.point_steadiness([jobs_by_id[i] for i in p["jobs"]])[0]]
+        unsteady = [p for p in c if not steady.point_steadiness([jobs_by_id[i] for i in p["jobs"]])[0]]
         axes[0].plot([p["x"] for p in unsteady], [p["A_n"] for p in unsteady], "o", mfc="white",
                      mec=colour, zorder=3)  # hollow: not steady
         top = max(c, key=lambda p: p["A_n"])
@@ -106,7 +107,7 @@ def fig7(jobs, out, name):
                 verdict.trend_verdict(d, e) if len(plateau) > 1 else verdict.NO_DATA,
                 "A_n^max(K_ecm = 0) - A_n^max(largest K_ecm) = %s (> 2 errors); rests on each "
                 "K_ecm's top state point, each steady" % verdict.fmt(d, e),
-                unsteady=runs.unsteady_points(plateau_points, jobs_by_id, point_name)),
+                unsteady=steady.unsteady_points(plateau_points, jobs_by_id, point_name)),
             verdict.row(name + "_onset", "onset at 2T_c/P = " + ", ".join(
                 "%s (K_ecm = %g)" % (verdict.fmt(x), k) for k, x in onsets),
                 verdict.all_of(each) if ratios else verdict.NO_DATA,
@@ -116,7 +117,7 @@ def fig7(jobs, out, name):
                 "that crosses), each steady" % (", ".join("%s (K_ecm = %g)" % (verdict.fmt(r), k)
                                                          for k, r in ratios) or "n/a",
                                                 so["log_factor"]),
-                unsteady=runs.unsteady_points(onset_points, jobs_by_id, point_name))]
+                unsteady=steady.unsteady_points(onset_points, jobs_by_id, point_name))]
     return {"images": images, "rows": rows,
             "numbers": {"plateau": plateau, "onset": onsets, "normalisation": extremes,
-                        "points": pts}, "steadiness": runs.steadiness_summary(jobs)}
+                        "points": pts}, "steadiness": steady.steadiness_summary(jobs)}

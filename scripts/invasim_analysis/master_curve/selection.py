@@ -1,7 +1,8 @@
 """State-point bookkeeping: the values of keys in a row (or supplied with --fixed), the
 selector of the normalisation group (`K_ecm=0,lambda=0`) and grouping of rows by keys."""
 
-from .table import InputError, as_number
+from ..errors import InputError
+from .table import as_number
 
 
 def parse_assignments(text, option):

@@ -7,7 +7,7 @@ import os
 
 from . import citations, document_paper
 from . import plan as plan_mod
-from .runs import InputError
+from ..errors import InputError
 from .verdict import CRITERIA, DISAGREES, VERDICTS, is_code_check, paper, paper_verdict
 
 ORDER = ["fig3", "fig4a", "fig4b", "fig5", "fig6", "fig7a", "fig7b", "fig8", "fig9"]
@@ -97,7 +97,7 @@ means and errors over the last half of the production; `series.csv`; `shapes.csv
 `snapshots/`). `A_n` is the paper's Appendix C normalisation over the state points of the
 figure (replicate means; docs/sweeps_analysis.md), its error the replicate scatter (standard
 error) where there are replicates, else the run's block error of `A_t` propagated. Curves
-are fitted with `scripts/master_curve_lib/fits.py`. `scripts/validation.py all` passes a
+are fitted with `scripts/invasim_analysis/master_curve/fits.py`. `scripts/validation.py all` passes a
 missing optional workspace as `-` (e.g. Fig. 5 without `fig5_long`); the record names it and
 the figure's section says which workspaces were not given.
 
@@ -114,7 +114,7 @@ The two plan files are kept beside the figure records (`docs/validation/plan.jso
 workspaces themselves (about 1 GB) are not kept. A figure without a record says so ("Not
 generated"); a record from older criteria is marked under its figure.
 
-**Steady state** (`scripts/validation_lib/runs.py`, `steadiness`, `point_steadiness`; the
+**Steady state** (`scripts/invasim_analysis/steady.py`, `steadiness`, `point_steadiness`; the
 one criterion of every figure, every verdict and the paper-scale rows). The averaging window
 of a run is the last half of its production rows (what `summary.json` averages; for a run
 still going, the last half of the rows written so far). Its two halves are the run's last
@@ -140,7 +140,7 @@ times) do not rest on a steady state. A value at an earlier time (Fig. 4a's curv
 quarter and half of the run, or at `t = 1e4` and `1e5` at the paper's scale) is the mean over
 the averaging window the run would have had, had it ended there.
 
-**Verdicts** (`scripts/validation_lib/verdict.py`). The paper's statements and their stated
+**Verdicts** (`scripts/invasim_analysis/validation/verdict.py`). The paper's statements and their stated
 precision are in `scripts/validation_paper.json` (each citing its place in the paper: section, figure, equation). A number agrees when
 `|ours - paper| <= tolerance + 2 errors` (or within the stated factor on a log scale); it
 *agrees in trend only* when the number is off but the trend the figure is about holds; a
@@ -162,7 +162,7 @@ A point that fails to run fails the test at its end, after the done points are a
 unit test (`analysis_validation_unit`) holds each verdict class and per-point criterion on
 hand-made runs and numbers.
 
-**Citations** (`scripts/validation_lib/citations.py`). Figures, sections and statement ids
+**Citations** (`scripts/invasim_analysis/validation/citations.py`). Figures, sections and statement ids
 carry the paper's own figure numbers (its Figs. 3-9; `figures` in
 `scripts/validation_paper.json`), and every statement's source is its place in the paper
 (section, figure, equation, numbered as in the paper). `scripts/validation.py document`
@@ -324,6 +324,6 @@ def _check_citations(statements, text, out_path):
     problems += citations.page_problems(text, count, figures)
     if problems:
         raise InputError("%s not written: %d citation problem%s (scripts/validation_paper.json, "
-                         "the figure records, scripts/validation_lib/document.py):\n  %s" % (
+                         "the figure records, scripts/invasim_analysis/validation/document.py):\n  %s" % (
                              out_path, len(problems), "" if len(problems) == 1 else "s",
                              "\n  ".join(dict.fromkeys(problems))))

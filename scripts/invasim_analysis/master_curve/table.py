@@ -1,7 +1,7 @@
 """Reads the results table written by `invasim sweep collect` (results.csv).
 
 One row per job: job_id, status, wall_seconds, the state-point keys (bare names), then the
-summary averages `<name> [unit]` with `<name>_error [unit]` and (since the drift was added)
+summary averages `<name> [unit]` with `<name>_error [unit]` and
 `<name>_drift [unit]`, then tau_d, tau_r. Columns are
 addressed by their bare name (the ` [unit]` suffix stripped)."""
 
@@ -9,13 +9,11 @@ import csv
 import math
 import re
 
+from ..errors import InputError
+
 BOOKKEEPING = ("job_id", "status", "wall_seconds")
 # Measured columns that carry no `_error` companion and may come without a unit.
 MEASURED_WITHOUT_ERROR = ("tau_d", "tau_r", "tau_d_standard", "tau_d_free")
-
-
-class InputError(Exception):
-    """Bad input: the message names the file, the line or column, and the problem."""
 
 
 def bare_name(entry):

@@ -17,7 +17,7 @@ Two classes say why a number is not compared:
                       validation_paper.json says how); the row shows ours and what the
                       number's verdict against one of the paper's values would be
 - not steady          a state point the row rests on (named in the row's criterion) is not
-                      steady by runs.point_steadiness: a run drifting or not judged, or its
+                      steady by steady.point_steadiness: a run drifting or not judged, or its
                       two starts disagreeing
 Two more say why a paper-scale row (paper_scale.py) has no final verdict yet:
 - running             a run the row rests on has not finished: the row shows the values so
@@ -30,21 +30,22 @@ import json
 import math
 import os
 
+from ..repo_paths import REPO
+
 AGREES, TREND, DISAGREES, NO_DATA, UNTESTABLE = (
     "agrees", "agrees in trend only", "disagrees", "no data", "not testable")
 PAPER_INCONSISTENT, NOT_STEADY = "paper inconsistent", "not steady"
 RUNNING, PENDING = "running", "pending"
 # The version of the criteria a figure record was computed with (its "criteria"): 2 is the
 # measured 2 T_c/P axis for every figure, the classes above and the per-point criteria of
-# Figs. 5-8; 3 the steady-state criterion of runs.py (the two quarter means, the starts
+# Figs. 5-8; 3 the steady-state criterion of steady.py (the two quarter means, the starts
 # agreeing) and the values at earlier times over the averaging window ending there; records
 # without it are older (docs/validation.md says so under the figure).
 CRITERIA = 3
 # Every verdict, in the order of the page's counts.
 VERDICTS = (AGREES, TREND, DISAGREES, PAPER_INCONSISTENT, NOT_STEADY, NO_DATA, UNTESTABLE)
 
-PAPER_FILE = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
-                          "validation_paper.json")
+PAPER_FILE = os.path.join(REPO, "scripts", "validation_paper.json")
 
 
 def paper():

@@ -1,0 +1,188 @@
+"""The one steady-state criterion (docs/validation.md, Method, "Steady state"), the one every
+figure, every verdict, the paper-scale records and the master curve use:
+  the averaging window of a run is the last half of its production rows (what summary.json
+  averages; for a run still going, the last half of the rows written so far); its two
+  halves are the run's last two quarters. The run is steady when the means of the
+  observable (A_t) over the two quarters, m3 and m4, agree within STEADY_FACTOR times their
+  combined block error, |m4 - m3| <= STEADY_FACTOR sqrt(e3^2 + e4^2), or when the drift is
+  negligible, |m4 - m3| <= NEGLIGIBLE_DRIFT x the window's mean A_t^max.
+  A state point is steady when every run of it is, and, where it was run from two starts
+  (Fig. 4b: de-mixed and mixed), when the starts' means of the observable agree by the same
+  test (start_agreement).
+A run with fewer than two rows per quarter, or without a finite error, cannot be judged and
+does not count as steady. Runs are workspace.Job objects (their series.csv)."""
+
+import math
+
+import numpy as np
+
+from .workspace import group
+
+STEADY_FACTOR = 2.0
+# A drift of A_t smaller than this fraction of the run's A_t^max moves A_n by less than about
+# 0.015 (A_t^max / (A_t^max - min A_t) ~ 1.5 in these sweeps): below the precision of every
+# statement on the page (0.05 and up), however many error bars it spans (a caged, de-mixed
+# tissue ages by a few tenths of sigma^2 with an error bar smaller still).
+NEGLIGIBLE_DRIFT = 0.01
+# Levels of the blocking analysis with fewer blocks are not used (src/measure/block_average.hpp).
+MIN_BLOCKS = 16
+
+
+def block_error(y):
+    """The standard error of the mean of a correlated series by blocking, as the summary's
+    errors are computed (src/measure/block_average.cpp: pairs averaged level by level; the
+    smallest block size B with B^3 > 2 n (error_B/error_1)^4 among the levels with at least
+    MIN_BLOCKS blocks, else the last such level, else level 0). nan for fewer than 2 values."""
+    m = np.asarray(y, float)
+    n = len(m)
+    if n < 2:
+        return math.nan
+    levels = []
+    block = 1
+    while len(m) >= 2:
+        nb = len(m)
+        levels.append((block, nb, math.sqrt(float(np.sum((m - m.mean()) ** 2)) / nb / (nb - 1))))
+        m = 0.5 * (m[0:2 * (nb // 2):2] + m[1:2 * (nb // 2):2])
+        block *= 2
+    e1 = levels[0][2]
+    chosen = None
+    for b, nb, err in levels:
+        if nb < MIN_BLOCKS:
+            break
+        chosen = err
+        ratio = err / e1 if e1 > 0 else 1.0
+        if e1 == 0.0 or b ** 3 > 2.0 * n * ratio ** 4:
+            break
+    return levels[0][2] if chosen is None else chosen
+
+
+def window(job, rows=None):
+    """(first, end) row indices of the averaging window of the run's first `rows` rows (all by
+    default): the last half of them (floor(n/2), as the protocols' summary, at least one);
+    for a finished run, summary.json's `samples` of the
+    column A_t when it states them."""
+    n = len(job.series["time"]) if rows is None else rows
+    samples = job.summary.get("averages", {}).get("A_t", {})
+    samples = samples.get("samples") if isinstance(samples, dict) else None
+    if rows is None and job.status == "done" and isinstance(samples, int) and 0 < samples <= n:
+        return n - samples, n
+    return n - max(1, n // 2), n
+
+
+def steadiness(job, column="A_t", rows=None):
+    """The criterion above for one run (over its first `rows` rows, all by default). Returns
+    {job, steady (True/False/None: not judged), drift = m4 - m3, error = the combined error
+    sqrt(e3^2 + e4^2), m3, m4, e3, e4, negligible (the floor, or None), samples (rows of the
+    window), rows3, rows4 (the quarters' [first, end) rows)}."""
+    s = job.series
+    first, end = window(job, rows)
+    y = s[column][first:end]
+    q = len(y) // 2
+    out = {"job": job.id, "samples": int(len(y)), "steady": None, "drift": math.nan,
+           "error": math.nan, "negligible": None}
+    if q < 2:
+        return out
+    a, b = y[len(y) - 2 * q:len(y) - q], y[len(y) - q:]
+    m3, m4, e3, e4 = float(np.mean(a)), float(np.mean(b)), block_error(a), block_error(b)
+    drift, err = m4 - m3, math.hypot(e3, e4)
+    out.update({"drift": drift, "error": err, "m3": m3, "m4": m4, "e3": e3, "e4": e4,
+                "rows3": [end - 2 * q, end - q], "rows4": [end - q, end]})
+    if math.isfinite(err):
+        out["steady"] = bool(abs(drift) <= STEADY_FACTOR * err)
+    if column == "A_t":
+        a_max = (float(np.mean(s["A_t_max"][first:end])) if "A_t_max" in s
+                 else job.mean("A_t_max")[0])
+        if math.isfinite(a_max) and a_max > 0:
+            out["negligible"] = NEGLIGIBLE_DRIFT * a_max
+            if abs(drift) <= out["negligible"]:
+                out["steady"] = True
+    return out
+
+
+def start_agreement(jobs, key="start", column="A_t"):
+    """The second half of a state point's criterion: the runs grouped by `key` (the start);
+    each start's mean of `column` over its runs' averaging windows, its error the standard
+    error over the runs (two or more) or the run's block error; the two starts agree when
+    |difference| <= STEADY_FACTOR x the combined error or is negligible (NEGLIGIBLE_DRIFT of
+    the mean A_t^max). Returns {means: {start: (mean, error)}, difference, error, agree}
+    (agree None with fewer than two starts or without a finite error)."""
+    means, amax = {}, []
+    for (start,), reps in group(jobs, [key]).items():
+        vals = []
+        for j in reps:
+            first, end = window(j)
+            y = j.series[column][first:end]
+            vals.append((float(np.mean(y)), block_error(y)))
+            if "A_t_max" in j.series:
+                amax.append(float(np.mean(j.series["A_t_max"][first:end])))
+        v = np.array([m for m, _ in vals])
+        err = float(np.std(v, ddof=1) / math.sqrt(len(v))) if len(v) >= 2 else vals[0][1]
+        means[str(start)] = (float(np.mean(v)), err)
+    out = {"means": means, "difference": math.nan, "error": math.nan, "agree": None}
+    if len(means) != 2:
+        return out
+    (m1, e1), (m2, e2) = means.values()
+    out["difference"], out["error"] = m2 - m1, math.hypot(e1, e2)
+    if math.isfinite(out["error"]):
+        out["agree"] = bool(abs(m2 - m1) <= STEADY_FACTOR * out["error"])
+    if column == "A_t" and amax and abs(m2 - m1) <= NEGLIGIBLE_DRIFT * float(np.mean(amax)):
+        out["agree"] = True
+    return out
+
+
+def point_steadiness(jobs, key="start"):
+    """A state point's verdict by the criterion: (steady, reasons), steady when every run is
+    steady and, if its runs differ in `key` (two starts), the starts agree; reasons name the
+    runs that are not steady (or not judged) and a disagreement of the starts."""
+    reasons = []
+    for j in jobs:
+        s = steadiness(j)
+        if s["steady"] is not True:
+            reasons.append("run %s %s" % (_run_name(j), "drifts: %s" % _drift_text(s)
+                                          if s["steady"] is False else "not judged"))
+    if len({str(j.sp.get(key)) for j in jobs}) == 2:
+        a = start_agreement(jobs, key)
+        if a["agree"] is not True:
+            reasons.append("the starts %s: %s" % (
+                "disagree" if a["agree"] is False else "cannot be compared",
+                ", ".join("%s %.4g +- %.2g" % (k, m, e) for k, (m, e) in a["means"].items())))
+    return not reasons, reasons
+
+
+def _run_name(job):
+    """A run as the page names it: its start and seed where it has them, else its id."""
+    parts = ["%s start" % job.sp["start"]] if "start" in job.sp else []
+    parts += ["seed %s" % job.sp["seed"]] if "seed" in job.sp else []
+    return ", ".join(parts) if parts else job.id[:8]
+
+
+def _drift_text(s):
+    return "m4 - m3 = %.3g +- %.2g" % (s["drift"], s["error"])
+
+
+def steadiness_summary(jobs, column="A_t"):
+    """The steady-state evidence of a set of jobs: counts and the largest |m4 - m3|/error."""
+    rows = [steadiness(j, column) for j in jobs]
+    judged = [r for r in rows if r["steady"] is not None]
+    ratios = [abs(r["drift"]) / r["error"] for r in judged if r["error"] > 0]
+    return {"jobs": len(rows), "judged": len(judged),
+            "steady": sum(1 for r in judged if r["steady"]),
+            "max_drift_over_error": max(ratios) if ratios else None, "rows": rows}
+
+
+def unsteady_points(points, jobs_by_id, name):
+    """The names (name(point)) of the state points (dicts with "jobs": ids) that are not
+    steady by point_steadiness (a run not steady, or two starts that disagree)."""
+    return [name(p) for p in points
+            if not point_steadiness([jobs_by_id[i] for i in p["jobs"]])[0]]
+
+
+def window_mean(job, column, end_fraction):
+    """The mean of a series column over the averaging window the run would have had, had it
+    ended at `end_fraction` of its rows: the last half of its first round(end_fraction x rows)
+    rows (at least one row)."""
+    y = job.series[column]
+    end = max(1, int(round(end_fraction * len(y))))
+    return float(np.mean(y[end - max(1, end // 2):end]))
+
+
