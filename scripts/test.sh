@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs the default test suite (everything but the
 # "long" label; run those with: ctest --test-dir build -L long).
-# Every test must run here: a test whose prerequisite is missing (root, Slurm, git, numpy)
+# Every test must run here: a test whose prerequisite is missing (root, Slurm, git, numpy, voro++)
 # fails instead of being skipped (tests/support/prerequisites.sh); INVASIM_REQUIRE_ALL_TESTS=0
 # allows the skips on a machine without them.
 set -euo pipefail

@@ -4,11 +4,12 @@
 // from it the interfacial area A_t, the adipocyte surfaces S_i, A_t^max, the Voronoi cell volumes
 // and the local adipocyte packing fraction. Definitions and decisions: docs/measurements.md.
 //
-// Method (docs/measurements.md, "Method"): CGAL's 3D Delaunay triangulation of the sites plus their
-// periodic images in y, z and their mirror images across the walls within a margin around the box.
-// Every tetrahedron touching a real site is then verified against the infinite unfolded point
-// set (no image anywhere inside its circumsphere; missing images found there are inserted), so
-// every real cell is exact. Only voronoi.cpp includes CGAL.
+// Method (docs/measurements.md, "Method"): CGAL's 3D Delaunay triangulation of the sites, their
+// periodic images in y, z within a margin around the box and eight far dummy points beyond the
+// walls; each real cell is clipped to the slab between the walls. Every vertex of a clipped
+// real cell is verified against the infinite periodic point set (no image nearer than the
+// site; missing images found there are inserted), so every real cell is exact. Only
+// voronoi.cpp includes CGAL.
 #include <vector>
 
 #include "state/system.hpp"
@@ -16,13 +17,10 @@
 namespace invasim {
 
 struct VoronoiOptions {
-  // Width of the layer of images inserted around the box at the start (0: automatic, 2 mean
-  // site spacings). The verification inserts whatever further images a real cell needs; the
-  // margin doubles (a rebuild) only when a real site is left on the convex hull, which
-  // happens for very few sites in a large box.
+  // Width in y and z of the layer of periodic images inserted around the box at the start
+  // (0: automatic, 1.5 mean site spacings). The verification inserts whatever further images a
+  // real cell needs.
   double margin = 0.0;
-  // Builds of the triangulation allowed before giving up (SimulationError).
-  int max_builds = 20;
   // Radical (power) tessellation with weights (diameter/2)^2: invasim's variant, not the
   // paper's (the paper uses the plain Voronoi tessellation, the default).
   bool radical = false;
@@ -43,18 +41,18 @@ struct VoronoiFace {
   int a = 0;
   int b = 0;
   double area = 0.0;
-  // From site a to the image of b across the face (for a wall face: to a's mirror image);
-  // the face's outward normal seen from a is offset / |offset|.
+  // From site a to the image of b across the face (for a wall face: to a's mirror image
+  // across the wall, 2 (wall - x_a) along x); the face's outward normal seen from a is
+  // offset / |offset|.
   Vec3 offset = Vec3::Zero();
 };
 
 struct VoronoiTessellation {
   std::vector<VoronoiFace> faces;  // every face of positive area once
   std::vector<double> volume;      // per site; 0 for a site without a cell (see docs)
-  double margin = 0.0;             // image margin of the accepted build
-  int builds = 0;                  // triangulations built (1: no site reached the hull)
+  double margin = 0.0;             // image margin in y and z
   int refinements = 0;             // verification passes that had to insert images
-  std::size_t n_points = 0;        // points triangulated (sites and images)
+  std::size_t n_points = 0;        // points triangulated (sites, images, dummy points)
   std::size_t n_added = 0;         // images inserted by the verification (beyond the margin)
 };
 
@@ -63,7 +61,7 @@ struct VoronoiTessellation {
 // between two points flagged in `skip_faces_between` (empty, or one flag per point) are
 // neither computed nor listed, and the flagged points' volumes are NaN. Throws InputError if
 // the box is not walled in x and periodic in y, z or the weights or flags are missing,
-// SimulationError if no margin could be verified within opt.max_builds builds.
+// SimulationError if the cells could not be verified (a site not finite, or no convergence).
 VoronoiTessellation tessellate(const Box& box, const std::vector<Vec3>& points,
                                const VoronoiOptions& opt = {},
                                const std::vector<double>& weights = {},

@@ -74,9 +74,9 @@ void bench(int n_a, int n_c, int evaluations) {
   std::printf(
       "| %3d + %4d | %5.2f x %5.2f | %6zu | %6zu | %4zu | %4.2f | %d | %6.4f | %6.4f | %6.4f | "
       "%6.4f "
-      "| %6.1f | %6.1f | %5.3f | %5.3f | %5.3f | %6.1f |\n",
+      "| %.12g | %.12g | %5.3f | %5.3f | %5.3f | %.12g |\n",
       n_a, n_c, sys.box().length(0), sys.box().length(1), sys.n_sites(), t.n_points, t.n_added,
-      t.margin, t.builds, first, wall, cpu, radical, m.interface_area, m.max_interface_area,
+      t.margin, t.refinements, first, wall, cpu, radical, m.interface_area, m.max_interface_area,
       m.interface_ratio, m.mean_local_phi_a, m.std_local_phi_a, r.interface_area);
   std::fflush(stdout);
   std::fprintf(stderr, "(setup of %d + %d: %.1f s)\n", n_a, n_c, setup);
@@ -87,7 +87,7 @@ void bench(int n_a, int n_c, int evaluations) {
 int main(int argc, char** argv) {
   const int evaluations = argc > 1 ? std::atoi(argv[1]) : 20;
   std::printf(
-      "| N_a + N_c  | L_x x L_y     | sites  | points | added | margin | builds | first (s) | "
+      "| N_a + N_c  | L_x x L_y     | sites  | points | added | margin | passes | first (s) | "
       "wall/eval (s) | CPU/eval (s) | radical (s) | A_t | A_t^max | ratio | <phi_a,i> | "
       "Delta phi_a | radical A_t |\n");
   bench(28, 1500, evaluations);
