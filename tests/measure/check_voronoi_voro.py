@@ -31,8 +31,7 @@ import shutil
 import subprocess
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
-from prerequisites import skip_test  # noqa: E402
+from prerequisites import skip_test  # tests/support, on PYTHONPATH (tests/CMakeLists.txt)
 
 PRINT_REL = 5e-6   # the voro++ program's "%g"
 LIBRARY_REL = 1e-9  # voro++'s library at full precision
