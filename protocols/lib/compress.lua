@@ -57,10 +57,20 @@ local resume = require("lib.resume")
 -- 45944 (docs/performance.md, "Compression"). The mode's frequency grows as
 -- sqrt(eps_v), so the step shrinks as 1/sqrt(eps_v); it never exceeds 0.15 (softer meshes leave the contacts'
 -- own limit, not measured beyond that). Without adipocytes (or eps_v = 0): the engine's.
+-- A mesh of radius r has its mode's stiffness per vertex ~ eps_v (dV/dx)^2 / V^2 ~ eps_v / r^2:
+-- with adipocytes of many sizes (init's diameter_spread) the smallest sets the step, which
+-- scales with its radius relative to the median body's, (V_min / V_median)^(1/3).
 local function default_dt_max(tissue)
   local eps_v = tissue.shape and tissue.shape:params().eps_v or 0
   if tissue.sys:n_adipocytes() == 0 or eps_v <= 0 then return iv.Fire.defaults.dt_max end
-  return 0.15 * math.sqrt(math.min(1.0, 1e3 / eps_v))
+  local dt = 0.15 * math.sqrt(math.min(1.0, 1e3 / eps_v))
+  if tissue.params and (tissue.params.diameter_spread or 0) > 0 then
+    local v = {}
+    for _, a in ipairs(tissue.sys:adipocytes()) do v[#v + 1] = a.ref_volume end
+    table.sort(v)
+    dt = dt * math.min(1.0, (v[1] / v[(#v + 1) // 2]) ^ (1 / 3))
+  end
+  return dt
 end
 
 -- Saves the (partly) compressed tissue and `state` to o.checkpoint on a stop signal and stops

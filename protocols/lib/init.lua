@@ -23,6 +23,7 @@ local spec = {
   N_a = 28, N_c = 1500, L0 = 70.0, seed = 1,
   diameters = { "table", default = { 0.9, 1.1 } },  -- cancer-cell diameters, used in turn (bidisperse 50/50)
   diameter = 6.0,                  -- adipocyte outer diameter (vertex radii included)
+  diameter_spread = 0.0,           -- adipocytes of many sizes: log-normal diameters of mean `diameter` (0: one size, the paper)
   vertex_diameter = 2.0,
   shape_param = 1.1,               -- reference shape parameter A_0
   start = { "string", default = "demixed", choices = { "demixed", "mixed" } },  -- or "mixed": cells and adipocytes over the whole box
@@ -46,7 +47,7 @@ return function(opts)
     error(string.format("init: L0 = %g is too small for adipocytes of diameter %g", L, o.diameter), 2)
   end
   local placed = sys:place{
-    adipocytes = { n = o.N_a, x = { x_lo, x_hi }, diameter = o.diameter,
+    adipocytes = { n = o.N_a, x = { x_lo, x_hi }, diameter = o.diameter, spread = o.diameter_spread,
                    vertex_diameter = o.vertex_diameter, shape_param = o.shape_param },
     cells = { n = o.N_c, x = { 2 * s, (mixed and 68 or 12) * s }, diameters = o.diameters },
   }
@@ -61,6 +62,13 @@ return function(opts)
     shape = sys:add(iv.Shape{ eps_v = o.eps_v, eps_a = o.eps_a }),
     params = o,
   }
+  if o.diameter_spread > 0 then  -- beyond the paper (docs/model.md): said, as adhesion below
+    local v = {}
+    for _, a in ipairs(sys:adipocytes()) do v[#v + 1] = a.ref_volume end
+    table.sort(v)
+    log.say("init", "adipocytes of many sizes: log-normal diameters, mean %g, spread %g; reference volumes %.4g to %.4g (median %.4g)",
+            o.diameter, o.diameter_spread, v[1], v[#v], v[(#v + 1) // 2])
+  end
   if o.beta_cv > 0 then  -- beyond the paper (docs/model.md): said, so that no run hides it
     log.say("init", "cancer-adipocyte adhesion: beta_cv = %g, alpha_cv = %g (eps_cv = %g)",
             o.beta_cv, o.alpha_cv, o.eps_cv)

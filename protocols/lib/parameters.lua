@@ -44,6 +44,7 @@ function M.declarations()
     eps_v = { 1e3, range = "[0, inf)", unit = "eps_c", help = "adipocyte volume stiffness" },
     eps_a = { 1.0, range = "[0, inf)", unit = "eps_c", help = "adipocyte face-area stiffness" },
     start = { "demixed", choices = { "demixed", "mixed" }, help = "initial placement: demixed (cells left of the adipocytes) or mixed (both over the whole box)" },
+    adipocyte_spread = { 0.0, range = "[0, 1]", help = "adipocytes of many sizes: log-normal spread of their diameters, mean kept (0: one size, the paper; docs/model.md, Bodies)" },
     A_0 = { 1.1, range = "[1, inf)", help = "reference shape parameter of the adipocytes (a sphere has 1; the paper's Appendix A: 1.0, 1.1, 1.3)" },
     dt = { 0.05, range = "(0, inf)", unit = "tau", help = "time step" },
     cohesive_compression = { false, help = "keep the cells' cohesion on during compression (default: repulsive packing)" },
@@ -69,7 +70,7 @@ end
 function M.init_options(p, N_a, N_c, L0)
   return { N_a = N_a, N_c = N_c, L0 = L0, seed = p.seed, start = p.start, shape_param = p.A_0,
            eps_v = p.eps_v, eps_a = p.eps_a, alpha = p.alpha, beta = p.beta,
-           alpha_cv = p.alpha_cv, beta_cv = p.beta_cv }
+           alpha_cv = p.alpha_cv, beta_cv = p.beta_cv, diameter_spread = p.adipocyte_spread }
 end
 
 -- The system size after the preset and the explicit overrides.

@@ -86,7 +86,8 @@ invasim::Range read_x(Kwargs& kw) {
   return {x[0], x[1]};
 }
 
-// Cancer-cell diameters: a non-empty list of positive numbers, any length.
+// Diameters (of cancer cells, or of adipocytes of many sizes): a non-empty list of positive
+// numbers, any length.
 std::vector<double> read_diameters(Kwargs& kw, std::vector<double> fallback) {
   lua_State* L = kw.state();
   const int type = kw.push("diameters");
@@ -118,7 +119,8 @@ void push_group(lua_State* L, const std::shared_ptr<Simulation>& sim, std::strin
 }
 
 // sys:place{cells = {n =, diameters =, x = {lo, hi}}, adipocytes = {n =, diameter =,
-// vertex_diameter =, shape_param =, subdivisions =, random_rotation =, x = {lo, hi}}}
+// diameters =, spread =, vertex_diameter =, shape_param =, subdivisions =, random_rotation =,
+// x = {lo, hi}}}
 int l_place(lua_State* L) {
   auto& sim = check_shared<Simulation>(L, 1);
   Kwargs kw(L, 2, "place");
@@ -135,6 +137,8 @@ int l_place(lua_State* L) {
   if (auto a = kw.maybe_table("adipocytes")) {
     meshes.n = a->integer<int>("n", Range::non_negative());
     meshes.diameter = a->number("diameter", meshes.diameter, Range::positive());
+    meshes.diameters = read_diameters(*a, {});
+    meshes.spread = a->number("spread", meshes.spread, Range::non_negative());
     meshes.vertex_diameter =
         a->number("vertex_diameter", meshes.vertex_diameter, Range::positive());
     meshes.shape_param = a->number("shape_param", meshes.shape_param, Range::at_least(1));

@@ -57,6 +57,30 @@ Eigen::Matrix3d random_rotation(const System& sys, std::uint32_t id) {
   return q.toRotationMatrix();
 }
 
+// The outer diameter of adipocyte `id` (MeshPlacement: one size, a list, or log-normal).
+double adipocyte_diameter(const System& sys, const MeshPlacement& m, int k, std::uint32_t id) {
+  if (!m.diameters.empty()) return m.diameters[std::size_t(k) % m.diameters.size()];
+  if (m.spread <= 0.0) return m.diameter;
+  const double z = RandomKey(sys.seed(), 0, id, RngStream::kPlacement, 9).normal4()[0];
+  return m.diameter * std::exp(m.spread * z - 0.5 * m.spread * m.spread);
+}
+
+// The x range of adipocyte k's centre. One size: the given range (check_range has refused a
+// range whose bodies would cross a wall). Many sizes: the given range narrowed so that this
+// body stays between the walls, refused only when no centre would.
+Range body_range(const Box& box, const MeshPlacement& m, double outer, int k) {
+  if (m.diameters.empty() && m.spread <= 0.0) return m.x;
+  if (!(m.x.hi >= m.x.lo))
+    fail_input("adipocyte placement: x range [", m.x.lo, ", ", m.x.hi, "] is empty");
+  if (box.periodic(0)) return m.x;
+  const Range x{std::max(m.x.lo, box.lo()[0] + outer), std::min(m.x.hi, box.hi()[0] - outer)};
+  if (!(x.hi >= x.lo))
+    fail_input("adipocyte placement: adipocyte ", k, " of diameter ", 2 * outer,
+               " does not fit between the walls [", box.lo()[0], ", ", box.hi()[0],
+               "] with its centre in the x range [", m.x.lo, ", ", m.x.hi, "]");
+  return x;
+}
+
 }  // namespace
 
 PlacementResult place_random(System& sys, const MeshPlacement& meshes,
@@ -80,23 +104,41 @@ PlacementResult place_random(System& sys, const MeshPlacement& meshes,
   if (meshes.n > 0) {
     require_positive("adipocyte diameter", meshes.diameter);
     require_positive("vertex diameter", meshes.vertex_diameter);
-    const double radius = 0.5 * (meshes.diameter - meshes.vertex_diameter);
-    if (!(radius > 0.0))
-      fail_input("adipocyte diameter = ", meshes.diameter,
-                 " must exceed the vertex diameter = ", meshes.vertex_diameter);
-    const double outer = 0.5 * meshes.diameter;
-    check_range(sys.box(), meshes.x, outer, "adipocyte placement");
+    for (double d : meshes.diameters) require_positive("adipocyte diameter", d);
+    require_non_negative("adipocyte diameter spread", meshes.spread);
+    if (!meshes.diameters.empty() && meshes.spread > 0.0)
+      fail_input(
+          "adipocyte placement: give the diameters as a list or as a spread, not both "
+          "(spread = ",
+          meshes.spread, " with ", meshes.diameters.size(), " diameters)");
     const MeshShape shape = icosphere(meshes.subdivisions);
-    std::vector<Vec3> scaled;
-    for (const Vec3& v : shape.vertices) scaled.push_back(radius * v);
-    const double v_outer =
-        union_volume(*shape.topology, scaled.data(), meshes.vertex_diameter, meshes.volume_grid);
+    // Each size's mesh radius and outer (union) volume; computed once per distinct diameter.
+    double known_diameter = -1.0, radius = 0.0, v_outer = 0.0;
+    auto size_for = [&](double d, int k) {
+      if (d == known_diameter) return;
+      radius = 0.5 * (d - meshes.vertex_diameter);
+      if (!(radius > 0.0))
+        fail_input("adipocyte ", k, ": diameter = ", d,
+                   " must exceed the vertex diameter = ", meshes.vertex_diameter,
+                   meshes.spread > 0.0 ? " (drawn from the spread: lower the spread)" : "");
+      if (meshes.diameters.empty() && meshes.spread <= 0.0)
+        check_range(sys.box(), meshes.x, 0.5 * d, "adipocyte placement");
+      std::vector<Vec3> scaled;
+      for (const Vec3& v : shape.vertices) scaled.push_back(radius * v);
+      v_outer =
+          union_volume(*shape.topology, scaled.data(), meshes.vertex_diameter, meshes.volume_grid);
+      known_diameter = d;
+    };
     for (int k = 0; k < meshes.n; ++k) {
       const std::uint32_t id = std::uint32_t(sys.bodies().size());
+      const double diameter = adipocyte_diameter(sys, meshes, k, id);
+      size_for(diameter, k);
+      const double outer = 0.5 * diameter;
+      const Range x = body_range(sys.box(), meshes, outer, k);
       bool placed = false;
       for (std::uint64_t attempt = 0; attempt < meshes.max_attempts_per_body && !placed;
            ++attempt) {
-        const Ball b{random_point(sys, meshes.x, attempt, id, 1), outer};
+        const Ball b{random_point(sys, x, attempt, id, 1), outer};
         if (overlaps(sys.box(), balls, b)) continue;
         MeshShape rotated = shape;
         if (meshes.random_rotation) {

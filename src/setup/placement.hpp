@@ -21,7 +21,13 @@ struct SpherePlacement {
 
 struct MeshPlacement {
   int n = 0;
-  double diameter = 6.0;         // outer diameter, vertex radii included
+  double diameter = 6.0;  // outer diameter, vertex radii included
+  // Adipocytes of many sizes (beyond the paper's one size; docs/model.md, "Bodies"), at most
+  // one of: `diameters`, the k-th adipocyte gets diameters[k % size]; `spread` > 0, the
+  // diameters are log-normal with mean `diameter`: d = diameter exp(spread z - spread^2/2),
+  // z a standard normal keyed by the seed and the body's index (stream kPlacement).
+  std::vector<double> diameters;
+  double spread = 0.0;
   double vertex_diameter = 2.0;  // contact diameter of each vertex
   double shape_param = 1.1;      // reference shape parameter A_0
   int subdivisions = 1;          // icosphere(1): 42 vertices

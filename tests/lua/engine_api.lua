@@ -51,6 +51,19 @@ expect_error("place.cells: key 'diameters%[2%]' must be a number > 0, got %-1", 
 expect_error("place.adipocytes: key 'shape_param' = 0.5 is out of range %(must be >= 1%)", sys.place, sys,
              { adipocytes = { n = 1, x = {7, 17}, shape_param = 0.5 } })
 expect_error("place: unknown key 'cell' %(did you mean 'cells'%?%)", sys.place, sys, { cell = {} })
+-- Adipocytes of many sizes: a list in turn or a log-normal spread, not both.
+expect_error("place.adipocytes: key 'spread' = %-0.1 is out of range %(must be >= 0%)", sys.place, sys,
+             { adipocytes = { n = 1, x = {7, 17}, spread = -0.1 } })
+expect_error("place: adipocyte placement: give the diameters as a list or as a spread, not both", sys.place, sys,
+             { adipocytes = { n = 1, x = {7, 17}, diameters = {5, 7}, spread = 0.1 } })
+do
+  local big = iv.System{ box = { 60, 60, 60 }, periodic = { false, true, true }, seed = 3 }
+  big:place{ adipocytes = { n = 4, diameters = { 5, 8 }, x = { 5, 55 } } }
+  local v = big:adipocytes()
+  local function same(a, b) return math.abs(a - b) <= 1e-9 * b end  -- (rotated meshes: rounding)
+  check(#v == 4 and v[1].ref_volume < 0.5 * v[2].ref_volume and same(v[1].ref_volume, v[3].ref_volume)
+        and same(v[2].ref_volume, v[4].ref_volume), "adipocytes' sizes in turn from the list")
+end
 expect_error("place: cancer%-cell placement: only", sys.place, sys,
              { cells = { n = 5000, x = {1, 2}, max_attempts = 10 } })
 

@@ -184,7 +184,7 @@ def main():
     shutil.rmtree(scratch, ignore_errors=True)
     os.makedirs(scratch)
     subprocess.run([invasim, "run", dump_lua, "--set", "dir=" + scratch], check=True)
-    for name in ("tissue", "near_walls", "near_walls_radical"):
+    for name in ("tissue", "tissue_sizes", "near_walls", "near_walls_radical"):
         config = read_dump(os.path.join(scratch, name + ".txt"))
         x_lo, x_hi = config["box"][0:2]
         xs = [s[3] for s in config["sites"]]

@@ -1,8 +1,9 @@
--- Writes two configurations for the comparison of invasim's Voronoi measurement with voro++
+-- Writes three configurations for the comparison of invasim's Voronoi measurement with voro++
 -- (check_voronoi_voro.py): for each, the box, every site (kind, adipocyte, position) and what
 -- sys:voronoi{} returns.
 --   tissue:     the reduced system of the protocols (8 adipocytes, 400 cells) placed de-mixed
---               and compressed to phi = 0.72 as the main job does (lib/stages.lua).
+--               and compressed to phi = 0.72 as the main job does (lib/stages.lua);
+--               tissue_sizes the same with adipocytes of many sizes (diameter_spread 0.25).
 --   near_walls: 2 adipocytes and 100 cells of diameter 1 that diffused for a while against
 --               soft walls, so that some ended beyond a wall (the tessellation clamps them to
 --               it) and others close to it; also measured as the radical tessellation
@@ -68,6 +69,12 @@ local size = presets.reduced
 local tissue = stage.init{ N_a = size.N_a, N_c = size.N_c, L0 = size.L0, seed = p.seed }
 stage.compress(tissue, { to_phi = 0.72, progress = false })
 dump("tissue", tissue.sys, tissue.vertices:size() // tissue.sys:n_adipocytes())
+
+-- 1b. The same with adipocytes of many sizes (log-normal diameters, spread 0.25).
+local sized = stage.init{ N_a = size.N_a, N_c = size.N_c, L0 = size.L0, seed = p.seed,
+                         diameter_spread = 0.25 }
+stage.compress(sized, { to_phi = 0.72, progress = false })
+dump("tissue_sizes", sized.sys, sized.vertices:size() // sized.sys:n_adipocytes())
 
 -- 2. Sites beyond and close to the walls: no wall force, the cells diffuse out of the slab.
 local sys = iv.System{ box = { 9, 8, 8 }, periodic = { false, true, true }, seed = p.seed }

@@ -83,6 +83,71 @@ TEST_CASE("random placement is de-mixed, overlap-free, reproducible and sets V_i
   CHECK(other.sites().pos != sys.sites().pos);
 }
 
+TEST_CASE("adipocytes of many sizes: log-normal diameters of the given mean, or a list in turn") {
+  // A body's outer diameter from its mesh: the icosphere's vertices lie at the mesh radius
+  // from its centre, plus the vertex radius.
+  auto diameters = [](const System& sys, const PlacementResult& r, double vertex_diameter) {
+    std::vector<double> d;
+    std::vector<Vec3> x(42);
+    for (int b : r.bodies) {
+      sys.body_vertices(b, x.data());
+      const Vec3 c = vertex_centroid(42, x.data());
+      d.push_back(2.0 * (x[0] - c).norm() + vertex_diameter);
+    }
+    return d;
+  };
+  const double L = 120.0;
+  MeshPlacement mp;
+  mp.n = 300;
+  mp.x = {5.0, L - 5.0};
+  mp.spread = 0.2;
+  System sys(Box(Vec3::Zero(), Vec3::Constant(L), {false, true, true}), 5);
+  const PlacementResult r = place_random(sys, mp, SpherePlacement{});
+  REQUIRE(r.bodies.size() == 300);
+  const std::vector<double> d = diameters(sys, r, mp.vertex_diameter);
+  double mean = 0.0, mean_log = 0.0;
+  for (double v : d) mean += v / double(d.size());
+  for (double v : d) mean_log += std::log(v) / double(d.size());
+  double var = 0.0, var_log = 0.0;
+  for (double v : d) var += (v - mean) * (v - mean) / double(d.size() - 1);
+  for (double v : d)
+    var_log += (std::log(v) - mean_log) * (std::log(v) - mean_log) / double(d.size() - 1);
+  // Mean 6 (the given diameter), log spread 0.2: within 3 standard errors.
+  CHECK(std::abs(mean - 6.0) < 3.0 * std::sqrt(var / double(d.size())));
+  CHECK(std::abs(std::sqrt(var_log) - 0.2) < 3.0 * 0.2 / std::sqrt(2.0 * double(d.size())));
+  // Each body's reference volume and V_i belong to its own size: the reference volume
+  // scales as the mesh radius cubed.
+  const MeshBody& first = sys.bodies()[std::size_t(r.bodies[0])];
+  for (std::size_t k = 1; k < r.bodies.size(); ++k) {
+    const MeshBody& body = sys.bodies()[std::size_t(r.bodies[k])];
+    const double ratio = (d[k] - 2.0) / (d[0] - 2.0);
+    CHECK(body.ref_volume == Approx(first.ref_volume * ratio * ratio * ratio).epsilon(1e-9));
+    CHECK((body.outer_volume > first.outer_volume) == (d[k] > d[0]));
+  }
+  CHECK(min_pair_gap(sys) >= 0.0);
+  // The same seed gives the same sizes; no spread, one size.
+  System again(Box(Vec3::Zero(), Vec3::Constant(L), {false, true, true}), 5);
+  CHECK(diameters(again, place_random(again, mp, SpherePlacement{}), 2.0) == d);
+  // A list: the k-th adipocyte gets diameters[k % size].
+  MeshPlacement listed;
+  listed.n = 5;
+  listed.x = {10.0, L - 10.0};
+  listed.diameters = {5.0, 8.0};
+  System sys2(Box(Vec3::Zero(), Vec3::Constant(L), {false, true, true}), 6);
+  const std::vector<double> d2 =
+      diameters(sys2, place_random(sys2, listed, SpherePlacement{}), listed.vertex_diameter);
+  REQUIRE(d2.size() == 5);
+  for (std::size_t k = 0; k < 5; ++k) CHECK(d2[k] == Approx(k % 2 ? 8.0 : 5.0).epsilon(1e-12));
+  // Refused: a list and a spread together; a size not above the vertex diameter.
+  listed.spread = 0.1;
+  CHECK_THROWS_WITH(place_random(sys2, listed, SpherePlacement{}),
+                    Contains("as a list or as a spread, not both"));
+  listed.spread = 0.0;
+  listed.diameters = {6.0, 1.5};
+  CHECK_THROWS_WITH(place_random(sys2, listed, SpherePlacement{}),
+                    Contains("adipocyte 1: diameter = 1.5 must exceed the vertex diameter = 2"));
+}
+
 TEST_CASE("placement refuses regions that cannot hold the bodies, naming the region") {
   System sys(Box(Vec3::Zero(), Vec3::Constant(10.0), {false, true, true}), 1);
   SpherePlacement sp;
