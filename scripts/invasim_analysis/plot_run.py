@@ -22,7 +22,6 @@ import argparse
 import csv
 import math
 import os
-import re
 import sys
 
 from . import plot_labels  # the figures' label table
@@ -65,14 +64,6 @@ def import_plotting():
     return numpy, pyplot
 
 
-def parse_header_entry(entry):
-    """`name [unit]` -> (name, unit); `name` -> (name, "")."""
-    m = re.fullmatch(r"\s*([^\[\]]*?)\s*(?:\[([^\]]*)\])?\s*", entry)
-    if not m or not m.group(1):
-        return None
-    return m.group(1), (m.group(2) or "").strip()
-
-
 def read_series(path):
     """Returns (names, units, columns): column name -> list of floats (empty field: nan)."""
     try:
@@ -84,7 +75,7 @@ def read_series(path):
         raise SeriesError("%s is empty (no header row)" % path)
     names, units = [], {}
     for k, entry in enumerate(rows[0]):
-        parsed = parse_header_entry(entry)
+        parsed = plot_labels.header_entry(entry)
         if parsed is None:
             raise SeriesError("%s: line 1, column %d: bad header entry '%s' (expected "
                               "'name [unit]' or 'name')" % (path, k + 1, entry))

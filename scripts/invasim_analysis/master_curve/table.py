@@ -7,21 +7,13 @@ addressed by their bare name (the ` [unit]` suffix stripped)."""
 
 import csv
 import math
-import re
 
 from ..errors import InputError
+from ..plot_labels import header_entry
 
 BOOKKEEPING = ("job_id", "status", "wall_seconds")
 # Measured columns that carry no `_error` companion and may come without a unit.
 MEASURED_WITHOUT_ERROR = ("tau_d", "tau_r", "tau_d_standard", "tau_d_free")
-
-
-def bare_name(entry):
-    """`name [unit]` -> (name, unit); `name` -> (name, "")."""
-    m = re.fullmatch(r"\s*([^\[\]]*?)\s*(?:\[([^\]]*)\])?\s*", entry)
-    if not m or not m.group(1):
-        return None
-    return m.group(1), (m.group(2) or "").strip()
 
 
 def as_number(text):
@@ -46,7 +38,7 @@ class Table:
             raise InputError("%s is empty (no header row)" % path)
         self.names, self.units = [], {}
         for k, entry in enumerate(lines[0]):
-            parsed = bare_name(entry)
+            parsed = header_entry(entry)
             if parsed is None:
                 raise InputError("%s: line 1, column %d: bad header entry '%s' (expected "
                                  "'name [unit]' or 'name')" % (path, k + 1, entry))
