@@ -10,21 +10,10 @@ axis_label(text, unit) -> "interfacial area [$\\sigma^2$]"
 state_label({"beta": "0.01", "tau_p": "25"}) -> "$\\beta$ = 0.01, $\\tau_p$ = 25"
 raw_names(text)        -> the raw column names (words with an underscore outside $...$) in
                           a label; a figure's labels must give none.
-header_entry(entry)    -> ("A_t", "sigma^2") for a CSV header entry "A_t [sigma^2]", ("t", "")
-                          for "t", None for one without a name.
 An unknown name is a LabelError naming it: add it to QUANTITIES rather than print it raw.
 """
 
 import re
-
-
-def header_entry(entry):
-    """A CSV header entry `name [unit]` -> (name, unit); `name` -> (name, ""); None when it
-    has no name (series.csv and results.csv write their headers this way)."""
-    m = re.fullmatch(r"\s*([^\[\]]*?)\s*(?:\[([^\]]*)\])?\s*", entry)
-    if not m or not m.group(1):
-        return None
-    return m.group(1), (m.group(2) or "").strip()
 
 
 class LabelError(KeyError):

@@ -19,12 +19,11 @@ modules), 2 on a bad command line.
 """
 
 import argparse
-import csv
 import math
 import os
 import sys
 
-from . import plot_labels  # the figures' label table
+from . import csv_header, plot_labels  # plot_labels: the figures' label table
 from .deps import ensure_modules
 
 NO_REEXEC = "INVASIM_PLOT_NO_REEXEC"  # set when re-executed, so it happens at most once
@@ -66,16 +65,10 @@ def import_plotting():
 
 def read_series(path):
     """Returns (names, units, columns): column name -> list of floats (empty field: nan)."""
-    try:
-        with open(path, newline="") as f:
-            rows = list(csv.reader(f))
-    except OSError as e:
-        raise SeriesError("cannot read %s: %s" % (path, e.strerror or e))
-    if not rows or not any(field.strip() for field in rows[0]):
-        raise SeriesError("%s is empty (no header row)" % path)
+    rows = csv_header.read_rows(path, SeriesError)
     names, units = [], {}
     for k, entry in enumerate(rows[0]):
-        parsed = plot_labels.header_entry(entry)
+        parsed = csv_header.header_entry(entry)
         if parsed is None:
             raise SeriesError("%s: line 1, column %d: bad header entry '%s' (expected "
                               "'name [unit]' or 'name')" % (path, k + 1, entry))

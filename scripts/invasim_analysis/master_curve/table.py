@@ -5,11 +5,10 @@ summary averages `<name> [unit]` with `<name>_error [unit]` and
 `<name>_drift [unit]`, then tau_d, tau_r. Columns are
 addressed by their bare name (the ` [unit]` suffix stripped)."""
 
-import csv
 import math
 
 from ..errors import InputError
-from ..plot_labels import header_entry
+from ..csv_header import header_entry, read_rows
 
 BOOKKEEPING = ("job_id", "status", "wall_seconds")
 # Measured columns that carry no `_error` companion and may come without a unit.
@@ -29,13 +28,7 @@ class Table:
 
     def __init__(self, path):
         self.path = path
-        try:
-            with open(path, newline="") as f:
-                lines = list(csv.reader(f))
-        except OSError as e:
-            raise InputError("cannot read %s: %s" % (path, e.strerror or e))
-        if not lines or not any(x.strip() for x in lines[0]):
-            raise InputError("%s is empty (no header row)" % path)
+        lines = read_rows(path, InputError)
         self.names, self.units = [], {}
         for k, entry in enumerate(lines[0]):
             parsed = header_entry(entry)
