@@ -5,11 +5,11 @@ import os
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
-def repo_path(path, placeholder=None):
-    """PATH relative to the repository when it lies inside it. A file under another
+def repo_path(path, outside=None):
+    """`path` relative to the repository when it lies inside it. A file under another
     checkout's protocols/ (a campaign's own clone) is shown as the same file of this
-    repository when that exists. Otherwise PLACEHOLDER, or the path as given when there is
-    none."""
+    repository when that exists. Any other path is shown as `outside` (a name for it on the
+    page, e.g. "ROOT"), or as given when `outside` is None."""
     if not os.path.isabs(path) and not os.path.exists(path):
         return path  # already as recorded (a plan made elsewhere)
     full = os.path.abspath(path)
@@ -22,4 +22,4 @@ def repo_path(path, placeholder=None):
         inside = os.path.join(*parts[k:])
         if os.path.exists(os.path.join(REPO, inside)):
             return inside
-    return placeholder if placeholder is not None else path
+    return outside if outside is not None else path

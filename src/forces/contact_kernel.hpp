@@ -52,6 +52,17 @@ struct TablePairs {
   }
 };
 
+// The constants of a pair of site kinds ki, kj (0: cancer, 1: vertex): cohesion between two
+// cancer cells, adhesion between a cancer cell and a vertex, none between vertices (the same
+// choice as ContactParams::pair_alpha / pair_beta, in plain values for the vector lanes).
+[[gnu::always_inline]] inline PairCoefficients kind_pair_coefficients(double s, double eps, int ki,
+                                                                      int kj, double alpha,
+                                                                      double beta, double alpha_cv,
+                                                                      double beta_cv) {
+  const bool cc = (ki | kj) == 0, cv = ki != kj;
+  return pair_coefficients(s, eps, cv ? alpha_cv : alpha, cc ? beta : (cv ? beta_cv : 0.0));
+}
+
 // The constants of pair (i, j) computed from the diameters (fallback for many classes).
 struct DirectPairs {
   const double* diam;
@@ -62,10 +73,8 @@ struct DirectPairs {
   template <bool kCohesive>
   PairBranch branch(int j, double r2) const {
     const int kj = kind[j];
-    // Cohesion between cancer cells, adhesion between a cancer cell and a vertex.
-    const bool cc = (ki | kj) == 0, cv = ki != kj;
-    const PairCoefficients c = pair_coefficients(
-        0.5 * (di + diam[j]), eps[kj], cv ? alpha_cv : alpha, cc ? beta : (cv ? beta_cv : 0.0));
+    const PairCoefficients c = kind_pair_coefficients(0.5 * (di + diam[j]), eps[kj], ki, kj, alpha,
+                                                      beta, alpha_cv, beta_cv);
     return coefficient_branch<kCohesive>(c, r2);
   }
 };
@@ -90,10 +99,8 @@ struct DirectStreamPairs {
   template <bool kCohesive>
   PairBranch branch(int i, int j, double r2) const {
     const int ki = kind[i], kj = kind[j];
-    const bool cc = (ki | kj) == 0, cv = ki != kj;  // as DirectPairs
-    const PairCoefficients c =
-        pair_coefficients(0.5 * (diam[i] + diam[j]), eps[2 * ki + kj], cv ? alpha_cv : alpha,
-                          cc ? beta : (cv ? beta_cv : 0.0));
+    const PairCoefficients c = kind_pair_coefficients(0.5 * (diam[i] + diam[j]), eps[2 * ki + kj],
+                                                      ki, kj, alpha, beta, alpha_cv, beta_cv);
     return coefficient_branch<kCohesive>(c, r2);
   }
 };
