@@ -87,7 +87,10 @@ node_idle() { [ "$(sinfo -h -o %t 2> /dev/null)" = idle ]; }
 within 60 "the Slurm node becoming idle" node_idle
 
 # 4. Submit; stop the array once a point has a checkpoint; submit again; wait.
-"$invasim" sweep init "$specs/tiny.lua" --workspace ws > /dev/null
+# The points stopped by a signal run 100000 steps (seconds, not tiny.lua's milliseconds): a
+# point whose checkpoint was seen is still running when the signal arrives.
+long=(--set steps=100000 --set checkpoint_every=2000)
+"$invasim" sweep init "$specs/tiny.lua" --workspace ws "${long[@]}" > /dev/null
 # --max-requeues 0: a stopped point waits for the next submit (section 8 tests the requeue).
 "$invasim" sweep submit ws --slurm --cpus-per-task 1 --time 10 --max-requeues 0 > submit1.log ||
   fail submit submit1.log
@@ -127,7 +130,7 @@ grep -l "results in" ws/slurm/submit-2/slurm-*_*.out > /dev/null ||
   fail "no slurm-%A_%a.out holds its point's output" "$(ls ws/slurm/submit-2/slurm-*_*.out | head -1)"
 
 # 5. The same sweep locally (1 thread per point, as --cpus-per-task 1).
-"$invasim" sweep init "$specs/tiny.lua" --workspace local > /dev/null
+"$invasim" sweep init "$specs/tiny.lua" --workspace local "${long[@]}" > /dev/null
 "$invasim" sweep run local --jobs 2 --threads 1 > local.log 2>&1 || fail "local run" local.log
 for dir in ws/workspace/*; do
   id=$(basename "$dir")
@@ -186,7 +189,7 @@ grep -q "done: 4" status5.log || fail "the split arrays did not finish every poi
 # 8. Resources and the time limit's warning. Named options reach the scripts (the preparation
 #    its own); bad values are refused naming the option; a point stopped by SIGTERM (what
 #    --signal=B:TERM@S sends before the limit) requeues itself and finishes, no submit needed.
-"$invasim" sweep init "$specs/tiny.lua" --workspace res > /dev/null
+"$invasim" sweep init "$specs/tiny.lua" --workspace res "${long[@]}" > /dev/null
 if "$invasim" sweep submit res --slurm --dry-run --mem 4X > badmem.log 2>&1; then
   fail "--mem 4X was accepted" badmem.log
 fi
