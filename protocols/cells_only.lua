@@ -9,7 +9,9 @@
 -- give tau_d (the paper's per-particle normalisation), tau_d_standard and tau_d_free.
 --   invasim run protocols/cells_only.lua --set phi_c=0.5 --set tau_p=250
 local iv = require("invasim")
+local declare = require("lib.declare")
 local free = require("lib.free_active")
+local production = require("lib.production")
 local log = require("lib.log")
 
 local p = iv.params{
@@ -17,7 +19,7 @@ local p = iv.params{
   phi_c = { 0.3, range = "[0, 0.6]", help = "packing fraction of the cells (0: free particles, no contacts)" },
   seed = { 1, range = "[0, inf)", help = "random seed (placement, orientations, noise)" },
   f0 = { 0.01, range = "(0, inf)", unit = "eps_c/sigma", help = "self-propulsion force" },
-  tau_p = { 25.0, range = "(0, inf)", unit = "tau", help = "persistence time of the active orientation" },
+  tau_p = declare.engine("Active", "tau_p", 25.0, "here 0 < tau_p < inf: the free particle's tau_d needs a finite persistence"),
   kT = { 0.0, range = "[0, inf)", unit = "eps_c", help = "thermal noise temperature (the free formula assumes 0)" },
   gamma = { 0.2, range = "(0, inf)", unit = "sqrt(m eps_c)/sigma", help = "damping coefficient (tau_g = m / gamma)" },
   dt = { 0.05, range = "(0, inf)", unit = "tau", help = "time step" },
@@ -28,12 +30,15 @@ local p = iv.params{
   window = { 0.0, range = "[0, inf)", unit = "tau", help = "correlation window (0: 4 x the free-particle tau_d)" },
   lags = { 200, range = "[2, inf)", type = "integer", help = "correlator lags in the window" },
   every = { 1000, range = "[1, inf)", type = "integer", help = "steps between rows of series.csv" },
-  checkpoint_every = { 0, range = "[0, inf)", type = "integer", help = "steps between checkpoints (0: only on SIGINT/SIGTERM)" },
+  checkpoint_every = declare.keyword(production.keys, "checkpoint_every"),
 }
 
 local function fail(fmt, ...) error(string.format(fmt, ...), 0) end
 -- Each parameter's own range is checked by iv.params; these are the combinations.
 if p.steps == 0 then fail("--set steps=0: must be > 0 (-1: automatic)") end
+if not (p.tau_p > 0 and p.tau_p < math.huge) then
+  fail("--set tau_p=%g: must be > 0 and finite here (the free particle's tau_d needs a finite persistence)", p.tau_p)
+end
 require("lib.model_limits").check_dynamics(p)  -- values in range that mean nothing
 
 -- Times: tau_g, the free particle's tau_d, the correlation window and the run lengths.
@@ -84,7 +89,7 @@ else
   if signal then fail("stopped by %s while equilibrating at step %d; run the protocol again", signal, sys:step()) end
 end
 
-local result = require("lib.production")(tissue, {
+local result = production(tissue, {
   steps = steps, every = p.every, correlate_every = correlate_every, lags = p.lags, out = out,
   checkpoint_every = p.checkpoint_every, slices_per_body = 0,
 })

@@ -3,7 +3,10 @@
 -- default, range, unit and meaning (`invasim params protocols/invasion.lua` lists them). A
 -- protocol adds its own with merge{...}; size(p) resolves the system preset; validate(p)
 -- checks the combinations of parameters before anything runs.
+local iv = require("invasim")
+local declare = require("lib.declare")
 local presets = require("lib.presets")
+local production = require("lib.production")
 
 local M = {}
 
@@ -28,34 +31,34 @@ function M.declarations()
     seed = { 1, range = "[0, inf)", help = "random seed (placement, noise, orientations)" },
     phi = { 0.72, range = "(0, 1)", help = "total packing fraction reached by compression" },
     P = { 1.3e-3, range = "[0, inf)", unit = "eps_c/sigma^3", help = "pressure on the left wall" },
-    beta = { 1e-2, range = "[0, inf)", help = "cancer-cell cohesion depth (0: repulsive; below alpha)" },
-    alpha = { 0.2, range = "[0, inf)", help = "cancer-cell cohesion range" },
-    beta_cv = { 0.0, range = "[0, inf)", help = "cancer-adipocyte adhesion depth (0: repulsive, the paper; below alpha_cv; docs/model.md, Beyond the paper)" },
-    alpha_cv = { 0.2, range = "[0, inf)", help = "cancer-adipocyte adhesion range" },
-    f0 = { 0.002, range = "[0, inf)", unit = "eps_c/sigma", help = "self-propulsion force (0: passive cells; 0.002 with the default background: 2 k_B T_c/(P sigma^3) ~ 0.3, the paper's Fig. 4b point)" },
-    tau_p = { 25.0, range = "[0, inf)", unit = "tau", help = "persistence time of the active orientation (0: uncorrelated)" },
+    beta = declare.engine("Contacts", "beta", 1e-2, "the paper's 1e-2"),
+    alpha = declare.engine("Contacts", "alpha"),
+    beta_cv = declare.engine("Contacts", "beta_cv", nil, "docs/model.md, Beyond the paper"),
+    alpha_cv = declare.engine("Contacts", "alpha_cv"),
+    f0 = declare.engine("Active", "f0", 0.002, "0: passive cells; 0.002 with the default background: 2 k_B T_c/(P sigma^3) ~ 0.3, the paper's Fig. 4b point"),
+    tau_p = declare.engine("Active", "tau_p", 25.0),
     kT = { 0.0, range = "[0, inf)", unit = "eps_c", help = "background temperature of the cells and the langevin vertices (passive cells: their bath; active cells: only with background_factor = 0)" },
     background_factor = { 6.0, range = "[0, inf)", help = "active cells (f0 > 0): background temperature = this x the activity's free-particle temperature (f0/gamma)^2 tau_p/(3 (tau_p + m/gamma)) (docs/model.md, Vertex bath); 0: the background is kT" },
-    gamma = { 0.2, range = "[0, inf)", unit = "sqrt(m eps_c)/sigma", help = "damping coefficient of the cancer cells" },
+    gamma = declare.engine("Active", "gamma", nil, "of the cancer cells"),
     vertex_bath = { "langevin", choices = { "langevin", "damped" }, help = "bath of the adipocyte vertices and the piston: langevin (FDT noise at kT) or damped (no noise)" },
-    vertex_gamma = { 0.2, range = "[0, inf)", unit = "sqrt(m eps_c)/sigma", help = "damping coefficient of the adipocyte vertices" },
+    vertex_gamma = declare.engine("Langevin", "gamma", nil, "of the adipocyte vertices"),
     vertex_mass = { 1.0, range = "(0, inf)", unit = "m", help = "mass of each adipocyte vertex (the cells have m = 1)" },
     vertex_kT = { 0.0, range = "[0, inf)", unit = "eps_c", help = "noise temperature of langevin vertices (0: the background kT)" },
-    eps_v = { 1e3, range = "[0, inf)", unit = "eps_c", help = "adipocyte volume stiffness" },
-    eps_a = { 1.0, range = "[0, inf)", unit = "eps_c", help = "adipocyte face-area stiffness" },
+    eps_v = declare.engine("Shape", "eps_v", 1e3),
+    eps_a = declare.engine("Shape", "eps_a", 1.0),
     start = { "demixed", choices = { "demixed", "mixed" }, help = "initial placement: demixed (cells left of the adipocytes) or mixed (both over the whole box)" },
     adipocyte_spread = { 0.0, range = "[0, 1]", help = "adipocytes of many sizes: log-normal spread of their diameters, mean kept (0: one size, the paper; docs/model.md, Bodies)" },
     A_0 = { 1.1, range = "[1, inf)", help = "reference shape parameter of the adipocytes (a sphere has 1; the paper's Appendix A: 1.0, 1.1, 1.3)" },
-    dt = { 0.05, range = "(0, inf)", unit = "tau", help = "time step" },
+    dt = declare.engine("Dynamics", "dt"),
     cohesive_compression = { false, help = "keep the cells' cohesion on during compression (default: repulsive packing)" },
     compress_ftol = { 1e-3, range = "(0, inf)", unit = "eps_c/sigma", help = "FIRE tolerance between compression steps" },
     final_ftol = { 1e-6, range = "(0, inf)", unit = "eps_c/sigma", help = "FIRE tolerance of the compressed tissue" },
     quench_steps = { 20000, type = "integer", range = "[0, inf)", help = "steps of the quench (wall to P, cells moving)" },
-    steps = { 100000, type = "integer", range = "[0, inf)", help = "production steps" },
-    every = { 1000, type = "integer", range = "[1, inf)", help = "steps between measurements (a row of series.csv)" },
+    steps = declare.keyword(production.keys, "steps"),
+    every = declare.keyword(production.keys, "every"),
     snapshot_every = { 10000, type = "integer", range = "[0, inf)", help = "steps between snapshots (0: none)" },
-    checkpoint_every = { 10000, type = "integer", range = "[0, inf)", help = "steps between checkpoints (0: only on SIGINT/SIGTERM)" },
-    correlate_every = { 20, type = "integer", range = "[0, inf)", help = "steps between correlator samples (0: none)" },
+    checkpoint_every = declare.keyword(production.keys, "checkpoint_every", 10000),
+    correlate_every = declare.keyword(production.keys, "correlate_every"),
   }
 end
 
@@ -89,13 +92,11 @@ end
 -- range that would make the run meaningless).
 function M.validate(p)
   local N_a, N_c, L0 = M.size(p)
-  if p.beta > 0 and p.beta >= p.alpha then
-    error(string.format("cohesion: beta = %g must be smaller than alpha = %g (--set beta=... or --set alpha=...; beta = 0 switches cohesion off)",
-                        p.beta, p.alpha), 0)
-  end
-  if p.beta_cv > 0 and p.beta_cv >= p.alpha_cv then
-    error(string.format("adhesion: beta_cv = %g must be smaller than alpha_cv = %g (--set beta_cv=... or --set alpha_cv=...; beta_cv = 0 switches adhesion off)",
-                        p.beta_cv, p.alpha_cv), 0)
+  -- The contact law's own rules (beta < alpha, beta_cv < alpha_cv), before any work.
+  local problem = iv.Contacts.check{ alpha = p.alpha, beta = p.beta, alpha_cv = p.alpha_cv,
+                                     beta_cv = p.beta_cv }
+  if problem then
+    error(problem .. " (--set alpha, beta, alpha_cv or beta_cv; beta = 0 switches cohesion off, beta_cv = 0 adhesion)", 0)
   end
   -- The step counter is a 64-bit integer (2^63 - 1 = math.maxinteger): the quench's and the
   -- production's steps together must fit in it.

@@ -19,21 +19,20 @@ local series_file = require("lib.series")
 local resume = require("lib.resume")
 
 local spec = {
-  steps = { "number", default = 100000, range = "[0, inf)" },
-  every = { "number", default = 1000, range = "[1, inf)" },
+  steps = { "integer", default = 100000, range = "[0, inf)", help = "production steps" },
+  every = { "integer", default = 1000, range = "[1, inf)", help = "steps between measurements (a row of series.csv)" },
   interface = true,          -- Voronoi interfacial area every `every` steps
   radical = false,           -- radical (power) tessellation instead of the paper's Voronoi
   energy = false,            -- energy of each force term every `every` steps
   columns = { "table" },    -- the series' columns, LAMMPS thermo style: {"step", "A_t", ...}
                                -- (default: every column of the observers switched on)
-  correlate_every = { "number", default = 20, range = "[0, inf)" },  -- 0: no correlators
+  correlate_every = { "integer", default = 20, range = "[0, inf)", help = "steps between correlator samples (0: none)" },
   lags = 250,                -- correlator window: lags * correlate_every steps
   origin_every = 5,          -- a new time origin every this many correlator samples
   slices_per_body = { "number", default = 20, range = "[0, inf)" },  -- random slices per adipocyte at the end (0: none)
   average_fraction = 0.5,    -- the summary averages the last half of the samples
   out = { "string" },        -- directory for series.csv, correlations.csv, shapes.csv
-  checkpoint_every = { "number", default = 0, range = "[0, inf)" },  -- steps between checkpoints in out/checkpoint/ (0: only on a
-                             -- stop signal, if out is set)
+  checkpoint_every = { "integer", default = 0, range = "[0, inf)", help = "steps between checkpoints in out/checkpoint/ (0: only on SIGINT/SIGTERM)" },
   snapshots = { "Snapshots" },  -- an invasim.Snapshots writing a frame every snapshot_every steps
   snapshot_every = { "integer", default = 0, range = "[0, inf)" },  -- steps between snapshots (0: none)
   progress = true,
@@ -83,7 +82,9 @@ local function shapes(sys, per_body)
   return result
 end
 
-return function(tissue, opts)
+-- The stage: production(tissue, opts); production.keys is its keyword spec (lib/declare.lua
+-- declares protocol parameters from it).
+local function production(tissue, opts)
   local o = iv.keywords(opts and opts.label or "production", opts, spec)
   if not tissue.dyn then error(o.label .. ": run the quench stage first (it makes the Dynamics)", 2) end
   local sys, dyn = tissue.sys, tissue.dyn
@@ -208,3 +209,5 @@ return function(tissue, opts)
   return { series = { columns = columns, units = units, rows = rows }, summary = summary,
            correlator = correlator, shape = shape }
 end
+
+return setmetatable({ keys = spec }, { __call = function(_, tissue, opts) return production(tissue, opts) end })

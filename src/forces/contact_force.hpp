@@ -15,15 +15,13 @@
 
 namespace invasim {
 
+// The fields' meanings, units and ranges are declared once, with their Lua keys, in
+// src/lua/bind_contacts.cpp (`invasim keys Contacts`); the values here are their defaults.
 struct ContactParams {
-  double eps_cc = 1.0;    // cancer-cancer contact energy
-  double eps_cv = 1.0;    // cancer-vertex
-  double eps_vv = 1.0;    // vertex-vertex (different adipocytes)
-  double alpha = 0.2;     // cohesion range: r_a = (1 + alpha) s
-  double beta = 0.0;      // cohesion depth: r_b = (1 + beta) s; 0 = purely repulsive
-  double alpha_cv = 0.2;  // cancer-vertex adhesion range: r_a = (1 + alpha_cv) s
-  double beta_cv = 0.0;   // cancer-vertex adhesion depth; 0 = purely repulsive (the paper)
-  double skin = 0.3;      // neighbour-list skin
+  double eps_cc = 1.0, eps_cv = 1.0, eps_vv = 1.0;  // contact energies by pair kind
+  double alpha = 0.2, beta = 0.0;                   // cancer-cancer cohesion
+  double alpha_cv = 0.2, beta_cv = 0.0;             // cancer-vertex adhesion
+  double skin = 0.3;
   // Throws InputError naming the bad value.
   void validate() const;
   // Whether any pair kind attracts (the kernel's cohesive branch is needed).

@@ -1,6 +1,6 @@
 // invasim.Contacts{alpha =, beta =, alpha_cv =, beta_cv =, eps_cc =, eps_cv =, eps_vv =,
 // skin =}: contact springs of every pair kind with cancer-cancer cohesion and optional
-// cancer-vertex adhesion (ContactForce).
+// cancer-vertex adhesion (ContactForce); invasim.Contacts.check{...} applies its rules only.
 #include <lua.hpp>
 
 #include "lua/engine_types.hpp"
@@ -78,6 +78,28 @@ int l_params(lua_State* L) {
   return 1;
 }
 
+// invasim.Contacts.check{alpha =, beta =, ...} -> nil, or the message saying why invasim.Contacts
+// would refuse these keys (their ranges and ContactParams::validate's rules such as beta <
+// alpha): a protocol checks its parameters before any work with the engine's own rules.
+int l_check(lua_State* L) {
+  std::string problem;
+  try {
+    Kwargs kw(L, 1, "Contacts");
+    contact_fields().make(kw).validate();
+  } catch (const InputError& e) {
+    problem = e.what();
+  }
+  if (problem.empty()) {
+    lua_pushnil(L);
+    return 1;
+  }
+  protected_call(L, 0, 1, [&problem](lua_State* S) noexcept {
+    lua_pushstring(S, problem.c_str());
+    return 1;
+  });
+  return 1;
+}
+
 const luaL_Reg kMethods[] = {
     {"params", &lua_wrap<&l_params>},
     {"set", &lua_wrap<&l_set>},
@@ -89,6 +111,7 @@ const luaL_Reg kMethods[] = {
 void open_contacts(lua_State* L) {
   define_type<Contacts>(L, kMethods);
   set_constructor(L, "Contacts", &lua_wrap<&l_new>, contact_fields().infos());
+  set_static_function(L, "Contacts", "check", &lua_wrap<&l_check>);
 }
 
 }  // namespace invasim::lua

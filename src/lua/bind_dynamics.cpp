@@ -79,8 +79,7 @@ const FieldTable<PressureWall>& pressure_wall_fields() {
       "pressure_wall",
       {
           required(number_or_ramp<P>("P", &P::pressure, &P::pressure_ramp, Range::non_negative(),
-                                     "eps_c/sigma^3",
-                                     "pressure on the left wall (a number or an invasim.ramp{})")),
+                                     "eps_c/sigma^3", "pressure on the left wall")),
           number<P>("mass", &P::mass, Range::positive(), "m", "mass of the piston"),
           number<P>("gamma", &P::gamma, Range::non_negative(), "sqrt(m eps_c)/sigma",
                     "damping coefficient of the piston"),

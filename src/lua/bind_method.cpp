@@ -34,7 +34,7 @@ Field<K> gamma_field() {
 }
 Field<K> kT_field() {
   return number_or_ramp<K>("kT", &K::kT, &K::kT_ramp, Range::non_negative(), "eps_c",
-                           "temperature of the thermal noise (a number or an invasim.ramp{})");
+                           "temperature of the thermal noise");
 }
 Field<K> group_of_method() {
   return group_field<K>(&K::group, "the sites this method moves (sys:group(name))");
@@ -60,8 +60,7 @@ const FieldTable<K>& active_fields() {
           gamma_field(),
           kT_field(),
           required(number_or_ramp<K>("f0", &K::f0, &K::f0_ramp, Range::non_negative(),
-                                     "eps_c/sigma",
-                                     "self-propulsion force (a number or an invasim.ramp{})")),
+                                     "eps_c/sigma", "self-propulsion force")),
           required(number<K>("tau_p", &K::tau_p, Range::non_negative(), "tau",
                              "persistence time of the orientation (0: white noise; math.huge: "
                              "frozen orientations)",

@@ -41,7 +41,7 @@ const FieldTable<SystemKeys>& system_fields() {
     box.info = {"box",
                 "list of 3 numbers",
                 std::nullopt,
-                Range::positive(),
+                shown_range(Range::positive(), false),
                 {},
                 "sigma",
                 "box side lengths (the box spans [0, L] in each axis)"};

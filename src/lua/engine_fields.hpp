@@ -15,7 +15,8 @@ template <typename P, typename Value, typename RampSlot>
 Field<P> number_or_ramp(std::string name, Value value, RampSlot ramp, Range range, std::string unit,
                         std::string help) {
   Field<P> f;
-  f.info = {name, "number or Ramp", std::nullopt, range, {}, std::move(unit), std::move(help)};
+  f.info = {name, "number or Ramp", std::nullopt,   shown_range(range, false),
+            {},   std::move(unit),  std::move(help)};
   f.read = [name, value, ramp, range](Kwargs& kw, P& p, bool required) {
     if (!required && !kw.has(name)) return;
     const NumberOrRamp v = kw_number_or_ramp(kw, name, range);

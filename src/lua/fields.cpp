@@ -234,6 +234,16 @@ void set_method_keys(lua_State* L, const char* type, const char* method,
   });
 }
 
+void set_static_function(lua_State* L, const char* type, const char* name, lua_CFunction fn) {
+  lua_pushvalue(L, -1);  // the module table, argument 1 of the block
+  protected_call(L, 1, 0, [&](lua_State* S) noexcept {
+    lua_getfield(S, 1, type);
+    lua_pushcfunction(S, fn);
+    lua_setfield(S, -2, name);
+    return 0;
+  });
+}
+
 const std::map<std::string, std::vector<FieldInfo>>& registered_field_tables() {
   return registry();
 }

@@ -11,6 +11,7 @@
 //   ContactParams p = kContacts.make(kw);   // reads and validates, then kw.finish()
 #include <lua.hpp>
 
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <map>
@@ -120,12 +121,20 @@ class FieldTable {
 template <typename P, typename Access>
 using FieldRef = std::remove_reference_t<std::invoke_result_t<Access, P&>>;
 
+// The allowed values as the listings show them: a field that takes finite values only has an
+// open upper end at inf ("[0, inf)"), one that also takes math.huge a closed one ("[0, inf]").
+inline Range shown_range(Range range, bool allow_infinity) {
+  if (std::isinf(range.hi) && range.hi > 0) range.hi_open = !allow_infinity;
+  return range;
+}
+
 // A finite number in `range` (with allow_infinity, also +inf: tau_p = math.huge).
 template <typename P, typename Access>
 Field<P> number(std::string name, Access access, Range range, std::string unit, std::string help,
                 bool allow_infinity = false) {
   Field<P> f;
-  f.info = {name, "number", std::nullopt, range, {}, std::move(unit), std::move(help)};
+  f.info = {name, "number",        std::nullopt,   shown_range(range, allow_infinity),
+            {},   std::move(unit), std::move(help)};
   f.read = [name, access, range, allow_infinity](Kwargs& kw, P& p, bool required) {
     double& slot = std::invoke(access, p);
     if (allow_infinity && kw.is_infinity(name)) {
@@ -145,7 +154,8 @@ template <typename P, typename Access>
 Field<P> integer(std::string name, Access access, Range range, std::string unit, std::string help) {
   using T = FieldRef<P, Access>;
   Field<P> f;
-  f.info = {name, "integer", std::nullopt, range, {}, std::move(unit), std::move(help)};
+  f.info = {name, "integer",       std::nullopt,   shown_range(range, false),
+            {},   std::move(unit), std::move(help)};
   f.read = [name, access, range](Kwargs& kw, P& p, bool required) {
     T& slot = std::invoke(access, p);
     slot = required ? kw.integer<T>(name, range) : kw.integer<T>(name, slot, range);
@@ -241,6 +251,10 @@ void set_constructor(lua_State* L, const char* name, lua_CFunction constructor,
 // whose field `type` must already be a constructor table.
 void set_method_keys(lua_State* L, const char* type, const char* method,
                      const std::vector<FieldInfo>& infos);
+
+// Sets `invasim.<type>.<name>` to the function fn (invasim.Contacts.check); the table on top
+// of the stack is `invasim`, whose field `type` must already be a constructor table.
+void set_static_function(lua_State* L, const char* type, const char* name, lua_CFunction fn);
 
 // The tables set_constructor and set_method_keys have published, by name ("Contacts",
 // "Dynamics:pressure_wall"): for `invasim keys` and the documentation.

@@ -135,7 +135,7 @@ TEST_CASE("invasim.X.defaults is read-only and X stays a constructor", "[lua][fi
     assert(not ok and err:find("Contacts: unknown key 'bta' (did you mean 'beta'?)", 1, true), err)
     -- fields: name, type, default, range, unit, help
     local f = iv.Contacts.fields[2]
-    assert(f.name == "beta" and f.type == "number" and f.default == 0 and f.range == "[0, inf]")
+    assert(f.name == "beta" and f.type == "number" and f.default == 0 and f.range == "[0, inf)")
     assert(f.unit == "1" and f.help:find("cohesion depth") and f.required == false)
     local tau_p = iv.Active.fields[5]
     assert(tau_p.name == "tau_p" and tau_p.required and tau_p.default == nil)
