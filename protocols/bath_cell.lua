@@ -23,10 +23,10 @@ stage.compress(tissue, { to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.
 stage.quench(tissue, motion.quench_options(p, { steps = p.quench_steps }))
 
 -- Production: thermo columns only, averaged over the whole run (the quench equilibrates).
-local result = stage.production(tissue, {
-  steps = p.steps, every = p.every, correlate_every = 0, interface = false, slices_per_body = 0,
-  average_fraction = 1.0, checkpoint_every = p.checkpoint_every, out = out,
-})
+local result = stage.production(tissue, parameters.production_options(p, out, {
+  correlate_every = 0, snapshot_every = 0, interface = false, slices_per_body = 0,
+  average_fraction = 1.0,
+}))
 local s = result.summary
 require("lib.summary").print("bath", s, { "T_c", "T_a", "T_c_over_T_a", "kT_c_paper" },
                              result.series.units)

@@ -37,10 +37,7 @@ stage.quench(tissue, motion.quench_options(p, { steps = p.quench_steps }))
 
 -- Production: A_t (Voronoi), temperatures and wall pressures every `every` steps, the cells'
 -- correlators, shapes at the end; snapshots and checkpoints into the run directory.
-local result = stage.production(tissue, { steps = p.steps, every = p.every,
-                                          correlate_every = p.correlate_every,
-                                          snapshot_every = p.snapshot_every,
-                                          checkpoint_every = p.checkpoint_every, out = out })
+local result = stage.production(tissue, parameters.production_options(p, out))
 
 -- Report: averages with error bars, printed and written to summary.json.
 require("lib.report").final(tissue, p, result, iv.clock() - clock, out)

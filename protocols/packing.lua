@@ -47,10 +47,7 @@ end
 -- Quench, production and report, as in invasion.lua; then the measured phi_a beside the target.
 stage.quench(tissue, motion.quench_options(p, { steps = p.quench_steps,
                                                 barostat = p.box == "pressure" }))
-local result = stage.production(tissue, { steps = p.steps, every = p.every,
-                                          correlate_every = p.correlate_every,
-                                          snapshot_every = p.snapshot_every,
-                                          checkpoint_every = p.checkpoint_every, out = out })
+local result = stage.production(tissue, parameters.production_options(p, out))
 local packing = require("lib.packing_drift")(p.phi_a, result,
                                              { P = p.box == "pressure" and p.P or nil })
 packing.box = p.box

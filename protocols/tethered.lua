@@ -38,8 +38,5 @@ stage.quench(tissue, motion.quench_options(p, { steps = p.quench_steps }))
 stage.quench(tissue, motion.quench_options(p, { label = "equilibrate", steps = p.equilibrate_steps }))
 
 -- Production and report, as in invasion.lua.
-local result = stage.production(tissue, { steps = p.steps, every = p.every,
-                                          correlate_every = p.correlate_every,
-                                          snapshot_every = p.snapshot_every,
-                                          checkpoint_every = p.checkpoint_every, out = out })
+local result = stage.production(tissue, parameters.production_options(p, out))
 require("lib.report").final(tissue, p, result, iv.clock() - clock, out)

@@ -33,6 +33,25 @@ function M.interface(tissue, radical)
   }
 end
 
+-- Lipolysis (docs/model.md, Bodies, "Lipolysis"): the adipocytes' mean reference volume as a
+-- fraction of their initial one, and how many of them cancer cells touch now.
+function M.lipolysis(tissue, lipolysis)
+  local sys = tissue.sys
+  return {
+    columns = { "V0_ratio", "N_touched" },
+    units = { V0_ratio = "1", N_touched = "adipocytes" },
+    sample = function(row)
+      local sum, n = 0.0, 0
+      for _, a in ipairs(sys:adipocytes()) do
+        sum, n = sum + a.ref_volume / a.ref_volume_initial, n + 1
+      end
+      local touched = 0
+      for _, t in ipairs(lipolysis:touched(sys)) do if t then touched = touched + 1 end end
+      row.V0_ratio, row.N_touched = n > 0 and sum / n or 1.0, touched
+    end,
+  }
+end
+
 -- Energy of each force term (one extra force evaluation per sample; the trajectory is not
 -- changed: sys:compute() restores the forces the Dynamics keeps).
 function M.energy(tissue)

@@ -33,7 +33,7 @@ function M.declarations()
     P = { 1.3e-3, range = "[0, inf)", unit = "eps_c/sigma^3", help = "pressure on the left wall" },
     beta = declare.engine("Contacts", "beta", 1e-2, "the paper's 1e-2"),
     alpha = declare.engine("Contacts", "alpha"),
-    beta_cv = declare.engine("Contacts", "beta_cv", nil, "docs/model.md, Beyond the paper"),
+    beta_cv = declare.engine("Contacts", "beta_cv", nil, "docs/model.md, Forces"),
     alpha_cv = declare.engine("Contacts", "alpha_cv"),
     f0 = declare.engine("Active", "f0", 0.002, "0: passive cells; 0.002 with the default background: 2 k_B T_c/(P sigma^3) ~ 0.3, the paper's Fig. 4b point"),
     tau_p = declare.engine("Active", "tau_p", 25.0),
@@ -59,6 +59,9 @@ function M.declarations()
     snapshot_every = { 10000, type = "integer", range = "[0, inf)", help = "steps between snapshots (0: none)" },
     checkpoint_every = declare.keyword(production.keys, "checkpoint_every", 10000),
     correlate_every = declare.keyword(production.keys, "correlate_every"),
+    lipolysis_rate = declare.engine("Lipolysis", "rate", 0.0, "0: no lipolysis, the paper; docs/model.md, Bodies"),
+    lipolysis_floor = declare.engine("Lipolysis", "floor"),
+    lipolysis_every = declare.keyword(production.keys, "lipolysis_every"),
   }
 end
 
@@ -74,6 +77,19 @@ function M.init_options(p, N_a, N_c, L0)
   return { N_a = N_a, N_c = N_c, L0 = L0, seed = p.seed, start = p.start, shape_param = p.A_0,
            eps_v = p.eps_v, eps_a = p.eps_a, alpha = p.alpha, beta = p.beta,
            alpha_cv = p.alpha_cv, beta_cv = p.beta_cv, diameter_spread = p.adipocyte_spread }
+end
+
+-- The production stage's keywords from the parameters (run directory `out`), with `extra`
+-- keys added or replacing them (a protocol's own choices, e.g. correlate_every = 0).
+function M.production_options(p, out, extra)
+  local o = { steps = p.steps, every = p.every, correlate_every = p.correlate_every,
+              snapshot_every = p.snapshot_every, checkpoint_every = p.checkpoint_every, out = out,
+              lipolysis_every = p.lipolysis_every }
+  if p.lipolysis_rate > 0 then
+    o.lipolysis = iv.Lipolysis{ rate = p.lipolysis_rate, floor = p.lipolysis_floor }
+  end
+  for k, v in pairs(extra or {}) do o[k] = v end
+  return o
 end
 
 -- The system size after the preset and the explicit overrides.

@@ -33,6 +33,8 @@ local spec = {
   average_fraction = 0.5,    -- the summary averages the last half of the samples
   out = { "string" },        -- directory for series.csv, correlations.csv, shapes.csv
   checkpoint_every = { "integer", default = 0, range = "[0, inf)", help = "steps between checkpoints in out/checkpoint/ (0: only on SIGINT/SIGTERM)" },
+  lipolysis = { "Lipolysis", help = "adipocytes shrinking where cancer cells touch them (off: nil)" },
+  lipolysis_every = { "integer", default = 1000, range = "[1, inf)", help = "steps between two applications of lipolysis (each recomputes the touched adipocytes' V_i, ~2 ms each)" },
   snapshots = { "Snapshots" },  -- an invasim.Snapshots writing a frame every snapshot_every steps
   snapshot_every = { "integer", default = 0, range = "[0, inf)" },  -- steps between snapshots (0: none)
   progress = true,
@@ -91,6 +93,7 @@ local function production(tissue, opts)
   local active = { observers.thermo(tissue) }
   if o.interface and sys:n_adipocytes() > 0 then active[#active + 1] = observers.interface(tissue, o.radical) end
   if o.energy then active[#active + 1] = observers.energy(tissue) end
+  if o.lipolysis then active[#active + 1] = observers.lipolysis(tissue, o.lipolysis) end
   local columns, units = {}, {}
   for _, ob in ipairs(active) do
     for _, c in ipairs(ob.columns) do columns[#columns + 1] = c; units[c] = ob.units[c] end
@@ -133,6 +136,8 @@ local function production(tissue, opts)
   local file = o.out and series_file.open(o.out .. "/series.csv", columns, units) or nil
   if file then for _, row in ipairs(rows) do file:write(row) end end
   local sim = iv.Simulation{ system = sys, dynamics = dyn }
+  -- Lipolysis first: at a step where it is due, the samples and the checkpoint see its result.
+  if o.lipolysis then sim:lipolysis(o.lipolysis, { every = o.lipolysis_every }) end
   if correlator then sim:sample(correlator, { every = o.correlate_every }) end
   sim:observe(function()
     local row = {}

@@ -1,6 +1,7 @@
 #include "checkpoint/state_checkpoint.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace invasim {
@@ -36,7 +37,7 @@ const std::vector<T>& sized(const CheckpointReader& in, const std::string& name,
 struct StoredBodies {
   std::vector<std::shared_ptr<const MeshTopology>> topologies;
   std::vector<int> topology, first_site;
-  std::vector<double> ref_area, ref_volume, outer_volume;
+  std::vector<double> ref_area, ref_volume, outer_volume, ref_volume_initial;
   std::vector<std::size_t> area_offset;  // first reference area of each body
 };
 
@@ -75,6 +76,16 @@ StoredBodies read_bodies(const CheckpointReader& in, const Keys& key, const Site
   b.outer_volume = sized(in, key("bodies.outer_volume"), in.get_f64s(key("bodies.outer_volume")),
                          n_bodies, "bodies");
   b.ref_area = in.get_f64s(key("bodies.ref_area"));
+  // (Absent from checkpoints written before lipolysis existed: v_0 had never changed.)
+  b.ref_volume_initial =
+      in.has(key("bodies.ref_volume_initial"))
+          ? sized(in, key("bodies.ref_volume_initial"),
+                  in.get_f64s(key("bodies.ref_volume_initial")), n_bodies, "bodies")
+          : b.ref_volume;
+  for (std::size_t k = 0; k < n_bodies; ++k)
+    if (!(b.ref_volume_initial[k] > 0.0) || !std::isfinite(b.ref_volume_initial[k]))
+      in.fail("section '", key("bodies.ref_volume_initial"), "': body ", k,
+              " has initial reference volume ", b.ref_volume_initial[k], " (must be > 0)");
 
   // Every body is a contiguous block of vertex sites, in increasing site order (as add_mesh
   // builds them); every other site is a cancer cell.
@@ -180,7 +191,7 @@ void write_system(CheckpointWriter& out, const System& sys, const std::string& p
   // Distinct topologies (by content), then each body's index into them.
   std::vector<const MeshTopology*> topologies;
   std::vector<int> topology, first_site;
-  std::vector<double> ref_area, ref_volume, outer_volume;
+  std::vector<double> ref_area, ref_volume, outer_volume, ref_volume_initial;
   for (const MeshBody& b : sys.bodies()) {
     auto it = std::find_if(topologies.begin(), topologies.end(),
                            [&](const MeshTopology* t) { return same_topology(*t, *b.topology); });
@@ -190,6 +201,7 @@ void write_system(CheckpointWriter& out, const System& sys, const std::string& p
     ref_area.insert(ref_area.end(), b.ref_area.begin(), b.ref_area.end());
     ref_volume.push_back(b.ref_volume);
     outer_volume.push_back(b.outer_volume);
+    ref_volume_initial.push_back(b.ref_volume_initial);
   }
   std::vector<int> n_vertices, n_faces, faces;
   for (const MeshTopology* t : topologies) {
@@ -205,6 +217,7 @@ void write_system(CheckpointWriter& out, const System& sys, const std::string& p
   out.put_f64s(key("bodies.ref_area"), ref_area);
   out.put_f64s(key("bodies.ref_volume"), ref_volume);
   out.put_f64s(key("bodies.outer_volume"), outer_volume);
+  out.put_f64s(key("bodies.ref_volume_initial"), ref_volume_initial);
 }
 
 System read_system(const CheckpointReader& in, const std::string& prefix) {
@@ -246,6 +259,7 @@ System read_system(const CheckpointReader& in, const std::string& prefix) {
     MeshBody& b = sys.bodies()[k];
     if (b.first_site != bodies.first_site[k]) in.fail("body ", k, " was rebuilt at another site");
     b.outer_volume = bodies.outer_volume[k];
+    b.ref_volume_initial = bodies.ref_volume_initial[k];
   }
   sys.sites() = std::move(s);
   // (Absent from checkpoints written before the engine order existed: the next run chooses one.)

@@ -5,7 +5,7 @@
 //   falling linearly to zero at r_a = (1+alpha)s.
 //   cancer-vertex: optionally the same form with its own (alpha_cv, beta_cv): the adhesion of
 //   cancer cells to adipocytes, which the paper leaves purely repulsive (beta_cv = 0, the
-//   default; docs/model.md, "Beyond the paper").
+//   default; docs/model.md, Forces, "Cancer-adipocyte adhesion").
 // s is the mean of the two diameters. One pass over one neighbour list serves all kinds.
 #include "forces/contact_half.hpp"
 #include "forces/contact_kernel.hpp"

@@ -6,6 +6,7 @@
 //   sim:checkpoint{path =, tethers =, correlator =, extra = function() return "" end,
 //                  run_id =, run_parameters =, written = function(step) end, <schedule>}
 //   sim:observe(function(step, time) end, schedule)   -- an observer written in Lua
+//   sim:lipolysis(lipolysis, {every = N})     -- adipocytes shrinking where cells touch them
 //   sim:run(n [, {progress = p}]) -> steps done, stop signal name or nil
 //   sim:operations() -> {"correlator sampler: every 20 steps", ...}
 #include <lua.hpp>
@@ -119,6 +120,21 @@ int l_sample(lua_State* L) {
   if (!correlator) throw InputError(bad_argument(L, 2, "Correlator"));
   const Trigger t = schedule_arg(L, 3, "sample");
   engine_call("sample", [&] { s.run.add(std::make_shared<CorrelatorSampler>(correlator), t); });
+  return 0;
+}
+
+// sim:lipolysis(lipolysis, {every = N}): applies an invasim.Lipolysis every N steps (N dt of
+// lipolysis each time), before the operations added after it at the same step.
+int l_lipolysis(lua_State* L) {
+  SimulationHandle& s = check<SimulationHandle>(L, 1);
+  if (!is<Lipolysis>(L, 2)) throw InputError(bad_argument(L, 2, "Lipolysis"));
+  std::shared_ptr<const Lipolysis> lipolysis = check_shared<Lipolysis>(L, 2);
+  Kwargs kw(L, 3, "lipolysis");
+  const auto every = kw.integer<std::uint64_t>("every", Range::at_least(1));
+  kw.finish();
+  engine_call("lipolysis", [&] {
+    s.run.add(std::make_shared<LipolysisOperation>(lipolysis, every), Trigger::every(every, 0));
+  });
   return 0;
 }
 
@@ -243,13 +259,10 @@ int l_operations(lua_State* L) {
 }
 
 const luaL_Reg kMethods[] = {
-    {"sample", &lua_wrap<&l_sample>},
-    {"snapshots", &lua_wrap<&l_snapshots>},
-    {"observe", &lua_wrap<&l_observe>},
-    {"checkpoint", &lua_wrap<&l_checkpoint>},
-    {"run", &lua_wrap<&l_run>},
-    {"operations", &lua_wrap<&l_operations>},
-    {nullptr, nullptr},
+    {"sample", &lua_wrap<&l_sample>},         {"lipolysis", &lua_wrap<&l_lipolysis>},
+    {"snapshots", &lua_wrap<&l_snapshots>},   {"observe", &lua_wrap<&l_observe>},
+    {"checkpoint", &lua_wrap<&l_checkpoint>}, {"run", &lua_wrap<&l_run>},
+    {"operations", &lua_wrap<&l_operations>}, {nullptr, nullptr},
 };
 
 }  // namespace

@@ -279,16 +279,16 @@ int l_positions(lua_State* L) {
   });
 }
 
-// sys:adipocytes() -> {{volume =, ref_volume =, area =, shape_parameter =,
-// ref_shape_parameter =, centre = {..}}, ...}
-// per adipocyte: mesh volume v_i and its reference, mesh area, 3D shape parameter, the
-// reference one A_0 (from the sum of the reference face areas and v_i0), and the vertex
-// centroid (unwrapped).
+// sys:adipocytes() -> {{volume =, ref_volume =, ref_volume_initial =, area =,
+// shape_parameter =, ref_shape_parameter =, centre = {..}}, ...}
+// per adipocyte: mesh volume v_i, its reference now and when the body was made (they differ
+// after lipolysis), mesh area, 3D shape parameter, the reference one A_0 (from the sum of the
+// reference face areas and v_i0), and the vertex centroid (unwrapped).
 int l_adipocytes(lua_State* L) {
   const Simulation& sim = check<Simulation>(L, 1);
   const auto& bodies = sim.system.bodies();
   struct Row {
-    double volume, ref_volume, area, shape, ref_shape;
+    double volume, ref_volume, ref_volume_initial, area, shape, ref_shape;
     Vec3 centre;
   };
   std::vector<Row> rows(bodies.size());
@@ -301,6 +301,7 @@ int l_adipocytes(lua_State* L) {
     r.volume = mesh_volume(*body.topology, x.data());
     r.area = mesh_area(*body.topology, x.data());
     r.ref_volume = body.ref_volume;
+    r.ref_volume_initial = body.ref_volume_initial;
     r.shape = shape_parameter(r.area, r.volume);
     r.centre = vertex_centroid(body.n_vertices(), x.data());
     double ref_area = 0.0;
@@ -310,9 +311,10 @@ int l_adipocytes(lua_State* L) {
   return push_results(L, 1, [&rows](lua_State* S) noexcept {
     lua_createtable(S, int(rows.size()), 0);
     for (std::size_t b = 0; b < rows.size(); ++b) {
-      lua_createtable(S, 0, 6);
+      lua_createtable(S, 0, 7);
       set_number(S, "volume", rows[b].volume);
       set_number(S, "ref_volume", rows[b].ref_volume);
+      set_number(S, "ref_volume_initial", rows[b].ref_volume_initial);
       set_number(S, "area", rows[b].area);
       set_number(S, "shape_parameter", rows[b].shape);
       set_number(S, "ref_shape_parameter", rows[b].ref_shape);

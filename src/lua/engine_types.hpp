@@ -24,6 +24,7 @@
 #include "forces/wall_force.hpp"
 #include "integrate/dynamics.hpp"
 #include "integrate/fire.hpp"
+#include "integrate/lipolysis.hpp"
 #include "lua/binding.hpp"
 #include "lua/kwargs.hpp"
 
@@ -103,6 +104,7 @@ INVASIM_LUA_TYPE(MethodHandle, "Method");
 INVASIM_LUA_TYPE(DynamicsHandle, "Dynamics");
 INVASIM_LUA_TYPE(Fire, "Fire");
 INVASIM_LUA_TYPE(Ramp, "Ramp");
+INVASIM_LUA_TYPE(Lipolysis, "Lipolysis");
 #undef INVASIM_LUA_TYPE
 
 // --- helpers shared by the engine bindings (engine_glue.cpp) ---

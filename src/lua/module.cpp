@@ -82,6 +82,7 @@ int open_invasim(lua_State* L) {
   open_simulation(L);
   open_fire(L);
   open_ramp(L);
+  open_lipolysis(L);
   open_measure(L);
   open_correlator(L);
   open_io(L);

@@ -28,8 +28,9 @@ void open_io(lua_State* L);          // invasim.write_file, make_dirs, Snapshots
 void open_json(lua_State* L);        // invasim.json_encode, read_json (bind_json.cpp)
 void open_run_dir(lua_State* L);     // invasim.lock_run_dir, ...  (bind_run_dir.cpp)
 void open_checkpoint(
-    lua_State* L);             // invasim.save/load_checkpoint, interrupted (bind_checkpoint.cpp)
-void open_ramp(lua_State* L);  // invasim.ramp{...}          (bind_ramp.cpp)
+    lua_State* L);  // invasim.save/load_checkpoint, interrupted (bind_checkpoint.cpp)
+void open_lipolysis(lua_State* L);    // invasim.Lipolysis{...}  (bind_lipolysis.cpp)
+void open_ramp(lua_State* L);         // invasim.ramp{...}          (bind_ramp.cpp)
 void open_compression(lua_State* L);  // invasim.compress, rescale  (bind_compression.cpp)
 void open_keywords(lua_State* L);     // invasim.keywords(...)      (bind_keywords.cpp)
 

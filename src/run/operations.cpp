@@ -14,6 +14,17 @@ void CorrelatorSampler::apply(Simulation& sim) {
   correlator_->sample(sim.system());
 }
 
+LipolysisOperation::LipolysisOperation(std::shared_ptr<const Lipolysis> lipolysis,
+                                       std::uint64_t every)
+    : lipolysis_(std::move(lipolysis)), every_(every) {
+  if (!lipolysis_) throw InputError("lipolysis: no Lipolysis given");
+  if (every_ < 1) throw InputError("lipolysis: every = 0 steps (must be >= 1)");
+}
+
+void LipolysisOperation::apply(Simulation& sim) {
+  lipolysis_->apply(sim.system(), double(every_) * sim.dynamics().dt());
+}
+
 SnapshotOperation::SnapshotOperation(std::shared_ptr<SnapshotWriter> writer)
     : writer_(std::move(writer)) {
   if (!writer_) throw InputError("snapshot writer: no SnapshotWriter given");

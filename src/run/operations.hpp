@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "integrate/lipolysis.hpp"
 #include "io/checkpoint.hpp"
 #include "io/snapshot_writer.hpp"
 #include "measure/time_correlator.hpp"
@@ -51,6 +52,22 @@ class CheckpointOperation : public Operation {
   std::filesystem::path path_;
   ComposeFn compose_;
   WrittenFn written_;
+};
+
+// Applies lipolysis to the System every `every` steps (elapsed time every x dt: schedule it
+// with Trigger::every(every)). Like a parameter change between two steps, the new reference
+// volumes act from the next force evaluation: the step's first half-kick uses the forces
+// already computed, as a run restored from a checkpoint written at this step (which stores
+// them) does, so both continue bit for bit.
+class LipolysisOperation : public Operation {
+ public:
+  LipolysisOperation(std::shared_ptr<const Lipolysis> lipolysis, std::uint64_t every);
+  std::string name() const override { return "lipolysis"; }
+  void apply(Simulation& sim) override;
+
+ private:
+  std::shared_ptr<const Lipolysis> lipolysis_;
+  std::uint64_t every_;
 };
 
 // Calls a function (an observer); returning false ends the run at this step boundary.

@@ -154,6 +154,7 @@ int System::add_mesh(std::shared_ptr<const MeshTopology> topology,
   if (!(vertex_diameter > 0.0))
     fail_input("adipocyte ", body, ": vertex diameter = ", vertex_diameter, " must be > 0");
   MeshBody mb{topology, int(sites_.size()), std::move(ref_area), ref_volume};
+  mb.ref_volume_initial = ref_volume;
   for (const Vec3& x : vertices)
     push_site(x, vertex_diameter, mass, body, SiteKind::kVertex, Vec3::Zero());
   bodies_.push_back(std::move(mb));

@@ -40,6 +40,9 @@ struct MeshBody {
   // Volume of the union of the mesh and its vertex spheres (the paper's V_i), used for
   // packing fractions; set when the body is created (0 if unknown).
   double outer_volume = 0.0;
+  // v_0 when the body was made: lipolysis (integrate/lipolysis.hpp) shrinks v_0 by fractions
+  // of it and down to a floor given as a fraction of it.
+  double ref_volume_initial = 0.0;
   int n_vertices() const { return topology->n_vertices(); }
 };
 

@@ -3,16 +3,19 @@
 # `invasim run --resume DIR` ends exactly like a run that was never interrupted: the last
 # snapshot (positions, velocities, orientations in shortest round-trip form), series.csv and
 # correlations.csv are identical. The kill waits for the first checkpoint of production (an
-# event, not a time). Usage: resume_after_kill.sh INVASIM WORKDIR
+# event, not a time). Further arguments go to both runs (e.g. --set lipolysis_rate=1e-3:
+# the reference volumes change during the run and the checkpoints hold them).
+# Usage: resume_after_kill.sh INVASIM WORKDIR [ARGS...]
 set -euo pipefail
 invasim=$1
 work=$2
+shift 2
 cd "$(dirname "$0")"
 rm -rf "$work" && mkdir -p "$work"
 # A background kT: the cells, the Langevin vertices and the piston all draw noise.
 args=(run ../../protocols/invasion.lua --set N_a=4 --set N_c=60 --set L0=32.0 --set quench_steps=500 --set background_factor=0 --set kT=1e-4
       --set steps=30000 --set every=200 --set snapshot_every=30000 --set checkpoint_every=1000
-      --set correlate_every=10)
+      --set correlate_every=10 "$@")
 
 "$invasim" "${args[@]}" --out "$work/straight" > "$work/straight.log" 2>&1
 

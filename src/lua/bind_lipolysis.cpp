@@ -1,0 +1,95 @@
+// invasim.Lipolysis{rate =, floor =}: adipocytes that shrink while cancer cells touch them
+// (integrate/lipolysis.hpp; docs/model.md, Bodies, "Lipolysis"):
+//   lip:touched(sys) -> {true, false, ...}   per adipocyte, in sys:adipocytes() order
+//   lip:apply(sys, elapsed) -> n             shrinks the touched ones by `elapsed` time
+//   lip:params() -> {rate =, floor =}
+// During a run, sim:lipolysis(lip, {every = N}) applies it every N steps (bind_simulation.cpp).
+#include <lua.hpp>
+
+#include "lua/engine_types.hpp"
+#include "lua/fields.hpp"
+#include "lua/module.hpp"
+#include "lua/names.hpp"
+
+namespace invasim::lua {
+
+namespace {
+
+const FieldTable<LipolysisParams>& lipolysis_fields() {
+  using P = LipolysisParams;
+  static const FieldTable<P> table(
+      "Lipolysis",
+      {
+          required(number<P>("rate", &P::rate, Range::non_negative(), "1/tau",
+                             "fraction of an adipocyte's initial reference volume lost per "
+                             "unit time while a cancer cell touches it")),
+          number<P>("floor", &P::floor, Range{0.0, 1.0, true, false}, "1",
+                    "smallest reference volume, as a fraction of the initial one"),
+      });
+  return table;
+}
+
+}  // namespace
+
+std::string LuaType<Lipolysis>::describe(const Lipolysis& l) {
+  return lipolysis_fields().describe(l.params());
+}
+
+namespace {
+
+int l_new(lua_State* L) {
+  Kwargs kw(L, 1, "Lipolysis");
+  const LipolysisParams p = lipolysis_fields().make(kw);
+  push(L, engine_call("Lipolysis", [&] { return std::make_shared<Lipolysis>(p); }));
+  return 1;
+}
+
+// lip:touched(sys) -> {true, false, ...}: whether a cancer cell touches each adipocyte now.
+int l_touched(lua_State* L) {
+  const Lipolysis& lip = check<Lipolysis>(L, 1);
+  const Simulation& sim = check<Simulation>(L, 2);
+  const std::vector<char> touched =
+      engine_call("Lipolysis:touched", [&] { return lip.touched(sim.system); });
+  protected_call(L, 0, 1, [&touched](lua_State* S) noexcept {
+    lua_createtable(S, static_cast<int>(touched.size()), 0);
+    for (std::size_t b = 0; b < touched.size(); ++b) {
+      lua_pushboolean(S, touched[b] != 0);
+      lua_rawseti(S, -2, static_cast<lua_Integer>(b + 1));
+    }
+    return 1;
+  });
+  return 1;
+}
+
+// lip:apply(sys, elapsed) -> the number of adipocytes touched (and shrunk, above their floor).
+int l_apply(lua_State* L) {
+  const Lipolysis& lip = check<Lipolysis>(L, 1);
+  Simulation& sim = check<Simulation>(L, 2);
+  const double elapsed = arg_number(L, 3);
+  const int n = engine_call("Lipolysis:apply", [&] { return lip.apply(sim.system, elapsed); });
+  sim.changed();
+  lua_pushinteger(L, n);
+  return 1;
+}
+
+// lip:params() -> {rate =, floor =}
+int l_params(lua_State* L) {
+  lipolysis_fields().push_params(L, check<Lipolysis>(L, 1).params());
+  return 1;
+}
+
+const luaL_Reg kMethods[] = {
+    {"touched", &lua_wrap<&l_touched>},
+    {"apply", &lua_wrap<&l_apply>},
+    {"params", &lua_wrap<&l_params>},
+    {nullptr, nullptr},
+};
+
+}  // namespace
+
+void open_lipolysis(lua_State* L) {
+  define_type<Lipolysis>(L, kMethods);
+  set_constructor(L, "Lipolysis", &lua_wrap<&l_new>, lipolysis_fields().infos());
+}
+
+}  // namespace invasim::lua
