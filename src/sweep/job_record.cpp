@@ -28,9 +28,14 @@ std::string host_name() {
 
 }  // namespace
 
-JobRecord::JobRecord(const fs::path& job_dir, int pid)
+JobRecord::JobRecord(const fs::path& job_dir, int pid, std::chrono::duration<double> heartbeat)
     : dir_(job_dir), start_(std::chrono::steady_clock::now()) {
   Json doc = read_document(dir_);
+  // An attempt killed before it recorded its end left its time in attempt_seconds.
+  if (doc.contains("attempt_seconds") && doc["attempt_seconds"].is_number()) {
+    doc["wall_seconds"] = doc.value("wall_seconds", 0.0) + doc["attempt_seconds"].get<double>();
+  }
+  doc.erase("attempt_seconds");
   doc["status"] = "running";
   doc.erase("cancelled");  // set when an earlier Slurm array was cancelled
   doc["pid"] = pid;
@@ -42,6 +47,35 @@ JobRecord::JobRecord(const fs::path& job_dir, int pid)
   doc["log"] = log_path().string();
   if (const std::string slurm = current_slurm_job_id(); !slurm.empty()) doc["slurm_job_id"] = slurm;
   write_document(dir_, doc);
+  heartbeat_ = std::thread([this, heartbeat] {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!wake_.wait_for(lock, heartbeat, [this] { return stopping_; })) {
+      try {
+        Json d = read_document(dir_);
+        d["attempt_seconds"] = elapsed();
+        write_document(dir_, d);
+      } catch (const std::exception&) {
+        // A heartbeat that cannot write loses at most this attempt's time, never the run.
+      }
+    }
+  });
+}
+
+JobRecord::~JobRecord() {
+  stop_heartbeat();
+}
+
+void JobRecord::stop_heartbeat() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_all();
+  if (heartbeat_.joinable()) heartbeat_.join();
+}
+
+double JobRecord::elapsed() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
 
 std::string current_slurm_job_id() {
@@ -58,15 +92,15 @@ std::string record_end(const fs::path& job_dir, int exit_code, bool stopped, dou
   doc["status"] = status;
   doc["exit_code"] = exit_code;
   doc["wall_seconds"] = doc.value("wall_seconds", 0.0) + seconds;
+  doc.erase("attempt_seconds");  // the heartbeat's part of `seconds`
   doc["finished_at"] = utc_now();
   write_document(job_dir, doc);
   return status;
 }
 
 std::string JobRecord::finish(int exit_code, bool stopped) {
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  return record_end(dir_, exit_code, stopped, seconds);
+  stop_heartbeat();
+  return record_end(dir_, exit_code, stopped, elapsed());
 }
 
 }  // namespace invasim::sweep
