@@ -185,5 +185,27 @@ if problems:
 print("validation_tiny: %d statements and the page cite the paper's figures (1-%d) and the "
       "repository only" % (len(statements), count))
 PY
+# The pressure sweep's analysis (scripts/pressure_sweep.py) on its tiny workspace, and its
+# onsets on state points made up so that the answer is known.
+"$repo/scripts/pressure_sweep.py" ws/pressure_fig5 -o pressure > pressure.log ||
+  { cat pressure.log; fail "pressure_sweep.py"; }
+[ -s pressure/pressure.png ] && grep -q '"points"' pressure/pressure.json || fail "pressure_sweep.py wrote no figure or table"
+PYTHONPATH="$repo/scripts" /usr/bin/python3 - <<'PY' || fail "pressure onsets"
+import math
+from invasim_analysis.pressure import onsets
+def pts(P, xs, rs, steady=True):
+    return [{"P": P, "x": x, "ratio": r, "steady": steady} for x, r in zip(xs, rs)]
+# Two pressures, A_t/A_t^max from 0.3 to 0.9, so half-way is 0.6: crossed log-midway between
+# x = 0.1 and 10 (x = 1) at the first, between 1 and 10 (x = 10^0.5) at the second.
+points = pts(1e-3, [0.1, 10.0], [0.3, 0.9]) + pts(2e-3, [1.0, 10.0, 100.0], [0.3, 0.9, 0.9])
+x, half = onsets(points)
+assert abs(half - 0.6) < 1e-12 and abs(x[1e-3] - 1.0) < 1e-12 and abs(x[2e-3] - 10 ** 0.5) < 1e-12, (x, half)
+# Not steady: left out, unless provisional.
+points[1]["steady"] = False
+x, half = onsets(points)
+assert math.isnan(x[1e-3]), x
+x, half = onsets(points, steady_only=False)
+assert abs(x[1e-3] - 1.0) < 1e-12, x
+PY
 [ ${#failed_runs[@]} -eq 0 ] || fail "points failed to run in: ${failed_runs[*]} (errors above)"
 echo "validation_tiny: PASS"

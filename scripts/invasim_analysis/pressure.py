@@ -1,0 +1,145 @@
+"""E_c ~ 1/P (docs/beyond_the_paper.md): a sweep of one (beta, tau_p) curve at several
+pressures P, read from its workspace. Per pressure and self-propulsion force: the measured
+x = 2 k_B T_c/(P sigma^3) (the paper's convention, kT_c_paper/P), A_t/A_t^max and its error
+over the seeds, and whether every run is steady (steady.steadiness); per pressure, the onset
+x_half where A_t/A_t^max, rising, crosses half-way between the sweep's lowest and highest
+steady state-point means (log-interpolated; nan where no steady pair brackets it). If
+E_c = k_B T/(a P sigma^3) with a independent of P, the onsets agree; the paper's
+a = c1 (1 + c2 beta eps_c/(P sigma^3)) tau_g/tau_d puts their ratio between two pressures at
+(1 + c2 beta/P_1)/(1 + c2 beta/P_2) (c2 ~ 0.02) for equal tau_d."""
+
+import json
+import math
+import os
+
+from . import steady, workspace
+from .errors import InputError
+
+C2_PAPER = 0.02  # the paper's Fig. 5(b): a = c1 (1 + c2 beta/P) tau_g/tau_d
+
+
+def state_points(ws):
+    """[{P, f0, x, ratio, ratio_error, steady, runs}] sorted by P then x."""
+    jobs = workspace.load(ws)
+    for key in ("P", "f0"):
+        if not all(key in j.sp for j in jobs):
+            raise InputError("%s: the pressure analysis needs P and f0 in every state point" % ws)
+    out = []
+    for (P, f0), runs in workspace.group(jobs, ["P", "f0"]).items():
+        ratios = [j.mean("A_ratio")[0] for j in runs]
+        xs = [j.mean("kT_c_paper")[0] / P for j in runs]
+        n = len(ratios)
+        mean = sum(ratios) / n
+        err = (math.sqrt(sum((r - mean) ** 2 for r in ratios) / (n - 1) / n) if n > 1
+               else runs[0].mean("A_ratio")[1])
+        out.append({"P": P, "f0": f0, "x": sum(xs) / n, "ratio": mean, "ratio_error": err,
+                    "steady": all(steady.steadiness(j)["steady"] for j in runs), "runs": n})
+    return sorted(out, key=lambda p: (p["P"], p["x"]))
+
+
+def onsets(points, steady_only=True):
+    """({P: x_half}, the level) from the steady state points (see the module's text), or from
+    all of them (steady_only=False: provisional)."""
+    steady_points = [p for p in points if p["steady"] or not steady_only]
+    if len(steady_points) < 2:
+        return {}, math.nan
+    low = min(p["ratio"] for p in steady_points)
+    high = max(p["ratio"] for p in steady_points)
+    half = 0.5 * (low + high)
+    out = {}
+    for P in sorted({p["P"] for p in points}):
+        pts = [p for p in steady_points if p["P"] == P]
+        out[P] = math.nan
+        for a, b in zip(pts, pts[1:]):
+            if a["ratio"] < half <= b["ratio"]:
+                t = (half - a["ratio"]) / (b["ratio"] - a["ratio"])
+                out[P] = 10 ** (math.log10(a["x"]) + t * (math.log10(b["x"]) - math.log10(a["x"])))
+                break
+    return out, half
+
+
+def analyse(ws, out_dir, beta=None):
+    """Writes pressure.json and pressure.png in out_dir; returns the record."""
+    points = state_points(ws)
+    x_half, half = onsets(points)
+    provisional, provisional_half = onsets(points, steady_only=False)
+    beta = beta if beta is not None else workspace.load(ws)[0].sp.get("beta")
+    pressures = sorted(x_half)
+    predicted = {}
+    if beta is not None and pressures:
+        ref = pressures[-1]
+        for P in pressures:
+            predicted[P] = (1 + C2_PAPER * beta / P) / (1 + C2_PAPER * beta / ref)
+    rec = {"workspace": os.path.basename(os.path.normpath(ws)), "points": points, "half": half,
+           "onsets": {str(P): x for P, x in x_half.items()},
+           "provisional_half": provisional_half,
+           "provisional_onsets": {str(P): x for P, x in provisional.items()},
+           "predicted_onset_ratio": {str(P): r for P, r in predicted.items()},
+           "beta": beta, "c2": C2_PAPER}
+    os.makedirs(out_dir, exist_ok=True)
+    with open(os.path.join(out_dir, "pressure.json"), "w") as f:
+        json.dump(rec, f, indent=1, sort_keys=True)
+    # The figure marks the steady onsets, or the provisional ones when no steady pair brackets.
+    shown = (x_half, half) if any(math.isfinite(x) for x in x_half.values()) else (provisional, provisional_half)
+    plot(points, shown[0], shown[1], os.path.join(out_dir, "pressure.png"))
+    return rec
+
+
+def plot(points, x_half, half, path):
+    """A_t/A_t^max against 2 k_B T_c/(P sigma^3), one colour per pressure, not-steady hollow;
+    the onsets x_half (dotted) at the level `half` (dashed)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(5.2, 3.6))
+    for k, P in enumerate(sorted({p["P"] for p in points})):
+        pts = [p for p in points if p["P"] == P]
+        colour = "C%d" % k
+        ax.plot([p["x"] for p in pts], [p["ratio"] for p in pts], "-", color=colour, lw=0.8)
+        for p in pts:
+            ax.errorbar(p["x"], p["ratio"], yerr=p["ratio_error"], fmt="o", color=colour,
+                        mfc=colour if p["steady"] else "none", ms=5, capsize=2)
+        ax.plot([], [], "o", color=colour, label=r"$P\sigma^3/\epsilon_c$ = %g" % P)
+        if math.isfinite(x_half.get(P, math.nan)):
+            ax.axvline(x_half[P], color=colour, ls=":", lw=0.8)
+    if math.isfinite(half):
+        ax.axhline(half, color="0.5", ls="--", lw=0.6)
+    ax.set_xscale("log")
+    ax.set_xlabel(r"$2 k_B T_c/(P\sigma^3)$ (measured)")
+    ax.set_ylabel(r"$A_t/A_t^{max}$")
+    ax.legend(fontsize=7, frameon=False)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def table(rec):
+    """The state points as a markdown table."""
+    lines = ["| P | f0 | 2 k_B T_c/(P sigma^3) | A_t/A_t^max | steady |", "|---|---|---|---|---|"]
+    for p in rec["points"]:
+        lines.append("| %g | %g | %.3g | %.3f +- %.3f | %s |" % (
+            p["P"], p["f0"], p["x"], p["ratio"], p["ratio_error"], "yes" if p["steady"] else "no"))
+    return "\n".join(lines)
+
+
+def main(argv):
+    import argparse
+    ap = argparse.ArgumentParser(prog="pressure_sweep.py", description=__doc__)
+    ap.add_argument("workspace")
+    ap.add_argument("-o", "--out", required=True)
+    args = ap.parse_args(argv)
+    try:
+        rec = analyse(args.workspace, args.out)
+    except InputError as e:
+        raise SystemExit("pressure_sweep.py: error: %s" % e)
+    print(table(rec))
+    print("onset (A_t/A_t^max = %.3f, half-way between the steady extremes):" % rec["half"])
+    for P, x in sorted(rec["onsets"].items(), key=lambda kv: float(kv[0])):
+        print("  P = %s: 2 k_B T_c/(P sigma^3) = %s; the paper's a predicts %.3g x the highest "
+              "pressure's" % (P, "%.3g" % x if math.isfinite(x) else "not bracketed by steady points",
+                              rec["predicted_onset_ratio"].get(P, math.nan)))
+    print("provisional, with the runs that are not steady (A_t/A_t^max = %.3f):"
+          % rec["provisional_half"])
+    for P, x in sorted(rec["provisional_onsets"].items(), key=lambda kv: float(kv[0])):
+        print("  P = %s: 2 k_B T_c/(P sigma^3) = %s" % (P, "%.3g" % x if math.isfinite(x) else "none"))
+    print("wrote %s" % ", ".join(os.path.join(args.out, f) for f in ("pressure.json", "pressure.png")))
