@@ -18,11 +18,11 @@ local p = iv.params{
   N_c = { 1000, range = "[2, inf)", unit = "cells", help = "number of cancer cells (bidisperse 0.9 / 1.1)" },
   phi_c = { 0.3, range = "[0, 0.6]", help = "packing fraction of the cells (0: free particles, no contacts)" },
   seed = { 1, range = "[0, inf)", help = "random seed (placement, orientations, noise)" },
-  f0 = { 0.01, range = "(0, inf)", unit = "eps_c/sigma", help = "self-propulsion force" },
+  f0 = declare.engine("Active", "f0", 0.01, "here > 0: active cells"),
   tau_p = declare.engine("Active", "tau_p", 25.0, "here 0 < tau_p < inf: the free particle's tau_d needs a finite persistence"),
-  kT = { 0.0, range = "[0, inf)", unit = "eps_c", help = "thermal noise temperature (the free formula assumes 0)" },
-  gamma = { 0.2, range = "(0, inf)", unit = "sqrt(m eps_c)/sigma", help = "damping coefficient (tau_g = m / gamma)" },
-  dt = { 0.05, range = "(0, inf)", unit = "tau", help = "time step" },
+  kT = declare.engine("Active", "kT", nil, "the free formula assumes 0"),
+  gamma = declare.engine("Active", "gamma", nil, "here > 0: tau_g = m / gamma"),
+  dt = declare.engine("Dynamics", "dt"),
   place_phi = { 0.2, range = "(0, 0.3]", help = "packing fraction of the random placement (random placement jams near 0.38); a larger phi_c is reached by compression" },
   ftol = { 1e-6, range = "(0, inf)", unit = "eps_c/sigma", help = "FIRE tolerance of the compressed packing" },
   equilibrate_steps = { -1, range = "[-1, inf)", type = "integer", help = "steps before measuring (-1: max(10 tau_g, 2 tau_p) / dt)" },
@@ -36,6 +36,8 @@ local p = iv.params{
 local function fail(fmt, ...) error(string.format(fmt, ...), 0) end
 -- Each parameter's own range is checked by iv.params; these are the combinations.
 if p.steps == 0 then fail("--set steps=0: must be > 0 (-1: automatic)") end
+if not (p.f0 > 0) then fail("--set f0=%g: must be > 0 here (active cells)", p.f0) end
+if not (p.gamma > 0) then fail("--set gamma=%g: must be > 0 here (tau_g = m / gamma)", p.gamma) end
 if not (p.tau_p > 0 and p.tau_p < math.huge) then
   fail("--set tau_p=%g: must be > 0 and finite here (the free particle's tau_d needs a finite persistence)", p.tau_p)
 end

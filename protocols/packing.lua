@@ -12,6 +12,7 @@
 --   invasim run protocols/packing.lua --set phi_a=0.6
 --   invasim run protocols/packing.lua --set phi_a=0.85 --set box=fixed
 local iv = require("invasim")
+local declare = require("lib.declare")
 local parameters = require("lib.parameters")
 local stage = require("lib.stages")
 local motion = require("lib.motion")
@@ -22,7 +23,7 @@ local p = iv.params(parameters.merge{
   K_ecm = { 0.04, range = "[0, inf)", unit = "eps_c/sigma^2", help = "ECM tether stiffness (0: no tethers)" },
   lambda = { 0.0, range = "[0, 1]", help = "tether heterogeneity" },
   box = { "pressure", choices = { "pressure", "fixed" }, help = "after the rescale: pressure (the left wall a piston at P, docs/model.md protocol step 6) or fixed (both walls stay: the box keeps the rescaled size)" },
-  f0 = { 0.0024, range = "[0, inf)", unit = "eps_c/sigma", help = "self-propulsion force (0.0024 with the default background: 2 k_B T_c/(P sigma^3) = 0.37-0.39 over phi_a = 0.45-0.85, the paper's Fig. 8 value, docs/model.md)" },
+  f0 = declare.engine("Active", "f0", 0.0024, "0.0024 with the default background: 2 k_B T_c/(P sigma^3) = 0.37-0.39 over phi_a = 0.45-0.85, the paper's Fig. 8 value, docs/model.md"),
 })
 parameters.validate(p)
 local N_a, N_c, L0 = parameters.size(p)

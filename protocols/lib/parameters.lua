@@ -30,7 +30,7 @@ function M.declarations()
     L0 = { 0.0, range = "[0, inf)", unit = "sigma", help = "initial cubic box side (0: from system)" },
     seed = { 1, range = "[0, inf)", help = "random seed (placement, noise, orientations)" },
     phi = { 0.72, range = "(0, 1)", help = "total packing fraction reached by compression" },
-    P = { 1.3e-3, range = "[0, inf)", unit = "eps_c/sigma^3", help = "pressure on the left wall" },
+    P = declare.engine("Dynamics.pressure_wall", "P", 1.3e-3),
     beta = declare.engine("Contacts", "beta", 1e-2, "the paper's 1e-2"),
     alpha = declare.engine("Contacts", "alpha"),
     beta_cv = declare.engine("Contacts", "beta_cv", nil, "docs/model.md, Forces"),

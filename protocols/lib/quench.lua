@@ -7,23 +7,24 @@
 --
 --   require("lib.quench")(tissue, { P = 1.3e-3, f0 = 0.01, tau_p = 25, steps = 20000 })
 local iv = require("invasim")
+local declare = require("lib.declare")
 local log = require("lib.log")
 local motion = require("lib.motion")
 
--- gamma, kT, dt and wall_mass default to the engine's (invasim.Active.defaults,
--- invasim.Dynamics.defaults, invasim.Dynamics.pressure_wall.defaults).
-local method = iv.Active.defaults
+-- The keys that set an engine field take its declaration (range, unit, help, default) from
+-- the engine (lib/declare.lua); kT and f0 as plain numbers here (the engine also takes Ramps).
 local spec = {
-  P = { "number|Ramp", default = 1.3e-3, range = "[0, inf)" },  -- target pressure on the left wall
-  kT = { "number", default = method.kT, range = "[0, inf)" },
-  f0 = { "number", default = 0.0, range = "[0, inf)" },
-  tau_p = 25.0, gamma = method.gamma,
+  P = declare.engine_keyword("Dynamics.pressure_wall", "P", 1.3e-3),  -- target pressure on the left wall
+  kT = declare.engine_keyword("Active", "kT", nil, "number"),
+  f0 = declare.engine_keyword("Active", "f0", 0.0, "number"),
+  tau_p = declare.engine_keyword("Active", "tau_p", 25.0),
+  gamma = declare.engine_keyword("Active", "gamma"),
   vertex_bath = "langevin",   -- "langevin" (noise at kT, vertices and piston) or "damped"
-  vertex_gamma = method.gamma,  -- the vertices' damping coefficient
+  vertex_gamma = declare.engine_keyword("Langevin", "gamma"),  -- the vertices' damping coefficient
   vertex_mass = { "number", range = "(0, inf)" },  -- each vertex's mass (default 1, the cells'); set
                                                   -- by the first quench, a later different one refused
   vertex_kT = 0.0,              -- the langevin vertices' noise temperature (0: the background kT)
-  dt = iv.Dynamics.defaults.dt, steps = { "number", default = 20000, range = "[0, inf)" },
+  dt = declare.engine_keyword("Dynamics", "dt"), steps = { "number", default = 20000, range = "[0, inf)" },
   wall_mass = iv.Dynamics.pressure_wall.defaults.mass, wall_gamma = { "number" },  -- default: gamma
   barostat = true,      -- false: both walls stay fixed (the box keeps its size; P unused)
   every = 1000,         -- steps between progress updates

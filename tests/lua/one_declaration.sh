@@ -2,7 +2,8 @@
 # Each parameter's facts are written once (lib/declare.lua): in the repository's protocols and
 # engine sources, checkpoint_every is declared only by the production stage, beta's range and
 # help only by invasim.Contacts (src/lua/bind_contacts.cpp), the beta < alpha rule only in
-# ContactParams::validate, and no protocol declares its own tau_p range (sweep specs, which
+# ContactParams::validate, and no protocol or stage declares its own range for a key that sets
+# an engine field (beta, alpha, tau_p, f0, gamma, dt, P: lib/declare.lua; sweep specs, which
 # list values, aside).
 # Usage: one_declaration.sh SOURCE_DIR
 set -euo pipefail
@@ -12,7 +13,7 @@ fail() { echo "FAILED: $1"; [ -n "${2:-}" ] && echo "$2"; exit 1; }
 found=$(grep -rnE '^\s*checkpoint_every\s*=\s*\{' protocols || true)
 [ "$(echo "$found" | grep -c .)" -eq 1 ] && echo "$found" | grep -q '^protocols/lib/production.lua:' ||
   fail "checkpoint_every is not declared once, by the production stage" "$found"
-found=$(grep -rnE --exclude-dir=sweeps '^\s*(beta|alpha|tau_p|beta_cv|alpha_cv)\s*=\s*\{' protocols || true)
+found=$(grep -rnE --exclude-dir=sweeps '^\s*(beta|alpha|tau_p|beta_cv|alpha_cv|f0|gamma|dt|P)\s*=\s*\{.*range = ' protocols || true)
 [ -z "$found" ] || fail "a protocol declares an engine field's range itself" "$found"
 found=$(grep -rn 'cohesion depth' src protocols || true)
 [ "$(echo "$found" | grep -c .)" -eq 1 ] && echo "$found" | grep -q '^src/lua/bind_contacts.cpp:' ||
