@@ -240,7 +240,7 @@ Command parse_command_line(const std::vector<std::string>& args) {
     }
     if (name == "--set") {
       try {
-        command.options.overrides.push_back(lua::parse_override(value));
+        command.options.overrides.push_back(parse_override(value));
       } catch (const InputError& e) {
         throw UsageError(e.what());
       }

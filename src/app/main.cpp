@@ -12,11 +12,11 @@
 #include "app/render_command.hpp"
 #include "app/sweep_command.hpp"
 #include "core/errors.hpp"
+#include "core/names.hpp"
 #include "core/wait_policy.hpp"
 #include "invasim_version.hpp"
 #include "lua/fields.hpp"
 #include "lua/lua_state.hpp"
-#include "lua/names.hpp"
 
 namespace {
 
@@ -49,7 +49,7 @@ int list_params(const Command& command) {
   }
   std::cout << "Parameters of " << command.options.script_path
             << " (change with --set name=value):\n"
-            << invasim::lua::format_param_table(*context.params);
+            << invasim::format_param_table(*context.params);
   return 0;
 }
 
@@ -67,8 +67,7 @@ int list_keys(const Command& command) {
     const auto it = tables.find(name);
     if (it == tables.end())
       invasim::fail_input("invasim keys: no type or method '", name, "'",
-                          invasim::lua::did_you_mean(name, all),
-                          "; known: ", invasim::lua::join_names(all));
+                          invasim::did_you_mean(name, all), "; known: ", invasim::join_names(all));
     std::cout << name << ":\n" << invasim::lua::format_field_table(it->second);
   }
   return 0;

@@ -35,8 +35,8 @@ void write_png(const std::string& svg, const std::string& output) {
     fail_input("PNG output needs rsvg-convert: apt-get install librsvg2-bin (or write .svg)");
   const std::string svg_tmp = output + ".tmp.svg", png_tmp = output + ".tmp.png";
   write_file_atomically(svg_tmp, svg);
-  const int status = std::system(
-      ("rsvg-convert " + shell_quote(svg_tmp) + " -o " + shell_quote(png_tmp)).c_str());
+  const int status =
+      std::system(("rsvg-convert " + shell_quote(svg_tmp) + " -o " + shell_quote(png_tmp)).c_str());
   std::filesystem::remove(svg_tmp);
   if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     std::filesystem::remove(png_tmp);

@@ -31,7 +31,7 @@ lua::RunOptions read_resume_options(const std::string& dir) {
     if (line.find('=') == std::string::npos)
       fail_input("--resume ", dir, ": ", path, ":", number, ": expected key=value, got '", line,
                  "'");
-    options.overrides.push_back(lua::parse_override(line));
+    options.overrides.push_back(parse_override(line));
   }
   options.out_dir = dir;
   options.resume = true;

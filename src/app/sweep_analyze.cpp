@@ -44,7 +44,7 @@ std::string python() {
 }
 
 // "K=V" text of a declared parameter's default (floats as Python's repr: they round-trip).
-std::string default_text(const lua::Param& p) {
+std::string default_text(const Param& p) {
   return p.name + "=" +
          sweep::set_text(std::visit([](const auto& v) { return sweep::Json(v); }, p.default_value));
 }
@@ -119,7 +119,7 @@ int sweep_analyze(const std::vector<std::string>& args) {
   const auto declared = sweep::protocol_params(ws.protocol());
   for (const char* name : {"P", "beta", "gamma"}) {
     if (columns.count(name) || given.count(name)) continue;
-    if (const lua::Param* p = sweep::find_param(declared, name)) {
+    if (const Param* p = sweep::find_param(declared, name)) {
       if (!fixed.empty()) fixed += ',';
       fixed += default_text(*p);
     }

@@ -167,7 +167,7 @@ int init(const std::vector<std::string>& args) {
   sweep::SpecOverrides overrides;
   overrides.tiny = p.flags.count("--tiny") > 0;
   if (p.values.count("--set"))
-    for (const auto& s : p.values.at("--set")) overrides.set.push_back(lua::parse_override(s));
+    for (const auto& s : p.values.at("--set")) overrides.set.push_back(parse_override(s));
   if (auto take = value(p, "--take")) overrides.take = positive("--take", *take, 1000000);
   sweep::SweepSpec spec = sweep::load_spec(spec_path);
   sweep::apply_spec_overrides(spec, overrides);

@@ -1,7 +1,7 @@
 #pragma once
 // The one interval type of invasim: a real interval with either end closed, open or infinite.
 // It states the allowed values of a keyword (lua/kwargs), of a declared parameter
-// (lua/params, written "(0, inf)") and the x range of a random placement (setup/placement,
+// (core/params, written "(0, inf)") and the x range of a random placement (setup/placement,
 // closed: Range{lo, hi}).
 #include <limits>
 #include <string>

@@ -22,12 +22,12 @@
 #include "checkpoint/correlator_sections.hpp"
 #include "checkpoint/dynamics_sections.hpp"
 #include "checkpoint/state_checkpoint.hpp"
+#include "core/names.hpp"
 #include "core/stop_request.hpp"
 #include "io/lua_data.hpp"
 #include "lua/checkpoint_parts.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
-#include "lua/names.hpp"
 
 namespace invasim::lua {
 

@@ -15,10 +15,10 @@
 // ftol, dt, dt_max and max_steps set the FIRE minimisation after each box change.
 #include <lua.hpp>
 
+#include "core/progress.hpp"
 #include "core/stop_request.hpp"
 #include "lua/engine_fields.hpp"
 #include "lua/module.hpp"
-#include "lua/progress.hpp"
 #include "lua/temporary_contacts.hpp"
 #include "setup/compression.hpp"
 #include "setup/test_hooks.hpp"

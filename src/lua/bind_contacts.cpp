@@ -3,10 +3,10 @@
 // cancer-vertex adhesion (ContactForce); invasim.Contacts.check{...} applies its rules only.
 #include <lua.hpp>
 
+#include "core/names.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/fields.hpp"
 #include "lua/module.hpp"
-#include "lua/names.hpp"
 
 namespace invasim::lua {
 

@@ -11,11 +11,11 @@
 
 #include <cmath>
 
+#include "core/names.hpp"
 #include "lua/checkpoint_parts.hpp"
 #include "lua/engine_fields.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
-#include "lua/names.hpp"
 #include "measure/time_correlator.hpp"
 
 namespace invasim::lua {

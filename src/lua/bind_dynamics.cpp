@@ -8,11 +8,11 @@
 #include <algorithm>
 #include <limits>
 
+#include "core/names.hpp"
+#include "core/progress.hpp"
 #include "lua/engine_fields.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
-#include "lua/names.hpp"
-#include "lua/progress.hpp"
 #include "lua/run_glue.hpp"
 
 namespace invasim::lua {

@@ -9,10 +9,10 @@
 // continue_from = {fire_state = that state} continues it, bit for bit.
 #include <lua.hpp>
 
+#include "core/names.hpp"
 #include "core/stop_request.hpp"
 #include "lua/engine_fields.hpp"
 #include "lua/module.hpp"
-#include "lua/names.hpp"
 #include "lua/temporary_contacts.hpp"
 #include "setup/test_hooks.hpp"
 

@@ -1,9 +1,9 @@
 // Groups of sites, made by sys:group(name) and sys:place{...}: g:size(), g:name(), g:sites().
 #include <lua.hpp>
 
+#include "core/names.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
-#include "lua/names.hpp"
 
 namespace invasim::lua {
 

@@ -13,12 +13,12 @@
 #include <filesystem>
 #include <system_error>
 
+#include "core/names.hpp"
 #include "io/atomic_file.hpp"
 #include "io/snapshot_writer.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/fields.hpp"
 #include "lua/module.hpp"
-#include "lua/names.hpp"
 
 namespace invasim::lua {
 

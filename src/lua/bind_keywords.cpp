@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
+#include "core/names.hpp"
+#include "core/params.hpp"
 #include "lua/binding.hpp"
 #include "lua/kwargs.hpp"
 #include "lua/module.hpp"
-#include "lua/names.hpp"
-#include "lua/params.hpp"
 
 namespace invasim::lua {
 

@@ -6,10 +6,10 @@
 // During a run, sim:lipolysis(lip, {every = N}) applies it every N steps (bind_simulation.cpp).
 #include <lua.hpp>
 
+#include "core/names.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/fields.hpp"
 #include "lua/module.hpp"
-#include "lua/names.hpp"
 
 namespace invasim::lua {
 

@@ -10,9 +10,9 @@
 #include <cmath>
 #include <optional>
 
+#include "core/names.hpp"
 #include "lua/engine_fields.hpp"
 #include "lua/module.hpp"
-#include "lua/names.hpp"
 
 namespace invasim::lua {
 

@@ -17,12 +17,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/names.hpp"
+#include "core/params.hpp"
 #include "lua/binding.hpp"
 #include "lua/context.hpp"
 #include "lua/kwargs.hpp"
 #include "lua/module.hpp"
-#include "lua/names.hpp"
-#include "lua/params.hpp"
 
 namespace invasim::lua {
 

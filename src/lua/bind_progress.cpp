@@ -7,12 +7,12 @@
 #include <iostream>
 #include <limits>
 
+#include "core/names.hpp"
+#include "core/progress.hpp"
 #include "lua/binding.hpp"
 #include "lua/fields.hpp"
 #include "lua/kwargs.hpp"
 #include "lua/module.hpp"
-#include "lua/names.hpp"
-#include "lua/progress.hpp"
 
 namespace invasim::lua {
 

@@ -7,10 +7,10 @@
 
 #include <limits>
 
+#include "core/names.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/fields.hpp"
 #include "lua/module.hpp"
-#include "lua/names.hpp"
 
 namespace invasim::lua {
 

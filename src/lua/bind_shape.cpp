@@ -1,10 +1,10 @@
 // invasim.Shape{eps_v =, eps_a =}: the adipocytes' volume and face-area energy (ShapeForce).
 #include <lua.hpp>
 
+#include "core/names.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/fields.hpp"
 #include "lua/module.hpp"
-#include "lua/names.hpp"
 
 namespace invasim::lua {
 

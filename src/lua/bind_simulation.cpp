@@ -15,11 +15,11 @@
 
 #include "core/stop_request.hpp"
 
+#include "core/names.hpp"
+#include "core/progress.hpp"
 #include "lua/checkpoint_parts.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
-#include "lua/names.hpp"
-#include "lua/progress.hpp"
 #include "lua/run_glue.hpp"
 #include "run/operations.hpp"
 

@@ -4,10 +4,10 @@
 
 #include <cmath>
 
+#include "core/names.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/fields.hpp"
 #include "lua/module.hpp"
-#include "lua/names.hpp"
 #include "measure/kinetic.hpp"
 #include "measure/packing.hpp"
 #include "mesh/geometry.hpp"

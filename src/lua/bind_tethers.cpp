@@ -3,10 +3,10 @@
 // tethers were added to (sys:add(tethers) first).
 #include <lua.hpp>
 
+#include "core/names.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/fields.hpp"
 #include "lua/module.hpp"
-#include "lua/names.hpp"
 
 namespace invasim::lua {
 

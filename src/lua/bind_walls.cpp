@@ -1,10 +1,10 @@
 // invasim.Walls{eps = 1, left = true, right = true}: the flat walls normal to x (WallForce).
 #include <lua.hpp>
 
+#include "core/names.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/fields.hpp"
 #include "lua/module.hpp"
-#include "lua/names.hpp"
 
 namespace invasim::lua {
 

@@ -4,9 +4,9 @@
 #include <mutex>
 #include <vector>
 
+#include "core/names.hpp"
 #include "lua/error_object.hpp"
 #include "lua/kwargs.hpp"
-#include "lua/names.hpp"
 
 namespace invasim::lua {
 

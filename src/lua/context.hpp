@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "lua/params.hpp"
+#include "core/params.hpp"
 
 struct lua_State;
 

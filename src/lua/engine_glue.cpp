@@ -1,9 +1,9 @@
 // Helpers shared by the engine bindings (engine_types.hpp).
 #include <lua.hpp>
 
+#include "core/names.hpp"
+#include "core/progress.hpp"
 #include "lua/engine_types.hpp"
-#include "lua/names.hpp"
-#include "lua/progress.hpp"
 
 namespace invasim::lua {
 

@@ -28,6 +28,10 @@
 #include "lua/binding.hpp"
 #include "lua/kwargs.hpp"
 
+namespace invasim {
+class Progress;  // core/progress.hpp
+}
+
 namespace invasim::lua {
 
 struct Simulation;
@@ -161,7 +165,6 @@ void push_integer_list(lua_State* L, const int* values, std::size_t n) noexcept;
 void push_force(lua_State* L, const ForceHandle& handle);
 
 // A Progress userdata at `index` (nullptr if the value is not one).
-class Progress;
 Progress* test_progress(lua_State* L, int index);
 
 // Before stepping or minimising `sim` with `d` (bind_dynamics.cpp): checks that every method's

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <sstream>
 
+#include "core/names.hpp"
 #include "lua/binding.hpp"
-#include "lua/names.hpp"
 
 namespace invasim::lua {
 

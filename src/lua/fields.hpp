@@ -21,9 +21,9 @@
 #include <utility>
 #include <vector>
 
+#include "core/params.hpp"
 #include "core/range.hpp"
 #include "lua/kwargs.hpp"
-#include "lua/params.hpp"
 
 namespace invasim::lua {
 

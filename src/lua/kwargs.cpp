@@ -6,9 +6,9 @@
 #include <cmath>
 
 #include "core/errors.hpp"
+#include "core/names.hpp"
+#include "core/params.hpp"
 #include "lua/binding.hpp"
-#include "lua/names.hpp"
-#include "lua/params.hpp"
 
 namespace invasim::lua {
 

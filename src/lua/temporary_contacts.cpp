@@ -2,7 +2,7 @@
 
 #include <lua.hpp>
 
-#include "lua/names.hpp"
+#include "core/names.hpp"
 
 namespace invasim::lua {
 

@@ -13,7 +13,7 @@
 #include <unordered_set>
 
 #include "core/errors.hpp"
-#include "lua/names.hpp"
+#include "core/names.hpp"
 #include "sweep/workspace.hpp"
 
 namespace invasim::sweep {
@@ -29,7 +29,7 @@ void kill_after_jobs_hook(int written) {
 
 // The temporary directory names of init: a new workspace's sibling, a grown one's staging.
 std::string temporary_prefix(const fs::path& root) {
-  return lua::cat(".", root.filename().string(), ".init.");
+  return cat(".", root.filename().string(), ".init.");
 }
 const std::string kStagingPrefix = ".init.";
 
@@ -113,9 +113,9 @@ void check_same_sweep(const SweepSpec& spec, const Json& old, const fs::path& ro
                       const std::vector<std::string>& ids) {
   const std::string old_spec = old.value("spec", std::string("its first spec"));
   const bool same_file = old_spec == recorded_spec_path(spec);
-  const std::string refused = lua::cat(
-      "sweep init: ", root.string(), " holds the points of ", old_spec, ", another sweep than ",
-      spec.path, same_file ? " as given now (--set, --tiny and --take change it)" : "", ": ");
+  const std::string refused =
+      cat("sweep init: ", root.string(), " holds the points of ", old_spec, ", another sweep than ",
+          spec.path, same_file ? " as given now (--set, --tiny and --take change it)" : "", ": ");
   const std::string advice =
       "; a workspace holds one sweep (a grown spec may add values to its axes and seeds): "
       "choose another --workspace";

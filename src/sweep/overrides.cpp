@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "core/errors.hpp"
-#include "lua/names.hpp"
+#include "core/names.hpp"
 
 namespace invasim::sweep {
 
@@ -29,16 +29,16 @@ void set_fixed(SweepSpec& spec, const std::string& name, const Json& value) {
 
 }  // namespace
 
-Json override_value(const lua::Param& p, const std::string& text, const std::string& where) {
-  lua::ParamValue parsed;
+Json override_value(const Param& p, const std::string& text, const std::string& where) {
+  ParamValue parsed;
   try {
-    parsed = lua::parse_value(p.type, p.name, text);
+    parsed = parse_value(p.type, p.name, text);
   } catch (const InputError& e) {
     fail_input(where, ": ", e.what());
   }
-  if (const std::string why = lua::value_violation(p, parsed); !why.empty())
+  if (const std::string why = value_violation(p, parsed); !why.empty())
     fail_input(where, ": parameter '", p.name, "' ", why);
-  if (p.type == lua::ParamType::kNumber) {
+  if (p.type == ParamType::kNumber) {
     const double d = std::get<double>(parsed);
     const bool integral_text = text.find_first_of(".eEnN") == std::string::npos;
     if (integral_text && std::floor(d) == d && std::fabs(d) < 9.0e15)
@@ -61,11 +61,11 @@ void apply_spec_overrides(SweepSpec& spec, const SpecOverrides& o) {
   std::vector<std::string> seen;
   for (const auto& s : o.set) {
     const std::string where = "--set " + s.key + "=" + s.text;
-    const lua::Param* p = find_param(spec.declared, s.key);
+    const Param* p = find_param(spec.declared, s.key);
     if (!p)
       fail_input(where, ": '", s.key, "' is not a parameter of ", spec.protocol,
-                 lua::did_you_mean(s.key, declared_names(spec)),
-                 "; declared parameters: ", lua::join_names(declared_names(spec)));
+                 did_you_mean(s.key, declared_names(spec)),
+                 "; declared parameters: ", join_names(declared_names(spec)));
     if (std::find(seen.begin(), seen.end(), s.key) != seen.end())
       fail_input(where, ": '", s.key, "' is given twice");
     seen.push_back(s.key);

@@ -12,15 +12,15 @@
 #include <string>
 #include <vector>
 
-#include "lua/params.hpp"
+#include "core/params.hpp"
 #include "sweep/spec.hpp"
 
 namespace invasim::sweep {
 
 struct SpecOverrides {
   bool tiny = false;
-  std::vector<lua::Override> set;  // --set key=value, in order
-  std::optional<int> take;         // --take N
+  std::vector<Override> set;  // --set key=value, in order
+  std::optional<int> take;    // --take N
 };
 
 // Applies `o` to `spec` (in place): tiny first, then --set, then --take.
@@ -28,6 +28,6 @@ void apply_spec_overrides(SweepSpec& spec, const SpecOverrides& o);
 
 // The state-point value of `text` for the declared parameter `p` (an integer-looking number
 // of a number parameter stays an integer, as in a Lua spec); InputError naming `where`.
-Json override_value(const lua::Param& p, const std::string& text, const std::string& where);
+Json override_value(const Param& p, const std::string& text, const std::string& where);
 
 }  // namespace invasim::sweep

@@ -13,22 +13,22 @@
 #include <variant>
 
 #include "core/errors.hpp"
+#include "core/names.hpp"
 #include "io/regular_file.hpp"
 #include "lua/lua_state.hpp"
-#include "lua/names.hpp"
 #include "sweep/spec_sandbox.hpp"
 
 namespace invasim::sweep {
 
 namespace fs = std::filesystem;
 
-const lua::Param* find_param(const std::vector<lua::Param>& declared, const std::string& name) {
+const Param* find_param(const std::vector<Param>& declared, const std::string& name) {
   for (const auto& p : declared)
     if (p.name == name) return &p;
   return nullptr;
 }
 
-std::vector<lua::Param> protocol_params(const std::string& protocol) {
+std::vector<Param> protocol_params(const std::string& protocol) {
   lua::RunOptions options;
   options.script_path = protocol;
   options.list_params = true;
@@ -49,7 +49,7 @@ std::string set_text(const Json& value) {
 
 namespace {
 
-Json to_json(const lua::ParamValue& value) {
+Json to_json(const ParamValue& value) {
   return std::visit([](const auto& v) { return Json(v); }, value);
 }
 
@@ -114,13 +114,13 @@ class SpecReader {
 
   // The value at the top converted to JSON and checked against the parameter `name`.
   Json value(const std::string& key, const std::string& name, int line) const {
-    const lua::Param* p = find_param(spec_.declared, name);
+    const Param* p = find_param(spec_.declared, name);
     if (!p) {
       std::vector<std::string> names;
       for (const auto& d : spec_.declared) names.push_back(d.name);
       fail(line, key,
-           "'" + name + "' is not a parameter of " + spec_.protocol +
-               lua::did_you_mean(name, names) + "; declared parameters: " + lua::join_names(names));
+           "'" + name + "' is not a parameter of " + spec_.protocol + did_you_mean(name, names) +
+               "; declared parameters: " + join_names(names));
     }
     const std::string got = type_at(-1);
     const auto wrong = [&](const std::string& expected) {
@@ -131,9 +131,9 @@ class SpecReader {
                     : ""));
     };
     Json out;
-    lua::ParamValue checked;
+    ParamValue checked;
     switch (p->type) {
-      case lua::ParamType::kNumber:
+      case ParamType::kNumber:
         if (lua_type(L_, -1) != LUA_TNUMBER) wrong("a number");
         if (lua_isinteger(L_, -1)) {
           out = static_cast<std::int64_t>(lua_tointeger(L_, -1));
@@ -145,24 +145,24 @@ class SpecReader {
           checked = d;
         }
         break;
-      case lua::ParamType::kInteger:
+      case ParamType::kInteger:
         if (!lua_isinteger(L_, -1))
           wrong("an integer (write it without a decimal point or exponent)");
         out = static_cast<std::int64_t>(lua_tointeger(L_, -1));
         checked = static_cast<long long>(lua_tointeger(L_, -1));
         break;
-      case lua::ParamType::kBoolean:
+      case ParamType::kBoolean:
         if (!lua_isboolean(L_, -1)) wrong("a boolean");
         out = static_cast<bool>(lua_toboolean(L_, -1));
         checked = out.get<bool>();
         break;
-      case lua::ParamType::kString:
+      case ParamType::kString:
         if (lua_type(L_, -1) != LUA_TSTRING) wrong("a string");
         out = std::string(lua_tostring(L_, -1));
         checked = out.get<std::string>();
         break;
     }
-    if (const std::string why = lua::value_violation(*p, checked); !why.empty())
+    if (const std::string why = value_violation(*p, checked); !why.empty())
       fail(line, key, "parameter '" + name + "' " + why);
     return out;
   }
@@ -226,7 +226,7 @@ class SpecReader {
     for (const auto& key : keys("tiny", at))
       if (key != "set" && key != "take")
         fail(source_.find(key, at), "tiny." + key,
-             "unknown key" + lua::did_you_mean(key, {"set", "take"}) + "; tiny has: set, take");
+             "unknown key" + did_you_mean(key, {"set", "take"}) + "; tiny has: set, take");
     spec_.has_tiny = true;
     lua_getfield(L_, -1, "take");
     if (!lua_isnil(L_, -1)) {
@@ -255,7 +255,7 @@ class SpecReader {
       line[key] = source_.find(key, 1);
       if (!known.count(key))
         fail(line[key], key,
-             "unknown key" + lua::did_you_mean(key, {known.begin(), known.end()}) +
+             "unknown key" + did_you_mean(key, {known.begin(), known.end()}) +
                  "; a sweep spec has: protocol, set, product, zip, seeds, prep, tiny");
     }
     spec_.path = path_;
@@ -327,7 +327,7 @@ class SpecReader {
       lua_getfield(L_, -1, "seeds");
       spec_.product.emplace_back("seed", list("seeds", "seed", line["seeds"]));
       lua_pop(L_, 1);
-    } else if (const lua::Param* seed = find_param(spec_.declared, "seed");
+    } else if (const Param* seed = find_param(spec_.declared, "seed");
                seed && !owner.count("seed")) {
       spec_.fixed["seed"] = to_json(seed->default_value);  // explicit in every point
     }

@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "lua/params.hpp"
+#include "core/params.hpp"
 #include "sweep/python_json.hpp"
 
 namespace invasim::sweep {
@@ -24,11 +24,11 @@ namespace invasim::sweep {
 using Axis = std::pair<std::string, std::vector<Json>>;
 
 struct SweepSpec {
-  std::string path;                  // the spec file
-  std::string protocol;              // absolute path of the protocol
-  std::vector<lua::Param> declared;  // the protocol's parameters
-  Json fixed = Json::object();       // set = {...}
-  std::vector<Axis> product;         // product = {...} (sorted by name), then seeds
+  std::string path;             // the spec file
+  std::string protocol;         // absolute path of the protocol
+  std::vector<Param> declared;  // the protocol's parameters
+  Json fixed = Json::object();  // set = {...}
+  std::vector<Axis> product;    // product = {...} (sorted by name), then seeds
   std::vector<std::vector<Axis>> zips;
   bool has_prep = false;
   Json prep_set = Json::object();  // the preparation's parameters: fixed, then prep.set
@@ -51,10 +51,10 @@ struct SweepSpec {
 SweepSpec load_spec(const std::string& path);
 
 // The declared parameter `name` of a protocol's declarations, or nullptr.
-const lua::Param* find_param(const std::vector<lua::Param>& declared, const std::string& name);
+const Param* find_param(const std::vector<Param>& declared, const std::string& name);
 
 // The protocol's parameters, read by running it in `invasim params` mode.
-std::vector<lua::Param> protocol_params(const std::string& protocol);
+std::vector<Param> protocol_params(const std::string& protocol);
 
 // A state-point value as `--set key=VALUE` text for the protocol (floats round-trip).
 std::string set_text(const Json& value);

@@ -8,13 +8,13 @@
 #include "../io/io_test_support.hpp"
 #include "checkpoint/correlator_sections.hpp"
 #include "checkpoint/state_checkpoint.hpp"
+#include "core/params.hpp"
 #include "io/checkpoint.hpp"
 #include "io/crc32.hpp"
 #include "io/lua_data.hpp"
 #include "io/vtk_format.hpp"
 #include "lua/fields.hpp"
 #include "lua/lua_state.hpp"
-#include "lua/params.hpp"
 #include "measure/time_correlator.hpp"
 
 namespace invasim::fuzz {
@@ -151,9 +151,7 @@ Target vtk_target() {
 // ---------------------------------------------------------------------------------------------
 // set
 
-std::vector<lua::Param> declared_params() {
-  using lua::Param;
-  using lua::ParamType;
+std::vector<Param> declared_params() {
   std::vector<Param> p(6);
   p[0] = {"dt",  ParamType::kNumber,       0.05, 0.05, "tau", "time step",
           false, Range{0, 1, true, false}, {}};
@@ -171,26 +169,26 @@ std::vector<lua::Param> declared_params() {
 
 // One `--set` argument per line, then all of them applied to the declared parameters.
 void run_set(const std::string& input) {
-  std::vector<lua::Override> overrides;
+  std::vector<Override> overrides;
   std::size_t at = 0;
   while (at <= input.size()) {
     const std::size_t end = std::min(input.find('\n', at), input.size());
     const std::string line = input.substr(at, end - at);
     at = end + 1;
     try {
-      overrides.push_back(lua::parse_override(line));
-      for (auto type : {lua::ParamType::kNumber, lua::ParamType::kInteger, lua::ParamType::kBoolean,
-                        lua::ParamType::kString})
+      overrides.push_back(parse_override(line));
+      for (auto type :
+           {ParamType::kNumber, ParamType::kInteger, ParamType::kBoolean, ParamType::kString})
         try {
-          lua::format_value(lua::parse_value(type, overrides.back().key, overrides.back().text));
+          format_value(parse_value(type, overrides.back().key, overrides.back().text));
         } catch (const InputError&) {
         }
     } catch (const InputError&) {
     }
   }
-  std::vector<lua::Param> params = declared_params();
-  lua::apply_overrides(params, overrides);
-  lua::format_param_table(params);
+  std::vector<Param> params = declared_params();
+  apply_overrides(params, overrides);
+  format_param_table(params);
 }
 
 Target set_target() {
@@ -268,14 +266,14 @@ std::string datum_text(const lua::FieldInfo& f) {
   if (f.type == "Group" || f.type.find("Group") != std::string::npos) return "\"@Group\"";
   if (f.type == "System") return "\"@System\"";
   if (f.default_value) {
-    const lua::ParamValue& v = *f.default_value;
+    const ParamValue& v = *f.default_value;
     if (const auto* s = std::get_if<std::string>(&v)) return "\"" + *s + "\"";
     if (const auto* d = std::get_if<double>(&v)) {
       char buf[64];
       std::snprintf(buf, sizeof buf, "%a", *d);
       return buf;
     }
-    return lua::format_value(v);
+    return format_value(v);
   }
   if (!f.choices.empty()) return "\"" + f.choices[0] + "\"";
   if (f.type == "integer") return "1";

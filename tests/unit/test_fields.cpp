@@ -1,19 +1,19 @@
 // Tests of the field tables (lua/fields.hpp): each bound type's declared keys are exactly the
 // keys its constructor reads, their defaults are the engine structs' own, and the same table
-// drives params(), describe and set{}; and of the one "did you mean" (lua/names).
+// drives params(), describe and set{}; and of the one "did you mean" (core/names).
 #include <catch2/catch.hpp>
 #include <iomanip>
 #include <sstream>
 #include <string>
 
+#include "core/names.hpp"
+#include "core/progress.hpp"
 #include "forces/contact_force.hpp"
 #include "forces/wall_force.hpp"
 #include "integrate/dynamics.hpp"
 #include "integrate/fire.hpp"
 #include "io/snapshot_writer.hpp"
 #include "lua/lua_state.hpp"
-#include "lua/names.hpp"
-#include "lua/progress.hpp"
 #include "measure/time_correlator.hpp"
 #include "setup/compression.hpp"
 

@@ -8,11 +8,11 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "core/params.hpp"
+#include "core/progress.hpp"
 #include "lua/binding.hpp"
 #include "lua/kwargs.hpp"
 #include "lua/lua_state.hpp"
-#include "lua/params.hpp"
-#include "lua/progress.hpp"
 
 using namespace invasim;
 using namespace invasim::lua;

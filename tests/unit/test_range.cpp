@@ -1,5 +1,5 @@
 // The one interval type (core/range.hpp): the same Range states the allowed values of a
-// keyword (lua/kwargs), of a declared parameter (lua/params) and the x range of a random
+// keyword (lua/kwargs), of a declared parameter (core/params) and the x range of a random
 // placement (setup/placement).
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <type_traits>
 #include <utility>
 
+#include "core/params.hpp"
 #include "core/range.hpp"
 #include "lua/kwargs.hpp"
-#include "lua/params.hpp"
 #include "setup/placement.hpp"
 
 using namespace invasim;
@@ -17,8 +17,8 @@ using namespace invasim;
 // One type everywhere: a second interval type in any of these places fails to compile here.
 static_assert(std::is_same_v<decltype(MeshPlacement::x), Range>);
 static_assert(std::is_same_v<decltype(SpherePlacement::x), Range>);
-static_assert(std::is_same_v<decltype(lua::Param::range), std::optional<Range>>);
-static_assert(std::is_same_v<decltype(lua::parse_range("", "")), Range>);
+static_assert(std::is_same_v<decltype(Param::range), std::optional<Range>>);
+static_assert(std::is_same_v<decltype(parse_range("", "")), Range>);
 static_assert(std::is_same_v<decltype(lua::IntegerBounds::of(std::declval<const Range&>(), 0, 1)),
                              lua::IntegerBounds>);
 
@@ -32,13 +32,13 @@ TEST_CASE("Range: one interval type for kwargs, params and placement x ranges") 
   CHECK(x.notation() == "[1, 2.5]");
   // A keyword's range, in words and in the parameters' interval notation.
   CHECK(Range::positive().describe() == "> 0");
-  CHECK(lua::parse_range("dt", "(0, inf)").notation() == "(0, inf)");  // brackets as declared
-  CHECK(lua::parse_range("dt", "(0, inf)").describe() == "> 0");
+  CHECK(parse_range("dt", "(0, inf)").notation() == "(0, inf)");  // brackets as declared
+  CHECK(parse_range("dt", "(0, inf)").describe() == "> 0");
   CHECK_FALSE(Range::positive().contains(0.0));
   CHECK(Range::at_least(1).describe() == ">= 1");
   CHECK(Range{}.describe() == "finite");
   CHECK(Range{}.notation() == "[-inf, inf]");
-  const Range p = lua::parse_range("x", "(-inf, 2.5e-3]");
+  const Range p = parse_range("x", "(-inf, 2.5e-3]");
   CHECK(p.notation() == "(-inf, 0.0025]");
   CHECK(p.describe() == "<= 0.0025");
   CHECK(p.contains(-1e300));

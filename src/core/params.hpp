@@ -12,7 +12,7 @@
 
 #include "core/range.hpp"
 
-namespace invasim::lua {
+namespace invasim {
 
 enum class ParamType { kNumber, kInteger, kBoolean, kString };
 
@@ -74,4 +74,4 @@ void apply_overrides(std::vector<Param>& params, const std::vector<Override>& ov
 // if any, the range or choices if any parameter has one, unit, help).
 std::string format_param_table(const std::vector<Param>& params);
 
-}  // namespace invasim::lua
+}  // namespace invasim

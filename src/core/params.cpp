@@ -1,4 +1,4 @@
-#include "lua/params.hpp"
+#include "core/params.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -8,9 +8,9 @@
 #include <sstream>
 
 #include "core/errors.hpp"
-#include "lua/names.hpp"
+#include "core/names.hpp"
 
-namespace invasim::lua {
+namespace invasim {
 
 const char* type_name(ParamType type) {
   switch (type) {
@@ -259,4 +259,4 @@ std::string format_param_table(const std::vector<Param>& params) {
   return aligned_table(rows);
 }
 
-}  // namespace invasim::lua
+}  // namespace invasim

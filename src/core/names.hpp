@@ -6,7 +6,7 @@
 #include <string_view>
 #include <vector>
 
-namespace invasim::lua {
+namespace invasim {
 
 // Concatenates streamable parts: cat("[", 3, "]") -> "[3]". (Also sidesteps GCC 12's false
 // -Wrestrict warning on `"literal" + std::string&&`.)
@@ -30,4 +30,4 @@ std::string did_you_mean(std::string_view name, const std::vector<std::string>& 
 // line (the listings of `invasim params` and `invasim keys`); trailing blanks trimmed.
 std::string aligned_table(const std::vector<std::vector<std::string>>& rows);
 
-}  // namespace invasim::lua
+}  // namespace invasim

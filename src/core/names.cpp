@@ -1,8 +1,8 @@
-#include "lua/names.hpp"
+#include "core/names.hpp"
 
 #include <algorithm>
 
-namespace invasim::lua {
+namespace invasim {
 
 std::string join_names(std::vector<std::string> names) {
   std::sort(names.begin(), names.end());
@@ -71,4 +71,4 @@ std::string aligned_table(const std::vector<std::vector<std::string>>& rows) {
   return out;
 }
 
-}  // namespace invasim::lua
+}  // namespace invasim

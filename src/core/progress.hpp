@@ -10,7 +10,7 @@
 #include <optional>
 #include <string>
 
-namespace invasim::lua {
+namespace invasim {
 
 struct ProgressOptions {
   long long total = 0;          // steps in the run; 0 when unknown (no percentage, no ETA)
@@ -69,4 +69,4 @@ class Progress {
   bool eta_warned_ = false;
 };
 
-}  // namespace invasim::lua
+}  // namespace invasim

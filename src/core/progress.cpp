@@ -1,4 +1,4 @@
-#include "lua/progress.hpp"
+#include "core/progress.hpp"
 
 #include <unistd.h>
 
@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <iostream>
 
-namespace invasim::lua {
+namespace invasim {
 
 namespace {
 
@@ -138,4 +138,4 @@ void Progress::finish() {
   }
 }
 
-}  // namespace invasim::lua
+}  // namespace invasim
