@@ -46,9 +46,9 @@ CheckpointParts read_checkpoint_parts(Kwargs& kw, bool need_system) {
     return lua_gettop(L);
   };
   if (need_system) {
-    const int s = object("system", &is<Simulation>, "System");
+    const int s = object("system", &is<SystemHandle>, "System");
     if (!s) fail_input(kw.owner(), ": missing required key 'system' (a System)");
-    p.sim = check_shared<Simulation>(L, s);
+    p.sim = check_shared<SystemHandle>(L, s);
     if (const int d = object("dynamics", &is<DynamicsHandle>, "Dynamics"))
       p.dyn = check_shared<DynamicsHandle>(L, d);
   }
@@ -104,7 +104,7 @@ int l_load(lua_State* L) {
   engine_call("load_checkpoint", [&] {
     const CheckpointReader r = CheckpointReader::read(path);
     System restored = read_system(r);
-    Simulation& sim = *p.sim;
+    SystemHandle& sim = *p.sim;
     // Groups, methods and forces index the sites: the System must be built the same way.
     if (restored.n_sites() != sim.system.n_sites() ||
         restored.bodies().size() != sim.system.bodies().size())

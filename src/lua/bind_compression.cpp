@@ -85,7 +85,7 @@ void push_compression_report(lua_State* L, const CompressionReport& r) {
 }
 
 int l_compress(lua_State* L) {
-  const std::shared_ptr<Simulation> sim = check_shared<Simulation>(L, 1);
+  const std::shared_ptr<SystemHandle> sim = check_shared<SystemHandle>(L, 1);
   Kwargs kw(L, 2, "compress");
   const CompressionParams p = compress_fields().read(kw);
   Progress* progress = nullptr;
@@ -137,7 +137,7 @@ int l_compress(lua_State* L) {
 }
 
 int l_rescale(lua_State* L) {
-  const std::shared_ptr<Simulation> sim = check_shared<Simulation>(L, 1);
+  const std::shared_ptr<SystemHandle> sim = check_shared<SystemHandle>(L, 1);
   Kwargs kw(L, 2, "rescale");
   const RescaleKeys k = rescale_fields().make(kw);
   const double phi_a = k.phi_a;

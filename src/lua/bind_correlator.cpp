@@ -94,7 +94,7 @@ int l_params(lua_State* L) {
 
 int l_sample(lua_State* L) {
   CorrelatorHandle& c = check<CorrelatorHandle>(L, 1);
-  const Simulation& sim = check<Simulation>(L, 2);
+  const SystemHandle& sim = check<SystemHandle>(L, 2);
   require_same_system(*c.group, sim, "sample");
   engine_call("sample", [&] { c.correlator.sample(sim.system); });
   return 0;

@@ -25,7 +25,7 @@ std::string LuaType<DynamicsHandle>::describe(const DynamicsHandle& d) {
   return text + ")";
 }
 
-PressureWall* prepare_dynamics(DynamicsHandle& d, const std::shared_ptr<Simulation>& sim,
+PressureWall* prepare_dynamics(DynamicsHandle& d, const std::shared_ptr<SystemHandle>& sim,
                                const std::string& what) {
   for (const auto& m : d.methods) require_same_system(*m->group, *sim, what + ": " + m->kind);
   PressureWall* wall = d.dynamics.pressure_wall().get();
@@ -225,7 +225,7 @@ int l_methods(lua_State* L) {
 // run/simulation.hpp Simulation with the callback as its one operation.
 int l_run(lua_State* L) {
   const std::shared_ptr<DynamicsHandle> d = check_shared<DynamicsHandle>(L, 1);
-  const std::shared_ptr<Simulation> sim = check_shared<Simulation>(L, 2);
+  const std::shared_ptr<SystemHandle> sim = check_shared<SystemHandle>(L, 2);
   const long long n = arg_integer(L, 3, 0, std::numeric_limits<long long>::max());  // steps
   std::optional<long long> every;
   int callback = 0;

@@ -39,7 +39,7 @@ int l_new(lua_State* L) {
 
 int l_minimize(lua_State* L) {
   const Fire& fire = check<Fire>(L, 1);
-  const std::shared_ptr<Simulation> sim = check_shared<Simulation>(L, 2);
+  const std::shared_ptr<SystemHandle> sim = check_shared<SystemHandle>(L, 2);
   PressureWall* wall = nullptr;
   int options = 3;  // index of the options table: after the Dynamics, if any
   if (lua_type(L, 3) == LUA_TUSERDATA) {

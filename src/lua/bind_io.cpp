@@ -106,7 +106,7 @@ int l_snapshots(lua_State* L) {
 
 int l_snapshot_write(lua_State* L) {
   SnapshotWriter& w = check<SnapshotWriter>(L, 1);
-  const Simulation& sim = check<Simulation>(L, 2);
+  const SystemHandle& sim = check<SystemHandle>(L, 2);
   engine_call("write", [&] { w.write(sim.system); });
   return 0;
 }

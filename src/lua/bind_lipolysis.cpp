@@ -47,7 +47,7 @@ int l_new(lua_State* L) {
 // lip:touched(sys) -> {true, false, ...}: whether a cancer cell touches each adipocyte now.
 int l_touched(lua_State* L) {
   const Lipolysis& lip = check<Lipolysis>(L, 1);
-  const Simulation& sim = check<Simulation>(L, 2);
+  const SystemHandle& sim = check<SystemHandle>(L, 2);
   const std::vector<char> touched =
       engine_call("Lipolysis:touched", [&] { return lip.touched(sim.system); });
   protected_call(L, 0, 1, [&touched](lua_State* S) noexcept {
@@ -64,7 +64,7 @@ int l_touched(lua_State* L) {
 // lip:apply(sys, elapsed) -> the number of adipocytes touched (and shrunk, above their floor).
 int l_apply(lua_State* L) {
   const Lipolysis& lip = check<Lipolysis>(L, 1);
-  Simulation& sim = check<Simulation>(L, 2);
+  SystemHandle& sim = check<SystemHandle>(L, 2);
   const double elapsed = arg_number(L, 3);
   const int n = engine_call("Lipolysis:apply", [&] { return lip.apply(sim.system, elapsed); });
   sim.changed();

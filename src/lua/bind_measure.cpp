@@ -55,7 +55,7 @@ std::vector<double> check_numbers(lua_State* L, int index, const char* what) {
 }
 
 int l_voronoi(lua_State* L) {
-  const Simulation& sim = check<Simulation>(L, 1);
+  const SystemHandle& sim = check<SystemHandle>(L, 1);
   VoronoiOptions options;
   options.interface_only = true;  // the per-site volumes and the faces are not returned
   if (!lua_isnoneornil(L, 2)) {
@@ -90,11 +90,11 @@ int l_voronoi(lua_State* L) {
 }
 
 int l_shape_parameters(lua_State* L) {
-  return push_number_result(L, body_shape_parameters(check<Simulation>(L, 1).system));
+  return push_number_result(L, body_shape_parameters(check<SystemHandle>(L, 1).system));
 }
 
 int l_slices(lua_State* L) {
-  const Simulation& sim = check<Simulation>(L, 1);
+  const SystemHandle& sim = check<SystemHandle>(L, 1);
   SliceOptions options;
   options.seed = sim.system.seed();
   if (!lua_isnoneornil(L, 2)) {

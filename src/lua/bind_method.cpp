@@ -129,8 +129,8 @@ int l_active(lua_State* L) {
     method->set_kT_ramp(k.kT_ramp);
   });
   if (k.randomize) {
-    Simulation& sim = owner_of(k.group->owner, "Active: group '" + k.group->name + "'",
-                               "make groups with sys:group(name)");
+    SystemHandle& sim = owner_of(k.group->owner, "Active: group '" + k.group->name + "'",
+                                 "make groups with sys:group(name)");
     method->randomize_orientations(sim.system, sim.system.step);
     sim.changed();
   }

@@ -28,9 +28,9 @@ namespace invasim::lua {
 // The Lua object: the engine Simulation, the objects it runs, and its Lua operations (told
 // which Lua thread runs them).
 struct SimulationHandle {
-  SimulationHandle(std::shared_ptr<Simulation> s, std::shared_ptr<DynamicsHandle> d)
+  SimulationHandle(std::shared_ptr<SystemHandle> s, std::shared_ptr<DynamicsHandle> d)
       : system(std::move(s)), dyn(std::move(d)), run(engine_simulation(system, dyn)) {}
-  std::shared_ptr<Simulation> system;
+  std::shared_ptr<SystemHandle> system;
   std::shared_ptr<DynamicsHandle> dyn;
   invasim::Simulation run;
   std::vector<std::shared_ptr<LuaFunctionOperation>> lua_ops;
@@ -94,9 +94,9 @@ Trigger kw_trigger(Kwargs& kw) {
 
 int l_new(lua_State* L) {
   Kwargs kw(L, 1, "Simulation");
-  if (kw.push("system") == LUA_TNIL || !is<Simulation>(L, -1))
+  if (kw.push("system") == LUA_TNIL || !is<SystemHandle>(L, -1))
     fail_input("Simulation: key 'system' must be a System, got ", type_name_at(L, -1));
-  auto system = check_shared<Simulation>(L, lua_gettop(L));
+  auto system = check_shared<SystemHandle>(L, lua_gettop(L));
   if (kw.push("dynamics") == LUA_TNIL || !is<DynamicsHandle>(L, -1))
     fail_input("Simulation: key 'dynamics' must be a Dynamics, got ", type_name_at(L, -1));
   auto dyn = check_shared<DynamicsHandle>(L, lua_gettop(L));

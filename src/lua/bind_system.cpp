@@ -18,7 +18,7 @@
 
 namespace invasim::lua {
 
-std::string LuaType<Simulation>::describe(const Simulation& sim) {
+std::string LuaType<SystemHandle>::describe(const SystemHandle& sim) {
   const Vec3 L = sim.system.box().lengths();
   return cat("System(", sim.system.n_sites(), " sites, ", sim.system.bodies().size(),
              " adipocytes, box ", L[0], " x ", L[1], " x ", L[2], ", step ", sim.system.step, ")");
@@ -74,7 +74,7 @@ int l_new(lua_State* L) {
   auto sim = engine_call("System", [&] {
     const Box box(Vec3::Zero(), Vec3(lengths[0], lengths[1], lengths[2]),
                   {periodic[0], periodic[1], periodic[2]});
-    return std::make_shared<Simulation>(box, static_cast<std::uint64_t>(seed));
+    return std::make_shared<SystemHandle>(box, static_cast<std::uint64_t>(seed));
   });
   push(L, std::move(sim));
   return 1;
@@ -113,7 +113,7 @@ std::vector<double> read_diameters(Kwargs& kw, std::vector<double> fallback) {
   return d;
 }
 
-void push_group(lua_State* L, const std::shared_ptr<Simulation>& sim, std::string name,
+void push_group(lua_State* L, const std::shared_ptr<SystemHandle>& sim, std::string name,
                 std::vector<int> sites) {
   push(L, std::make_shared<Group>(Group{std::move(name), std::move(sites), sim}));
 }
@@ -122,7 +122,7 @@ void push_group(lua_State* L, const std::shared_ptr<Simulation>& sim, std::strin
 // diameters =, spread =, vertex_diameter =, shape_param =, subdivisions =, random_rotation =,
 // x = {lo, hi}}}
 int l_place(lua_State* L) {
-  auto& sim = check_shared<Simulation>(L, 1);
+  auto& sim = check_shared<SystemHandle>(L, 1);
   Kwargs kw(L, 2, "place");
   SpherePlacement cells;
   MeshPlacement meshes;
@@ -178,7 +178,7 @@ int l_place(lua_State* L) {
 
 // sys:group(name): "cancer", "vertices" or "all", as of now.
 int l_group(lua_State* L) {
-  auto& sim = check_shared<Simulation>(L, 1);
+  auto& sim = check_shared<SystemHandle>(L, 1);
   const std::string name = arg_string(L, 2);
   const std::vector<std::string> names{"all", "cancer", "vertices"};
   std::vector<int> sites;
@@ -196,28 +196,28 @@ int l_group(lua_State* L) {
 }
 
 int l_n_sites(lua_State* L) {
-  lua_pushinteger(L, static_cast<lua_Integer>(check<Simulation>(L, 1).system.n_sites()));
+  lua_pushinteger(L, static_cast<lua_Integer>(check<SystemHandle>(L, 1).system.n_sites()));
   return 1;
 }
 
 int l_n_adipocytes(lua_State* L) {
-  lua_pushinteger(L, static_cast<lua_Integer>(check<Simulation>(L, 1).system.bodies().size()));
+  lua_pushinteger(L, static_cast<lua_Integer>(check<SystemHandle>(L, 1).system.bodies().size()));
   return 1;
 }
 
 int l_step(lua_State* L) {
-  lua_pushinteger(L, static_cast<lua_Integer>(check<Simulation>(L, 1).system.step));
+  lua_pushinteger(L, static_cast<lua_Integer>(check<SystemHandle>(L, 1).system.step));
   return 1;
 }
 
 int l_time(lua_State* L) {
-  lua_pushnumber(L, check<Simulation>(L, 1).system.time);
+  lua_pushnumber(L, check<SystemHandle>(L, 1).system.time);
   return 1;
 }
 
 // sys:box() -> {lengths = {..}, lo = {..}, hi = {..}, periodic = {..}, volume = V}
 int l_box(lua_State* L) {
-  const Box& box = check<Simulation>(L, 1).system.box();
+  const Box& box = check<SystemHandle>(L, 1).system.box();
   lua_createtable(L, 0, 5);
   push_vec3(L, box.lengths());
   lua_setfield(L, -2, "lengths");
@@ -236,7 +236,7 @@ int l_box(lua_State* L) {
 }
 
 int l_packing(lua_State* L) {
-  const PackingFractions phi = packing_fractions(check<Simulation>(L, 1).system);
+  const PackingFractions phi = packing_fractions(check<SystemHandle>(L, 1).system);
   lua_createtable(L, 0, 3);
   set_number(L, "total", phi.total);
   set_number(L, "cancer", phi.cancer);
@@ -245,7 +245,7 @@ int l_packing(lua_State* L) {
 }
 
 // The sites of the optional Group argument at `index` (all sites when absent).
-std::vector<int> group_arg(lua_State* L, int index, const Simulation& sim, const char* what) {
+std::vector<int> group_arg(lua_State* L, int index, const SystemHandle& sim, const char* what) {
   if (lua_isnoneornil(L, index)) {
     std::vector<int> all(sim.system.n_sites());
     for (std::size_t i = 0; i < all.size(); ++i) all[i] = int(i);
@@ -258,7 +258,7 @@ std::vector<int> group_arg(lua_State* L, int index, const Simulation& sim, const
 
 // sys:temperature([group]): kT = 1/(3N) sum m v^2 over the group (all sites by default).
 int l_temperature(lua_State* L) {
-  const Simulation& sim = check<Simulation>(L, 1);
+  const SystemHandle& sim = check<SystemHandle>(L, 1);
   lua_pushnumber(L, temperature(sim.system, group_arg(L, 2, sim, "temperature")));
   return 1;
 }
@@ -266,7 +266,7 @@ int l_temperature(lua_State* L) {
 // sys:positions([group]) -> {{x, y, z}, ...}: the sites' positions (wrapped into the box on
 // the periodic axes), in the group's order.
 int l_positions(lua_State* L) {
-  const Simulation& sim = check<Simulation>(L, 1);
+  const SystemHandle& sim = check<SystemHandle>(L, 1);
   const std::vector<int> sites = group_arg(L, 2, sim, "positions");
   const auto& pos = sim.system.sites().pos;
   return push_results(L, 1, [&sites, &pos](lua_State* S) noexcept {
@@ -285,7 +285,7 @@ int l_positions(lua_State* L) {
 // after lipolysis), mesh area, 3D shape parameter, the reference one A_0 (from the sum of the
 // reference face areas and v_i0), and the vertex centroid (unwrapped).
 int l_adipocytes(lua_State* L) {
-  const Simulation& sim = check<Simulation>(L, 1);
+  const SystemHandle& sim = check<SystemHandle>(L, 1);
   const auto& bodies = sim.system.bodies();
   struct Row {
     double volume, ref_volume, ref_volume_initial, area, shape, ref_shape;
@@ -329,7 +329,7 @@ int l_adipocytes(lua_State* L) {
 // sys:set_velocities{group = g, kT = x}: Maxwell-Boltzmann velocities (stream kVelocity,
 // keyed by the current step), so that <m v^2> = 3 kT.
 int l_set_velocities(lua_State* L) {
-  Simulation& sim = check<Simulation>(L, 1);
+  SystemHandle& sim = check<SystemHandle>(L, 1);
   Kwargs kw(L, 2, "set_velocities");
   const auto group = kw_group(kw, "group", false);
   const double kT = kw.number("kT", Range::non_negative());
@@ -349,7 +349,7 @@ int l_set_velocities(lua_State* L) {
 // sys:set_mass{group = g, mass = m}: the sites of g get mass m (velocities kept); the
 // protocols give the adipocyte vertices their vertex_mass this way before the dynamics starts.
 int l_set_mass(lua_State* L) {
-  Simulation& sim = check<Simulation>(L, 1);
+  SystemHandle& sim = check<SystemHandle>(L, 1);
   Kwargs kw(L, 2, "set_mass");
   const auto group = kw_group(kw, "group", true);
   const double mass = kw.number("mass", Range::positive());
@@ -362,7 +362,7 @@ int l_set_mass(lua_State* L) {
 
 // sys:add(force): appends a force term (Contacts, Walls, Shape, Tethers); returns it.
 int l_add(lua_State* L) {
-  auto& sim = check_shared<Simulation>(L, 1);
+  auto& sim = check_shared<SystemHandle>(L, 1);
   auto attach = [&](auto& handle, const char* name) {
     if (auto other = handle->owner.lock()) {
       if (other == sim) fail_input("add: this ", name, " is already in the System");
@@ -389,7 +389,7 @@ int l_add(lua_State* L) {
 
 // sys:forces() -> {force, ...} in the order added.
 int l_forces(lua_State* L) {
-  const Simulation& sim = check<Simulation>(L, 1);
+  const SystemHandle& sim = check<SystemHandle>(L, 1);
   lua_createtable(L, static_cast<int>(sim.handles.size()), 0);
   for (std::size_t k = 0; k < sim.handles.size(); ++k) {
     push_force(L, sim.handles[k]);
@@ -403,7 +403,7 @@ int l_forces(lua_State* L) {
 // (which a Dynamics keeps between steps) are restored afterwards, so a callback may call it
 // without disturbing the run.
 int l_compute(lua_State* L) {
-  Simulation& sim = check<Simulation>(L, 1);
+  SystemHandle& sim = check<SystemHandle>(L, 1);
   EnergyTerms e;
   try {
     e = engine_call("compute", [&] { return observe_energies(sim.system, sim.forces); });
@@ -452,7 +452,7 @@ void open_system(lua_State* L) {
   methods.push_back({nullptr, nullptr});
   lua_pushvalue(L, -1);  // the module table
   protected_call(L, 1, 0, [&methods](lua_State* S) noexcept {
-    define_type<Simulation>(S, methods.data());
+    define_type<SystemHandle>(S, methods.data());
     return 0;
   });
   set_constructor(L, "System", &lua_wrap<&l_new>, system_fields().infos());

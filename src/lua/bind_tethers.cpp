@@ -54,7 +54,7 @@ int l_new(lua_State* L) {
   return 1;
 }
 
-Simulation& system_of(const Tethers& t, const char* method) {
+SystemHandle& system_of(const Tethers& t, const char* method) {
   return owner_of(t.owner, method, "add the tethers to a System first with sys:add(tethers)");
 }
 
@@ -64,7 +64,7 @@ int l_connect(lua_State* L) {
   Tethers& t = check<Tethers>(L, 1);
   Kwargs kw(L, 2, "connect");
   const double degree = connect_fields().make(kw).mean_degree;
-  Simulation& sim = system_of(t, "connect");
+  SystemHandle& sim = system_of(t, "connect");
   const double d_c =
       engine_call("connect", [&] { return t.force->connect_by_mean_degree(sim.system, degree); });
   sim.changed();
@@ -78,7 +78,7 @@ int l_heterogeneity(lua_State* L) {
   Kwargs kw(L, 2, "heterogeneity");
   const double lambda = kw.number("lambda", Range::between(0, 1));
   kw.finish();
-  Simulation& sim = system_of(t, "heterogeneity");
+  SystemHandle& sim = system_of(t, "heterogeneity");
   engine_call("heterogeneity", [&] { t.force->apply_heterogeneity(sim.system, lambda); });
   sim.changed();
   return 0;
@@ -108,7 +108,7 @@ int l_set_K(lua_State* L) {
 // image) in the System the tethers act on.
 int l_list(lua_State* L) {
   const Tethers& t = check<Tethers>(L, 1);
-  const Simulation& sim = system_of(t, "list");
+  const SystemHandle& sim = system_of(t, "list");
   const std::vector<Tether>& tethers = t.force->tethers();
   const std::vector<Vec3> c =
       engine_call("list", [&] { return TetherForce::body_centres(sim.system); });

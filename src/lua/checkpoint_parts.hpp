@@ -15,7 +15,7 @@
 namespace invasim::lua {
 
 struct CheckpointParts {
-  std::shared_ptr<Simulation> sim;
+  std::shared_ptr<SystemHandle> sim;
   std::shared_ptr<DynamicsHandle> dyn;
   std::shared_ptr<Tethers> tethers;
   std::shared_ptr<TimeCorrelator> correlator;

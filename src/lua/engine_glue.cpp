@@ -28,16 +28,16 @@ std::shared_ptr<Group> kw_group(Kwargs& kw, std::string_view key, bool required)
   return group;
 }
 
-Simulation& owner_of(const std::weak_ptr<Simulation>& owner, const std::string& what,
-                     const std::string& hint) {
+SystemHandle& owner_of(const std::weak_ptr<SystemHandle>& owner, const std::string& what,
+                       const std::string& hint) {
   if (auto sim = owner.lock()) return *sim;
-  if (!owner.owner_before(std::weak_ptr<Simulation>{}) &&
-      !std::weak_ptr<Simulation>{}.owner_before(owner))
+  if (!owner.owner_before(std::weak_ptr<SystemHandle>{}) &&
+      !std::weak_ptr<SystemHandle>{}.owner_before(owner))
     fail_input(what, ": not in a System; ", hint);
   fail_input(what, ": its System no longer exists");
 }
 
-void require_same_system(const Group& group, const Simulation& sim, const std::string& what) {
+void require_same_system(const Group& group, const SystemHandle& sim, const std::string& what) {
   if (group.owner.lock().get() != &sim)
     fail_input(what, ": group '", group.name, "' belongs to another System");
 }

@@ -4,11 +4,12 @@
 // LuaType specialisation lives here because several bindings check each other's types
 // (dyn:run(sys, ...) checks a System); its describe() is defined in the type's binding file.
 //
-// Ownership: a System userdata holds a Simulation (the engine System plus its ForceField and
+// Ownership: a System userdata holds a SystemHandle (the engine System plus its ForceField and
 // the Lua handles of the forces added to it). Forces, groups and methods remember the
-// Simulation they belong to through a weak_ptr, so a force cannot be added to two systems and
-// a method cannot move a group of another system; nothing holds a Simulation strongly except
-// the System userdata, so Lua's collection order never matters.
+// SystemHandle they belong to through a weak_ptr, so a force cannot be added to two systems
+// and a method cannot move a group of another system; nothing holds a SystemHandle strongly
+// except the System userdata, so Lua's collection order never matters. (Simulation is only
+// the run layer's: run/simulation.hpp, and its Lua object invasim.Simulation.)
 #include <lua.hpp>
 
 #include <cstdint>
@@ -34,14 +35,14 @@ class Progress;  // core/progress.hpp
 
 namespace invasim::lua {
 
-struct Simulation;
+struct SystemHandle;
 
 // A force term as a Lua object: the engine term and the System it was added to (if any).
 template <typename F>
 struct BoundForce {
   explicit BoundForce(std::shared_ptr<F> f) : force(std::move(f)) {}
   std::shared_ptr<F> force;
-  std::weak_ptr<Simulation> owner;
+  std::weak_ptr<SystemHandle> owner;
 };
 using Contacts = BoundForce<ContactForce>;
 using Shape = BoundForce<ShapeForce>;
@@ -55,8 +56,8 @@ using ForceHandle = std::variant<std::shared_ptr<Contacts>, std::shared_ptr<Wall
                                  std::shared_ptr<Shape>, std::shared_ptr<Tethers>>;
 
 // The System userdata: engine state, its force field, and the Lua handles of its forces.
-struct Simulation {
-  Simulation(const Box& box, std::uint64_t seed) : system(box, seed) {}
+struct SystemHandle {
+  SystemHandle(const Box& box, std::uint64_t seed) : system(box, seed) {}
   System system;
   ForceField forces;
   std::vector<ForceHandle> handles;  // in the order added (same as forces.terms())
@@ -71,7 +72,7 @@ struct Simulation {
 struct Group {
   std::string name;
   std::vector<int> sites;  // engine site indices (0-based)
-  std::weak_ptr<Simulation> owner;
+  std::weak_ptr<SystemHandle> owner;
 };
 
 // An integration method (Damped, Langevin, Active) and the group it moves.
@@ -86,8 +87,8 @@ struct DynamicsHandle {
   explicit DynamicsHandle(double dt) : dynamics(dt) {}
   Dynamics dynamics;
   std::vector<std::shared_ptr<MethodHandle>> methods;
-  std::shared_ptr<Walls> walls;    // walls = given to pressure_wall{}, else resolved at run
-  std::weak_ptr<Simulation> last;  // system of the last run and its revision after it
+  std::shared_ptr<Walls> walls;      // walls = given to pressure_wall{}, else resolved at run
+  std::weak_ptr<SystemHandle> last;  // system of the last run and its revision after it
   std::uint64_t last_revision = 0;
 };
 
@@ -98,7 +99,7 @@ struct DynamicsHandle {
     static constexpr const char* metatable = "invasim." NAME; \
     static std::string describe(const T& object);             \
   }
-INVASIM_LUA_TYPE(Simulation, "System");
+INVASIM_LUA_TYPE(SystemHandle, "System");
 INVASIM_LUA_TYPE(Group, "Group");
 INVASIM_LUA_TYPE(Contacts, "Contacts");
 INVASIM_LUA_TYPE(Walls, "Walls");
@@ -143,13 +144,13 @@ NumberOrRamp kw_number_or_ramp(Kwargs& kw, std::string_view key, Range range,
 // keep p's values; unknown keys are refused); defined in bind_contacts.cpp.
 void read_contact_params(Kwargs& kw, ContactParams& p);
 
-// The Simulation a weak owner points to; throws "<what>: its System no longer exists" when it
+// The SystemHandle a weak owner points to; throws "<what>: its System no longer exists" when it
 // expired, or "<what>: not in a System; <hint>" when it was never set.
-Simulation& owner_of(const std::weak_ptr<Simulation>& owner, const std::string& what,
-                     const std::string& hint);
+SystemHandle& owner_of(const std::weak_ptr<SystemHandle>& owner, const std::string& what,
+                       const std::string& hint);
 
 // Throws unless `group` belongs to `sim`: "<what>: group 'cancer' belongs to another System".
-void require_same_system(const Group& group, const Simulation& sim, const std::string& what);
+void require_same_system(const Group& group, const SystemHandle& sim, const std::string& what);
 
 // Lua table helpers (the table is on top of the stack). They allocate, so they may raise a
 // Lua error: call them only inside a protected_call block (binding.hpp).
@@ -171,7 +172,7 @@ Progress* test_progress(lua_State* L, int index);
 // group belongs to sim, connects the pressure wall to its Walls (the given ones, else the
 // System's only Walls), and invalidates the Dynamics when the System changed since its last
 // run. Returns the pressure wall or nullptr. Errors start with `what`.
-PressureWall* prepare_dynamics(DynamicsHandle& d, const std::shared_ptr<Simulation>& sim,
+PressureWall* prepare_dynamics(DynamicsHandle& d, const std::shared_ptr<SystemHandle>& sim,
                                const std::string& what);
 
 // System methods defined in bind_measure.cpp (voronoi, shape_parameters, slices).

@@ -2,7 +2,7 @@
 
 namespace invasim::lua {
 
-invasim::Simulation engine_simulation(const std::shared_ptr<Simulation>& system,
+invasim::Simulation engine_simulation(const std::shared_ptr<SystemHandle>& system,
                                       const std::shared_ptr<DynamicsHandle>& d) {
   return invasim::Simulation(std::shared_ptr<System>(system, &system->system),
                              std::shared_ptr<ForceField>(system, &system->forces),
@@ -10,7 +10,7 @@ invasim::Simulation engine_simulation(const std::shared_ptr<Simulation>& system,
 }
 
 LuaFunctionOperation::LuaFunctionOperation(lua_State* L, int index,
-                                           std::shared_ptr<Simulation> system,
+                                           std::shared_ptr<SystemHandle> system,
                                            std::shared_ptr<DynamicsHandle> d, std::string name)
     : system_(std::move(system)), dynamics_(std::move(d)), name_(std::move(name)) {
   index = lua_absindex(L, index);

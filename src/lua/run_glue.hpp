@@ -16,7 +16,7 @@ namespace invasim::lua {
 
 // An engine Simulation stepping `system`'s System and ForceField with `d`'s Dynamics; its
 // pointers share ownership of the two Lua objects (aliasing shared_ptrs).
-invasim::Simulation engine_simulation(const std::shared_ptr<Simulation>& system,
+invasim::Simulation engine_simulation(const std::shared_ptr<SystemHandle>& system,
                                       const std::shared_ptr<DynamicsHandle>& d);
 
 // Calls a Lua function fn(step, time); a return value of false ends the run at this step.
@@ -25,7 +25,7 @@ invasim::Simulation engine_simulation(const std::shared_ptr<Simulation>& system,
 class LuaFunctionOperation : public Operation {
  public:
   // The function at stack index `index` of L.
-  LuaFunctionOperation(lua_State* L, int index, std::shared_ptr<Simulation> system,
+  LuaFunctionOperation(lua_State* L, int index, std::shared_ptr<SystemHandle> system,
                        std::shared_ptr<DynamicsHandle> d, std::string name);
   ~LuaFunctionOperation() override;
   LuaFunctionOperation(const LuaFunctionOperation&) = delete;
@@ -42,7 +42,7 @@ class LuaFunctionOperation : public Operation {
   lua_State* main_;
   lua_State* current_;
   int ref_ = LUA_NOREF;
-  std::shared_ptr<Simulation> system_;
+  std::shared_ptr<SystemHandle> system_;
   std::shared_ptr<DynamicsHandle> dynamics_;
   std::string name_;
 };

@@ -9,7 +9,7 @@ namespace invasim::lua {
 namespace {
 
 // The System's one Contacts force; throws naming the call when it has none or several.
-std::shared_ptr<ContactForce> only_contacts(const Simulation& sim, std::string_view owner) {
+std::shared_ptr<ContactForce> only_contacts(const SystemHandle& sim, std::string_view owner) {
   std::shared_ptr<ContactForce> found;
   for (const ForceHandle& h : sim.handles) {
     if (const auto* c = std::get_if<std::shared_ptr<Contacts>>(&h)) {
@@ -29,7 +29,7 @@ std::shared_ptr<ContactForce> only_contacts(const Simulation& sim, std::string_v
 
 }  // namespace
 
-TemporaryContacts::TemporaryContacts(Kwargs& kw, Simulation& sim, std::string_view owner) {
+TemporaryContacts::TemporaryContacts(Kwargs& kw, SystemHandle& sim, std::string_view owner) {
   std::optional<Kwargs> keys = kw.maybe_table("contacts");
   if (!keys) return;
   std::shared_ptr<ContactForce> force = only_contacts(sim, owner);

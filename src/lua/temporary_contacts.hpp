@@ -17,13 +17,13 @@ class TemporaryContacts {
   // Reads key "contacts" of kw (absent or nil: no change) and applies it to the System's
   // Contacts force (an error if the System has none or several). `owner` names the call in
   // messages: "compress: key 'contacts': the System has no Contacts force".
-  TemporaryContacts(Kwargs& kw, Simulation& sim, std::string_view owner);
+  TemporaryContacts(Kwargs& kw, SystemHandle& sim, std::string_view owner);
   ~TemporaryContacts();
   TemporaryContacts(const TemporaryContacts&) = delete;
   TemporaryContacts& operator=(const TemporaryContacts&) = delete;
 
  private:
-  Simulation* sim_ = nullptr;
+  SystemHandle* sim_ = nullptr;
   std::shared_ptr<ContactForce> force_;  // null when nothing was changed
   ContactParams saved_;
 };
