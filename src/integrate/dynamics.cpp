@@ -7,6 +7,7 @@
 #include <exception>
 
 #include "core/errors.hpp"
+#include "core/fast_log.hpp"
 #include "core/fast_trig.hpp"
 #include "core/rng.hpp"
 #include "core/team_barrier.hpp"
@@ -103,7 +104,7 @@ Vec3 uniform_on_sphere(double u0, double u1) {
 Vec3 rotate_orientation(const Vec3& n, double dt, double tau_p, const std::array<double, 4>& u) {
   if (tau_p == 0.0) return uniform_on_sphere(u[0], u[1]);
   if (std::isinf(tau_p)) return n;
-  const double theta = rotation_angle(std::sqrt(2.0 * dt / tau_p), std::log(u[0]), u[1]);
+  const double theta = rotation_angle(std::sqrt(2.0 * dt / tau_p), fast_log::log(u[0]), u[1]);
   Vec3 out;
   rotate_by(n.x(), n.y(), n.z(), theta, u[2], out.x(), out.y(), out.z());
   return out;
@@ -180,9 +181,9 @@ constexpr int kKickChunk = 128;
 static_assert(kKickChunk <= RandomKey::kBatch, "a kick chunk's thermal draws are one batch");
 
 // The orientation update of the cells in slots idx[0, m), m <= kKickChunk, of permanent indices
-// site[0, m), at `step`: each cell's Philox block, the logarithms (libm), then the rotations, in
-// loops the compiler vectorises (the per-cell scalar version, with libm's sin and cos, was
-// ~20 % of an active run).
+// site[0, m), at `step`: each cell's Philox block, the logarithms (core/fast_log.hpp), then the
+// rotations, in loops the compiler vectorises (the per-cell scalar version, with libm's sin,
+// cos and log, was ~20 % of an active run).
 void rotate_chunk(Sites& s, const int* idx, const int* site, int m, double dt, double tau_p,
                   std::uint64_t seed, std::uint64_t step) {
   if (tau_p == 0.0 || std::isinf(tau_p)) {  // redrawn or frozen: no rotation to vectorise
@@ -204,8 +205,9 @@ void rotate_chunk(Sites& s, const int* idx, const int* site, int m, double dt, d
                            w3);
     u0[q] = RandomKey::uniform(w0), u1[q] = RandomKey::uniform(w1), u2[q] = RandomKey::uniform(w2);
   }
+#pragma omp simd
+  for (int q = 0; q < m; ++q) lg[q] = fast_log::log(u0[q]);
   for (int q = 0; q < m; ++q) {
-    lg[q] = std::log(u0[q]);
     const Vec3& n = s.orient[idx[q]];
     nx[q] = n.x(), ny[q] = n.y(), nz[q] = n.z();
   }
