@@ -14,26 +14,27 @@ import os
 
 from . import steady, workspace
 from .errors import InputError
+from .validation import points as state
 
 C2_PAPER = 0.02  # the paper's Fig. 5(b): a = c1 (1 + c2 beta/P) tau_g/tau_d
 
 
-def state_points(ws):
-    """[{P, f0, x, ratio, ratio_error, steady, runs}] sorted by P then x."""
-    jobs = workspace.load(ws)
+def state_points(ws, jobs=None):
+    """[{P, f0, x, ratio, ratio_error, steady, runs}] sorted by P then x (jobs: the done jobs
+    of ws, loaded when not given); means and errors over the seeds as the validation figures
+    take them (validation/points.state_point)."""
+    jobs = jobs if jobs is not None else workspace.load(ws)
     for key in ("P", "f0"):
         if not all(key in j.sp for j in jobs):
             raise InputError("%s: the pressure analysis needs P and f0 in every state point" % ws)
     out = []
     for (P, f0), runs in workspace.group(jobs, ["P", "f0"]).items():
-        ratios = [j.mean("A_ratio")[0] for j in runs]
-        xs = [j.mean("kT_c_paper")[0] / P for j in runs]
-        n = len(ratios)
-        mean = sum(ratios) / n
-        err = (math.sqrt(sum((r - mean) ** 2 for r in ratios) / (n - 1) / n) if n > 1
-               else runs[0].mean("A_ratio")[1])
-        out.append({"P": P, "f0": f0, "x": sum(xs) / n, "ratio": mean, "ratio_error": err,
-                    "steady": all(steady.steadiness(j)["steady"] for j in runs), "runs": n})
+        p = state.state_point(runs, lambda j: {
+            "ratio": j.mean("A_ratio")[0], "ratio_error": j.mean("A_ratio")[1],
+            "x": j.mean("kT_c_paper")[0] / P})
+        out.append({"P": P, "f0": f0, "x": p["x"], "ratio": p["ratio"],
+                    "ratio_error": p["ratio_error"], "runs": p["replicates"],
+                    "steady": all(steady.steadiness(j)["steady"] for j in runs)})
     return sorted(out, key=lambda p: (p["P"], p["x"]))
 
 
@@ -49,21 +50,17 @@ def onsets(points, steady_only=True):
     out = {}
     for P in sorted({p["P"] for p in points}):
         pts = [p for p in steady_points if p["P"] == P]
-        out[P] = math.nan
-        for a, b in zip(pts, pts[1:]):
-            if a["ratio"] < half <= b["ratio"]:
-                t = (half - a["ratio"]) / (b["ratio"] - a["ratio"])
-                out[P] = 10 ** (math.log10(a["x"]) + t * (math.log10(b["x"]) - math.log10(a["x"])))
-                break
+        out[P] = state.crossing([p["x"] for p in pts], [p["ratio"] for p in pts], half)
     return out, half
 
 
 def analyse(ws, out_dir, beta=None):
     """Writes pressure.json and pressure.png in out_dir; returns the record."""
-    points = state_points(ws)
+    jobs = workspace.load(ws)
+    points = state_points(ws, jobs)
     x_half, half = onsets(points)
     provisional, provisional_half = onsets(points, steady_only=False)
-    beta = beta if beta is not None else workspace.load(ws)[0].sp.get("beta")
+    beta = beta if beta is not None else jobs[0].sp.get("beta")
     pressures = sorted(x_half)
     predicted = {}
     if beta is not None and pressures:

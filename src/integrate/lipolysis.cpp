@@ -76,18 +76,23 @@ namespace {
 // vertex diameter 2) h = 0.2 is within 8e-4 of h = 0.02 and takes ~1 ms.
 constexpr double kUnionVolumeH = 0.2;
 
-// The union volume V_i of body b's vertices now, scaled about their centroid so that the
-// mesh encloses volume v.
-double union_volume_at(const System& sys, int b, double v) {
+// V_i's factor when body b's reference volume goes from v_old to v_new: the union volumes of
+// its vertices now, scaled about their centroid so that the mesh encloses v_new and v_old
+// (the vertices read, and their centroid and mesh volume computed, once).
+double union_volume_ratio(const System& sys, int b, double v_new, double v_old) {
   const MeshBody& body = sys.bodies()[b];
   const int n = body.n_vertices();
-  std::vector<Vec3> x(n);
+  std::vector<Vec3> x(n), y(n);
   sys.body_vertices(b, x.data());
   const Vec3 c = vertex_centroid(n, x.data());
-  const double scale = std::cbrt(v / mesh_volume(*body.topology, x.data()));
-  for (Vec3& p : x) p = c + scale * (p - c);
-  return union_volume(*body.topology, x.data(), sys.sites().diameter[body.first_site],
-                      kUnionVolumeH);
+  const double v_mesh = mesh_volume(*body.topology, x.data());
+  const double d = sys.sites().diameter[body.first_site];
+  auto at = [&](double v) {
+    const double scale = std::cbrt(v / v_mesh);
+    for (int k = 0; k < n; ++k) y[k] = c + scale * (x[k] - c);
+    return union_volume(*body.topology, y.data(), d, kUnionVolumeH);
+  };
+  return at(v_new) / at(v_old);
 }
 
 }  // namespace
@@ -107,8 +112,7 @@ int Lipolysis::apply(System& sys, double elapsed) const {
     // V_i (packing fractions) follows: scaled by the union volumes of the body's shape now at
     // the old and the new reference volume.
     if (body.outer_volume > 0.0)
-      body.outer_volume *=
-          union_volume_at(sys, int(b), v) / union_volume_at(sys, int(b), body.ref_volume);
+      body.outer_volume *= union_volume_ratio(sys, int(b), v, body.ref_volume);
     set_reference_volume(body, v);
   }
   return count;
