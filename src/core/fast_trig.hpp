@@ -87,11 +87,11 @@ inline void sincos(double x, double& sin_x, double& cos_x) {
 }
 
 // sin(x)/x for 0 <= x <= kMaxArg, exactly 1 at 0 (Taylor below 1e-4, where the next term is
-// below 1e-18).
+// below 1e-18; x^2 times a rounded 1/6, which costs no second division in a vector loop).
 inline double sinc(double x) {
   const bool small = x < 1e-4;
   const double s = sin(x) / (small ? 1.0 : x);
-  return small ? 1.0 - x * x / 6.0 : s;
+  return small ? 1.0 - x * x * (1.0 / 6.0) : s;
 }
 
 }  // namespace invasim::fast_trig

@@ -23,7 +23,8 @@ class ShapeForce : public Force {
   std::vector<ForceResult> per_body_;
 };
 
-// Shape energy of one body and its gradient with respect to its vertices (grad may be null).
+// Shape energy of one body; adds its gradient with respect to the vertices to grad (which may
+// be null). ShapeKernel's arithmetic, for callers outside the force loop.
 double body_shape_energy(const MeshBody& body, const Vec3* x, double eps_v, double eps_a,
                          Vec3* grad);
 

@@ -31,6 +31,11 @@ struct TimeCorrelator::Partial {
 };
 
 namespace {
+// 1 / |v|^2, or 0 for a site at rest (which the per-particle C_vv skips).
+inline double inverse_speed2(const Vec3& v) {
+  const double v2 = v[0] * v[0] + (v[1] * v[1] + v[2] * v[2]);
+  return v2 > 0.0 ? 1.0 / v2 : 0.0;
+}
 inline void put(std::vector<double>& a, std::size_t i, const Vec3& v) {
   a[3 * i] = v[0];
   a[3 * i + 1] = v[1];
@@ -52,7 +57,10 @@ TimeCorrelator::TimeCorrelator(std::vector<int> group, const TimeCorrelatorParam
                          8.0 * (1 + kTerms);
   check_memory("time correlator", "lags", double(params_.lags), per_lag);
   const std::size_t snap = slots() * group_.size() * 3;
-  if (params_.velocity) state_.velocity.assign(snap, 0.0);
+  if (params_.velocity) {
+    state_.velocity.assign(snap, 0.0);
+    inv_speed2_.assign(snap / 3, 0.0);
+  }
   if (params_.orientation) state_.orientation.assign(snap, 0.0);
   if (params_.position) state_.position.assign(snap, 0.0);
   state_.origins.assign(std::size_t(params_.lags), 0);
@@ -90,17 +98,26 @@ void TimeCorrelator::sample(const System& sys) {
 void TimeCorrelator::store_origin(std::size_t slot, const Vec3* v, const Vec3* n, const Vec3* r) {
   const std::size_t N = group_.size(), base = slot * N;
   for (std::size_t i = 0; i < N; ++i) {
-    if (params_.velocity) put(state_.velocity, base + i, v[i]);
+    if (params_.velocity) {
+      put(state_.velocity, base + i, v[i]);
+      inv_speed2_[base + i] = inverse_speed2(v[i]);
+    }
     if (params_.orientation) put(state_.orientation, base + i, n[i]);
     if (params_.position) put(state_.position, base + i, r[i]);
   }
 }
 
-// Per-site terms of one block, computed in vectorised loops, then summed site by site in
-// index order (the order of the sums, hence their rounding, is that of a plain loop).
+// Per-site terms of one block, computed in vectorised loops, then summed in lanes (room for
+// the last lane group's padding).
+namespace {
+constexpr std::size_t kLanes = 8;
+}
 struct TimeCorrelator::Scratch {
-  double vv[kSumBlock], vv_norm[kSumBlock], nn[kSumBlock], dr2[kSumBlock], fs[kSumBlock];
-  bool moving[kSumBlock];  // |v(t')| > 0: the per-particle normalisation skips the others
+  static constexpr std::size_t kSize = kSumBlock + kLanes;
+  double vv[kSize], vv_norm[kSize], nn[kSize], dr2[kSize], fs[kSize];
+  // 1 where |v(t')| > 0 (the per-particle normalisation counts only those), else 0;
+  // vv_norm is 0 where it is 0.
+  double moving[kSize];
 };
 
 TimeCorrelator::Partial TimeCorrelator::block_terms(std::size_t slot, std::size_t lo,
@@ -115,14 +132,13 @@ TimeCorrelator::Partial TimeCorrelator::block_terms(std::size_t slot, std::size_
   };
   if (params_.velocity) {
     const double* v0 = state_.velocity.data() + base;
+    const double* inv = inv_speed2_.data() + base / 3;
 #pragma omp simd
     for (std::size_t i = 0; i < m; ++i) {
-      const double* a = v0 + 3 * i;
-      const double d = dot(a, v[lo + i]);
-      const double v02 = a[0] * a[0] + (a[1] * a[1] + a[2] * a[2]);
+      const double d = dot(v0 + 3 * i, v[lo + i]);
       sc.vv[i] = d;
-      sc.moving[i] = v02 > 0.0;
-      sc.vv_norm[i] = d / (v02 > 0.0 ? v02 : 1.0);
+      sc.moving[i] = inv[i] > 0.0 ? 1.0 : 0.0;
+      sc.vv_norm[i] = d * inv[i];
     }
   }
   if (params_.orientation) {
@@ -158,22 +174,35 @@ TimeCorrelator::Partial TimeCorrelator::block_terms(std::size_t slot, std::size_
     if (max_arg > fast_trig::kMaxArg)  // clamped above: redone with libm
       for (std::size_t i = 0; i < m; ++i) sc.fs[i] = libm_fs_term(r[lo + i], r0 + 3 * i, sc.fs[i]);
   }
-  Partial p;
-  for (std::size_t i = 0; i < m; ++i) {
-    if (params_.velocity) {
-      p.t[kVV] += sc.vv[i];
-      if (sc.moving[i]) {
-        p.t[kVVNorm] += sc.vv_norm[i];
-        p.t[kVVCount] += 1.0;
-      }
-    }
-    if (params_.orientation) p.t[kNN] += sc.nn[i];
-    if (params_.position) {
-      p.t[kDR2] += sc.dr2[i];
-      p.t[kDR4] += sc.dr2[i] * sc.dr2[i];
-      p.t[kFs] += sc.fs[i];
-    }
+  // The sums in kLanes interleaved lanes (site i adds to lane i mod kLanes), which vectorise,
+  // then the lanes in order: a fixed order for a block, whatever the thread count. The last
+  // lane group is padded with zero terms.
+  const std::size_t padded = (m + kLanes - 1) / kLanes * kLanes;
+  double lane[kTerms][kLanes] = {};
+  auto add_lanes = [&](int term, const double* x) {
+    for (std::size_t i0 = 0; i0 < padded; i0 += kLanes)
+      for (std::size_t l = 0; l < kLanes; ++l) lane[term][l] += x[i0 + l];
+  };
+  if (params_.velocity) {
+    for (std::size_t i = m; i < padded; ++i) sc.vv[i] = sc.vv_norm[i] = sc.moving[i] = 0.0;
+    add_lanes(kVV, sc.vv);
+    add_lanes(kVVNorm, sc.vv_norm);
+    add_lanes(kVVCount, sc.moving);
   }
+  if (params_.orientation) {
+    for (std::size_t i = m; i < padded; ++i) sc.nn[i] = 0.0;
+    add_lanes(kNN, sc.nn);
+  }
+  if (params_.position) {
+    for (std::size_t i = m; i < padded; ++i) sc.dr2[i] = sc.fs[i] = 0.0;
+    add_lanes(kDR2, sc.dr2);
+    for (std::size_t i0 = 0; i0 < padded; i0 += kLanes)
+      for (std::size_t l = 0; l < kLanes; ++l) lane[kDR4][l] += sc.dr2[i0 + l] * sc.dr2[i0 + l];
+    add_lanes(kFs, sc.fs);
+  }
+  Partial p;
+  for (int t = 0; t < kTerms; ++t)
+    for (std::size_t l = 0; l < kLanes; ++l) p.t[t] += lane[t][l];
   return p;
 }
 
@@ -342,6 +371,10 @@ void TimeCorrelator::restore(CorrelatorState state) {
   check("sums", state.sums.size(), std::size_t(params_.lags) * kTerms);
   state_ = std::move(state);
   kept_ = 0;
+  for (std::size_t i = 0; i < inv_speed2_.size(); ++i) {
+    const double* a = state_.velocity.data() + 3 * i;
+    inv_speed2_[i] = inverse_speed2(Vec3(a[0], a[1], a[2]));
+  }
 }
 
 std::optional<double> decay_time(const std::vector<double>& t, const std::vector<double>& y,

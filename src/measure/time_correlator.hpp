@@ -130,6 +130,9 @@ class TimeCorrelator {
   std::vector<int> group_;
   TimeCorrelatorParams params_;
   mutable CorrelatorState state_;
+  // 1 / |v|^2 of every stored origin velocity (0 for a site at rest), slot-major like the
+  // snapshots: a product per pair instead of a division. Derived from state_.velocity.
+  std::vector<double> inv_speed2_;
   std::vector<Vec3> v_now_, n_now_, r_now_;  // gather buffers for sample()
   // Samples taken but not yet correlated (at most origin_every), sample-major: value
   // (k * N + site) of the k-th kept sample; the first is sample state_.samples - kept_.

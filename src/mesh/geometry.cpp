@@ -16,13 +16,17 @@ Vec3 vertex_centroid(int n, const Vec3* x) {
 double mesh_volume(const MeshTopology& topo, const Vec3* x) {
   const Vec3 c = vertex_centroid(topo.n_vertices(), x);
   double six_v = 0.0;
-  for (const auto& f : topo.faces()) six_v += (x[f[0]] - c).dot((x[f[1]] - c).cross(x[f[2]] - c));
+  for (const auto& f : topo.faces()) {
+    const Vec3 u = x[f[0]] - c, v = x[f[1]] - c, w = x[f[2]] - c;
+    six_v += triple_product(u[0], u[1], u[2], v[0], v[1], v[2], w[0], w[1], w[2]);
+  }
   return six_v / 6.0;
 }
 
 double face_area(const MeshTopology& topo, const Vec3* x, int k) {
   const auto& f = topo.faces()[k];
-  return 0.5 * (x[f[1]] - x[f[0]]).cross(x[f[2]] - x[f[0]]).norm();
+  const Vec3 e = x[f[1]] - x[f[0]], g = x[f[2]] - x[f[0]];
+  return 0.5 * twice_triangle_area(e[0], e[1], e[2], g[0], g[1], g[2]);
 }
 
 double mesh_area(const MeshTopology& topo, const Vec3* x) {

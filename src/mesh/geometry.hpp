@@ -2,11 +2,26 @@
 // Geometry of one mesh body from its (unwrapped) vertex positions: volume, face areas,
 // shape parameter, and their gradients. Pure functions; used by the shape force, by
 // measurements and by tests.
+#include <cmath>
 #include <vector>
 
 #include "mesh/topology.hpp"
 
 namespace invasim {
+
+// u . (v x w), six times the signed volume of the tetrahedron (0, u, v, w), and |e x f|, twice
+// the area of the triangle spanned by e and f: the one expression of each that mesh_volume,
+// face_area and the shape force's kernel (forces/shape_kernel.cpp) evaluate, so that a body at
+// its reference shape has exactly zero shape energy.
+inline double triple_product(double ux, double uy, double uz, double vx, double vy, double vz,
+                             double wx, double wy, double wz) {
+  return ux * (vy * wz - vz * wy) + (uy * (vz * wx - vx * wz) + uz * (vx * wy - vy * wx));
+}
+inline double twice_triangle_area(double ex, double ey, double ez, double fx, double fy,
+                                  double fz) {
+  const double nx = ey * fz - ez * fy, ny = ez * fx - ex * fz, nz = ex * fy - ey * fx;
+  return std::sqrt(nx * nx + (ny * ny + nz * nz));
+}
 
 // Enclosed volume (positive for an outward-oriented mesh), via the divergence theorem
 // about the vertex centroid for accuracy far from the origin.

@@ -43,6 +43,12 @@ MeshTopology::MeshTopology(int n_vertices, std::vector<Face> faces)
   const int euler = n_vertices - n_edges() + n_faces();
   if (euler != 2)
     fail_input("mesh: Euler characteristic V - E + F = ", euler, "; a closed genus-0 mesh has 2");
+  corner_offsets_.assign(n_vertices + 1, 0);
+  for (int v = 0; v < n_vertices; ++v) corner_offsets_[v + 1] = corner_offsets_[v] + uses[v];
+  corners_.resize(std::size_t(corner_offsets_[n_vertices]));
+  std::vector<int> next(corner_offsets_.begin(), corner_offsets_.end() - 1);
+  for (std::size_t f = 0; f < faces_.size(); ++f)
+    for (int k = 0; k < 3; ++k) corners_[std::size_t(next[faces_[f][k]]++)] = {int(f), k};
 }
 
 MeshShape icosphere(int subdivisions) {

@@ -22,11 +22,18 @@ class MeshTopology {
   int n_edges() const { return int(edges_.size()); }
   const std::vector<Face>& faces() const { return faces_; }
   const std::vector<std::pair<int, int>>& edges() const { return edges_; }
+  // The faces around each vertex, in increasing face order, as (face, corner) pairs:
+  // vertex v's are corners()[corner_offsets()[v] .. corner_offsets()[v + 1]). Lets a
+  // per-face computation be summed per vertex in the order a loop over the faces would add it.
+  const std::vector<int>& corner_offsets() const { return corner_offsets_; }
+  const std::vector<std::pair<int, int>>& corners() const { return corners_; }
 
  private:
   int n_vertices_;
   std::vector<Face> faces_;
-  std::vector<std::pair<int, int>> edges_;  // (a < b), each once
+  std::vector<std::pair<int, int>> edges_;    // (a < b), each once
+  std::vector<int> corner_offsets_;           // n_vertices + 1 offsets into corners_
+  std::vector<std::pair<int, int>> corners_;  // (face, corner), grouped by vertex
 };
 
 // A mesh shape: its topology and vertex positions on the unit sphere (or any reference shape).

@@ -8,10 +8,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <limits>
 
 #include "core/errors.hpp"
+#include "forces/shape_kernel.hpp"
 #include "integrate/dynamics.hpp"
 #include "mesh/geometry.hpp"
 #include "test_support.hpp"
@@ -972,4 +974,84 @@ TEST_CASE("bad input is refused with a message naming the problem") {
   CHECK_THROWS_WITH(tf.add(sys, 1, 1, 1.0), Contains("cannot be tethered to itself"));
   CHECK_THROWS_WITH(tf.add(sys, 0, 2, 1.0), Contains("outside [0, 2)"));
   CHECK(tf.tethers().empty());
+}
+
+// ---------------------------------------------------------------------------------------
+// Shape kernel (faces in vector lanes) against a plain one-face-at-a-time sum
+
+namespace {
+// U_i and its gradient summed face by face with Eigen's vector operations: the textbook form
+// of ShapeKernel::evaluate (docs/model.md, "Bodies").
+double plain_shape_energy(const MeshBody& body, const Vec3* x, double eps_v, double eps_a,
+                          Vec3* grad) {
+  const MeshTopology& topo = *body.topology;
+  const double dv = 1.0 - mesh_volume(topo, x) / body.ref_volume;
+  double energy = 0.5 * eps_v * dv * dv;
+  add_volume_gradient(topo, x, -eps_v * dv / body.ref_volume, grad);
+  for (int k = 0; k < topo.n_faces(); ++k) {
+    const auto& f = topo.faces()[k];
+    const Vec3 &a = x[f[0]], &b = x[f[1]], &c = x[f[2]];
+    const Vec3 n = (b - a).cross(c - a);
+    const double da = 1.0 - 0.5 * n.norm() / body.ref_area[k];
+    energy += 0.5 * eps_a * da * da;
+    if (n.norm() == 0.0) continue;
+    const double scale = -eps_a * da / body.ref_area[k] * 0.5;
+    grad[f[0]] += scale * (b - c).cross(n.normalized());
+    grad[f[1]] += scale * (c - a).cross(n.normalized());
+    grad[f[2]] += scale * (a - b).cross(n.normalized());
+  }
+  return energy;
+}
+}  // namespace
+
+TEST_CASE("shape kernel: equals the plain face-by-face sum; corner lists in face order") {
+  const MeshShape shape = icosphere(1);
+  const MeshTopology& topo = *shape.topology;
+  // Every (face, corner) once, grouped by vertex, faces increasing within a vertex.
+  REQUIRE(topo.corner_offsets().size() == 43);
+  REQUIRE(topo.corners().size() == std::size_t(3 * topo.n_faces()));
+  for (int v = 0; v < 42; ++v)
+    for (int m = topo.corner_offsets()[v]; m < topo.corner_offsets()[v + 1]; ++m) {
+      const auto [f, corner] = topo.corners()[m];
+      CHECK(topo.faces()[f][corner] == v);
+      if (m > topo.corner_offsets()[v]) CHECK(topo.corners()[m - 1].first < f);
+    }
+  ShapeKernel kernel;
+  double worst_e = 0.0, worst_g = 0.0;
+  for (int trial = 0; trial < 200; ++trial) {
+    // A deformed, shifted body against a reference of another shape, so that every term is
+    // non-zero; trial 0 has a degenerate face (two vertices at one point: zero area).
+    std::vector<Vec3> x = shape.vertices, ref = shape.vertices;
+    const double spread = 0.05 + 0.3 * uniform(90, trial, 99);
+    for (int v = 0; v < 42; ++v) {
+      const Vec3 noise(uniform(91, trial * 42 + v, 0) - 0.5, uniform(91, trial * 42 + v, 1) - 0.5,
+                       uniform(91, trial * 42 + v, 2) - 0.5);
+      x[v] = 3.0 * x[v] + spread * noise + Vec3(100.0 * trial, -7.0, 0.25);
+      ref[v] = 2.9 * ref[v] - 0.5 * spread * noise;
+    }
+    if (trial == 0) x[topo.faces()[5][1]] = x[topo.faces()[5][0]];
+    MeshBody body = body_at_own_reference(shape, ref);
+    const double eps_v = 50.0 + trial, eps_a = 0.5 + 0.01 * trial;
+    std::vector<Vec3> g_ref(42, Vec3::Zero()), g(42, Vec3::Constant(7.0));
+    const double e_ref = plain_shape_energy(body, x.data(), eps_v, eps_a, g_ref.data());
+    const double e = kernel.evaluate(body, x.data(), eps_v, eps_a, g.data());
+    double g_scale = 0.0, g_diff = 0.0;
+    for (int v = 0; v < 42; ++v) {
+      g_scale = std::max(g_scale, g_ref[v].norm());
+      g_diff = std::max(g_diff, (g[v] - g_ref[v]).norm());
+    }
+    INFO("trial " << trial << ": energy " << e << " against " << e_ref);
+    REQUIRE(e_ref > 0.0);
+    REQUIRE(g_scale > 0.0);
+    worst_e = std::max(worst_e, std::abs(e - e_ref) / e_ref);
+    worst_g = std::max(worst_g, g_diff / g_scale);
+    // body_shape_energy adds the same gradient to what it is given.
+    std::vector<Vec3> g_add(42, Vec3::Constant(1.0));
+    CHECK(body_shape_energy(body, x.data(), eps_v, eps_a, g_add.data()) == e);
+    for (int v = 0; v < 42; ++v) CHECK(g_add[v] == (Vec3::Constant(1.0) + g[v]).eval());
+  }
+  report("shape kernel: largest relative energy difference", worst_e);
+  report("shape kernel: largest gradient difference / largest gradient", worst_g);
+  CHECK(worst_e < 1e-13);
+  CHECK(worst_g < 1e-13);
 }

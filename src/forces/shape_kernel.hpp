@@ -1,0 +1,32 @@
+#pragma once
+// The shape energy of one adipocyte and its gradient (docs/model.md, "Bodies") with the faces
+// in vector lanes: one pass over the faces computes every per-face quantity into arrays, then
+// each vertex sums its corners' terms (volume and area gradient together) through the
+// topology's corner lists (MeshTopology::corners), in face order. The
+// order of every sum is fixed by the topology, so results do not depend on the thread count.
+// Tests: "shape kernel" (against a plain one-face-at-a-time sum) and the finite-difference
+// and Hessian tests of tests/unit/test_forces.cpp.
+#include <vector>
+
+#include "state/system.hpp"
+
+namespace invasim {
+
+class ShapeKernel {
+ public:
+  // Energy of `body` with vertices x (unwrapped, body order); grad (n_vertices entries) is
+  // overwritten with the energy's gradient.
+  double evaluate(const MeshBody& body, const Vec3* x, double eps_v, double eps_a, Vec3* grad);
+
+ private:
+  // Per-face arrays, structure of arrays, n_faces each (see evaluate).
+  std::vector<double> buffer_;
+  // The vertices' coordinates as three arrays, and the faces' corners as three index arrays
+  // (of the topology last seen), so that the face loop gathers from plain arrays.
+  std::vector<double> vx_, vy_, vz_;
+  const MeshTopology* topology_ = nullptr;
+  std::vector<int> corner_[3];
+  std::vector<int> corner_slot_;  // MeshTopology::corners as indices into the corner arrays
+};
+
+}  // namespace invasim
