@@ -3,7 +3,7 @@
 // scheme): <p>.samples, .last_time, .velocity, .orientation, .position, .origins, .sums.
 #include <string>
 
-#include "io/checkpoint.hpp"
+#include "checkpoint/checkpoint_file.hpp"
 #include "measure/time_correlator.hpp"
 
 namespace invasim {

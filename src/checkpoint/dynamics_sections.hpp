@@ -10,9 +10,9 @@
 #include <optional>
 #include <string>
 
+#include "checkpoint/checkpoint_file.hpp"
 #include "integrate/dynamics.hpp"
 #include "integrate/ramp.hpp"
-#include "io/checkpoint.hpp"
 
 namespace invasim {
 

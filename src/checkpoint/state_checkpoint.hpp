@@ -7,9 +7,9 @@
 // (it needs the tether force and the pressure wall), so that io includes neither.
 #include <string>
 
+#include "checkpoint/checkpoint_file.hpp"
 #include "forces/tether_force.hpp"
 #include "integrate/dynamics.hpp"
-#include "io/checkpoint.hpp"
 #include "state/system.hpp"
 
 namespace invasim {

@@ -1,4 +1,4 @@
-// Checkpoints of a protocol's state (src/io/checkpoint.hpp, state_checkpoint.hpp):
+// Checkpoints of a protocol's state (checkpoint/protocol_checkpoint.hpp):
 //   invasim.save_checkpoint(path, {system =, dynamics =, tethers =, correlator =, extra = "",
 //                                  run_id = "", run_parameters = ""})
 //   local extra = invasim.load_checkpoint(path, {system =, dynamics =, tethers =, correlator =,
@@ -19,9 +19,7 @@
 
 #include <optional>
 
-#include "checkpoint/correlator_sections.hpp"
-#include "checkpoint/dynamics_sections.hpp"
-#include "checkpoint/state_checkpoint.hpp"
+#include "checkpoint/protocol_checkpoint.hpp"
 #include "core/names.hpp"
 #include "core/stop_request.hpp"
 #include "io/lua_data.hpp"
@@ -62,16 +60,15 @@ CheckpointParts read_checkpoint_parts(Kwargs& kw, bool need_system) {
   return p;
 }
 
+ProtocolObjects engine_objects(const CheckpointParts& p) {
+  return {&p.sim->system, p.dyn ? &p.dyn->dynamics : nullptr,
+          p.tethers ? p.tethers->force.get() : nullptr, p.correlator.get()};
+}
+
 void write_checkpoint_parts(CheckpointWriter& w, const CheckpointParts& p, std::string_view extra,
                             const std::optional<std::string>& run_id,
                             const std::optional<std::string>& run_parameters) {
-  write_system(w, p.sim->system);
-  if (p.dyn) write_dynamics(w, p.dyn->dynamics);
-  if (p.tethers) write_tethers(w, *p.tethers->force);
-  if (p.correlator) write_correlator(w, *p.correlator);
-  w.put_string("extra", extra);
-  if (run_id) w.put_string("run.id", *run_id);
-  if (run_parameters) w.put_string("run.parameters", *run_parameters);
+  write_protocol_checkpoint(w, engine_objects(p), {std::string(extra), run_id, run_parameters});
 }
 
 namespace {
@@ -102,33 +99,16 @@ int l_load(lua_State* L) {
   kw.finish();
   std::string extra;
   engine_call("load_checkpoint", [&] {
-    const CheckpointReader r = CheckpointReader::read(path);
-    System restored = read_system(r);
+    extra = read_protocol_checkpoint(CheckpointReader::read(path), path, engine_objects(p), seed);
     SystemHandle& sim = *p.sim;
-    // Groups, methods and forces index the sites: the System must be built the same way.
-    if (restored.n_sites() != sim.system.n_sites() ||
-        restored.bodies().size() != sim.system.bodies().size())
-      fail_input("the checkpoint '", path, "' holds ", restored.n_sites(), " sites and ",
-                 restored.bodies().size(), " adipocytes, this System ", sim.system.n_sites(),
-                 " sites and ", sim.system.bodies().size(),
-                 " adipocytes (load into a System built with the same sizes)");
-    sim.system = std::move(restored);
-    if (seed) sim.system.set_seed(std::uint64_t(*seed));
     for (const auto& term : sim.forces.terms()) term->invalidate_caches();
-    if (p.tethers) {
-      p.tethers->force->clear();
-      read_tethers(r, sim.system, *p.tethers->force);
-    }
-    if (p.correlator) read_correlator(r, *p.correlator);
     sim.changed();
     if (p.dyn) {
-      read_dynamics(r, p.dyn->dynamics);
       prepare_dynamics(*p.dyn, p.sim, "load_checkpoint");  // links the pressure wall
       p.dyn->dynamics.mark_prepared();
       p.dyn->last = p.sim;
       p.dyn->last_revision = sim.revision;
     }
-    extra = r.get_string("extra");
   });
   return push_results(L, 1, [&extra](lua_State* S) noexcept {
     lua_pushlstring(S, extra.data(), extra.size());
@@ -139,13 +119,9 @@ int l_load(lua_State* L) {
 // invasim.checkpoint_run(path) -> run id, run parameters (strings; nil where not stored).
 int l_checkpoint_run(lua_State* L) {
   const std::string path = arg_string(L, 1);
-  std::optional<std::string> id, parameters;
-  engine_call("checkpoint_run", [&] {
-    const CheckpointReader r = CheckpointReader::read(path);
-    if (r.has("run.id")) id = r.get_string("run.id");
-    if (r.has("run.parameters")) parameters = r.get_string("run.parameters");
-  });
-  for (const auto& value : {id, parameters}) {
+  ProtocolRecord record;
+  engine_call("checkpoint_run", [&] { record = checkpoint_run(CheckpointReader::read(path)); });
+  for (const auto& value : {record.run_id, record.run_parameters}) {
     if (value)
       lua_pushlstring(L, value->data(), value->size());
     else

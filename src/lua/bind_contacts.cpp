@@ -4,6 +4,7 @@
 #include <lua.hpp>
 
 #include "core/names.hpp"
+#include "lua/adapters.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/fields.hpp"
 #include "lua/module.hpp"
@@ -73,11 +74,6 @@ int l_set(lua_State* L) {
 }
 
 // c:params() -> {alpha =, beta =, alpha_cv =, beta_cv =, eps_cc =, eps_cv =, eps_vv =, skin =}
-int l_params(lua_State* L) {
-  contact_fields().push_params(L, check<Contacts>(L, 1).force->params());
-  return 1;
-}
-
 // invasim.Contacts.check{alpha =, beta =, ...} -> nil, or the message saying why invasim.Contacts
 // would refuse these keys (their ranges and ContactParams::validate's rules such as beta <
 // alpha): a protocol checks its parameters before any work with the engine's own rules.
@@ -101,7 +97,8 @@ int l_check(lua_State* L) {
 }
 
 const luaL_Reg kMethods[] = {
-    {"params", &lua_wrap<&l_params>},
+    params_method<Contacts, &contact_fields, [](const Contacts& c) { return c.force->params(); }>(
+        "params"),
     {"set", &lua_wrap<&l_set>},
     {nullptr, nullptr},
 };

@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "core/names.hpp"
+#include "lua/adapters.hpp"
 #include "lua/checkpoint_parts.hpp"
 #include "lua/engine_fields.hpp"
 #include "lua/engine_types.hpp"
@@ -120,35 +121,20 @@ int l_result(lua_State* L) {
   });
 }
 
-void push_optional(lua_State* L, const std::optional<double>& v) {
-  if (v)
-    lua_pushnumber(L, *v);
-  else
-    lua_pushnil(L);
-}
-
-int l_tau_d(lua_State* L) {
-  push_optional(L, check<CorrelatorHandle>(L, 1).correlator.tau_d());
-  return 1;
-}
-int l_tau_d_standard(lua_State* L) {
-  push_optional(L, check<CorrelatorHandle>(L, 1).correlator.tau_d_standard());
-  return 1;
-}
-int l_tau_r(lua_State* L) {
-  push_optional(L, check<CorrelatorHandle>(L, 1).correlator.tau_r());
-  return 1;
-}
-int l_samples(lua_State* L) {
-  lua_pushinteger(L, lua_Integer(check<CorrelatorHandle>(L, 1).correlator.samples()));
-  return 1;
-}
-
 const luaL_Reg kMethods[] = {
-    {"sample", &lua_wrap<&l_sample>}, {"result", &lua_wrap<&l_result>},
-    {"tau_d", &lua_wrap<&l_tau_d>},   {"tau_d_standard", &lua_wrap<&l_tau_d_standard>},
-    {"tau_r", &lua_wrap<&l_tau_r>},   {"samples", &lua_wrap<&l_samples>},
-    {"params", &lua_wrap<&l_params>}, {nullptr, nullptr},
+    {"sample", &lua_wrap<&l_sample>},
+    {"result", &lua_wrap<&l_result>},
+    getter<CorrelatorHandle, [](const CorrelatorHandle& c) { return c.correlator.tau_d(); }>(
+        "tau_d"),
+    getter<CorrelatorHandle,
+           [](const CorrelatorHandle& c) { return c.correlator.tau_d_standard(); }>(
+        "tau_d_standard"),
+    getter<CorrelatorHandle, [](const CorrelatorHandle& c) { return c.correlator.tau_r(); }>(
+        "tau_r"),
+    getter<CorrelatorHandle, [](const CorrelatorHandle& c) { return c.correlator.samples(); }>(
+        "samples"),
+    {"params", &lua_wrap<&l_params>},
+    {nullptr, nullptr},
 };
 
 }  // namespace

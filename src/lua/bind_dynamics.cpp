@@ -10,6 +10,7 @@
 
 #include "core/names.hpp"
 #include "core/progress.hpp"
+#include "lua/adapters.hpp"
 #include "lua/engine_fields.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
@@ -203,11 +204,6 @@ int l_set_sort_every(lua_State* L) {
   return 0;
 }
 
-int l_dt(lua_State* L) {
-  lua_pushnumber(L, check<DynamicsHandle>(L, 1).dynamics.dt());
-  return 1;
-}
-
 int l_methods(lua_State* L) {
   const DynamicsHandle& d = check<DynamicsHandle>(L, 1);
   lua_createtable(L, static_cast<int>(d.methods.size()), 0);
@@ -269,7 +265,7 @@ const luaL_Reg kMethods[] = {
     {"add", &lua_wrap<&l_add>},
     {"pressure_wall", &lua_wrap<&l_pressure_wall>},
     {"wall_state", &lua_wrap<&l_wall_state>},
-    {"dt", &lua_wrap<&l_dt>},
+    getter<DynamicsHandle, [](const DynamicsHandle& d) { return d.dynamics.dt(); }>("dt"),
     {"set_dt", &lua_wrap<&l_set_dt>},
     {"set_sort_every", &lua_wrap<&l_set_sort_every>},
     {"set_pressure", &lua_wrap<&l_set_pressure>},

@@ -11,6 +11,7 @@
 
 #include "core/names.hpp"
 #include "core/stop_request.hpp"
+#include "lua/adapters.hpp"
 #include "lua/engine_fields.hpp"
 #include "lua/module.hpp"
 #include "lua/temporary_contacts.hpp"
@@ -88,14 +89,9 @@ int l_minimize(lua_State* L) {
 }
 
 // fire:params() -> {ftol =, dt =, dt_max =, max_steps =}
-int l_params(lua_State* L) {
-  fire_table().push_params(L, check<Fire>(L, 1).params());
-  return 1;
-}
-
 const luaL_Reg kMethods[] = {
     {"minimize", &lua_wrap<&l_minimize>},
-    {"params", &lua_wrap<&l_params>},
+    params_method<Fire, &fire_table, [](const Fire& f) { return f.params(); }>("params"),
     {nullptr, nullptr},
 };
 

@@ -2,6 +2,7 @@
 #include <lua.hpp>
 
 #include "core/names.hpp"
+#include "lua/adapters.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
 
@@ -13,17 +14,6 @@ std::string LuaType<Group>::describe(const Group& g) {
 }
 
 namespace {
-
-int l_size(lua_State* L) {
-  lua_pushinteger(L, static_cast<lua_Integer>(check<Group>(L, 1).sites.size()));
-  return 1;
-}
-
-int l_name(lua_State* L) {
-  const std::string& name = check<Group>(L, 1).name;
-  lua_pushlstring(L, name.data(), name.size());
-  return 1;
-}
 
 // g:sites() -> {i, ...}: the engine's site indices, which start at 0.
 int l_sites(lua_State* L) {
@@ -37,8 +27,8 @@ int l_sites(lua_State* L) {
 }
 
 const luaL_Reg kMethods[] = {
-    {"size", &lua_wrap<&l_size>},
-    {"name", &lua_wrap<&l_name>},
+    getter<Group, [](const Group& g) { return g.sites.size(); }>("size"),
+    getter<Group, [](const Group& g) { return g.name; }>("name"),
     {"sites", &lua_wrap<&l_sites>},
     {nullptr, nullptr},
 };

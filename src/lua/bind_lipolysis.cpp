@@ -7,6 +7,7 @@
 #include <lua.hpp>
 
 #include "core/names.hpp"
+#include "lua/adapters.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/fields.hpp"
 #include "lua/module.hpp"
@@ -73,15 +74,11 @@ int l_apply(lua_State* L) {
 }
 
 // lip:params() -> {rate =, floor =}
-int l_params(lua_State* L) {
-  lipolysis_fields().push_params(L, check<Lipolysis>(L, 1).params());
-  return 1;
-}
-
 const luaL_Reg kMethods[] = {
     {"touched", &lua_wrap<&l_touched>},
     {"apply", &lua_wrap<&l_apply>},
-    {"params", &lua_wrap<&l_params>},
+    params_method<Lipolysis, &lipolysis_fields, [](const Lipolysis& l) { return l.params(); }>(
+        "params"),
     {nullptr, nullptr},
 };
 

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "core/names.hpp"
+#include "lua/adapters.hpp"
 #include "lua/engine_fields.hpp"
 #include "lua/module.hpp"
 
@@ -138,23 +139,7 @@ int l_active(lua_State* L) {
   return 1;
 }
 
-int l_kind(lua_State* L) {
-  const std::string& kind = check<MethodHandle>(L, 1).kind;
-  lua_pushlstring(L, kind.data(), kind.size());
-  return 1;
-}
-
-int l_group(lua_State* L) {
-  push(L, check<MethodHandle>(L, 1).group);
-  return 1;
-}
-
 // m:params() -> {gamma =, kT =, f0 =, tau_p =}: the Method's MethodParams, whatever its kind.
-int l_params(lua_State* L) {
-  active_fields().push_params(L, keys_of(check<MethodHandle>(L, 1)));
-  return 1;
-}
-
 // m:set{gamma =, kT =, f0 =, tau_p =}: changes parameters between runs (each key optional;
 // kT and f0 take numbers or ramps; Damped has only gamma, Langevin no f0 or tau_p).
 int l_set(lua_State* L) {
@@ -176,8 +161,11 @@ int l_set(lua_State* L) {
 }
 
 const luaL_Reg kMethods[] = {
-    {"set", &lua_wrap<&l_set>},       {"kind", &lua_wrap<&l_kind>}, {"group", &lua_wrap<&l_group>},
-    {"params", &lua_wrap<&l_params>}, {nullptr, nullptr},
+    {"set", &lua_wrap<&l_set>},
+    getter<MethodHandle, [](const MethodHandle& m) { return m.kind; }>("kind"),
+    getter<MethodHandle, [](const MethodHandle& m) { return m.group; }>("group"),
+    params_method<MethodHandle, &active_fields, &keys_of>("params"),
+    {nullptr, nullptr},
 };
 
 }  // namespace

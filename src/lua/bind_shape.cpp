@@ -2,6 +2,7 @@
 #include <lua.hpp>
 
 #include "core/names.hpp"
+#include "lua/adapters.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/fields.hpp"
 #include "lua/module.hpp"
@@ -48,13 +49,8 @@ int l_new(lua_State* L) {
 }
 
 // s:params() -> {eps_v =, eps_a =}
-int l_params(lua_State* L) {
-  shape_fields().push_params(L, keys_of(check<Shape>(L, 1)));
-  return 1;
-}
-
 const luaL_Reg kMethods[] = {
-    {"params", &lua_wrap<&l_params>},
+    params_method<Shape, &shape_fields, &keys_of>("params"),
     {nullptr, nullptr},
 };
 

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/names.hpp"
+#include "lua/adapters.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/fields.hpp"
 #include "lua/module.hpp"
@@ -192,26 +193,6 @@ int l_group(lua_State* L) {
     fail_input("group: unknown group '", name, "'", did_you_mean(name, names),
                "; groups: ", join_names(names));
   push_group(L, sim, name, std::move(sites));
-  return 1;
-}
-
-int l_n_sites(lua_State* L) {
-  lua_pushinteger(L, static_cast<lua_Integer>(check<SystemHandle>(L, 1).system.n_sites()));
-  return 1;
-}
-
-int l_n_adipocytes(lua_State* L) {
-  lua_pushinteger(L, static_cast<lua_Integer>(check<SystemHandle>(L, 1).system.bodies().size()));
-  return 1;
-}
-
-int l_step(lua_State* L) {
-  lua_pushinteger(L, static_cast<lua_Integer>(check<SystemHandle>(L, 1).system.step));
-  return 1;
-}
-
-int l_time(lua_State* L) {
-  lua_pushnumber(L, check<SystemHandle>(L, 1).system.time);
   return 1;
 }
 
@@ -425,10 +406,11 @@ int l_compute(lua_State* L) {
 const luaL_Reg kMethods[] = {
     {"place", &lua_wrap<&l_place>},
     {"group", &lua_wrap<&l_group>},
-    {"n_sites", &lua_wrap<&l_n_sites>},
-    {"n_adipocytes", &lua_wrap<&l_n_adipocytes>},
-    {"step", &lua_wrap<&l_step>},
-    {"time", &lua_wrap<&l_time>},
+    getter<SystemHandle, [](const SystemHandle& s) { return s.system.n_sites(); }>("n_sites"),
+    getter<SystemHandle, [](const SystemHandle& s) { return s.system.bodies().size(); }>(
+        "n_adipocytes"),
+    getter<SystemHandle, [](const SystemHandle& s) { return s.system.step; }>("step"),
+    getter<SystemHandle, [](const SystemHandle& s) { return s.system.time; }>("time"),
     {"box", &lua_wrap<&l_box>},
     {"packing", &lua_wrap<&l_packing>},
     {"temperature", &lua_wrap<&l_temperature>},

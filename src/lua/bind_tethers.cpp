@@ -4,6 +4,7 @@
 #include <lua.hpp>
 
 #include "core/names.hpp"
+#include "lua/adapters.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/fields.hpp"
 #include "lua/module.hpp"
@@ -84,11 +85,6 @@ int l_heterogeneity(lua_State* L) {
   return 0;
 }
 
-int l_count(lua_State* L) {
-  lua_pushinteger(L, static_cast<lua_Integer>(check<Tethers>(L, 1).force->tethers().size()));
-  return 1;
-}
-
 // t:K() -> stiffness; t:set_K(k)
 int l_K(lua_State* L) {
   lua_pushnumber(L, check<Tethers>(L, 1).force->stiffness());
@@ -128,7 +124,7 @@ int l_list(lua_State* L) {
 const luaL_Reg kMethods[] = {
     {"connect", &lua_wrap<&l_connect>},
     {"heterogeneity", &lua_wrap<&l_heterogeneity>},
-    {"count", &lua_wrap<&l_count>},
+    getter<Tethers, [](const Tethers& t) { return t.force->tethers().size(); }>("count"),
     {"K", &lua_wrap<&l_K>},
     {"set_K", &lua_wrap<&l_set_K>},
     {"list", &lua_wrap<&l_list>},

@@ -2,6 +2,7 @@
 #include <lua.hpp>
 
 #include "core/names.hpp"
+#include "lua/adapters.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/fields.hpp"
 #include "lua/module.hpp"
@@ -53,11 +54,6 @@ int l_new(lua_State* L) {
 }
 
 // w:params() -> {eps =, left =, right =}
-int l_params(lua_State* L) {
-  wall_fields().push_params(L, keys_of(check<Walls>(L, 1)));
-  return 1;
-}
-
 // w:reaction() -> left, right: x force the sites exert on each wall at the last evaluation.
 int l_reaction(lua_State* L) {
   const WallForce& w = *check<Walls>(L, 1).force;
@@ -68,7 +64,7 @@ int l_reaction(lua_State* L) {
 
 const luaL_Reg kMethods[] = {
     {"reaction", &lua_wrap<&l_reaction>},
-    {"params", &lua_wrap<&l_params>},
+    params_method<Walls, &wall_fields, &keys_of>("params"),
     {nullptr, nullptr},
 };
 

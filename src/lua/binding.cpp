@@ -5,10 +5,18 @@
 #include <vector>
 
 #include "core/names.hpp"
+#include "lua/adapters.hpp"
 #include "lua/error_object.hpp"
 #include "lua/kwargs.hpp"
 
 namespace invasim::lua {
+
+void push_value(lua_State* L, const std::string& v) {
+  protected_call(L, 0, 1, [&v](lua_State* S) noexcept {
+    lua_pushlstring(S, v.data(), v.size());
+    return 1;
+  });
+}
 
 void push_where(lua_State* L) {
   lua_Debug ar;

@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "io/checkpoint.hpp"
+#include "checkpoint/protocol_checkpoint.hpp"
 #include "lua/engine_types.hpp"
 #include "measure/time_correlator.hpp"
 
@@ -24,6 +24,9 @@ struct CheckpointParts {
 // Reads the keys system (required when need_system), dynamics (only with need_system),
 // tethers and correlator of kw.
 CheckpointParts read_checkpoint_parts(Kwargs& kw, bool need_system = true);
+
+// The engine objects of the parts (checkpoint/protocol_checkpoint.hpp).
+ProtocolObjects engine_objects(const CheckpointParts& p);
 
 // Writes the parts' sections, the protocol's `extra` string and the run's identity.
 void write_checkpoint_parts(CheckpointWriter& w, const CheckpointParts& p, std::string_view extra,

@@ -11,6 +11,11 @@
 
 namespace invasim::lua {
 
+// open_<part> of every bind_<part>.cpp.
+#define INVASIM_LUA_PART(part) void open_##part(lua_State* L);
+#include "lua_bindings.inc"
+#undef INVASIM_LUA_PART
+
 namespace {
 
 // invasim.threads(): the number of OpenMP threads a parallel loop will use.
@@ -69,28 +74,9 @@ int open_invasim(lua_State* L) {
   lua_setfield(L, -2, "clock");
   lua_pushcfunction(L, &l_hash);
   lua_setfield(L, -2, "hash");
-  open_params(L);
-  open_progress(L);
-  open_system(L);
-  open_group(L);
-  open_contacts(L);
-  open_walls(L);
-  open_shape(L);
-  open_tethers(L);
-  open_method(L);
-  open_dynamics(L);
-  open_simulation(L);
-  open_fire(L);
-  open_ramp(L);
-  open_lipolysis(L);
-  open_measure(L);
-  open_correlator(L);
-  open_io(L);
-  open_json(L);
-  open_run_dir(L);
-  open_checkpoint(L);
-  open_compression(L);
-  open_keywords(L);
+#define INVASIM_LUA_PART(part) open_##part(L);
+#include "lua_bindings.inc"
+#undef INVASIM_LUA_PART
   return 1;
 }
 

@@ -9,7 +9,7 @@
 #include "checkpoint/correlator_sections.hpp"
 #include "checkpoint/state_checkpoint.hpp"
 #include "core/params.hpp"
-#include "io/checkpoint.hpp"
+#include "checkpoint/checkpoint_file.hpp"
 #include "io/crc32.hpp"
 #include "io/lua_data.hpp"
 #include "io/vtk_format.hpp"

@@ -10,7 +10,7 @@
 #include "../io/io_test_support.hpp"
 #include "checkpoint/state_checkpoint.hpp"
 #include "io/atomic_file.hpp"
-#include "io/checkpoint.hpp"
+#include "checkpoint/checkpoint_file.hpp"
 #include "io/crc32.hpp"
 #include "io/lua_data.hpp"
 #include "io/regular_file.hpp"

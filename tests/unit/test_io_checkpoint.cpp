@@ -10,7 +10,7 @@
 #include "core/fnv1a.hpp"
 #include "integrate/dynamics.hpp"
 #include "io/atomic_file.hpp"
-#include "io/checkpoint.hpp"
+#include "checkpoint/checkpoint_file.hpp"
 #include "io/crc32.hpp"
 #include "test_support.hpp"
 

@@ -1,4 +1,4 @@
-#include "io/checkpoint.hpp"
+#include "checkpoint/checkpoint_file.hpp"
 
 #include <bit>
 #include <cstdio>

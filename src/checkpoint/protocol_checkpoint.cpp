@@ -1,0 +1,48 @@
+#include "checkpoint/protocol_checkpoint.hpp"
+
+#include "checkpoint/correlator_sections.hpp"
+#include "checkpoint/dynamics_sections.hpp"
+#include "checkpoint/state_checkpoint.hpp"
+#include "core/errors.hpp"
+
+namespace invasim {
+
+void write_protocol_checkpoint(CheckpointWriter& out, const ProtocolObjects& objects,
+                               const ProtocolRecord& record) {
+  write_system(out, *objects.system);
+  if (objects.dynamics) write_dynamics(out, *objects.dynamics);
+  if (objects.tethers) write_tethers(out, *objects.tethers);
+  if (objects.correlator) write_correlator(out, *objects.correlator);
+  out.put_string("extra", record.extra);
+  if (record.run_id) out.put_string("run.id", *record.run_id);
+  if (record.run_parameters) out.put_string("run.parameters", *record.run_parameters);
+}
+
+std::string read_protocol_checkpoint(const CheckpointReader& in, const std::string& path,
+                                     const ProtocolObjects& objects,
+                                     std::optional<std::uint64_t> seed) {
+  System restored = read_system(in);
+  System& sys = *objects.system;
+  if (restored.n_sites() != sys.n_sites() || restored.bodies().size() != sys.bodies().size())
+    fail_input("the checkpoint '", path, "' holds ", restored.n_sites(), " sites and ",
+               restored.bodies().size(), " adipocytes, this System ", sys.n_sites(), " sites and ",
+               sys.bodies().size(), " adipocytes (load into a System built with the same sizes)");
+  sys = std::move(restored);
+  if (seed) sys.set_seed(*seed);
+  if (objects.tethers) {
+    objects.tethers->clear();
+    read_tethers(in, sys, *objects.tethers);
+  }
+  if (objects.correlator) read_correlator(in, *objects.correlator);
+  if (objects.dynamics) read_dynamics(in, *objects.dynamics);
+  return in.get_string("extra");
+}
+
+ProtocolRecord checkpoint_run(const CheckpointReader& in) {
+  ProtocolRecord record;
+  if (in.has("run.id")) record.run_id = in.get_string("run.id");
+  if (in.has("run.parameters")) record.run_parameters = in.get_string("run.parameters");
+  return record;
+}
+
+}  // namespace invasim
