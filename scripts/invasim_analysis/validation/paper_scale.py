@@ -141,9 +141,14 @@ def fig4b(sets, out, invasim):
     agreement (the reduced figure's inset row)."""
     starts, curve = sets[0], sets[1] if len(sets) > 1 else None
     if not curve or len({j.sp.get("f0") for j in curve}) < 2:
-        raise workspace.InputError("A_n needs the normalisation of the beta = 1e-2, tau_p = 25 "
-                              "curve at the paper's scale (%s): fewer than two of its state "
-                              "points have rows" % (PREFIX + SWEEPS["fig4b"][1]))
+        why = ("A_n needs the normalisation of the beta = 1e-2, tau_p = 25 curve at the paper's "
+               "scale (%s): fewer than two of its state points have rows"
+               % (PREFIX + SWEEPS["fig4b"][1]))
+        inset = _inset_in_ratio(starts, why)
+        if inset is None:
+            raise workspace.InputError(why)
+        an = verdict.row("fig4b_An_at_0.3", "n/a", verdict.NO_DATA, why)
+        return [an, inset], [], {"starts_in_ratio": inset["data"]}, None
     rec = reduced_fig4b(curve, out, invasim, inset_jobs=starts)
     extremes = rec["numbers"]["normalisation"]
     pts = [normalise.scale_like({"A_t": j.mean("A_t")[0], "A_t_max": j.mean("A_t_max")[0],
@@ -166,6 +171,43 @@ def fig4b(sets, out, invasim):
     numbers = {"A_n_runs": vals, "A_n": mean, "A_n_error": err, "x": x,
                "starts": rec["numbers"].get("inset"), "normalisation": extremes}
     return rows, rec["images"], numbers, extremes
+
+
+def _inset_in_ratio(starts, why_no_an):
+    """The inset's row before the paper-scale curve exists, from A_t/A_t^max. A_n = (A_t/A_t^max
+    - lo) / (hi - lo) with 0 <= lo < hi <= 1, so a difference of the starts in A_n is at least
+    their difference in A_t/A_t^max: beyond the tolerance (0.1 + 2 errors) here, the starts
+    disagree in A_n too. A smaller difference cannot be judged yet (None)."""
+    means = {}
+    for (start,), reps in workspace.group(starts, ["start"]).items():
+        vals = [j.mean("A_ratio")[0] for j in reps]
+        if len(vals) < 2 or not all(verdict.finite(v) for v in vals):
+            return None
+        m = sum(vals) / len(vals)
+        means[str(start)] = (m, math.sqrt(sum((v - m) ** 2 for v in vals) / (len(vals) - 1)
+                                          / len(vals)), len(vals))
+    if set(means) != {"demixed", "mixed"}:
+        return None
+    d = means["mixed"][0] - means["demixed"][0]
+    e = math.hypot(means["mixed"][1], means["demixed"][1])
+    tol = verdict.paper()["fig4b_inset_starts"]["tolerance"]
+    if abs(d) - 2 * e <= tol:
+        return None
+    x = sum(x_measured(j) for j in starts) / len(starts)
+    # Each run's own steadiness; the starts' disagreement, the criterion's second half, is
+    # what this row reports.
+    runs_unsteady = [r for r in steady.point_steadiness(starts)[1] if not r.startswith("the starts")]
+    return verdict.row(
+        "fig4b_inset_starts", "A_t/A_t^max = %s (de-mixed, %d runs), %s (mixed, %d runs) at %s "
+        "(t = 5e5)" % (verdict.fmt(*means["demixed"][:2]), means["demixed"][2],
+                       verdict.fmt(*means["mixed"][:2]), means["mixed"][2],
+                       verdict.fmt_temperature(x)), verdict.DISAGREES,
+        "difference in A_t/A_t^max %s, beyond 0.1 + 2 errors; the difference in A_n is at least "
+        "as large (A_n rescales A_t/A_t^max by 1/(max - min) >= 1), so the starts disagree "
+        "whatever the normalisation (%s); every run steady by its own quarters unless said"
+        % (verdict.fmt(d, e), why_no_an),
+        data={"means": {k: list(v) for k, v in means.items()}, "difference": d, "error": e},
+        unsteady=runs_unsteady)
 
 
 def fig5(sets, out, invasim):
