@@ -124,6 +124,7 @@ void ContactForce::add_forces_impl(System& sys, RowScratch& scratch) {
 #pragma omp single nowait
       {
         partition_sites(sys, list_, threads, owner_);
+        ++partitions_;
         if (plans_.size() < std::size_t(threads)) plans_.resize(std::size_t(threads));
         rank_.resize(n);
         plan_builds_ = list_.builds();

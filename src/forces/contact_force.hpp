@@ -69,6 +69,13 @@ class ContactForce : public Force {
   void invalidate_caches() override { list_.invalidate(); }
   VerletList& neighbor_list() { return list_; }
   void set_kernel(ContactKernel kernel) { kernel_ = kernel; }
+  // The half-row kernel's slabs (partition_sites), once it has made one.
+  const std::vector<int>* site_owner(std::uint64_t& version, int& parts) const override {
+    if (kernel_ != ContactKernel::kHalfRows || partitions_ == 0) return nullptr;
+    version = partitions_;
+    parts = plan_threads_;
+    return &owner_;
+  }
 
  private:
   // The kernel, specialised for cohesion and for the requested energy and virial.
@@ -88,6 +95,7 @@ class ContactForce : public Force {
   std::vector<HalfRowsPlan> plans_;
   std::uint64_t plan_builds_ = ~std::uint64_t(0), planned_builds_ = ~std::uint64_t(0);
   int plan_threads_ = 0, planned_threads_ = 0;
+  std::uint64_t partitions_ = 0;  // partition_sites calls so far (site_owner's version)
 };
 
 }  // namespace invasim

@@ -54,6 +54,12 @@ bool ForceField::supports_team() const {
   return true;
 }
 
+const std::vector<int>* ForceField::site_owner(std::uint64_t& version, int& parts) const {
+  for (const auto& t : terms_)
+    if (const std::vector<int>* owner = t->site_owner(version, parts)) return owner;
+  return nullptr;
+}
+
 void ForceField::prepare_team_step(System& sys, const ForceFlags& flags) {
   results_.assign(terms_.size(), ForceResult{});
   for (const auto& t : terms_) t->prepare_team(sys, flags);

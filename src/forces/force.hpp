@@ -46,6 +46,14 @@ class Force {
   virtual bool supports_team() const { return false; }
   virtual void prepare_team(System&, const ForceFlags&) {}
   virtual ForceResult add_forces_team(System& sys, const ForceFlags& flags);
+  // The thread that owns each site (by storage slot) in the term's team evaluation, where the
+  // term partitions the sites among the threads (the contact kernel's slabs), else nullptr;
+  // `version` changes with each new partition and `parts` is its number of threads. Other
+  // per-site loops of a step follow it, so that a site's data stays in one core's cache. Read
+  // only between the term's evaluations (it changes inside them).
+  virtual const std::vector<int>* site_owner(std::uint64_t& /*version*/, int& /*parts*/) const {
+    return nullptr;
+  }
 
  protected:
   // add_forces of a team-capable term: prepare_team, then add_forces_team in a region of its own.
@@ -80,6 +88,8 @@ class ForceField {
   // it), then every thread of the team calls compute_team, which ends with the hook `after` (no
   // barrier after it); team_result() then gives the leader the total, as compute returns it.
   bool supports_team() const;
+  // The first term's site partition (Force::site_owner), or nullptr.
+  const std::vector<int>* site_owner(std::uint64_t& version, int& parts) const;
   void prepare_team_step(System& sys, const ForceFlags& flags);
   void compute_team(System& sys, const ForceFlags& flags, const TeamHooks& hooks);
   ForceResult team_result() const;

@@ -1,6 +1,8 @@
 #include "integrate/dynamics.hpp"
 #include "core/parallel.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -129,18 +131,27 @@ void Method::randomize_orientations(System& sys, std::uint64_t stream_step) cons
   }
 }
 
+namespace {
+inline void drift_site(Sites& s, const Box& box, int i, double dt) {
+  s.vel[i] += 0.5 * dt / s.mass[i] * s.force[i];
+  s.pos[i] += dt * s.vel[i];
+  box.wrap(s.pos[i], s.image[i]);
+  s.force[i].setZero();
+}
+}  // namespace
+
 void Method::drift_team(System& sys, double dt, const GroupSlots& slots) const {
   Sites& s = sys.sites();
   const Box& box = sys.box();
   const int n = int(slots.slot.size());
 #pragma omp for schedule(static) nowait
-  for (int k = 0; k < n; ++k) {
-    const int i = slots.slot[k];
-    s.vel[i] += 0.5 * dt / s.mass[i] * s.force[i];
-    s.pos[i] += dt * s.vel[i];
-    box.wrap(s.pos[i], s.image[i]);
-    s.force[i].setZero();
-  }
+  for (int k = 0; k < n; ++k) drift_site(s, box, slots.slot[k], dt);
+}
+
+void Method::drift_slots(System& sys, double dt, const std::vector<int>& slots) const {
+  Sites& s = sys.sites();
+  const Box& box = sys.box();
+  for (int i : slots) drift_site(s, box, i, dt);
 }
 
 namespace {
@@ -175,9 +186,7 @@ void Method::add_drive(System& sys, double dt, const GroupSlots& slots) const {
 }
 
 namespace {
-// Cells per task of the kick: fixed, so that the SIMD lane a cell's orientation update runs in
-// (and so its rounding) does not depend on the number of threads.
-constexpr int kKickChunk = 128;
+constexpr int kKickChunk = Method::kKickChunk;
 static_assert(kKickChunk <= RandomKey::kBatch, "a kick chunk's thermal draws are one batch");
 
 // The orientation update of the cells in slots idx[0, m), m <= kKickChunk, of permanent indices
@@ -219,31 +228,38 @@ void rotate_chunk(Sites& s, const int* idx, const int* site, int m, double dt, d
 }
 }  // namespace
 
-void Method::kick_team(System& sys, double dt, std::uint64_t step, const MethodParams& p,
-                       const GroupSlots& slots) const {
+void Method::kick_chunk(System& sys, double dt, std::uint64_t step, const MethodParams& p,
+                        const GroupSlots& slots, int c) const {
   Sites& s = sys.sites();
   const double noise = noise_amplitude(p, dt);
   const std::uint64_t seed = sys.seed();
-  const int n = int(slots.slot.size()), chunks = (n + kKickChunk - 1) / kKickChunk;
+  const int n = int(slots.slot.size());
   const int* slot = slots.slot.data();
   const int* site = slots.site.data();
+  const int lo = c * kKickChunk, hi = std::min(n, lo + kKickChunk);
+  if (p.f0 > 0.0) rotate_chunk(s, slot + lo, site + lo, hi - lo, dt, p.tau_p, seed, step);
+  // The chunk's thermal draws in vector lanes (normal3's numbers).
+  double g[3][RandomKey::kBatch];
+  if (noise > 0.0) RandomKey::normal3_batch(seed, step, site + lo, hi - lo, RngStream::kThermal, g);
+  for (int k = lo; k < hi; ++k) {
+    const int i = slot[k];
+    const Vec3 gk = noise > 0.0 ? Vec3(g[0][k - lo], g[1][k - lo], g[2][k - lo]) : Vec3::Zero();
+    s.force[i] += drive_force(p, noise, s, i, gk);
+    s.vel[i] += 0.5 * dt / s.mass[i] * s.force[i];
+  }
+}
+
+int Method::kick_chunks(const GroupSlots& slots) {
+  return int((slots.slot.size() + kKickChunk - 1) / kKickChunk);
+}
+
+void Method::kick_team(System& sys, double dt, std::uint64_t step, const MethodParams& p,
+                       const GroupSlots& slots) const {
+  const int chunks = kick_chunks(slots);
   // Dynamic: the random numbers make this the heaviest of the light loops, and a thread
   // slowed by another process on its core takes fewer chunks.
 #pragma omp for schedule(dynamic, 1) nowait
-  for (int c = 0; c < chunks; ++c) {
-    const int lo = c * kKickChunk, hi = std::min(n, lo + kKickChunk);
-    if (p.f0 > 0.0) rotate_chunk(s, slot + lo, site + lo, hi - lo, dt, p.tau_p, seed, step);
-    // The chunk's thermal draws in vector lanes (normal3's numbers).
-    double g[3][RandomKey::kBatch];
-    if (noise > 0.0)
-      RandomKey::normal3_batch(seed, step, site + lo, hi - lo, RngStream::kThermal, g);
-    for (int k = lo; k < hi; ++k) {
-      const int i = slot[k];
-      const Vec3 gk = noise > 0.0 ? Vec3(g[0][k - lo], g[1][k - lo], g[2][k - lo]) : Vec3::Zero();
-      s.force[i] += drive_force(p, noise, s, i, gk);
-      s.vel[i] += 0.5 * dt / s.mass[i] * s.force[i];
-    }
-  }
+  for (int c = 0; c < chunks; ++c) kick_chunk(sys, dt, step, p, slots, c);
 }
 
 namespace {
@@ -338,6 +354,7 @@ void Dynamics::sync_slots(const System& sys) {
   slots_n_ = sys.n_sites();
   slots_layout_ = sys.layout_id();
   slots_valid_ = true;
+  ++slots_version_;
 }
 
 void Dynamics::begin_step_serial(System& sys) {
@@ -350,28 +367,77 @@ void Dynamics::begin_step_serial(System& sys) {
   // A new engine order at every multiple of sort_every (a function of the step and the state).
   if (sys.engine_layout() && sys.step % sort_every_ == 0) sys.set_engine_order(spatial_order(sys));
   sync_slots(sys);
+  const int team = std::max(omp_get_max_threads(), omp_get_num_threads());
+  if (thread_slots_.size() < std::size_t(team)) thread_slots_.resize(std::size_t(team));
   next_step_ = sys.step + 1;
   next_params_.clear();
   for (const auto& m : methods_) next_params_.push_back(m->params_at(next_step_));
 }
 
-TeamHooks Dynamics::step_hooks(System& sys) {
+void Dynamics::drift_own_sites(System& sys, const ForceField& ff) {
+  std::uint64_t version = 0;
+  int parts = 0;
+  const std::vector<int>* owner = ff.site_owner(version, parts);
+  const int team = omp_get_num_threads(), me = omp_get_thread_num();
+  // Every thread of the team takes the same branch (the same owner, version and sizes).
+  if (!owner || team < 2 || parts != team || owner->size() != sys.n_sites() ||
+      std::size_t(me) >= thread_slots_.size()) {
+    if (std::size_t(me) < thread_slots_.size()) thread_slots_[std::size_t(me)].active = false;
+    for (std::size_t k = 0; k < methods_.size(); ++k) methods_[k]->drift_team(sys, dt_, slots_[k]);
+    return;
+  }
+  ThreadSlots& mine = thread_slots_[std::size_t(me)];
+  if (mine.partition != version || mine.slots != slots_version_) {
+    mine.of_method.resize(methods_.size());
+    mine.chunks_of_method.resize(methods_.size());
+    for (std::size_t k = 0; k < methods_.size(); ++k) {
+      const std::vector<int>& slot = slots_[k].slot;
+      mine.of_method[k].clear();
+      for (int i : slot)
+        if ((*owner)[std::size_t(i)] == me) mine.of_method[k].push_back(i);
+      // A kick chunk goes to the owner of its first site.
+      mine.chunks_of_method[k].clear();
+      for (int c = 0; c < Method::kick_chunks(slots_[k]); ++c)
+        if ((*owner)[std::size_t(slot[std::size_t(c) * Method::kKickChunk])] == me)
+          mine.chunks_of_method[k].push_back(c);
+    }
+    mine.partition = version;
+    mine.slots = slots_version_;
+  }
+  mine.active = true;
+  for (std::size_t k = 0; k < methods_.size(); ++k)
+    methods_[k]->drift_slots(sys, dt_, mine.of_method[k]);
+}
+
+void Dynamics::kick_own_sites(System& sys) {
+  const int me = omp_get_thread_num();
+  // The drift of this step chose for all threads alike (drift_own_sites).
+  if (omp_get_num_threads() > 1 && std::size_t(me) < thread_slots_.size() &&
+      thread_slots_[std::size_t(me)].active) {
+    const ThreadSlots& mine = thread_slots_[std::size_t(me)];
+    for (std::size_t k = 0; k < methods_.size(); ++k)
+      for (int c : mine.chunks_of_method[k])
+        methods_[k]->kick_chunk(sys, dt_, next_step_, next_params_[k], slots_[k], c);
+    return;
+  }
+  for (std::size_t k = 0; k < methods_.size(); ++k)
+    methods_[k]->kick_team(sys, dt_, next_step_, next_params_[k], slots_[k]);
+}
+
+TeamHooks Dynamics::step_hooks(System& sys, const ForceField& ff) {
   // Drift and kick run inside the force field's parallel region (docs/performance.md
   // "The parallel step"), not in regions of their own.
   TeamHooks hooks;
   // The drift zeroes the forces of its sites; the sites of no method are zeroed alongside.
   hooks.zeroes_forces = true;
-  hooks.before = [this, &sys] {
-    for (std::size_t k = 0; k < methods_.size(); ++k) methods_[k]->drift_team(sys, dt_, slots_[k]);
+  hooks.before = [this, &sys, &ff] {
+    drift_own_sites(sys, ff);
     auto& f = sys.sites().force;
     const int n_free = int(free_sites_.size());
 #pragma omp for schedule(static) nowait
     for (int k = 0; k < n_free; ++k) f[free_sites_[k]].setZero();
   };
-  hooks.after = [this, &sys] {
-    for (std::size_t k = 0; k < methods_.size(); ++k)
-      methods_[k]->kick_team(sys, dt_, next_step_, next_params_[k], slots_[k]);
-  };
+  hooks.after = [this, &sys] { kick_own_sites(sys); };
   return hooks;
 }
 
@@ -392,7 +458,7 @@ void Dynamics::step(System& sys, ForceField& ff) {
   const ThreadCountScope threads(step_threads_.begin_step());
   const auto start = std::chrono::steady_clock::now();
   begin_step_serial(sys);
-  ff.compute(sys, {}, nullptr, step_hooks(sys));
+  ff.compute(sys, {}, nullptr, step_hooks(sys, ff));
   end_step_serial(sys);
   step_threads_.end_step(
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
@@ -401,7 +467,7 @@ void Dynamics::step(System& sys, ForceField& ff) {
 std::uint64_t Dynamics::run_team(System& sys, ForceField& ff, std::uint64_t max_steps,
                                  int threads) {
   using Clock = std::chrono::steady_clock;
-  const TeamHooks hooks = step_hooks(sys);
+  const TeamHooks hooks = step_hooks(sys, ff);
   std::uint64_t done = 0;
   std::exception_ptr error;
   // The leader's two decisions per step, each read by every thread after the barrier that

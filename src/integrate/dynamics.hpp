@@ -68,9 +68,19 @@ class Method {
   // v_h = v + dt/2 F/m; x += v_h dt (positions wrapped); then F = 0 (the next evaluation adds
   // into it).
   void drift_team(System& sys, double dt, const GroupSlots& slots) const;
+  // The same drift on the given slots only (a thread's share, by the force field's site
+  // owners), without worksharing.
+  void drift_slots(System& sys, double dt, const std::vector<int>& slots) const;
   // Orientation update and drive of step `step` with parameters p; then v = v_h + dt/2 F/m.
+  // In chunks of kKickChunk slots, fixed so that the SIMD lane a cell's orientation update
+  // runs in (and so its rounding) does not depend on the number of threads: kick_team shares
+  // them with an orphaned `omp for nowait`, kick_chunk does chunk c alone.
+  static constexpr int kKickChunk = 128;
+  static int kick_chunks(const GroupSlots& slots);
   void kick_team(System& sys, double dt, std::uint64_t step, const MethodParams& p,
                  const GroupSlots& slots) const;
+  void kick_chunk(System& sys, double dt, std::uint64_t step, const MethodParams& p,
+                  const GroupSlots& slots, int c) const;
   // Adds -gamma v + drive to the site forces (used to start a run from the current v).
   void add_drive(System& sys, double dt, const GroupSlots& slots) const;
 
@@ -133,7 +143,13 @@ class Dynamics {
   // step), the drift and kick as the force field's hooks (every thread of the team), the
   // serial one after (step count, ramps, piston force).
   void begin_step_serial(System& sys);
-  TeamHooks step_hooks(System& sys);
+  TeamHooks step_hooks(System& sys, const ForceField& ff);
+  // The drift and the kick of the calling thread of the team: its share of every method's
+  // slots (the kick: the chunks whose first slot it owns) where the force field partitions the
+  // sites for this team (ForceField::site_owner), else the methods' shared loops. Any share
+  // gives the same results; this one keeps a site's data in its owner's cache.
+  void drift_own_sites(System& sys, const ForceField& ff);
+  void kick_own_sites(System& sys);
   void end_step_serial(System& sys);
   // Up to max_steps steps with `threads` threads in one parallel region, while the measured
   // choice keeps the team; returns the steps made (at least 1, or throws).
@@ -155,6 +171,15 @@ class Dynamics {
   std::uint64_t slots_layout_ = 0;
   std::size_t slots_n_ = 0;
   bool slots_valid_ = false;
+  std::uint64_t slots_version_ = 0;  // incremented whenever sync_slots rebuilds slots_
+  // Each thread's share of every method's slots for the drift, for one site partition and
+  // one version of slots_ (rebuilt by the thread itself when either changed).
+  struct ThreadSlots {
+    std::uint64_t partition = ~std::uint64_t(0), slots = ~std::uint64_t(0);
+    std::vector<std::vector<int>> of_method, chunks_of_method;
+    bool active = false;  // this step's drift used these shares (so does its kick)
+  };
+  std::vector<ThreadSlots> thread_slots_;
   std::uint64_t sort_every_ = 1000;
 };
 
