@@ -106,8 +106,7 @@ int l_load(lua_State* L) {
     if (p.dyn) {
       prepare_dynamics(*p.dyn, p.sim, "load_checkpoint");  // links the pressure wall
       p.dyn->dynamics.mark_prepared();
-      p.dyn->last = p.sim;
-      p.dyn->last_revision = sim.revision;
+      p.dyn->record.ran_on(p.sim);
     }
   });
   return push_results(L, 1, [&extra](lua_State* S) noexcept {

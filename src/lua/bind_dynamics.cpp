@@ -54,7 +54,7 @@ PressureWall* prepare_dynamics(DynamicsHandle& d, const std::shared_ptr<SystemHa
       fail_input(what, ": the pressure wall moves the left wall, but its Walls have left = false");
     wall->walls = walls->force;
   }
-  if (d.last.lock() != sim || d.last_revision != sim->revision) d.dynamics.invalidate();
+  d.record.check(d.dynamics, sim);
   return wall;
 }
 
@@ -255,8 +255,7 @@ int l_run(lua_State* L) {
   const RunResult result =
       engine_call("run", [&] { return run.run(static_cast<std::uint64_t>(n)); });
   sim->changed();
-  d->last = sim;
-  d->last_revision = sim->revision;
+  d->record.ran_on(sim);
   lua_pushinteger(L, static_cast<lua_Integer>(result.steps));  // the caller checks
   return 1;                                                    // invasim.interrupted()
 }

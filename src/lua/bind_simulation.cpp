@@ -232,8 +232,7 @@ int l_run(lua_State* L) {
   for (const auto& op : s->lua_ops) op->set_thread(nullptr);
   s->run.set_progress({});
   s->system->changed();
-  s->dyn->last = s->system;
-  s->dyn->last_revision = s->system->revision;
+  s->dyn->record.ran_on(s->system);
   lua_pushinteger(L, static_cast<lua_Integer>(result.steps));
   if (result.stop_signal)
     lua_pushstring(L, stop_signal_name(result.stop_signal));

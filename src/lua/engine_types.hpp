@@ -28,6 +28,7 @@
 #include "integrate/lipolysis.hpp"
 #include "lua/binding.hpp"
 #include "lua/kwargs.hpp"
+#include "run/model.hpp"
 
 namespace invasim {
 class Progress;  // core/progress.hpp
@@ -55,17 +56,12 @@ struct Walls : BoundForce<WallForce> {
 using ForceHandle = std::variant<std::shared_ptr<Contacts>, std::shared_ptr<Walls>,
                                  std::shared_ptr<Shape>, std::shared_ptr<Tethers>>;
 
-// The System userdata: engine state, its force field, and the Lua handles of its forces.
-struct SystemHandle {
-  SystemHandle(const Box& box, std::uint64_t seed) : system(box, seed) {}
-  System system;
-  ForceField forces;
+// The System userdata: the engine's Model (state, force field, revision: run/model.hpp) and
+// the Lua handles of its forces. Every binding call that changes the state, the forces or the
+// site forces outside a Dynamics run calls changed().
+struct SystemHandle : Model {
+  SystemHandle(const Box& box, std::uint64_t seed) : Model(box, seed) {}
   std::vector<ForceHandle> handles;  // in the order added (same as forces.terms())
-  // Bumped by every binding call that changes the state, the forces or the site forces
-  // outside a Dynamics run, and after each run: a Dynamics re-prepares (re-evaluates forces
-  // and drive) when the revision it last left differs.
-  std::uint64_t revision = 0;
-  void changed() { ++revision; }
 };
 
 // A set of sites of one System (a snapshot of indices, taken when the group is made).
@@ -87,9 +83,8 @@ struct DynamicsHandle {
   explicit DynamicsHandle(double dt) : dynamics(dt) {}
   Dynamics dynamics;
   std::vector<std::shared_ptr<MethodHandle>> methods;
-  std::shared_ptr<Walls> walls;      // walls = given to pressure_wall{}, else resolved at run
-  std::weak_ptr<SystemHandle> last;  // system of the last run and its revision after it
-  std::uint64_t last_revision = 0;
+  std::shared_ptr<Walls> walls;  // walls = given to pressure_wall{}, else resolved at run
+  RunRecord record;              // the System of the last run and its revision after it
 };
 
 #define INVASIM_LUA_TYPE(T, NAME)                             \

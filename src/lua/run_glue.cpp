@@ -45,8 +45,7 @@ void LuaFunctionOperation::apply(invasim::Simulation& sim) {
     prepare_dynamics(*dynamics_, system_, name_);
     sim.state_changed();
   }
-  dynamics_->last = system_;
-  dynamics_->last_revision = system_->revision;
+  dynamics_->record.ran_on(system_);
   if (stop) sim.request_stop();
 }
 
