@@ -7,8 +7,8 @@
 #include <memory>
 #include <string>
 
-#include "integrate/lipolysis.hpp"
 #include "checkpoint/checkpoint_file.hpp"
+#include "integrate/lipolysis.hpp"
 #include "io/snapshot_writer.hpp"
 #include "measure/time_correlator.hpp"
 #include "run/operation.hpp"

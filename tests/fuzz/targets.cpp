@@ -6,10 +6,10 @@
 #include <stdexcept>
 
 #include "../io/io_test_support.hpp"
+#include "checkpoint/checkpoint_file.hpp"
 #include "checkpoint/correlator_sections.hpp"
 #include "checkpoint/state_checkpoint.hpp"
 #include "core/params.hpp"
-#include "checkpoint/checkpoint_file.hpp"
 #include "io/crc32.hpp"
 #include "io/lua_data.hpp"
 #include "io/vtk_format.hpp"

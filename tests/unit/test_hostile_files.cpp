@@ -8,9 +8,9 @@
 #include <ctime>
 
 #include "../io/io_test_support.hpp"
+#include "checkpoint/checkpoint_file.hpp"
 #include "checkpoint/state_checkpoint.hpp"
 #include "io/atomic_file.hpp"
-#include "checkpoint/checkpoint_file.hpp"
 #include "io/crc32.hpp"
 #include "io/lua_data.hpp"
 #include "io/regular_file.hpp"

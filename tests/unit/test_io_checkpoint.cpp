@@ -6,11 +6,11 @@
 #include <fstream>
 
 #include "../io/io_test_support.hpp"
+#include "checkpoint/checkpoint_file.hpp"
 #include "checkpoint/state_checkpoint.hpp"
 #include "core/fnv1a.hpp"
 #include "integrate/dynamics.hpp"
 #include "io/atomic_file.hpp"
-#include "checkpoint/checkpoint_file.hpp"
 #include "io/crc32.hpp"
 #include "test_support.hpp"
 
