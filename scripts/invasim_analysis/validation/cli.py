@@ -18,7 +18,7 @@ Usage:
   validation.py paper ROOT -o DIR [--plan plan_paper_scale.json] [--invasim PATH]
       the paper-scale records from the workspaces ROOT/paper_<sweep file> of
       protocols/sweeps/paper_scale/ (fig3_passive_slices, fig4a_passive, fig4b_starts,
-      fig5_cohesive), read as they are, points done, running or pending: DIR/paper_fig3.json,
+      fig4b_starts_hot, fig5_cohesive), read as they are, points done, running or pending: DIR/paper_fig3.json,
       paper_fig4a.json, paper_fig4b.json, paper_fig5.json (rows with verdicts, a running run's
       values marked provisional; each run's progress and steadiness), the figures and the
       A_n(t) panels (DIR/<figure>_runs.png), and DIR/paper_cost.json (core-hours used and
