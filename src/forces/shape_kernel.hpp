@@ -1,9 +1,10 @@
 #pragma once
 // The shape energy of one adipocyte and its gradient (docs/model.md, "Bodies") with the faces
-// in vector lanes: one pass over the faces computes every per-face quantity into arrays, then
-// each vertex sums its corners' terms (volume and area gradient together) through the
-// topology's corner lists (MeshTopology::corners), in face order. The
-// order of every sum is fixed by the topology, so results do not depend on the thread count.
+// in vector lanes: a first pass over the faces gathers their corners into arrays and sums the
+// volume, a second computes each corner's gradient (volume and area parts together), then
+// each vertex sums its corners through the topology's corner lists (MeshTopology::corners), in
+// face order. The order of every sum is fixed by the topology, so results do not depend on
+// the thread count (bodies are evaluated one per thread).
 // Tests: "shape kernel" (against a plain one-face-at-a-time sum) and the finite-difference
 // and Hessian tests of tests/unit/test_forces.cpp.
 #include <vector>
