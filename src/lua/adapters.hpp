@@ -2,10 +2,10 @@
 // Method adapters: a bound type's one-value methods as entries of its method list, so that a
 // getter is a line, not a function (binding.hpp describes the rest of a binding):
 //
-//   const luaL_Reg kMethods[] = {
+//   define_type<Group>(L, {
 //       getter<Group, [](const Group& g) { return g.sites.size(); }>("size"),
-//       params_method<Fire, &fire_table, [](const Fire& f) { return f.params(); }>("params"),
-//       {nullptr, nullptr}};
+//       {"name", &lua_wrap<&l_name>},
+//   });
 //
 // Each entry is wrapped with lua_wrap (errors become Lua errors with the caller's location).
 #include <concepts>

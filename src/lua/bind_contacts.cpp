@@ -96,17 +96,15 @@ int l_check(lua_State* L) {
   return 1;
 }
 
-const luaL_Reg kMethods[] = {
-    params_method<Contacts, &contact_fields, [](const Contacts& c) { return c.force->params(); }>(
-        "params"),
-    {"set", &lua_wrap<&l_set>},
-    {nullptr, nullptr},
-};
-
 }  // namespace
 
 void open_contacts(lua_State* L) {
-  define_type<Contacts>(L, kMethods);
+  define_type<Contacts>(
+      L, {
+             params_method<Contacts, &contact_fields,
+                           [](const Contacts& c) { return c.force->params(); }>("params"),
+             {"set", &lua_wrap<&l_set>},
+         });
   set_constructor(L, "Contacts", &lua_wrap<&l_new>, contact_fields().infos());
   set_static_function(L, "Contacts", "check", &lua_wrap<&l_check>);
 }

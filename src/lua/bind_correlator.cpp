@@ -121,22 +121,6 @@ int l_result(lua_State* L) {
   });
 }
 
-const luaL_Reg kMethods[] = {
-    {"sample", &lua_wrap<&l_sample>},
-    {"result", &lua_wrap<&l_result>},
-    getter<CorrelatorHandle, [](const CorrelatorHandle& c) { return c.correlator.tau_d(); }>(
-        "tau_d"),
-    getter<CorrelatorHandle,
-           [](const CorrelatorHandle& c) { return c.correlator.tau_d_standard(); }>(
-        "tau_d_standard"),
-    getter<CorrelatorHandle, [](const CorrelatorHandle& c) { return c.correlator.tau_r(); }>(
-        "tau_r"),
-    getter<CorrelatorHandle, [](const CorrelatorHandle& c) { return c.correlator.samples(); }>(
-        "samples"),
-    {"params", &lua_wrap<&l_params>},
-    {nullptr, nullptr},
-};
-
 }  // namespace
 
 std::shared_ptr<TimeCorrelator> shared_correlator(lua_State* L, int index) {
@@ -146,7 +130,22 @@ std::shared_ptr<TimeCorrelator> shared_correlator(lua_State* L, int index) {
 }
 
 void open_correlator(lua_State* L) {
-  define_type<CorrelatorHandle>(L, kMethods);
+  define_type<CorrelatorHandle>(
+      L,
+      {
+          {"sample", &lua_wrap<&l_sample>},
+          {"result", &lua_wrap<&l_result>},
+          getter<CorrelatorHandle, [](const CorrelatorHandle& c) { return c.correlator.tau_d(); }>(
+              "tau_d"),
+          getter<CorrelatorHandle,
+                 [](const CorrelatorHandle& c) { return c.correlator.tau_d_standard(); }>(
+              "tau_d_standard"),
+          getter<CorrelatorHandle, [](const CorrelatorHandle& c) { return c.correlator.tau_r(); }>(
+              "tau_r"),
+          getter<CorrelatorHandle,
+                 [](const CorrelatorHandle& c) { return c.correlator.samples(); }>("samples"),
+          {"params", &lua_wrap<&l_params>},
+      });
   set_constructor(L, "Correlator", &lua_wrap<&l_new>, correlator_fields().infos());
 }
 

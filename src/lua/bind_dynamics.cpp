@@ -260,24 +260,22 @@ int l_run(lua_State* L) {
   return 1;                                                    // invasim.interrupted()
 }
 
-const luaL_Reg kMethods[] = {
-    {"add", &lua_wrap<&l_add>},
-    {"pressure_wall", &lua_wrap<&l_pressure_wall>},
-    {"wall_state", &lua_wrap<&l_wall_state>},
-    getter<DynamicsHandle, [](const DynamicsHandle& d) { return d.dynamics.dt(); }>("dt"),
-    {"set_dt", &lua_wrap<&l_set_dt>},
-    {"set_sort_every", &lua_wrap<&l_set_sort_every>},
-    {"set_pressure", &lua_wrap<&l_set_pressure>},
-    {"set_wall_kT", &lua_wrap<&l_set_wall_kT>},
-    {"methods", &lua_wrap<&l_methods>},
-    {"run", &lua_wrap<&l_run>},
-    {nullptr, nullptr},
-};
-
 }  // namespace
 
 void open_dynamics(lua_State* L) {
-  define_type<DynamicsHandle>(L, kMethods);
+  define_type<DynamicsHandle>(
+      L, {
+             {"add", &lua_wrap<&l_add>},
+             {"pressure_wall", &lua_wrap<&l_pressure_wall>},
+             {"wall_state", &lua_wrap<&l_wall_state>},
+             getter<DynamicsHandle, [](const DynamicsHandle& d) { return d.dynamics.dt(); }>("dt"),
+             {"set_dt", &lua_wrap<&l_set_dt>},
+             {"set_sort_every", &lua_wrap<&l_set_sort_every>},
+             {"set_pressure", &lua_wrap<&l_set_pressure>},
+             {"set_wall_kT", &lua_wrap<&l_set_wall_kT>},
+             {"methods", &lua_wrap<&l_methods>},
+             {"run", &lua_wrap<&l_run>},
+         });
   set_constructor(L, "Dynamics", &lua_wrap<&l_new>, dynamics_fields().infos());
   set_method_keys(L, "Dynamics", "pressure_wall", pressure_wall_fields().infos());
 }

@@ -88,17 +88,15 @@ int l_minimize(lua_State* L) {
   return 1;
 }
 
-// fire:params() -> {ftol =, dt =, dt_max =, max_steps =}
-const luaL_Reg kMethods[] = {
-    {"minimize", &lua_wrap<&l_minimize>},
-    params_method<Fire, &fire_table, [](const Fire& f) { return f.params(); }>("params"),
-    {nullptr, nullptr},
-};
-
 }  // namespace
 
 void open_fire(lua_State* L) {
-  define_type<Fire>(L, kMethods);
+  define_type<Fire>(
+      L, {
+             // fire:params() -> {ftol =, dt =, dt_max =, max_steps =}
+             {"minimize", &lua_wrap<&l_minimize>},
+             params_method<Fire, &fire_table, [](const Fire& f) { return f.params(); }>("params"),
+         });
   set_constructor(L, "Fire", &lua_wrap<&l_new>, fire_table().infos());
 }
 

@@ -26,17 +26,14 @@ int l_sites(lua_State* L) {
   return 1;
 }
 
-const luaL_Reg kMethods[] = {
-    getter<Group, [](const Group& g) { return g.sites.size(); }>("size"),
-    getter<Group, [](const Group& g) { return g.name; }>("name"),
-    {"sites", &lua_wrap<&l_sites>},
-    {nullptr, nullptr},
-};
-
 }  // namespace
 
 void open_group(lua_State* L) {
-  define_type<Group>(L, kMethods);
+  define_type<Group>(L, {
+                            getter<Group, [](const Group& g) { return g.sites.size(); }>("size"),
+                            getter<Group, [](const Group& g) { return g.name; }>("name"),
+                            {"sites", &lua_wrap<&l_sites>},
+                        });
 }
 
 }  // namespace invasim::lua

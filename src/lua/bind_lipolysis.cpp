@@ -73,19 +73,17 @@ int l_apply(lua_State* L) {
   return 1;
 }
 
-// lip:params() -> {rate =, floor =}
-const luaL_Reg kMethods[] = {
-    {"touched", &lua_wrap<&l_touched>},
-    {"apply", &lua_wrap<&l_apply>},
-    params_method<Lipolysis, &lipolysis_fields, [](const Lipolysis& l) { return l.params(); }>(
-        "params"),
-    {nullptr, nullptr},
-};
-
 }  // namespace
 
 void open_lipolysis(lua_State* L) {
-  define_type<Lipolysis>(L, kMethods);
+  define_type<Lipolysis>(L,
+                         {
+                             // lip:params() -> {rate =, floor =}
+                             {"touched", &lua_wrap<&l_touched>},
+                             {"apply", &lua_wrap<&l_apply>},
+                             params_method<Lipolysis, &lipolysis_fields,
+                                           [](const Lipolysis& l) { return l.params(); }>("params"),
+                         });
   set_constructor(L, "Lipolysis", &lua_wrap<&l_new>, lipolysis_fields().infos());
 }
 

@@ -74,16 +74,13 @@ int l_finish(lua_State* L) {
   return 0;
 }
 
-const luaL_Reg kMethods[] = {
-    {"update", &lua_wrap<&l_update>},
-    {"finish", &lua_wrap<&l_finish>},
-    {nullptr, nullptr},
-};
-
 }  // namespace
 
 void open_progress(lua_State* L) {
-  define_type<Progress>(L, kMethods);
+  define_type<Progress>(L, {
+                               {"update", &lua_wrap<&l_update>},
+                               {"finish", &lua_wrap<&l_finish>},
+                           });
   set_constructor(L, "Progress", &lua_wrap<&l_new>, progress_fields().infos());
 }
 

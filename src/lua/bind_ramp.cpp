@@ -80,16 +80,13 @@ int l_params(lua_State* L) {
   return 1;
 }
 
-const luaL_Reg kMethods[] = {
-    {"value", &lua_wrap<&l_value>},
-    {"params", &lua_wrap<&l_params>},
-    {nullptr, nullptr},
-};
-
 }  // namespace
 
 void open_ramp(lua_State* L) {
-  define_type<Ramp>(L, kMethods);
+  define_type<Ramp>(L, {
+                           {"value", &lua_wrap<&l_value>},
+                           {"params", &lua_wrap<&l_params>},
+                       });
   set_constructor(L, "ramp", &lua_wrap<&l_ramp>, ramp_fields().infos());
 }
 

@@ -48,16 +48,13 @@ int l_new(lua_State* L) {
   return 1;
 }
 
-// s:params() -> {eps_v =, eps_a =}
-const luaL_Reg kMethods[] = {
-    params_method<Shape, &shape_fields, &keys_of>("params"),
-    {nullptr, nullptr},
-};
-
 }  // namespace
 
 void open_shape(lua_State* L) {
-  define_type<Shape>(L, kMethods);
+  define_type<Shape>(L, {
+                            // s:params() -> {eps_v =, eps_a =}
+                            params_method<Shape, &shape_fields, &keys_of>("params"),
+                        });
   set_constructor(L, "Shape", &lua_wrap<&l_new>, shape_fields().infos());
 }
 

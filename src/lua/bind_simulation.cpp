@@ -257,17 +257,18 @@ int l_operations(lua_State* L) {
   });
 }
 
-const luaL_Reg kMethods[] = {
-    {"sample", &lua_wrap<&l_sample>},         {"lipolysis", &lua_wrap<&l_lipolysis>},
-    {"snapshots", &lua_wrap<&l_snapshots>},   {"observe", &lua_wrap<&l_observe>},
-    {"checkpoint", &lua_wrap<&l_checkpoint>}, {"run", &lua_wrap<&l_run>},
-    {"operations", &lua_wrap<&l_operations>}, {nullptr, nullptr},
-};
-
 }  // namespace
 
 void open_simulation(lua_State* L) {
-  define_type<SimulationHandle>(L, kMethods);
+  define_type<SimulationHandle>(L, {
+                                       {"sample", &lua_wrap<&l_sample>},
+                                       {"lipolysis", &lua_wrap<&l_lipolysis>},
+                                       {"snapshots", &lua_wrap<&l_snapshots>},
+                                       {"observe", &lua_wrap<&l_observe>},
+                                       {"checkpoint", &lua_wrap<&l_checkpoint>},
+                                       {"run", &lua_wrap<&l_run>},
+                                       {"operations", &lua_wrap<&l_operations>},
+                                   });
   lua_pushcfunction(L, &lua_wrap<&l_new>);
   lua_setfield(L, -2, "Simulation");
 }

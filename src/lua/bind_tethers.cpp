@@ -121,20 +121,18 @@ int l_list(lua_State* L) {
   return 1;
 }
 
-const luaL_Reg kMethods[] = {
-    {"connect", &lua_wrap<&l_connect>},
-    {"heterogeneity", &lua_wrap<&l_heterogeneity>},
-    getter<Tethers, [](const Tethers& t) { return t.force->tethers().size(); }>("count"),
-    {"K", &lua_wrap<&l_K>},
-    {"set_K", &lua_wrap<&l_set_K>},
-    {"list", &lua_wrap<&l_list>},
-    {nullptr, nullptr},
-};
-
 }  // namespace
 
 void open_tethers(lua_State* L) {
-  define_type<Tethers>(L, kMethods);
+  define_type<Tethers>(
+      L, {
+             {"connect", &lua_wrap<&l_connect>},
+             {"heterogeneity", &lua_wrap<&l_heterogeneity>},
+             getter<Tethers, [](const Tethers& t) { return t.force->tethers().size(); }>("count"),
+             {"K", &lua_wrap<&l_K>},
+             {"set_K", &lua_wrap<&l_set_K>},
+             {"list", &lua_wrap<&l_list>},
+         });
   set_constructor(L, "Tethers", &lua_wrap<&l_new>, tether_fields().infos());
   set_method_keys(L, "Tethers", "connect", connect_fields().infos());
 }

@@ -62,16 +62,13 @@ int l_reaction(lua_State* L) {
   return 2;
 }
 
-const luaL_Reg kMethods[] = {
-    {"reaction", &lua_wrap<&l_reaction>},
-    params_method<Walls, &wall_fields, &keys_of>("params"),
-    {nullptr, nullptr},
-};
-
 }  // namespace
 
 void open_walls(lua_State* L) {
-  define_type<Walls>(L, kMethods);
+  define_type<Walls>(L, {
+                            {"reaction", &lua_wrap<&l_reaction>},
+                            params_method<Walls, &wall_fields, &keys_of>("params"),
+                        });
   set_constructor(L, "Walls", &lua_wrap<&l_new>, wall_fields().infos());
 }
 

@@ -7,8 +7,7 @@
 //     static std::string describe(const Progress& p);
 //   };
 //   int l_update(lua_State* L) { check<Progress>(L, 1).update(...); return 0; }  // may throw
-//   const luaL_Reg methods[] = {{"update", lua_wrap<l_update>}, {nullptr, nullptr}};
-//   define_type<Progress>(L, methods);                    // once, when the module opens
+//   define_type<Progress>(L, {{"update", &lua_wrap<&l_update>}});  // when the module opens
 //   push(L, std::make_shared<Progress>(...));             // from a constructor
 //
 // Error discipline. Debian's Lua is built as C, so lua_error/luaL_error longjmp: a Lua error
@@ -30,6 +29,7 @@
 #include <lua.hpp>
 
 #include <cstring>
+#include <initializer_list>
 #include <memory>
 #include <new>
 #include <optional>
@@ -314,6 +314,21 @@ void define_type(lua_State* L, const luaL_Reg* methods) {
   detail::register_tag(&detail::kTypeTag<T>);
   detail::define_metatable(L, LuaType<T>::metatable, LuaType<T>::name, methods, &detail::gc,
                            &lua_wrap<&detail::tostring<T>>);
+}
+
+// The same with the method list written in place (no terminating {nullptr, nullptr}):
+//   define_type<Group>(L, {getter<Group, ...>("size"), {"name", &lua_wrap<&l_name>}});
+// The list is copied into a plain array (no destructor in a frame a Lua error may unwind).
+inline constexpr std::size_t kMaxMethods = 64;
+template <typename T>
+void define_type(lua_State* L, std::initializer_list<luaL_Reg> methods) {
+  if (methods.size() > kMaxMethods)
+    throw std::logic_error(std::string(LuaType<T>::name) + ": more than kMaxMethods methods");
+  luaL_Reg list[kMaxMethods + 1];
+  std::size_t n = 0;
+  for (const luaL_Reg& m : methods) list[n++] = m;
+  list[n] = {nullptr, nullptr};
+  define_type<T>(L, static_cast<const luaL_Reg*>(list));
 }
 
 }  // namespace invasim::lua
