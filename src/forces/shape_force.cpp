@@ -6,7 +6,6 @@
 #include "core/errors.hpp"
 #include "core/team_barrier.hpp"
 #include "forces/shape_kernel.hpp"
-#include "mesh/geometry.hpp"
 
 namespace invasim {
 
@@ -51,7 +50,7 @@ ForceResult ShapeForce::add_forces_team(System& sys, const ForceFlags& flags) {
     sys.body_vertices(b, x.data());
     ForceResult r;
     r.energy = kernel.evaluate(body, x.data(), eps_v_, eps_a_, grad.data());
-    const Vec3 c = vertex_centroid(nv, x.data());
+    const Vec3& c = kernel.centroid();
     for (int v = 0; v < nv; ++v) {
       s.force[sys.body_slot(b, v)] -= grad[v];
       r.virial -= (x[v] - c).cwiseProduct(grad[v]);

@@ -10,18 +10,8 @@ double ShapeKernel::evaluate(const MeshBody& body, const Vec3* x, double eps_v, 
                              Vec3* grad) {
   const MeshTopology& topo = *body.topology;
   const int nv = topo.n_vertices(), nf = topo.n_faces();
-  if (topology_ != &topo) {
-    topology_ = &topo;
-    for (int m = 0; m < 3; ++m) {
-      corner_[m].resize(std::size_t(nf));
-      for (int k = 0; k < nf; ++k) corner_[m][std::size_t(k)] = topo.faces()[std::size_t(k)][m];
-    }
-    // Vertex v's corners as indices m nf + k into the per-corner arrays, in face order.
-    corner_slot_.resize(topo.corners().size());
-    for (std::size_t i = 0; i < corner_slot_.size(); ++i)
-      corner_slot_[i] = topo.corners()[i].second * nf + topo.corners()[i].first;
-  }
-  const int *i0 = corner_[0].data(), *i1 = corner_[1].data(), *i2 = corner_[2].data();
+  const int *i0 = topo.face_corner(0).data(), *i1 = topo.face_corner(1).data(),
+            *i2 = topo.face_corner(2).data();
   const double* ref_area = body.ref_area.data();
   const std::size_t n = std::size_t(nf);
   // Per face: six_v's term and 1 - a_k / a_k0; per corner (m n + k): the corner's position
@@ -39,8 +29,8 @@ double ShapeKernel::evaluate(const MeshBody& body, const Vec3* x, double eps_v, 
     Y[v] = x[v][1];
     Z[v] = x[v][2];
   }
-  const Vec3 c = vertex_centroid(nv, x);
-  const double cx = c[0], cy = c[1], cz = c[2];
+  centroid_ = vertex_centroid(nv, x);
+  const double cx = centroid_[0], cy = centroid_[1], cz = centroid_[2];
   // V = (1/6) sum_f u . (v x w) about the centroid c (u, v, w the corners less c).
 #pragma omp simd
   for (int k = 0; k < nf; ++k) {
@@ -89,15 +79,16 @@ double ShapeKernel::evaluate(const MeshBody& body, const Vec3* x, double eps_v, 
   }
   double energy = 0.5 * eps_v * dv * dv;
   for (int k = 0; k < nf; ++k) energy += 0.5 * eps_a * da[k] * da[k];  // in face order
-  // Each vertex sums its corners in face order.
+  // Each vertex sums its corners (face k, corner m: entry m n + k) in face order.
   const int* offsets = topo.corner_offsets().data();
-  const int* slot = corner_slot_.data();
+  const std::pair<int, int>* corners = topo.corners().data();
   for (int v = 0; v < nv; ++v) {
     double sx = 0.0, sy = 0.0, sz = 0.0;
     for (int m = offsets[v]; m < offsets[v + 1]; ++m) {
-      sx += gx[slot[m]];
-      sy += gy[slot[m]];
-      sz += gz[slot[m]];
+      const std::size_t at = std::size_t(corners[m].second) * n + std::size_t(corners[m].first);
+      sx += gx[at];
+      sy += gy[at];
+      sz += gz[at];
     }
     grad[v] = Vec3(sx, sy, sz);
   }

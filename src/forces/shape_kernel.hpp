@@ -18,16 +18,15 @@ class ShapeKernel {
   // Energy of `body` with vertices x (unwrapped, body order); grad (n_vertices entries) is
   // overwritten with the energy's gradient.
   double evaluate(const MeshBody& body, const Vec3* x, double eps_v, double eps_a, Vec3* grad);
+  // The vertex centroid of the last evaluate's body (vertex_centroid of its x).
+  const Vec3& centroid() const { return centroid_; }
 
  private:
   // Per-face arrays, structure of arrays, n_faces each (see evaluate).
   std::vector<double> buffer_;
-  // The vertices' coordinates as three arrays, and the faces' corners as three index arrays
-  // (of the topology last seen), so that the face loop gathers from plain arrays.
+  // The vertices' coordinates as three arrays, so that the face loop gathers from plain arrays.
   std::vector<double> vx_, vy_, vz_;
-  const MeshTopology* topology_ = nullptr;
-  std::vector<int> corner_[3];
-  std::vector<int> corner_slot_;  // MeshTopology::corners as indices into the corner arrays
+  Vec3 centroid_ = Vec3::Zero();
 };
 
 }  // namespace invasim

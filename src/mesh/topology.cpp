@@ -46,6 +46,8 @@ MeshTopology::MeshTopology(int n_vertices, std::vector<Face> faces)
   corner_offsets_.assign(n_vertices + 1, 0);
   for (int v = 0; v < n_vertices; ++v) corner_offsets_[v + 1] = corner_offsets_[v] + uses[v];
   corners_.resize(std::size_t(corner_offsets_[n_vertices]));
+  for (int m = 0; m < 3; ++m)
+    for (const Face& f : faces_) face_corner_[m].push_back(f[m]);
   std::vector<int> next(corner_offsets_.begin(), corner_offsets_.end() - 1);
   for (std::size_t f = 0; f < faces_.size(); ++f)
     for (int k = 0; k < 3; ++k) corners_[std::size_t(next[faces_[f][k]]++)] = {int(f), k};

@@ -27,6 +27,9 @@ class MeshTopology {
   // per-face computation be summed per vertex in the order a loop over the faces would add it.
   const std::vector<int>& corner_offsets() const { return corner_offsets_; }
   const std::vector<std::pair<int, int>>& corners() const { return corners_; }
+  // Corner m (0, 1, 2) of every face as one array: face_corner(m)[k] == faces()[k][m], for
+  // loops over the faces that gather from plain arrays.
+  const std::vector<int>& face_corner(int m) const { return face_corner_[m]; }
 
  private:
   int n_vertices_;
@@ -34,6 +37,7 @@ class MeshTopology {
   std::vector<std::pair<int, int>> edges_;    // (a < b), each once
   std::vector<int> corner_offsets_;           // n_vertices + 1 offsets into corners_
   std::vector<std::pair<int, int>> corners_;  // (face, corner), grouped by vertex
+  std::vector<int> face_corner_[3];
 };
 
 // A mesh shape: its topology and vertex positions on the unit sphere (or any reference shape).

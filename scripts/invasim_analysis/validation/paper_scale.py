@@ -195,18 +195,17 @@ def _inset_in_ratio(starts, why_no_an):
     - lo) / (hi - lo) with 0 <= lo < hi <= 1, so a difference of the starts in A_n is at least
     their difference in A_t/A_t^max: beyond the tolerance (0.1 + 2 errors) here, the starts
     disagree in A_n too. A smaller difference cannot be judged yet (None)."""
-    means = {}
-    for (start,), reps in workspace.group(starts, ["start"]).items():
-        vals = [j.mean("A_ratio")[0] for j in reps]
-        if len(vals) < 2 or not all(verdict.finite(v) for v in vals):
-            return None
-        m = sum(vals) / len(vals)
-        means[str(start)] = (m, math.sqrt(sum((v - m) ** 2 for v in vals) / (len(vals) - 1)
-                                          / len(vals)), len(vals))
-    if set(means) != {"demixed", "mixed"}:
+    # Each start's mean over its runs' averaging windows and the standard error over its runs
+    # (the criterion's own comparison of the starts, steady.start_agreement), with two runs or
+    # more per start.
+    runs = {str(k[0]): len(v) for k, v in workspace.group(starts, ["start"]).items()}
+    if set(runs) != {"demixed", "mixed"} or min(runs.values()) < 2:
         return None
-    d = means["mixed"][0] - means["demixed"][0]
-    e = math.hypot(means["mixed"][1], means["demixed"][1])
+    agreement = steady.start_agreement(starts, "start", "A_ratio")
+    means = {k: (m, err, runs[k]) for k, (m, err) in agreement["means"].items()}
+    d, e = means["mixed"][0] - means["demixed"][0], agreement["error"]
+    if not (verdict.finite(d) and verdict.finite(e)):
+        return None
     tol = verdict.paper()["fig4b_inset_starts"]["tolerance"]
     if abs(d) - 2 * e <= tol:
         return None
