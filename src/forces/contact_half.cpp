@@ -100,6 +100,7 @@ void plan_half_rows(const VerletList& list, const std::vector<int>& owner, int t
   plan.start.assign(1, 0);
   plan.partner.clear();
   plan.target.clear();
+  plan.pair_class_table = 0;
   plan.halo.resize(n, 0);
   // This thread's sites' ranks, and the halo rows: other threads' sites i < j in the rows of
   // this thread's sites j.
@@ -153,6 +154,9 @@ void half_rows(HalfRowsPlan& plan, const double* pos, const MinimumImage& image,
   int* __restrict ii = b.ii.data();
   const int* __restrict partner = plan.partner.data();
   const int* __restrict start = plan.start.data();
+  // The entries' class pairs, when the constants come from the class table (empty otherwise).
+  const int* __restrict pair_class = plan.pair_class.empty() ? nullptr : plan.pair_class.data();
+  int* __restrict cp = b.pair_class.data();
   Vec3* __restrict sums = plan.sums.data();
   double* __restrict energy = plan.energy.data();
   Vec3* __restrict virial = plan.virial.data();
@@ -168,11 +172,15 @@ void half_rows(HalfRowsPlan& plan, const double* pos, const MinimumImage& image,
       for (int k = start[row]; k < start[row + 1]; ++k, ++m) {
         idx[m] = partner[k];
         ii[m] = i;
+        if (pair_class) cp[m] = pair_class[k];
       }
     }
     const int m_pad = (m + kLanes - 1) / kLanes * kLanes;
     const int last = plan.rows[row - 1];
-    for (int k = m; k < m_pad; ++k) idx[k] = ii[k] = last;  // j = i: masked out
+    for (int k = m; k < m_pad; ++k) {
+      idx[k] = ii[k] = last;      // j = i: masked out
+      if (pair_class) cp[k] = 0;  // any class pair: the entry is masked out
+    }
     contact_detail::stream_terms<kCohesive, kEnergy, kVirial>([ii](int k) { return ii[k]; }, m_pad,
                                                               pos, image, pairs, b);
     const int* __restrict to = plan.target.data() + base;
@@ -242,10 +250,22 @@ void contact_half_rows(System& sys, HalfRowsPlan& plan, std::size_t max_count,
   if constexpr (kVirial) plan.virial.assign(plan.n_owned + 1, Vec3::Zero());
   scratch.reserve(std::size_t(kBatchPairs) + max_count + kLanes);
   if (table.usable()) {
-    const contact_detail::TableStreamPairs pairs{table};
+    if (plan.pair_class_table != table.version()) {  // once per plan and table
+      const int* cls = table.site_class();
+      const int nc = table.n_classes();
+      plan.pair_class.resize(plan.partner.size());
+      for (std::size_t r = 0; r < plan.rows.size(); ++r)
+        for (int k = plan.start[r]; k < plan.start[r + 1]; ++k)
+          plan.pair_class[std::size_t(k)] =
+              cls[plan.rows[r]] * nc + cls[plan.partner[std::size_t(k)]];
+      plan.pair_class_table = table.version();
+    }
+    const contact_detail::TableStreamPairs pairs{table, contact_detail::LookedUp(scratch)};
     half_rows<kCohesive, kEnergy, kVirial>(plan, pos, image, pairs, scratch, s.force.data(),
                                            site_energy, site_virial);
   } else {
+    plan.pair_class.clear();
+    plan.pair_class_table = 0;
     const double eps[4] = {params.eps_cc, params.eps_cv, params.eps_cv, params.eps_vv};
     const contact_detail::DirectStreamPairs pairs{
         s.diameter.data(), table.site_kind(), eps,           params.alpha,

@@ -43,6 +43,10 @@ struct HalfRowsPlan {
   std::vector<double> energy;        // half pair energies
   std::vector<Vec3> virial;          // half pair virials
   std::vector<unsigned char> halo;   // plan_half_rows' scratch (all zero between calls)
+  // Each entry's class pair, filled by contact_half_rows from the PairTable whose version is
+  // pair_class_table (0: none yet; plan_half_rows resets it).
+  std::vector<int> pair_class;
+  std::uint64_t pair_class_table = 0;
 };
 
 // The axis along which partition_sites cuts `parts` slabs: the one whose cuts cross the least

@@ -1,5 +1,8 @@
 #include "forces/contact_pairs.hpp"
 
+#include <algorithm>
+#include <atomic>
+
 #include "forces/contact_force.hpp"
 
 namespace invasim {
@@ -13,6 +16,8 @@ PairCoefficients pair_coefficients(const ContactParams& p, SiteKind ka, SiteKind
 }
 
 bool PairTable::build(const Sites& s, const ContactParams& p) {
+  static std::atomic<std::uint64_t> builds{0};
+  version_ = ++builds;
   const std::size_t n = s.size();
   std::vector<SiteKind> kinds;
   std::vector<double> diams;
@@ -32,8 +37,9 @@ bool PairTable::build(const Sites& s, const ContactParams& p) {
   }
   n_classes_ = int(kinds.size());
   const std::size_t nt = std::size_t(n_classes_) * n_classes_;
-  for (auto* v : {&rc2, &rb2, &tiny2}) v->resize(nt);
-  for (auto* v : {&c, &d, &r0, &e0}) v->resize(2 * nt);
+  const std::size_t padded = std::max<std::size_t>(nt, kLookupEntries);
+  for (auto* v : {&rc2, &rb2, &tiny2, &c_rep, &d_rep, &r0_rep, &c_att, &d_att, &r0_att, &e0})
+    v->assign(padded, 0.0);
   for (int a = 0; a < n_classes_; ++a)
     for (int b = 0; b < n_classes_; ++b) {
       const PairCoefficients k = pair_coefficients(p, kinds[a], kinds[b], diams[a], diams[b]);
@@ -41,14 +47,13 @@ bool PairTable::build(const Sites& s, const ContactParams& p) {
       rc2[t] = k.rc2;
       rb2[t] = k.rb2;
       tiny2[t] = k.tiny2;
-      c[2 * t] = k.c_rep;
-      c[2 * t + 1] = k.c_att;
-      d[2 * t] = k.d_rep;
-      d[2 * t + 1] = k.d_att;
-      r0[2 * t] = k.r0_rep;
-      r0[2 * t + 1] = k.r0_att;
-      e0[2 * t] = k.e0;
-      e0[2 * t + 1] = 0.0;
+      c_rep[t] = k.c_rep;
+      d_rep[t] = k.d_rep;
+      r0_rep[t] = k.r0_rep;
+      c_att[t] = k.c_att;
+      d_att[t] = k.d_att;
+      r0_att[t] = k.r0_att;
+      e0[t] = k.e0;
     }
   usable_ = true;
   return true;

@@ -57,18 +57,20 @@ PairCoefficients pair_coefficients(const ContactParams& p, SiteKind ka, SiteKind
                                    double db);
 
 // Classes of sites with equal (kind, diameter) and the constants of every class pair, stored
-// field by field (structure of arrays, entry t = ci * n_classes + cj) for the kernel's gathers.
-// The constants of the two branches are interleaved (entry 2 t for the repulsive branch,
-// 2 t + 1 for the attractive one), so the kernel loads a pair's branch with one gather at a
-// computed index: a select between two loads made GCC keep the loop scalar (it turns
-// `rep ? a[t] : b[t]` into a load through a selected pointer, which it cannot vectorise).
+// field by field (structure of arrays, entry t = ci * n_classes + cj, both branches' constants
+// in their own arrays), zero-padded to at least kLookupEntries entries: the kernel looks a
+// batch's constants up ahead of its pair loop (contact_kernel.hpp, look_up_pairs), from
+// registers with vector permutes when the table has at most kLookupEntries class pairs.
 class PairTable {
  public:
   static constexpr int kMaxClasses = 16;
+  static constexpr int kLookupEntries = 16;  // class pairs one two-register permute can index
   // Assigns the classes and fills the table; false (table unusable) when the sites have more
   // than kMaxClasses distinct (kind, diameter).
   bool build(const Sites& s, const ContactParams& p);
   bool usable() const { return usable_; }
+  // Distinct for every build of every table (a plan made with one build is stale for another).
+  std::uint64_t version() const { return version_; }
   int n_classes() const { return n_classes_; }
   // Sites of the last build.
   std::size_t n_sites() const { return cls_.size(); }
@@ -76,12 +78,15 @@ class PairTable {
   // The sites' kinds as ints (for the gathers of the fallback path without a table).
   const int* site_kind() const { return kind_.data(); }
 
-  std::vector<double> rc2, rb2, tiny2;  // per class pair
-  std::vector<double> c, d, r0, e0;     // per class pair and branch (2 t + attractive)
+  std::vector<double> rc2, rb2, tiny2;       // per class pair
+  std::vector<double> c_rep, d_rep, r0_rep;  // the repulsive branch's constants
+  std::vector<double> c_att, d_att, r0_att;  // the attractive branch's (e0 is 0 there)
+  std::vector<double> e0;                    // the repulsive branch's energy offset
 
  private:
   bool usable_ = false;
   int n_classes_ = 0;
+  std::uint64_t version_ = 0;
   std::vector<int> cls_, kind_;
 };
 

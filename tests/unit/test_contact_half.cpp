@@ -171,6 +171,17 @@ TEST_CASE(
     REQUIRE_FALSE(table.build(sys.sites(), adhesive));
     check_drivers_agree(sys, adhesive);
   }
+  SECTION("6 classes: the table looked up by loads (more class pairs than a permute holds)") {
+    System sys = mixed_system(3, 400, 4.6, 0.4, 14);
+    for (std::size_t i = 0; i < sys.n_sites(); ++i)
+      if (sys.sites().kind[i] == SiteKind::kCancer)
+        sys.sites().diameter[i] = 0.9 + 0.05 * double(i % 5);
+    PairTable table;
+    REQUIRE(table.build(sys.sites(), cohesive));
+    REQUIRE(table.n_classes() == 6);
+    CHECK(count_pairs(sys, cohesive).first > 50);
+    check_drivers_agree(sys, cohesive);
+  }
   SECTION("more than 16 diameter classes: the constants from the diameters (no table)") {
     System sys = mixed_system(3, 400, 4.6, 0.4, 12);
     for (std::size_t i = 0; i < sys.n_sites(); ++i)

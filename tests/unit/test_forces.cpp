@@ -402,21 +402,27 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "contact kernel: class table for few diameters, direct fallback for many; both equal the "
-    "all-pairs sums, and forces do not depend on the skin, bit for bit") {
-  for (bool many : {false, true}) {
-    CAPTURE(many);
+    "contact kernel: class table for few diameters (looked up by permutes up to 16 class pairs, "
+    "by loads beyond), direct fallback for many; all equal the all-pairs sums, and forces do not "
+    "depend on the skin, bit for bit") {
+  // 0: the bidisperse cells (3 classes with the vertices); 5 and 20 distinct cancer-cell
+  // diameters: 6 classes (36 class pairs, more than a permute holds), and more classes than
+  // the table takes.
+  for (int diameters : {0, 5, 20}) {
+    CAPTURE(diameters);
+    const bool many = diameters > PairTable::kMaxClasses;
     System sys = mixed_system(2, 80, 4.6, 0.4, 11);
-    if (many)  // 20 distinct cancer-cell diameters: more classes than the table takes
+    if (diameters > 0)
       for (std::size_t i = 0; i < sys.n_sites(); ++i)
         if (sys.sites().kind[i] == SiteKind::kCancer)
-          sys.sites().diameter[i] = 0.9 + 0.01 * double(i % 20);
+          sys.sites().diameter[i] = 0.9 + 0.01 * double(i % std::size_t(diameters));
     ContactParams p = cohesive_params();
     p.eps_cv = 0.7;
     p.eps_vv = 1.3;
     PairTable table;
     CHECK(table.build(sys.sites(), p) == !many);
-    if (!many) CHECK(table.n_classes() == 3);  // cancer 0.9 and 1.1, vertices
+    if (diameters == 0) CHECK(table.n_classes() == 3);  // cancer 0.9 and 1.1, vertices
+    if (diameters == 5) CHECK(table.n_classes() * table.n_classes() > PairTable::kLookupEntries);
     std::vector<Vec3> first;
     for (double skin : {0.0, 0.3, 0.77}) {
       CAPTURE(skin);
@@ -438,8 +444,8 @@ TEST_CASE(
 TEST_CASE(
     "PairTable: the branches' constants interleaved per class pair (2t repulsive, 2t+1 "
     "attractive) equal pair_coefficients") {
-  // The kernel loads a pair's branch at index 2t + attractive (one gather, vectorised); this
-  // layout is what it relies on.
+  // The kernel looks each entry's constants up at t = ci * n_classes + cj (look_up_pairs);
+  // this layout is what it relies on.
   System sys = mixed_system(2, 40, 4.6, 0.4, 12);
   ContactParams p = cohesive_params();
   p.eps_cv = 0.7;
@@ -460,14 +466,13 @@ TEST_CASE(
       CHECK(table.rc2[t] == c.rc2);
       CHECK(table.rb2[t] == c.rb2);
       CHECK(table.tiny2[t] == c.tiny2);
-      CHECK(table.c[2 * t] == c.c_rep);
-      CHECK(table.c[2 * t + 1] == c.c_att);
-      CHECK(table.d[2 * t] == c.d_rep);
-      CHECK(table.d[2 * t + 1] == c.d_att);
-      CHECK(table.r0[2 * t] == c.r0_rep);
-      CHECK(table.r0[2 * t + 1] == c.r0_att);
-      CHECK(table.e0[2 * t] == c.e0);
-      CHECK(table.e0[2 * t + 1] == 0.0);
+      CHECK(table.c_rep[t] == c.c_rep);
+      CHECK(table.c_att[t] == c.c_att);
+      CHECK(table.d_rep[t] == c.d_rep);
+      CHECK(table.d_att[t] == c.d_att);
+      CHECK(table.r0_rep[t] == c.r0_rep);
+      CHECK(table.r0_att[t] == c.r0_att);
+      CHECK(table.e0[t] == c.e0);
       ++checked;
     }
   CHECK(checked > 1000);
