@@ -500,6 +500,15 @@ rows, rec = paper_record(pend)
 check([p["class"] for p in rec["runs"]].count("pending") == 1
       and rows["fig4b_An_at_0.3"]["verdict"] == v.RUNNING
       and "1 pending" in rows["fig4b_An_at_0.3"]["why"], rows)
+# A state point of the curve that sets A_n's range without a row yet: A_n rests on part of the
+# range, so its row says nothing, not even provisionally; the inset (A_t/A_t^max) still does.
+partial = CURVE[:2] + [(CURVE[2][0], "pending", [], 1000.0, 0.6)]
+rows, rec = paper_record(starts(level(500.0), level(500.0)), curve=partial)
+check(rows["fig4b_An_at_0.3"]["verdict"] == v.RUNNING
+      and rows["fig4b_An_at_0.3"]["provisional"] == v.NO_DATA
+      and "normalised over the range of paper_fig5_cohesive, and 1 of its 3 runs have no row yet"
+      in rows["fig4b_An_at_0.3"]["why"], rows["fig4b_An_at_0.3"])
+check(rows["fig4b_inset_starts"]["provisional"] == v.AGREES, rows["fig4b_inset_starts"])
 # A figure whose workspace does not exist yet: its rows are pending.
 rec3 = paper_scale.record("fig3", os.path.join(work, "root"), os.path.join(work, "paper"), None)
 check(rec3["missing"] == ["paper_fig3_passive_slices"]

@@ -38,6 +38,12 @@ STATEMENTS = {"fig3": ["fig3_invasion_grows", "fig3_At_min_over_max"],
               "fig4b": ["fig4b_An_at_0.3", "fig4b_inset_starts"],
               "fig5": ["fig5_b_range"]}
 DONE, RUNNING, PENDING, FAILED = "done", "running", "pending", "failed"
+# The rows that rest on A_n and the sweep (index in SWEEPS) whose state points set its
+# normalisation (0 and 1 at the ends of their range; normalise.py): while some of them have no
+# row yet, the range, hence A_n, is not the sweep's, and these rows say nothing, not even
+# provisionally.
+NORMALISED_BY = {"fig4a": (0, STATEMENTS["fig4a"]), "fig4b": (1, ["fig4b_An_at_0.3"]),
+                 "fig5": (0, STATEMENTS["fig5"])}
 THREADS = re.compile(r"--threads (\d+)")  # of an attempt's line in run.log
 
 
@@ -114,6 +120,24 @@ def _finalise(rows, progresses, used_ids):
                 "%d %s" % (len(ps), what) for ps, what in ((running, "running"), (pending, "pending"),
                                                          (failed, "failed")) if ps), r["provisional"])
     return rows
+
+
+def _without_partial_range(name, rows, progresses, usable):
+    """The rows on A_n as "no data" while state points of the sweep that sets A_n's range
+    (NORMALISED_BY) have no row yet (usable: each sweep's runs with rows)."""
+    if name not in NORMALISED_BY:
+        return rows
+    k, ids = NORMALISED_BY[name]
+    if k >= len(progresses) or not progresses[k]:
+        return rows
+    with_rows = {j.id for j in usable[k]}
+    without = [p for p in progresses[k] if p["job"] not in with_rows]
+    if not without:
+        return rows
+    why = ("A_n is normalised over the range of %s%s, and %d of its %d runs have no row yet"
+           % (PREFIX, SWEEPS[name][k], len(without), len(progresses[k])))
+    return [dict(r, verdict=verdict.NO_DATA, why="%s; %s" % (r["why"], why))
+            if r["id"] in ids and r["verdict"] != verdict.NO_DATA else r for r in rows]
 
 
 def _pending_rows(name, why):
@@ -276,6 +300,7 @@ def record(name, root, out, invasim):
     except (workspace.InputError, ValueError, ZeroDivisionError) as e:
         rows, images, numbers, extremes = [
             verdict.row(sid, "n/a", verdict.NO_DATA, str(e)) for sid in STATEMENTS[name]], [], {}, None
+    rows = _without_partial_range(name, rows, progresses, usable)
     rec["rows"] = _finalise(rows, flat, used)
     rec["numbers"] = numbers
     rec["images"] = images + panels.draw(usable[0], extremes, out, "%s_runs.png" % name, {
