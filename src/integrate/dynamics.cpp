@@ -8,6 +8,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <string>
 
 #include "core/errors.hpp"
 #include "core/fast_log.hpp"
@@ -334,24 +335,26 @@ void Dynamics::set_dt(double dt) {
   prepared_ = false;
 }
 
-void Method::set_kT_ramp(std::optional<Ramp> ramp) {
+namespace {
+// Installs a ramp of a non-negative parameter (`name`), which starts at its 'from' value.
+void set_non_negative_ramp(const char* name, std::optional<Ramp> ramp, double& value,
+                           std::optional<Ramp>& slot) {
   if (ramp) {
-    ramp->validate("kT");
-    require_non_negative("kT ramp 'from'", ramp->from);
-    require_non_negative("kT ramp 'to'", ramp->to);
-    params_.kT = ramp->from;
+    ramp->validate(name);
+    require_non_negative((std::string(name) + " ramp 'from'").c_str(), ramp->from);
+    require_non_negative((std::string(name) + " ramp 'to'").c_str(), ramp->to);
+    value = ramp->from;
   }
-  kT_ramp_ = std::move(ramp);
+  slot = std::move(ramp);
+}
+}  // namespace
+
+void Method::set_kT_ramp(std::optional<Ramp> ramp) {
+  set_non_negative_ramp("kT", std::move(ramp), params_.kT, kT_ramp_);
 }
 
 void Method::set_f0_ramp(std::optional<Ramp> ramp) {
-  if (ramp) {
-    ramp->validate("f0");
-    require_non_negative("f0 ramp 'from'", ramp->from);
-    require_non_negative("f0 ramp 'to'", ramp->to);
-    params_.f0 = ramp->from;
-  }
-  f0_ramp_ = std::move(ramp);
+  set_non_negative_ramp("f0", std::move(ramp), params_.f0, f0_ramp_);
 }
 
 MethodParams Method::params_at(std::uint64_t step) {

@@ -148,14 +148,20 @@ int l_wall_state(lua_State* L) {
   });
 }
 
+// The Dynamics' pressure wall, or an error naming the method `what` that needs one.
+std::shared_ptr<PressureWall> require_pressure_wall(DynamicsHandle& d, const char* what) {
+  auto wall = d.dynamics.pressure_wall();
+  if (!wall)
+    fail_input(what,
+               ": this Dynamics has no pressure wall; add one with dyn:pressure_wall{P = "
+               "...}");
+  return wall;
+}
+
 // dyn:set_wall_kT(kT): the temperature of the piston's bath (>= 0; 0: no noise).
 int l_set_wall_kT(lua_State* L) {
   DynamicsHandle& d = check<DynamicsHandle>(L, 1);
-  const auto wall = d.dynamics.pressure_wall();
-  if (!wall)
-    fail_input(
-        "set_wall_kT: this Dynamics has no pressure wall; add one with dyn:pressure_wall{P = "
-        "...}");
+  const auto wall = require_pressure_wall(d, "set_wall_kT");
   const double kT = arg_number(L, 2);
   if (!(kT >= 0.0)) fail_input("set_wall_kT: kT = ", kT, " must be >= 0");
   wall->kT = kT;
@@ -166,11 +172,7 @@ int l_set_wall_kT(lua_State* L) {
 // dyn:set_pressure(P): a number or a ramp; the piston keeps its velocity.
 int l_set_pressure(lua_State* L) {
   DynamicsHandle& d = check<DynamicsHandle>(L, 1);
-  const auto wall = d.dynamics.pressure_wall();
-  if (!wall)
-    fail_input(
-        "set_pressure: this Dynamics has no pressure wall; add one with dyn:pressure_wall{P = "
-        "...}");
+  const auto wall = require_pressure_wall(d, "set_pressure");
   lua_settop(L, 2);
   lua_pushvalue(L, 2);
   protected_call(L, 1, 1, [](lua_State* S) noexcept {  // {P = argument 2}
