@@ -428,6 +428,41 @@ void Dynamics::begin_step_serial(System& sys) {
   for (const auto& m : methods_) next_params_.push_back(m->params_at(next_step_));
 }
 
+namespace {
+// Cuts of every method's slots between the team's threads (thread t takes slots
+// [cuts[k][t], cuts[k][t + 1]) of method k) that balance cost[k] per slot. They start from the
+// kernel's owners: in the engine order a method's slots run along the kernel's slab axis, so
+// the slots of threads below t are (nearly) a prefix. Each cut then moves, in every method by
+// the method's share of its size, until the cost below it is t / team of the whole: only the
+// slots nearest the kernel's cut change thread, so few sites are drifted or kicked away from
+// the core that computed their forces. Any cuts give the same results.
+std::vector<std::vector<int>> balanced_cuts(const std::vector<GroupSlots>& slots,
+                                            const std::vector<int>& owner, int team,
+                                            const std::vector<double>& cost) {
+  const std::size_t methods = slots.size(), parts = std::size_t(team);
+  std::vector<std::vector<int>> cuts(methods, std::vector<int>(parts + 1, 0));
+  double total = 0.0;
+  for (std::size_t k = 0; k < methods; ++k) {
+    std::vector<int>& c = cuts[k];
+    for (int i : slots[k].slot) ++c[std::size_t(owner[std::size_t(i)]) + 1];
+    for (std::size_t t = 1; t <= parts; ++t) c[t] += c[t - 1];  // owned by threads below t
+    total += cost[k] * double(slots[k].slot.size());
+  }
+  if (!(total > 0.0)) return cuts;
+  for (std::size_t t = 1; t < parts; ++t) {
+    double below = 0.0;
+    for (std::size_t k = 0; k < methods; ++k) below += cost[k] * double(cuts[k][t]);
+    const double shift = (total * double(t) / double(team) - below) / total;
+    for (std::size_t k = 0; k < methods; ++k) {
+      const int n = int(slots[k].slot.size());
+      const int moved = int(std::lround(double(cuts[k][t]) + shift * double(n)));
+      cuts[k][t] = std::clamp(moved, cuts[k][t - 1], n);
+    }
+  }
+  return cuts;
+}
+}  // namespace
+
 void Dynamics::drift_own_sites(System& sys, const ForceField& ff) {
   std::uint64_t version = 0;
   int parts = 0;
@@ -442,18 +477,26 @@ void Dynamics::drift_own_sites(System& sys, const ForceField& ff) {
   }
   ThreadSlots& mine = thread_slots_[std::size_t(me)];
   if (mine.partition != version || mine.slots != slots_version_) {
+    // The drift costs the same per site; the kick of an active method (its rotations) about
+    // twice that of a thermal one.
+    std::vector<double> drift_cost(methods_.size(), 1.0), kick_cost(methods_.size(), 1.0);
+    for (std::size_t k = 0; k < methods_.size() && k < next_params_.size(); ++k)
+      if (next_params_[k].f0 > 0.0) kick_cost[k] = 2.0;
+    const auto drift_cuts = balanced_cuts(slots_, *owner, team, drift_cost);
+    const auto kick_cuts = balanced_cuts(slots_, *owner, team, kick_cost);
     mine.of_method.resize(methods_.size());
     mine.chunks_of_method.resize(methods_.size());
     for (std::size_t k = 0; k < methods_.size(); ++k) {
       const std::vector<int>& slot = slots_[k].slot;
-      mine.of_method[k].clear();
-      for (int i : slot)
-        if ((*owner)[std::size_t(i)] == me) mine.of_method[k].push_back(i);
-      // A kick chunk goes to the owner of its first site.
+      const int lo = drift_cuts[k][std::size_t(me)], hi = drift_cuts[k][std::size_t(me) + 1];
+      mine.of_method[k].assign(slot.begin() + lo, slot.begin() + hi);
+      // A kick chunk goes to the thread whose kick cuts hold its first slot.
       mine.chunks_of_method[k].clear();
-      for (int c = 0; c < Method::kick_chunks(slots_[k]); ++c)
-        if ((*owner)[std::size_t(slot[std::size_t(c) * Method::kKickChunk])] == me)
+      for (int c = 0; c < Method::kick_chunks(slots_[k]); ++c) {
+        const int first = c * Method::kKickChunk;
+        if (first >= kick_cuts[k][std::size_t(me)] && first < kick_cuts[k][std::size_t(me) + 1])
           mine.chunks_of_method[k].push_back(c);
+      }
     }
     mine.partition = version;
     mine.slots = slots_version_;

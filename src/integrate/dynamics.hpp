@@ -145,9 +145,11 @@ class Dynamics {
   void begin_step_serial(System& sys);
   TeamHooks step_hooks(System& sys, const ForceField& ff);
   // The drift and the kick of the calling thread of the team: its share of every method's
-  // slots (the kick: the chunks whose first slot it owns) where the force field partitions the
-  // sites for this team (ForceField::site_owner), else the methods' shared loops. Any share
-  // gives the same results; this one keeps a site's data in its owner's cache.
+  // slots where the force field partitions the sites for this team (ForceField::site_owner),
+  // else the methods' shared loops. The shares start from the kernel's owners and move the
+  // slots nearest its cut until the drift's count and the kick's cost are even (balanced_cuts
+  // in dynamics.cpp; the kick by whole chunks). Any share gives the same results; these keep
+  // most sites' data in the cache of the core that computed their forces.
   void drift_own_sites(System& sys, const ForceField& ff);
   void kick_own_sites(System& sys);
   void end_step_serial(System& sys);
