@@ -146,8 +146,7 @@ void ContactForce::add_forces_impl(System& sys, RowScratch& scratch) {
     const int* nb = list_.neighbors(i);
     const int m = list_.count(i);
     if (table_.usable()) {
-      const TablePairs pairs{table_, table_.site_class(),
-                             table_.site_class()[i] * table_.n_classes(),
+      const TablePairs pairs{table_, table_.site_class()[i] * table_.n_classes(),
                              contact_detail::LookedUp(scratch)};
       site_contacts<kCohesive, kEnergy, kVirial>(int(i), pos, nb, m, image, pairs, scratch,
                                                  s.force[i], e, w);

@@ -251,13 +251,11 @@ void contact_half_rows(System& sys, HalfRowsPlan& plan, std::size_t max_count,
   scratch.reserve(std::size_t(kBatchPairs) + max_count + kLanes);
   if (table.usable()) {
     if (plan.pair_class_table != table.version()) {  // once per plan and table
-      const int* cls = table.site_class();
-      const int nc = table.n_classes();
       plan.pair_class.resize(plan.partner.size());
       for (std::size_t r = 0; r < plan.rows.size(); ++r)
         for (int k = plan.start[r]; k < plan.start[r + 1]; ++k)
-          plan.pair_class[std::size_t(k)] =
-              cls[plan.rows[r]] * nc + cls[plan.partner[std::size_t(k)]];
+          plan.pair_class[std::size_t(k)] = table.class_pair(
+              std::size_t(plan.rows[r]), std::size_t(plan.partner[std::size_t(k)]));
       plan.pair_class_table = table.version();
     }
     const contact_detail::TableStreamPairs pairs{table, contact_detail::LookedUp(scratch)};

@@ -141,12 +141,12 @@ struct LookedUp {
 // up for the whole row ahead of the pair loop.
 struct TablePairs {
   const PairTable& t;
-  const int* cls;
   int row;  // class of site i times the number of classes
   LookedUp got;
   template <bool kCohesive, bool kEnergy>
   void look_up(const int* idx, int m_pad, RowScratch& b) const {
     int* __restrict cp = b.pair_class.data();
+    const int* cls = t.site_class();
 #pragma omp simd
     for (int k = 0; k < m_pad; ++k) cp[k] = row + cls[idx[k]];
     look_up_pairs<kCohesive, kEnergy>(t, m_pad, b);

@@ -75,6 +75,8 @@ class PairTable {
   // Sites of the last build.
   std::size_t n_sites() const { return cls_.size(); }
   const int* site_class() const { return cls_.data(); }
+  // The table entry of the pair of sites i and j: ci * n_classes + cj.
+  int class_pair(std::size_t i, std::size_t j) const { return cls_[i] * n_classes_ + cls_[j]; }
   // The sites' kinds as ints (for the gathers of the fallback path without a table).
   const int* site_kind() const { return kind_.data(); }
 
