@@ -13,6 +13,7 @@
 #include "core/errors.hpp"
 #include "core/fast_log.hpp"
 #include "core/fast_trig.hpp"
+#include "core/fused.hpp"
 #include "core/rng.hpp"
 #include "core/team_barrier.hpp"
 #include "integrate/engine_order.hpp"
@@ -134,16 +135,12 @@ void Method::randomize_orientations(System& sys, std::uint64_t stream_step) cons
 }
 
 namespace {
-inline void drift_site(Sites& s, const Box& box, int i, double dt) {
-  s.vel[i] += 0.5 * dt / s.mass[i] * s.force[i];
-  s.pos[i] += dt * s.vel[i];
-  box.wrap(s.pos[i], s.image[i]);
-  s.force[i].setZero();
-}
-
-// drift_site on the slots [lo, hi), in vector lanes: the half kick, the move and the zeroed
-// force with drift_site's expressions (the same bits), then the wrap only for the few sites
-// that left the box on a periodic axis (the scalar loop spent most of its time on that test).
+// The drift of the slots [lo, hi): the half kick, the move and the zeroed force in vector lanes,
+// then the wrap only for the few sites that left the box on a periodic axis (the scalar loop
+// spent most of its time on that test). Every drift goes through this loop, whatever the runs
+// a thread's share is cut into, and its multiply-adds are explicit (core/fused.hpp): a site's
+// bits then do not depend on whether it falls in a vector lane or the loop's scalar remainder,
+// so not on the thread count.
 void drift_range(Sites& s, const Box& box, int lo, int hi, double dt) {
   static_assert(sizeof(Vec3) == 3 * sizeof(double), "sites' vectors are read as flat arrays");
   double* __restrict v = s.vel.data()->data();
@@ -164,8 +161,8 @@ void drift_range(Sites& s, const Box& box, int lo, int hi, double dt) {
     int out = 0;
     for (int a = 0; a < 3; ++a) {
       const int k = 3 * i + a;
-      v[k] += h * f[k];
-      x[k] += dt * v[k];
+      v[k] = mul_add(h, f[k], v[k]);
+      x[k] = mul_add(dt, v[k], x[k]);
       f[k] = 0.0;
       out |= !(x[k] >= blo[a] && x[k] < bhi[a]);  // (a NaN counts as outside, as in wrap)
     }
@@ -176,15 +173,12 @@ void drift_range(Sites& s, const Box& box, int lo, int hi, double dt) {
 }
 
 // The drift of the slots slot[0, n): runs of consecutive slots (a method's group is one run in
-// the engine order) in vector lanes, the rest one by one.
+// the engine order unless sites of no method sit between its own) in drift_range's lanes.
 void drift_slot_list(Sites& s, const Box& box, const int* slot, int n, double dt) {
   for (int k = 0; k < n;) {
     int e = k + 1;
     while (e < n && slot[e] == slot[e - 1] + 1) ++e;
-    if (e - k >= 8)
-      drift_range(s, box, slot[k], slot[k] + (e - k), dt);
-    else
-      for (int q = k; q < e; ++q) drift_site(s, box, slot[q], dt);
+    drift_range(s, box, slot[k], slot[k] + (e - k), dt);
     k = e;
   }
 }

@@ -101,6 +101,21 @@ TEST_CASE("union volume of a mesh and its vertex spheres is bracketed by exact b
   // Tiny vertex spheres: the union is the mesh volume itself (to grid resolution).
   const double vm = mesh_volume(*s.topology, s.vertices.data());
   CHECK(union_volume(*s.topology, s.vertices.data(), 1e-3, 0.01) == Approx(vm).epsilon(5e-3));
+  // Non-convex: two opposite vertices pushed deep inside (vertical lines through the dents
+  // cross the surface four times), and a vertex pulled far out.
+  std::vector<Vec3> dented = s.vertices;
+  int top = 0, bottom = 0, side = 0;
+  for (int i = 0; i < int(dented.size()); ++i) {
+    if (dented[i][2] > dented[top][2]) top = i;
+    if (dented[i][2] < dented[bottom][2]) bottom = i;
+    if (dented[i][0] > dented[side][0]) side = i;
+  }
+  dented[top] *= 0.2;
+  dented[bottom] *= 0.3;
+  dented[side] *= 1.8;
+  const double vd = mesh_volume(*s.topology, dented.data());
+  CHECK(std::abs(vd - vm) > 0.05 * vm);  // (the shape changed)
+  CHECK(union_volume(*s.topology, dented.data(), 1e-3, 0.01) == Approx(vd).epsilon(5e-3));
 }
 
 TEST_CASE("malformed meshes are refused with a message naming the problem") {
