@@ -9,6 +9,7 @@
 
 #include "core/errors.hpp"
 #include "core/team_barrier.hpp"
+#include "neighbor/candidate_lanes.hpp"
 
 namespace invasim {
 
@@ -212,6 +213,15 @@ void VerletList::build_team(const System& sys) {
             if (p0 >= p1) continue;
             candidates += std::uint64_t(p1 - p0);
             const double half_factor = 0.5 * rule_.factor[int(ca)][run[2]];
+#if INVASIM_CANDIDATE_LANES
+            if (m + (p1 - p0) + 7 <= int(stride)) {  // room for every candidate (else below)
+              const neighbor_detail::CandidateSite site{xi, yi, zi, di, bi,          hx,  hy,
+                                                        hz, lx, ly, lz, half_factor, skin};
+              m = neighbor_detail::keep_candidates_lanes(site, px, py, pz, pd, pb,
+                                                         cell_sites_.data(), p0, p1, out, m);
+              continue;
+            }
+#endif
             // One branch-free pass (runs are a few candidates long: a vector loop would run
             // mostly in its scalar remainder): the minimum image as arithmetic on the
             // comparisons (d - l or d + l exactly where the ternary gives them, d itself
