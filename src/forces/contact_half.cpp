@@ -103,15 +103,18 @@ void plan_half_rows(const VerletList& list, const std::vector<int>& owner, int t
   plan.pair_class_table = 0;
   plan.halo.resize(n, 0);
   // This thread's sites' ranks, and the halo rows: other threads' sites i < j in the rows of
-  // this thread's sites j.
+  // this thread's sites j (none when the thread owns every site).
   int n_owned = 0;
-  for (std::size_t j = 0; j < n; ++j) {
-    if (owner[j] != thread) continue;
-    rank[j] = n_owned++;
-    const int* nb = list.neighbors(j);
-    for (int k = 0, m = list.count(j); k < m && nb[k] < int(j); ++k)
-      if (owner[std::size_t(nb[k])] != thread) plan.halo[std::size_t(nb[k])] = 1;
-  }
+  for (std::size_t j = 0; j < n; ++j)
+    if (owner[j] == thread) rank[j] = n_owned++;
+  const bool owns_all = std::size_t(n_owned) == n;
+  if (!owns_all)
+    for (std::size_t j = 0; j < n; ++j) {
+      if (owner[j] != thread) continue;
+      const int* nb = list.neighbors(j);
+      for (int k = 0, m = list.count(j); k < m && nb[k] < int(j); ++k)
+        if (owner[std::size_t(nb[k])] != thread) plan.halo[std::size_t(nb[k])] = 1;
+    }
   plan.n_owned = std::size_t(n_owned);
   for (std::size_t i = 0; i < n; ++i) {
     const bool own = owner[i] == thread;
@@ -120,12 +123,24 @@ void plan_half_rows(const VerletList& list, const std::vector<int>& owner, int t
     const int* nb = list.neighbors(i);
     const int m = list.count(i);
     const int lo = int(std::upper_bound(nb, nb + m, int(i)) - nb);  // the suffix j > i
-    for (int k = lo; k < m; ++k) {
-      const int j = nb[k];
-      const bool own_j = owner[std::size_t(j)] == thread;
-      if (!own && !own_j) continue;  // a halo row serves this thread's partners only
-      plan.partner.push_back(j);
-      plan.target.push_back(own_j ? rank[std::size_t(j)] : n_owned);
+    if (own) {
+      // The whole suffix (copied at once), each partner's accumulator: its rank if this
+      // thread's, else the spare.
+      const std::size_t first = plan.partner.size();
+      plan.partner.insert(plan.partner.end(), nb + lo, nb + m);
+      plan.target.resize(plan.partner.size());
+      int* __restrict target = plan.target.data() + first;
+      for (int k = lo; k < m; ++k) {
+        const std::size_t j = std::size_t(nb[k]);
+        *target++ = owns_all || owner[j] == thread ? rank[j] : n_owned;
+      }
+    } else {
+      for (int k = lo; k < m; ++k) {  // a halo row serves this thread's partners only
+        const int j = nb[k];
+        if (owner[std::size_t(j)] != thread) continue;
+        plan.partner.push_back(j);
+        plan.target.push_back(rank[std::size_t(j)]);
+      }
     }
     plan.rows.push_back(int(i));
     plan.owned.push_back(own ? 1 : 0);
