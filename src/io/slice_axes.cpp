@@ -40,13 +40,21 @@ std::vector<std::pair<double, int>> legend_layout(const std::vector<LegendEntry>
   return at;
 }
 
+// Appends ` name="value"` (value as svg_number writes it).
+void svg_attribute(std::string& out, const char* name, double value) {
+  out += ' ';
+  out += name;
+  out += "=\"";
+  svg_number(out, value);
+  out += '"';
+}
+
 void text_at(std::string& out, double x, double y, const char* anchor, const std::string& s,
              const char* extra = "") {
-  out += "  <text x=\"";
-  svg_number(out, x);
-  out += "\" y=\"";
-  svg_number(out, y);
-  out += "\" text-anchor=\"";
+  out += "  <text";
+  svg_attribute(out, "x", x);
+  svg_attribute(out, "y", y);
+  out += " text-anchor=\"";
   out += anchor;
   out += "\" font-family=\"DejaVu Sans, Arial, sans-serif\" font-size=\"";
   svg_number(out, kFont);
@@ -190,15 +198,11 @@ void svg_line(std::string& out, const char* attributes, double x1, double y1, do
               const char* style) {
   out += "  <line ";
   out += attributes;
-  out += " x1=\"";
-  svg_number(out, x1);
-  out += "\" y1=\"";
-  svg_number(out, y1);
-  out += "\" x2=\"";
-  svg_number(out, x2);
-  out += "\" y2=\"";
-  svg_number(out, y2);
-  out += "\" ";
+  svg_attribute(out, "x1", x1);
+  svg_attribute(out, "y1", y1);
+  svg_attribute(out, "x2", x2);
+  svg_attribute(out, "y2", y2);
+  out += ' ';
   out += style;
   out += "/>\n";
 }

@@ -41,18 +41,21 @@ void close_array(std::string& out, const char* indent) {
   out += "</DataArray>\n";
 }
 
+// One line of an array of 3-vectors: the indent, then " x y z".
+void vec3_line(std::string& out, const char* indent, const Vec3& x) {
+  out += indent;
+  for (int a = 0; a < 3; ++a) {
+    out += ' ';
+    text::append(out, x[a]);
+  }
+  out += '\n';
+}
+
 // A DataArray of 3-vectors, one per line.
 void vec3_array(std::string& out, const char* indent, const char* name,
                 const std::vector<Vec3>& v) {
   open_array(out, indent, "Float64", name, 3);
-  for (const Vec3& x : v) {
-    out += indent;
-    for (int a = 0; a < 3; ++a) {
-      out += ' ';
-      text::append(out, x[a]);
-    }
-    out += '\n';
-  }
+  for (const Vec3& x : v) vec3_line(out, indent, x);
   close_array(out, indent);
 }
 
@@ -99,12 +102,7 @@ void field_data(std::string& out, const Frame& f) {
   close_array(out, in);
   for (const auto& [name, v] : {std::pair{"box_lo", f.box.lo()}, std::pair{"box_hi", f.box.hi()}}) {
     open_array(out, in, "Float64", name, 3, 1);
-    out += in;
-    for (int a = 0; a < 3; ++a) {
-      out += ' ';
-      text::append(out, v[a]);
-    }
-    out += '\n';
+    vec3_line(out, in, v);
     close_array(out, in);
   }
   open_array(out, in, "Int32", "periodic", 3, 1);
