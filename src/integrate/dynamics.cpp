@@ -135,25 +135,32 @@ void Method::randomize_orientations(System& sys, std::uint64_t stream_step) cons
 }
 
 namespace {
+// Bounds of drift_range's wrap test: the box on a periodic axis, +-inf on a walled one (never
+// wraps).
+struct WrapBounds {
+  double lo[3], hi[3];
+  explicit WrapBounds(const Box& box) {
+    for (int a = 0; a < 3; ++a) {
+      const bool p = box.periodic(a);
+      lo[a] = p ? box.lo()[a] : -std::numeric_limits<double>::infinity();
+      hi[a] = p ? box.hi()[a] : std::numeric_limits<double>::infinity();
+    }
+  }
+};
+
 // The drift of the slots [lo, hi): the half kick, the move and the zeroed force in vector lanes,
 // then the wrap only for the few sites that left the box on a periodic axis (the scalar loop
 // spent most of its time on that test). Every drift goes through this loop, whatever the runs
 // a thread's share is cut into, and its multiply-adds are explicit (core/fused.hpp): a site's
 // bits then do not depend on whether it falls in a vector lane or the loop's scalar remainder,
 // so not on the thread count.
-void drift_range(Sites& s, const Box& box, int lo, int hi, double dt) {
+void drift_range(Sites& s, const Box& box, const WrapBounds& bounds, int lo, int hi, double dt) {
   static_assert(sizeof(Vec3) == 3 * sizeof(double), "sites' vectors are read as flat arrays");
   double* __restrict v = s.vel.data()->data();
   double* __restrict x = s.pos.data()->data();
   double* __restrict f = s.force.data()->data();
   const double* __restrict m = s.mass.data();
-  // Bounds of the wrap test: +-inf on a walled axis (never wraps).
-  double blo[3], bhi[3];
-  for (int a = 0; a < 3; ++a) {
-    const bool p = box.periodic(a);
-    blo[a] = p ? box.lo()[a] : -std::numeric_limits<double>::infinity();
-    bhi[a] = p ? box.hi()[a] : std::numeric_limits<double>::infinity();
-  }
+  const double *blo = bounds.lo, *bhi = bounds.hi;
   int outside = 0;
 #pragma omp simd reduction(| : outside)
   for (int i = lo; i < hi; ++i) {
@@ -175,10 +182,11 @@ void drift_range(Sites& s, const Box& box, int lo, int hi, double dt) {
 // The drift of the slots slot[0, n): runs of consecutive slots (a method's group is one run in
 // the engine order unless sites of no method sit between its own) in drift_range's lanes.
 void drift_slot_list(Sites& s, const Box& box, const int* slot, int n, double dt) {
+  const WrapBounds bounds(box);
   for (int k = 0; k < n;) {
     int e = k + 1;
     while (e < n && slot[e] == slot[e - 1] + 1) ++e;
-    drift_range(s, box, slot[k], slot[k] + (e - k), dt);
+    drift_range(s, box, bounds, slot[k], slot[k] + (e - k), dt);
     k = e;
   }
 }
@@ -423,30 +431,38 @@ void Dynamics::begin_step_serial(System& sys) {
 }
 
 namespace {
-// Cuts of every method's slots between the team's threads (thread t takes slots
-// [cuts[k][t], cuts[k][t + 1]) of method k) that balance cost[k] per slot. They start from the
-// kernel's owners: in the engine order a method's slots run along the kernel's slab axis, so
-// the slots of threads below t are (nearly) a prefix. Each cut then moves, in every method by
-// the method's share of its size, until the cost below it is t / team of the whole: only the
-// slots nearest the kernel's cut change thread, so few sites are drifted or kicked away from
-// the core that computed their forces. Any cuts give the same results.
-std::vector<std::vector<int>> balanced_cuts(const std::vector<GroupSlots>& slots,
-                                            const std::vector<int>& owner, int team,
-                                            const std::vector<double>& cost) {
-  const std::size_t methods = slots.size(), parts = std::size_t(team);
-  std::vector<std::vector<int>> cuts(methods, std::vector<int>(parts + 1, 0));
-  double total = 0.0;
-  for (std::size_t k = 0; k < methods; ++k) {
+// Every method's slots owned by the kernel's threads below t, for t = 0 .. team (in the engine
+// order a method's slots run along the kernel's slab axis, so these are (nearly) prefixes):
+// the start of balanced_cuts.
+std::vector<std::vector<int>> owned_below(const std::vector<GroupSlots>& slots,
+                                          const std::vector<int>& owner, int team) {
+  std::vector<std::vector<int>> cuts(slots.size(), std::vector<int>(std::size_t(team) + 1, 0));
+  for (std::size_t k = 0; k < slots.size(); ++k) {
     std::vector<int>& c = cuts[k];
     for (int i : slots[k].slot) ++c[std::size_t(owner[std::size_t(i)]) + 1];
-    for (std::size_t t = 1; t <= parts; ++t) c[t] += c[t - 1];  // owned by threads below t
-    total += cost[k] * double(slots[k].slot.size());
+    for (std::size_t t = 1; t < c.size(); ++t) c[t] += c[t - 1];
   }
+  return cuts;
+}
+
+// Cuts of every method's slots between the team's threads (thread t takes slots
+// [cuts[k][t], cuts[k][t + 1]) of method k) that balance cost[k] per slot, from the kernel's
+// owners (`cuts`, owned_below): each cut moves, in every method by the method's share of its
+// size, until the cost below it is t / team of the whole, so only the slots nearest the
+// kernel's cut change thread and few sites are drifted or kicked away from the core that
+// computed their forces. Any cuts give the same results.
+std::vector<std::vector<int>> balanced_cuts(std::vector<std::vector<int>> cuts,
+                                            const std::vector<GroupSlots>& slots,
+                                            const std::vector<double>& cost) {
+  const std::size_t methods = slots.size();
+  const std::size_t parts = methods > 0 ? cuts[0].size() - 1 : 0;
+  double total = 0.0;
+  for (std::size_t k = 0; k < methods; ++k) total += cost[k] * double(slots[k].slot.size());
   if (!(total > 0.0)) return cuts;
   for (std::size_t t = 1; t < parts; ++t) {
     double below = 0.0;
     for (std::size_t k = 0; k < methods; ++k) below += cost[k] * double(cuts[k][t]);
-    const double shift = (total * double(t) / double(team) - below) / total;
+    const double shift = (total * double(t) / double(parts) - below) / total;
     for (std::size_t k = 0; k < methods; ++k) {
       const int n = int(slots[k].slot.size());
       const int moved = int(std::lround(double(cuts[k][t]) + shift * double(n)));
@@ -476,8 +492,9 @@ void Dynamics::drift_own_sites(System& sys, const ForceField& ff) {
     std::vector<double> drift_cost(methods_.size(), 1.0), kick_cost(methods_.size(), 1.0);
     for (std::size_t k = 0; k < methods_.size() && k < next_params_.size(); ++k)
       if (next_params_[k].f0 > 0.0) kick_cost[k] = 2.0;
-    const auto drift_cuts = balanced_cuts(slots_, *owner, team, drift_cost);
-    const auto kick_cuts = balanced_cuts(slots_, *owner, team, kick_cost);
+    const auto owned = owned_below(slots_, *owner, team);
+    const auto drift_cuts = balanced_cuts(owned, slots_, drift_cost);
+    const auto kick_cuts = balanced_cuts(owned, slots_, kick_cost);
     mine.of_method.resize(methods_.size());
     mine.chunks_of_method.resize(methods_.size());
     for (std::size_t k = 0; k < methods_.size(); ++k) {

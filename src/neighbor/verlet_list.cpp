@@ -222,12 +222,13 @@ void VerletList::build_team(const System& sys) {
               continue;
             }
 #endif
-            // One branch-free pass (runs are a few candidates long: a vector loop would run
-            // mostly in its scalar remainder): the minimum image as arithmetic on the
-            // comparisons (d - l or d + l exactly where the ternary gives them, d itself
-            // otherwise; a walled axis has l = 0 and an infinite half), and the compaction,
-            // which writes the slot at the row's count whether or not the pair is kept (it
-            // lies inside the row, and a row that overflows its stride is redone).
+            // Without the lanes (no AVX-512, or no room in the row), one branch-free pass (runs
+            // are a few candidates long: a compiled vector loop would run mostly in its scalar
+            // remainder): the minimum image as arithmetic on the comparisons (d - l or d + l
+            // exactly where the ternary gives them, d itself otherwise; a walled axis has l = 0
+            // and an infinite half), and the compaction, which writes the slot at the row's
+            // count whether or not the pair is kept (it lies inside the row, and a row that
+            // overflows its stride is redone).
             auto nearest_image = [](double d, double half, double len) {
               return d - len * double(d > half) + len * double(d < -half);
             };
