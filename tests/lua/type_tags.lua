@@ -8,6 +8,10 @@
 -- collection of swapped objects (each __gc destroys by its own tag).
 local iv = require("invasim")
 
+-- One scratch directory for every Snapshots object made here, removed at the end.
+local snapshot_dir = os.tmpname()
+os.remove(snapshot_dir)
+
 local function make_all()
   local sys = iv.System{ box = { 8, 8, 8 }, periodic = { true, true, true }, seed = 2 }
   sys:place{ cells = { n = 4, x = { 0, 8 } } }
@@ -31,7 +35,7 @@ local function make_all()
     Progress = iv.Progress{ total = 10, live = false, every_seconds = 1e9 },
     Simulation = iv.Simulation{ system = sys, dynamics = dyn },
     Correlator = iv.Correlator{ group = cells, interval = 0.01, lags = 4, origin_every = 1 },
-    Snapshots = iv.Snapshots{ dir = os.tmpname() .. "_snapshots" },
+    Snapshots = iv.Snapshots{ dir = snapshot_dir },
   }
 end
 
@@ -146,3 +150,4 @@ assert(not ok and err:find("must be a Walls force, got Contacts"), tostring(err)
 
 print(string.format("type_tags: %d types, %d calls on a swapped metatable or a wrong argument, %d errors, no crash",
                     #type_names, calls, errors))
+assert(os.execute("rm -rf '" .. snapshot_dir .. "'"))
