@@ -337,6 +337,42 @@ TEST_CASE("drift: a thread's share cut into runs of any length gives the same bi
   CHECK(first_difference(*whole, *cut) == "");
 }
 
+TEST_CASE("drift: a site that leaves the box is wrapped wherever it falls in a run") {
+  // The drift moves whole blocks of 8 sites in vector lanes and the rest one by one; each form
+  // must notice a site that left the box on a periodic axis (through either face) and wrap
+  // it. 37 sites in one run (four blocks and a remainder of 5), one of them leaving.
+  const double L = 10.0, dt = 0.05;
+  const int n = 37;
+  int case_index = 0;
+  for (int leaver : {2, 9, 20, 31, 35})
+    for (int axis : {1, 2})
+      for (bool up : {true, false}) {
+        CAPTURE(leaver, axis, up);
+        System sys(test::cube(L, true), 3);  // walls in x, periodic y and z
+        for (int i = 0; i < n; ++i)
+          sys.add_sphere(Vec3(5.0, 5.0, 5.0) + 0.01 * double(i) * Vec3::Ones(), 1.0, 1.0);
+        Sites& s = sys.sites();
+        s.pos[leaver][axis] = up ? L - 1e-3 : 1e-3;
+        s.vel[leaver][axis] = up ? 1.0 : -1.0;
+        s.force[leaver][0] = 0.1 * double(++case_index);
+        std::vector<int> slots(n);
+        for (int i = 0; i < n; ++i) slots[std::size_t(i)] = i;
+        std::vector<Vec3> before;
+        for (int i = 0; i < n; ++i) before.push_back(sys.unwrapped(std::size_t(i)));
+        Method(std::vector<int>(slots), MethodParams{}).drift_slots(sys, dt, slots);
+        for (int i = 0; i < n; ++i) {
+          CAPTURE(i);
+          for (int a = 1; a < 3; ++a) {
+            CHECK(s.pos[i][a] >= 0.0);
+            CHECK(s.pos[i][a] < L);
+          }
+          // The unwrapped position moved by dt v: the image counts follow the wrap.
+          CHECK((sys.unwrapped(std::size_t(i)) - before[std::size_t(i)] - dt * s.vel[i]).norm() <
+                1e-12);
+        }
+      }
+}
+
 TEST_CASE(
     "ContactForce: its own region and the force field's team region give the same bits, with "
     "list rebuilds, at 1 and 2 threads; a compute without hooks is one region") {
