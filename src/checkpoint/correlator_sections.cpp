@@ -3,7 +3,7 @@
 namespace invasim {
 
 void write_correlator(CheckpointWriter& out, const TimeCorrelator& c, const std::string& prefix) {
-  const CorrelatorState& s = c.state();
+  const CorrelatorState s = c.state();
   out.put_u64(prefix + ".samples", s.samples);
   out.put_f64(prefix + ".last_time", s.last_time);
   out.put_f64s(prefix + ".velocity", s.velocity);

@@ -36,10 +36,33 @@ inline double inverse_speed2(const Vec3& v) {
   const double v2 = v[0] * v[0] + (v[1] * v[1] + v[2] * v[2]);
   return v2 > 0.0 ? 1.0 / v2 : 0.0;
 }
-inline void put(std::vector<double>& a, std::size_t i, const Vec3& v) {
-  a[3 * i] = v[0];
-  a[3 * i + 1] = v[1];
-  a[3 * i + 2] = v[2];
+// Writes N vectors x into `to` by component: to[(base + axis) * N + i] = x[i][axis].
+inline void put_components(std::vector<double>& to, std::size_t base, std::size_t N,
+                           const Vec3* x) {
+  double* c = to.data() + base * N;
+  for (std::size_t i = 0; i < N; ++i) {
+    c[i] = x[i][0];
+    c[N + i] = x[i][1];
+    c[2 * N + i] = x[i][2];
+  }
+}
+// Converts snapshots between CorrelatorState's layout ((slot * N + site) * 3 + axis) and the
+// stored one ((slot * 3 + axis) * N + site).
+std::vector<double> interleaved(const std::vector<double>& by_component, std::size_t N) {
+  std::vector<double> out(by_component.size());
+  for (std::size_t slot = 0; slot < out.size() / (3 * N); ++slot)
+    for (std::size_t i = 0; i < N; ++i)
+      for (std::size_t a = 0; a < 3; ++a)
+        out[(slot * N + i) * 3 + a] = by_component[(slot * 3 + a) * N + i];
+  return out;
+}
+std::vector<double> by_component(const std::vector<double>& interleaved, std::size_t N) {
+  std::vector<double> out(interleaved.size());
+  for (std::size_t slot = 0; slot < out.size() / (3 * N); ++slot)
+    for (std::size_t i = 0; i < N; ++i)
+      for (std::size_t a = 0; a < 3; ++a)
+        out[(slot * 3 + a) * N + i] = interleaved[(slot * N + i) * 3 + a];
+  return out;
 }
 }  // namespace
 
@@ -58,11 +81,11 @@ TimeCorrelator::TimeCorrelator(std::vector<int> group, const TimeCorrelatorParam
   check_memory("time correlator", "lags", double(params_.lags), per_lag);
   const std::size_t snap = slots() * group_.size() * 3;
   if (params_.velocity) {
-    state_.velocity.assign(snap, 0.0);
+    origin_v_.assign(snap, 0.0);
     inv_speed2_.assign(snap / 3, 0.0);
   }
-  if (params_.orientation) state_.orientation.assign(snap, 0.0);
-  if (params_.position) state_.position.assign(snap, 0.0);
+  if (params_.orientation) origin_n_.assign(snap, 0.0);
+  if (params_.position) origin_r_.assign(snap, 0.0);
   state_.origins.assign(std::size_t(params_.lags), 0);
   state_.sums.assign(std::size_t(params_.lags) * kTerms, 0.0);
 }
@@ -96,15 +119,13 @@ void TimeCorrelator::sample(const System& sys) {
 }
 
 void TimeCorrelator::store_origin(std::size_t slot, const Vec3* v, const Vec3* n, const Vec3* r) {
-  const std::size_t N = group_.size(), base = slot * N;
-  for (std::size_t i = 0; i < N; ++i) {
-    if (params_.velocity) {
-      put(state_.velocity, base + i, v[i]);
-      inv_speed2_[base + i] = inverse_speed2(v[i]);
-    }
-    if (params_.orientation) put(state_.orientation, base + i, n[i]);
-    if (params_.position) put(state_.position, base + i, r[i]);
+  const std::size_t N = group_.size();
+  if (params_.velocity) {
+    put_components(origin_v_, 3 * slot, N, v);
+    for (std::size_t i = 0; i < N; ++i) inv_speed2_[slot * N + i] = inverse_speed2(v[i]);
   }
+  if (params_.orientation) put_components(origin_n_, 3 * slot, N, n);
+  if (params_.position) put_components(origin_r_, 3 * slot, N, r);
 }
 
 // Per-site terms of one block, computed in vectorised loops, then summed in lanes (room for
@@ -120,36 +141,44 @@ struct TimeCorrelator::Scratch {
   double moving[kSize];
 };
 
-TimeCorrelator::Partial TimeCorrelator::block_terms(std::size_t slot, std::size_t lo,
-                                                    std::size_t hi, const Vec3* v, const Vec3* n,
-                                                    const Vec3* r) const {
+TimeCorrelator::Partial TimeCorrelator::block_terms(std::size_t slot, std::size_t k_sample,
+                                                    std::size_t lo, std::size_t hi) const {
   Scratch sc;
-  const std::size_t m = hi - lo, base = 3 * (slot * group_.size() + lo);
+  const std::size_t N = group_.size(), m = hi - lo;
   const double k = params_.k;
-  // a . b summed as Eigen's Vec3::dot does: a0 b0 + (a1 b1 + a2 b2).
-  auto dot = [](const double* a, const Vec3& b) {
-    return a[0] * b[0] + (a[1] * b[1] + a[2] * b[2]);
+  // Component `axis` of sites lo.. of an origin slot or a kept sample.
+  auto at = [&](const Components& c, std::size_t row, int axis) {
+    return c.data() + (3 * row + std::size_t(axis)) * N + lo;
   };
+  // a . b summed as Eigen's Vec3::dot does: a0 b0 + (a1 b1 + a2 b2).
   if (params_.velocity) {
-    const double* v0 = state_.velocity.data() + base;
-    const double* inv = inv_speed2_.data() + base / 3;
+    const double *ax = at(origin_v_, slot, 0), *ay = at(origin_v_, slot, 1),
+                 *az = at(origin_v_, slot, 2);
+    const double *bx = at(kept_v_, k_sample, 0), *by = at(kept_v_, k_sample, 1),
+                 *bz = at(kept_v_, k_sample, 2);
+    const double* inv = inv_speed2_.data() + slot * N + lo;
 #pragma omp simd
     for (std::size_t i = 0; i < m; ++i) {
-      const double d = dot(v0 + 3 * i, v[lo + i]);
+      const double d = ax[i] * bx[i] + (ay[i] * by[i] + az[i] * bz[i]);
       sc.vv[i] = d;
       sc.moving[i] = inv[i] > 0.0 ? 1.0 : 0.0;
       sc.vv_norm[i] = d * inv[i];
     }
   }
   if (params_.orientation) {
-    const double* n0 = state_.orientation.data() + base;
+    const double *ax = at(origin_n_, slot, 0), *ay = at(origin_n_, slot, 1),
+                 *az = at(origin_n_, slot, 2);
+    const double *bx = at(kept_n_, k_sample, 0), *by = at(kept_n_, k_sample, 1),
+                 *bz = at(kept_n_, k_sample, 2);
 #pragma omp simd
-    for (std::size_t i = 0; i < m; ++i) sc.nn[i] = dot(n0 + 3 * i, n[lo + i]);
+    for (std::size_t i = 0; i < m; ++i) sc.nn[i] = ax[i] * bx[i] + (ay[i] * by[i] + az[i] * bz[i]);
   }
   if (params_.position) {
-    const double* r0 = state_.position.data() + base;
+    const double* r0[3] = {at(origin_r_, slot, 0), at(origin_r_, slot, 1), at(origin_r_, slot, 2)};
+    const double* r[3] = {at(kept_r_, k_sample, 0), at(kept_r_, k_sample, 1),
+                          at(kept_r_, k_sample, 2)};
     // dr = r(t) - r(t'), |dr|^2 summed as Eigen's squaredNorm does.
-    auto dr = [&](std::size_t i, int a) { return r[lo + i][a] - r0[3 * i + a]; };
+    auto dr = [&](std::size_t i, int a) { return r[a][i] - r0[a][i]; };
     double max_arg = 0.0;  // largest argument of sin / cos (libm beyond fast_trig::kMaxArg)
     if (params_.fs_average == FsAverage::kIsotropic) {
 #pragma omp simd reduction(max : max_arg)
@@ -172,7 +201,8 @@ TimeCorrelator::Partial TimeCorrelator::block_terms(std::size_t slot, std::size_
       }
     }
     if (max_arg > fast_trig::kMaxArg)  // clamped above: redone with libm
-      for (std::size_t i = 0; i < m; ++i) sc.fs[i] = libm_fs_term(r[lo + i], r0 + 3 * i, sc.fs[i]);
+      for (std::size_t i = 0; i < m; ++i)
+        sc.fs[i] = libm_fs_term(Vec3(dr(i, 0), dr(i, 1), dr(i, 2)), sc.fs[i]);
   }
   // The sums in kLanes interleaved lanes (site i adds to lane i mod kLanes), which vectorise,
   // then the lanes in order: a fixed order for a block, whatever the thread count. The last
@@ -206,8 +236,7 @@ TimeCorrelator::Partial TimeCorrelator::block_terms(std::size_t slot, std::size_
   return p;
 }
 
-double TimeCorrelator::libm_fs_term(const Vec3& r, const double* r0, double fast) const {
-  const Vec3 dr = r - Vec3(r0[0], r0[1], r0[2]);
+double TimeCorrelator::libm_fs_term(const Vec3& dr, double fast) const {
   const double k = params_.k;
   if (params_.fs_average == FsAverage::kIsotropic) {
     const double x = k * dr.norm();
@@ -225,16 +254,16 @@ void TimeCorrelator::add_sample(const Vec3* v, const Vec3* n, const Vec3* r) {
     flush();
     store_origin(std::size_t((s / E) % slots()), v, n, r);
   }
-  if (kept_v_.empty()) {  // allocated at the first sample: E samples of each channel
-    const std::size_t cap = std::size_t(E) * N;
+  if (kept_v_.empty() && kept_n_.empty() && kept_r_.empty()) {
+    // Allocated at the first sample: E samples of each channel.
+    const std::size_t cap = std::size_t(E) * 3 * N;
     if (params_.velocity) kept_v_.resize(cap);
     if (params_.orientation) kept_n_.resize(cap);
     if (params_.position) kept_r_.resize(cap);
   }
-  const std::size_t at = kept_ * N;
-  if (params_.velocity) std::copy(v, v + N, kept_v_.begin() + std::ptrdiff_t(at));
-  if (params_.orientation) std::copy(n, n + N, kept_n_.begin() + std::ptrdiff_t(at));
-  if (params_.position) std::copy(r, r + N, kept_r_.begin() + std::ptrdiff_t(at));
+  if (params_.velocity) put_components(kept_v_, 3 * kept_, N, v);
+  if (params_.orientation) put_components(kept_n_, 3 * kept_, N, n);
+  if (params_.position) put_components(kept_r_, 3 * kept_, N, r);
   ++kept_;
   ++state_.samples;
 }
@@ -255,9 +284,6 @@ void TimeCorrelator::flush() const {
   // order, so the result is independent of the thread count.
   std::vector<Partial> partial(K * n_orig * blocks);
   const std::int64_t tasks = std::int64_t(n_orig * blocks);
-  auto at = [&](const std::vector<Vec3>& a, std::size_t k) {
-    return a.empty() ? nullptr : a.data() + k * N;
-  };
   // Small work is not worth waking the thread team (core/parallel.hpp).
 #pragma omp parallel for schedule(static) if (parallel_light(K * n_orig * N))
   for (std::int64_t task = 0; task < tasks; ++task) {
@@ -268,8 +294,7 @@ void TimeCorrelator::flush() const {
     for (std::size_t k = 0; k < K; ++k) {
       const std::uint64_t s = first + k;
       if (j < j_lo(s) || j > j_hi(s)) continue;
-      partial[(k * n_orig + o) * blocks + b] =
-          block_terms(slot, lo, hi, at(kept_v_, k), at(kept_n_, k), at(kept_r_, k));
+      partial[(k * n_orig + o) * blocks + b] = block_terms(slot, k, lo, hi);
     }
   }
   for (std::size_t k = 0; k < K; ++k) {
@@ -369,12 +394,30 @@ void TimeCorrelator::restore(CorrelatorState state) {
   check("position snapshots", state.position.size(), params_.position ? snap : 0);
   check("origin counts", state.origins.size(), std::size_t(params_.lags));
   check("sums", state.sums.size(), std::size_t(params_.lags) * kTerms);
+  const std::size_t N = group_.size();
+  origin_v_ = by_component(state.velocity, N);
+  origin_n_ = by_component(state.orientation, N);
+  origin_r_ = by_component(state.position, N);
   state_ = std::move(state);
+  state_.velocity.clear();
+  state_.orientation.clear();
+  state_.position.clear();
   kept_ = 0;
-  for (std::size_t i = 0; i < inv_speed2_.size(); ++i) {
-    const double* a = state_.velocity.data() + 3 * i;
-    inv_speed2_[i] = inverse_speed2(Vec3(a[0], a[1], a[2]));
-  }
+  for (std::size_t slot = 0; slot < (params_.velocity ? slots() : 0); ++slot)
+    for (std::size_t i = 0; i < N; ++i) {
+      const double* c = origin_v_.data() + 3 * slot * N + i;
+      inv_speed2_[slot * N + i] = inverse_speed2(Vec3(c[0], c[N], c[2 * N]));
+    }
+}
+
+CorrelatorState TimeCorrelator::state() const {
+  flush();
+  CorrelatorState s = state_;
+  const std::size_t N = group_.size();
+  s.velocity = interleaved(origin_v_, N);
+  s.orientation = interleaved(origin_n_, N);
+  s.position = interleaved(origin_r_, N);
+  return s;
 }
 
 std::optional<double> decay_time(const std::vector<double>& t, const std::vector<double>& y,

@@ -105,11 +105,9 @@ class TimeCorrelator {
   std::optional<double> tau_d_standard() const;
   std::optional<double> tau_r() const;
 
-  // The accumulated state, with the kept samples correlated first (see above).
-  const CorrelatorState& state() const {
-    flush();
-    return state_;
-  }
+  // The accumulated state, with the kept samples correlated first (see above); the snapshots
+  // in CorrelatorState's layout (a copy: they are stored by component).
+  CorrelatorState state() const;
   // Replaces the accumulated state (from a checkpoint); throws InputError if its sizes do not
   // match this correlator's group and parameters.
   void restore(CorrelatorState state);
@@ -117,27 +115,32 @@ class TimeCorrelator {
  private:
   struct Partial;
   struct Scratch;
+  // One channel's snapshots by component: value ((slot * 3 + axis) * N + site), so that the
+  // per-pair loops read each component contiguously (no shuffles of 3-vectors in the lanes).
+  using Components = std::vector<double>;
   void store_origin(std::size_t slot, const Vec3* v, const Vec3* n, const Vec3* r);
   // Correlates the kept samples with the stored origins and adds them to the sums in sample
   // order; logically const (the sums are what they would have been without the wait).
   void flush() const;
-  Partial block_terms(std::size_t slot, std::size_t lo, std::size_t hi, const Vec3* v,
-                      const Vec3* n, const Vec3* r) const;
-  // F_s's term of one site (position r, origin r0) from libm if its argument is beyond
+  // Terms of sites [lo, hi) for origin `slot` and the k-th kept sample.
+  Partial block_terms(std::size_t slot, std::size_t k, std::size_t lo, std::size_t hi) const;
+  // F_s's term of one site (displacement dr) from libm if its argument is beyond
   // fast_trig::kMaxArg, else `fast`.
-  double libm_fs_term(const Vec3& r, const double* r0, double fast) const;
+  double libm_fs_term(const Vec3& dr, double fast) const;
   std::size_t slots() const;
   std::vector<int> group_;
   TimeCorrelatorParams params_;
+  // The counters and sums; its snapshot vectors stay empty (the origins are in origin_*).
   mutable CorrelatorState state_;
-  // 1 / |v|^2 of every stored origin velocity (0 for a site at rest), slot-major like the
-  // snapshots: a product per pair instead of a division. Derived from state_.velocity.
+  Components origin_v_, origin_n_, origin_r_;  // the stored origins, `slots()` of each channel
+  // 1 / |v|^2 of every stored origin velocity (0 for a site at rest), value (slot * N + site):
+  // a product per pair instead of a division. Derived from origin_v_.
   std::vector<double> inv_speed2_;
   std::vector<Vec3> v_now_, n_now_, r_now_;  // gather buffers for sample()
-  // Samples taken but not yet correlated (at most origin_every), sample-major: value
-  // (k * N + site) of the k-th kept sample; the first is sample state_.samples - kept_.
+  // Samples taken but not yet correlated (at most origin_every), by component like the
+  // origins (k in place of the slot); the first is sample state_.samples - kept_.
   mutable std::size_t kept_ = 0;
-  std::vector<Vec3> kept_v_, kept_n_, kept_r_;
+  Components kept_v_, kept_n_, kept_r_;
 };
 
 // First time at which y falls to `level` or below, linearly interpolated between the two
