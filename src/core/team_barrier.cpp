@@ -1,5 +1,7 @@
 #include "core/team_barrier.hpp"
 
+#include "core/idle_tasks.hpp"
+
 #include <omp.h>
 
 #include <algorithm>
@@ -36,10 +38,18 @@ void TeamBarrier::wait(int team_size) {
   // would take the time of the one it waits for) and the budget falls: passive waiting.
   thread_local double budget = kSpinSeconds;
   using Clock = std::chrono::steady_clock;
+  // While the barrier holds, the thread first runs posted idle tasks (core/idle_tasks.hpp), one
+  // at a time; the spin and its budget count from when none is left.
+  IdleTasks& tasks = idle_tasks();
+  bool released = false;
+  while (tasks.posted() && !released) {
+    if (!tasks.run_one()) break;
+    released = phase_.load(std::memory_order_acquire) != phase;
+  }
+  if (released) return;
   const auto start = Clock::now();
   const auto deadline =
       start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(budget));
-  bool released = false;
   for (int k = 1;; ++k) {
     if (phase_.load(std::memory_order_acquire) != phase) {
       released = true;

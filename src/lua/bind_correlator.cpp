@@ -23,7 +23,9 @@ namespace invasim::lua {
 
 // A correlator and the System its group belongs to.
 struct CorrelatorHandle {
-  TimeCorrelator correlator;
+  CorrelatorHandle(const TimeCorrelatorParams& params, std::shared_ptr<Group> of)
+      : correlator(of->sites, params), group(std::move(of)) {}
+  TimeCorrelator correlator;  // (built in place: it is not moved)
   std::shared_ptr<Group> group;
 };
 
@@ -77,10 +79,8 @@ int l_new(lua_State* L) {
   std::shared_ptr<Group> group = std::move(k.group);
   const TimeCorrelatorParams& p = k;
   if (group->sites.empty()) fail_input("Correlator: group '", group->name, "' is empty");
-  auto handle = engine_call("Correlator", [&] {
-    return std::make_shared<CorrelatorHandle>(
-        CorrelatorHandle{TimeCorrelator(group->sites, p), group});
-  });
+  auto handle =
+      engine_call("Correlator", [&] { return std::make_shared<CorrelatorHandle>(p, group); });
   push(L, std::move(handle));
   return 1;
 }

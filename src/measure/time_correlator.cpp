@@ -5,6 +5,7 @@
 #include "core/deterministic_sum.hpp"
 #include "core/errors.hpp"
 #include "core/fast_trig.hpp"
+#include "core/idle_tasks.hpp"
 #include "core/memory_budget.hpp"
 #include "core/parallel.hpp"
 
@@ -118,7 +119,8 @@ void TimeCorrelator::sample(const System& sys) {
   state_.last_time = sys.time;
 }
 
-void TimeCorrelator::store_origin(std::size_t slot, const Vec3* v, const Vec3* n, const Vec3* r) {
+void TimeCorrelator::store_origin(std::size_t slot, const Vec3* v, const Vec3* n,
+                                  const Vec3* r) const {
   const std::size_t N = group_.size();
   if (params_.velocity) {
     put_components(origin_v_, 3 * slot, N, v);
@@ -141,8 +143,10 @@ struct TimeCorrelator::Scratch {
   double moving[kSize];
 };
 
-TimeCorrelator::Partial TimeCorrelator::block_terms(std::size_t slot, std::size_t k_sample,
-                                                    std::size_t lo, std::size_t hi) const {
+TimeCorrelator::Partial TimeCorrelator::block_terms(std::size_t slot,
+                                                    const Components* const samples[3],
+                                                    std::size_t k_sample, std::size_t lo,
+                                                    std::size_t hi) const {
   Scratch sc;
   const std::size_t N = group_.size(), m = hi - lo;
   const double k = params_.k;
@@ -154,8 +158,8 @@ TimeCorrelator::Partial TimeCorrelator::block_terms(std::size_t slot, std::size_
   if (params_.velocity) {
     const double *ax = at(origin_v_, slot, 0), *ay = at(origin_v_, slot, 1),
                  *az = at(origin_v_, slot, 2);
-    const double *bx = at(kept_v_, k_sample, 0), *by = at(kept_v_, k_sample, 1),
-                 *bz = at(kept_v_, k_sample, 2);
+    const Components& b = *samples[0];
+    const double *bx = at(b, k_sample, 0), *by = at(b, k_sample, 1), *bz = at(b, k_sample, 2);
     const double* inv = inv_speed2_.data() + slot * N + lo;
 #pragma omp simd
     for (std::size_t i = 0; i < m; ++i) {
@@ -168,15 +172,15 @@ TimeCorrelator::Partial TimeCorrelator::block_terms(std::size_t slot, std::size_
   if (params_.orientation) {
     const double *ax = at(origin_n_, slot, 0), *ay = at(origin_n_, slot, 1),
                  *az = at(origin_n_, slot, 2);
-    const double *bx = at(kept_n_, k_sample, 0), *by = at(kept_n_, k_sample, 1),
-                 *bz = at(kept_n_, k_sample, 2);
+    const Components& b = *samples[1];
+    const double *bx = at(b, k_sample, 0), *by = at(b, k_sample, 1), *bz = at(b, k_sample, 2);
 #pragma omp simd
     for (std::size_t i = 0; i < m; ++i) sc.nn[i] = ax[i] * bx[i] + (ay[i] * by[i] + az[i] * bz[i]);
   }
   if (params_.position) {
     const double* r0[3] = {at(origin_r_, slot, 0), at(origin_r_, slot, 1), at(origin_r_, slot, 2)};
-    const double* r[3] = {at(kept_r_, k_sample, 0), at(kept_r_, k_sample, 1),
-                          at(kept_r_, k_sample, 2)};
+    const Components& b = *samples[2];
+    const double* r[3] = {at(b, k_sample, 0), at(b, k_sample, 1), at(b, k_sample, 2)};
     // dr = r(t) - r(t'), |dr|^2 summed as Eigen's squaredNorm does.
     auto dr = [&](std::size_t i, int a) { return r[a][i] - r0[a][i]; };
     double max_arg = 0.0;  // largest argument of sin / cos (libm beyond fast_trig::kMaxArg)
@@ -251,8 +255,20 @@ void TimeCorrelator::add_sample(const Vec3* v, const Vec3* n, const Vec3* r) {
   const std::size_t N = group_.size();
   // The kept samples use origins up to (s - 1) / E; origin s / E replaces the oldest slot.
   if (s % E == 0) {
-    flush();
-    store_origin(std::size_t((s / E) % slots()), v, n, r);
+    // The kept samples go to the team's idle tasks; the new origin replaces the oldest slot,
+    // which they still read, once they are done (complete_pending).
+    complete_pending();
+    post_kept(true);
+    const std::size_t slot = std::size_t((s / E) % slots());
+    if (pending_.active) {
+      pending_.has_origin = true;
+      pending_.origin_slot = slot;
+      if (params_.velocity) pending_.origin_v.assign(v, v + N);
+      if (params_.orientation) pending_.origin_n.assign(n, n + N);
+      if (params_.position) pending_.origin_r.assign(r, r + N);
+    } else {
+      store_origin(slot, v, n, r);
+    }
   }
   if (kept_v_.empty() && kept_n_.empty() && kept_r_.empty()) {
     // Allocated at the first sample: E samples of each channel.
@@ -269,46 +285,87 @@ void TimeCorrelator::add_sample(const Vec3* v, const Vec3* n, const Vec3* r) {
 }
 
 void TimeCorrelator::flush() const {
+  complete_pending();
+  post_kept(false);
+  complete_pending();
+}
+
+namespace {
+// Origins j (taken at sample j E) within the window of sample s: s - L + 1 <= j E <= s.
+struct OriginWindow {
+  std::uint64_t L, E;
+  std::uint64_t lo(std::uint64_t s) const { return s + 1 >= L ? (s + 1 - L + E - 1) / E : 0; }
+  std::uint64_t hi(std::uint64_t s) const { return s / E; }
+};
+}  // namespace
+
+void TimeCorrelator::post_kept(bool idle) const {
   if (kept_ == 0) return;
-  const std::uint64_t E = std::uint64_t(params_.origin_every);
-  const std::uint64_t L = std::uint64_t(params_.lags), S = slots();
-  const std::uint64_t first = state_.samples - kept_;
-  // Origins j (taken at sample j E) within the window of sample s: s - L + 1 <= j E <= s.
-  auto j_lo = [&](std::uint64_t s) { return s + 1 >= L ? (s + 1 - L + E - 1) / E : 0; };
-  auto j_hi = [&](std::uint64_t s) { return s / E; };
-  const std::uint64_t o_lo = j_lo(first), o_hi = j_hi(state_.samples - 1);
-  const std::size_t n_orig = std::size_t(o_hi - o_lo + 1), K = kept_;
-  const std::size_t N = group_.size(), blocks = (N + kSumBlock - 1) / kSumBlock;
-  // Every (origin, block of sites) pair is one task, holding the origin's block in cache over
-  // the kept samples, with one partial sum per sample; the partials are then added in a fixed
-  // order, so the result is independent of the thread count.
-  std::vector<Partial> partial(K * n_orig * blocks);
-  const std::int64_t tasks = std::int64_t(n_orig * blocks);
-  // Small work is not worth waking the thread team (core/parallel.hpp).
-#pragma omp parallel for schedule(static) if (parallel_light(K * n_orig * N))
-  for (std::int64_t task = 0; task < tasks; ++task) {
-    const std::size_t o = std::size_t(task) / blocks, b = std::size_t(task) % blocks;
-    const std::uint64_t j = o_lo + o;
-    const std::size_t slot = std::size_t(j % S);
-    const std::size_t lo = b * kSumBlock, hi = std::min(N, (b + 1) * kSumBlock);
-    for (std::size_t k = 0; k < K; ++k) {
-      const std::uint64_t s = first + k;
-      if (j < j_lo(s) || j > j_hi(s)) continue;
-      partial[(k * n_orig + o) * blocks + b] = block_terms(slot, k, lo, hi);
-    }
+  const OriginWindow window{std::uint64_t(params_.lags), std::uint64_t(params_.origin_every)};
+  Pending& p = pending_;
+  p.first = state_.samples - kept_;
+  p.o_lo = window.lo(p.first);
+  p.K = kept_;
+  p.n_orig = std::size_t(window.hi(state_.samples - 1) - p.o_lo + 1);
+  p.blocks = (group_.size() + kSumBlock - 1) / kSumBlock;
+  // The kept samples move to the tasks; kept_* get the buffers of the last ones.
+  p.v.swap(kept_v_);
+  p.n.swap(kept_n_);
+  p.r.swap(kept_r_);
+  kept_ = 0;
+  // One partial sum per (sample, origin, block of sites); they are added in a fixed order, so
+  // the sums do not depend on which thread ran which task, or when.
+  p.partial.assign(p.K * p.n_orig * p.blocks, Partial{});
+  p.active = true;
+  p.idle = idle;
+  const std::size_t tasks = p.partial.size();
+  if (idle) {
+    idle_tasks().post(tasks, [this](std::size_t t) { run_pending_task(t); });
+    return;
   }
-  for (std::size_t k = 0; k < K; ++k) {
-    const std::uint64_t s = first + k;
-    for (std::uint64_t j = j_lo(s); j <= j_hi(s); ++j) {
-      const std::size_t o = std::size_t(j - o_lo);
+  // Small work is not worth waking the thread team (core/parallel.hpp).
+#pragma omp parallel for schedule(static) if (parallel_light(p.K * p.n_orig * group_.size()))
+  for (std::int64_t t = 0; t < std::int64_t(tasks); ++t) run_pending_task(std::size_t(t));
+}
+
+void TimeCorrelator::run_pending_task(std::size_t task) const {
+  const Pending& p = pending_;
+  const std::size_t b = task % p.blocks, o = (task / p.blocks) % p.n_orig,
+                    k = task / (p.blocks * p.n_orig);
+  const OriginWindow window{std::uint64_t(params_.lags), std::uint64_t(params_.origin_every)};
+  const std::uint64_t j = p.o_lo + o, s = p.first + k;
+  if (j < window.lo(s) || j > window.hi(s)) return;
+  const std::size_t N = group_.size(), lo = b * kSumBlock, hi = std::min(N, lo + kSumBlock);
+  const Components* const samples[3] = {&p.v, &p.n, &p.r};
+  pending_.partial[task] = block_terms(std::size_t(j % slots()), samples, k, lo, hi);
+}
+
+void TimeCorrelator::complete_pending() const {
+  Pending& p = pending_;
+  if (!p.active) return;
+  if (p.idle) idle_tasks().finish();
+  const OriginWindow window{std::uint64_t(params_.lags), std::uint64_t(params_.origin_every)};
+  for (std::size_t k = 0; k < p.K; ++k) {
+    const std::uint64_t s = p.first + k;
+    for (std::uint64_t j = window.lo(s); j <= window.hi(s); ++j) {
+      const std::size_t o = std::size_t(j - p.o_lo);
       Partial total;
-      for (std::size_t b = 0; b < blocks; ++b) total += partial[(k * n_orig + o) * blocks + b];
-      const std::size_t lag = std::size_t(s - j * E);
+      for (std::size_t b = 0; b < p.blocks; ++b)
+        total += p.partial[(k * p.n_orig + o) * p.blocks + b];
+      const std::size_t lag = std::size_t(s - j * window.E);
       for (int t = 0; t < kTerms; ++t) state_.sums[lag * kTerms + t] += total.t[t];
       ++state_.origins[lag];
     }
   }
-  kept_ = 0;
+  p.active = false;
+  if (p.has_origin) {
+    p.has_origin = false;
+    store_origin(p.origin_slot, p.origin_v.data(), p.origin_n.data(), p.origin_r.data());
+  }
+}
+
+TimeCorrelator::~TimeCorrelator() {
+  if (pending_.active && pending_.idle) idle_tasks().finish();
 }
 
 CorrelationFunctions TimeCorrelator::result() const {
@@ -398,6 +455,8 @@ void TimeCorrelator::restore(CorrelatorState state) {
   origin_v_ = by_component(state.velocity, N);
   origin_n_ = by_component(state.orientation, N);
   origin_r_ = by_component(state.position, N);
+  if (pending_.active && pending_.idle) idle_tasks().finish();  // (their results are dropped)
+  pending_.active = pending_.has_origin = false;
   state_ = std::move(state);
   state_.velocity.clear();
   state_.orientation.clear();

@@ -84,6 +84,10 @@ class TimeCorrelator {
 
   // group: site indices (e.g. System::sites_of_kind(SiteKind::kCancer)); must be non-empty.
   TimeCorrelator(std::vector<int> group, const TimeCorrelatorParams& params);
+  // Its posted tasks point to it (see "Pending"): not copied or moved, finished when destroyed.
+  TimeCorrelator(const TimeCorrelator&) = delete;
+  TimeCorrelator& operator=(const TimeCorrelator&) = delete;
+  ~TimeCorrelator();
 
   // Samples the group's velocities, orientations and unwrapped positions. Throws InputError
   // if sys.time has not advanced by sample_interval (to 1e-3 relative) since the last sample.
@@ -118,12 +122,20 @@ class TimeCorrelator {
   // One channel's snapshots by component: value ((slot * 3 + axis) * N + site), so that the
   // per-pair loops read each component contiguously (no shuffles of 3-vectors in the lanes).
   using Components = std::vector<double>;
-  void store_origin(std::size_t slot, const Vec3* v, const Vec3* n, const Vec3* r);
+  void store_origin(std::size_t slot, const Vec3* v, const Vec3* n, const Vec3* r) const;
   // Correlates the kept samples with the stored origins and adds them to the sums in sample
-  // order; logically const (the sums are what they would have been without the wait).
+  // order, now; logically const (the sums are what they would have been without the wait).
   void flush() const;
-  // Terms of sites [lo, hi) for origin `slot` and the k-th kept sample.
-  Partial block_terms(std::size_t slot, std::size_t k, std::size_t lo, std::size_t hi) const;
+  // The kept samples at a new origin, as (origin, sample, block) tasks: posted to the team's
+  // idle tasks (core/idle_tasks.hpp) when `idle`, else run at once; complete_pending then adds
+  // their partial sums in the fixed order and stores the origin that waited for them.
+  void post_kept(bool idle) const;
+  void run_pending_task(std::size_t task) const;
+  void complete_pending() const;
+  // Terms of sites [lo, hi) for origin `slot` and sample k of `samples` (by component, like
+  // the kept samples).
+  Partial block_terms(std::size_t slot, const Components* const samples[3], std::size_t k,
+                      std::size_t lo, std::size_t hi) const;
   // F_s's term of one site (displacement dr) from libm if its argument is beyond
   // fast_trig::kMaxArg, else `fast`.
   double libm_fs_term(const Vec3& dr, double fast) const;
@@ -132,15 +144,31 @@ class TimeCorrelator {
   TimeCorrelatorParams params_;
   // The counters and sums; its snapshot vectors stay empty (the origins are in origin_*).
   mutable CorrelatorState state_;
-  Components origin_v_, origin_n_, origin_r_;  // the stored origins, `slots()` of each channel
+  // The stored origins, `slots()` of each channel (mutable: a held-back origin is stored when
+  // pending tasks complete, which a read of the state may trigger).
+  mutable Components origin_v_, origin_n_, origin_r_;
   // 1 / |v|^2 of every stored origin velocity (0 for a site at rest), value (slot * N + site):
   // a product per pair instead of a division. Derived from origin_v_.
-  std::vector<double> inv_speed2_;
+  mutable std::vector<double> inv_speed2_;
   std::vector<Vec3> v_now_, n_now_, r_now_;  // gather buffers for sample()
   // Samples taken but not yet correlated (at most origin_every), by component like the
   // origins (k in place of the slot); the first is sample state_.samples - kept_.
   mutable std::size_t kept_ = 0;
-  Components kept_v_, kept_n_, kept_r_;
+  mutable Components kept_v_, kept_n_, kept_r_;
+  // Pending: kept samples handed to tasks (their buffers swapped out of kept_*), the tasks'
+  // partial sums (sample, origin, block), and the origin taken when they were posted, held
+  // back because its ring slot still holds an origin the tasks read.
+  struct Pending {
+    bool active = false, idle = false;
+    std::uint64_t first = 0, o_lo = 0;
+    std::size_t K = 0, n_orig = 0, blocks = 0;
+    Components v, n, r;
+    std::vector<Partial> partial;
+    bool has_origin = false;
+    std::size_t origin_slot = 0;
+    std::vector<Vec3> origin_v, origin_n, origin_r;
+  };
+  mutable Pending pending_;
 };
 
 // First time at which y falls to `level` or below, linearly interpolated between the two

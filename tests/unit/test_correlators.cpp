@@ -12,12 +12,17 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <deque>
+#include <thread>
 #include <vector>
 
 #include "core/errors.hpp"
+#include "core/idle_tasks.hpp"
 #include "core/rng.hpp"
+#include "core/team_barrier.hpp"
 #include "integrate/dynamics.hpp"
 #include "measure/time_correlator.hpp"
 #include "test_support.hpp"
@@ -170,7 +175,7 @@ System free_particles(int n, std::uint64_t seed) {
 // particles (for the ratio cvv_std, the mean of the groups' ratios), and their scatter gives
 // the standard error.
 struct GroupCorrelators {
-  std::vector<TimeCorrelator> groups;
+  std::deque<TimeCorrelator> groups;  // (not copied or moved)
   GroupCorrelators(const std::vector<int>& sites, int n_groups, const TimeCorrelatorParams& p) {
     const int n = int(sites.size()), size = n / n_groups;
     REQUIRE(size * n_groups == n);
@@ -384,6 +389,33 @@ TEST_CASE("correlator state: restore continues exactly, results independent of t
   CHECK(resumed.state().sums == one.state().sums);
   CHECK(resumed.state().velocity == one.state().velocity);
   CHECK(resumed.samples() == std::uint64_t(S));
+
+  // The same samples with a 2-thread team between them, whose barrier waits take the posted
+  // (origin, sample, block) tasks (core/idle_tasks.hpp): the same bits.
+  TimeCorrelator busy(group, p);
+  for (int k = 0; k < S; ++k) {
+    feed(busy, t, k, k + 1);
+#pragma omp parallel num_threads(2)
+    for (int q = 0; q < 6; ++q) {
+      if (omp_get_thread_num() == 0) std::this_thread::sleep_for(std::chrono::microseconds(50));
+      team_barrier();
+    }
+  }
+  CHECK(busy.state().sums == one.state().sums);
+  CHECK(busy.state().origins == one.state().origins);
+  CHECK(busy.state().position == one.state().position);
+  // Destroyed or restored with tasks still posted: they are finished first.
+  {
+    TimeCorrelator dropped(group, p);
+    feed(dropped, t, 0, 2 * p.origin_every + 1);
+    CHECK(idle_tasks().posted());
+  }
+  CHECK_FALSE(idle_tasks().posted());
+  TimeCorrelator replaced(group, p);
+  feed(replaced, t, 0, 2 * p.origin_every + 1);
+  replaced.restore(first.state());
+  feed(replaced, t, 23, S);
+  CHECK(replaced.state().sums == one.state().sums);
 
   // A state of another shape is refused.
   TimeCorrelatorParams other = p;
