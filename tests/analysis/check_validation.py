@@ -308,6 +308,25 @@ for drifting, want in ((True, {v.NOT_STEADY}), (False, {v.AGREES, v.DISAGREES}))
     xs4 = sorted(p["x"] for p in rec4["numbers"]["points"][1.0])
     check(all(abs(a - b) < 1e-12 for a, b in zip(xs4, [0.1, 0.25, 0.4])), xs4)
 
+# Curves at production times (the paper-scale Fig. 4a): a run that has not reached a time has
+# no value there (its latest window is an earlier time), and a state point none of whose runs
+# has reached it has no point; a finished run has one at every time it covers.
+shutil.rmtree(work, ignore_errors=True)
+done_job = tissue_job(os.path.join(work, "t_done"), 0.001, 0.1, 200.0, False, {"dt": 1.0})
+run_job = tissue_job(os.path.join(work, "t_running"), 0.002, 0.25, 500.0, False, {"dt": 1.0})
+with open(os.path.join(run_job.path, "series.csv")) as f:
+    lines = f.readlines()
+with open(os.path.join(run_job.path, "series.csv"), "w") as f:
+    f.writelines(lines[:21])  # production times 0 .. 19 of 39
+json.dump({"status": "running"}, open(os.path.join(run_job.path, "signac_job_document.json"), "w"))
+run_job = workspace.Job(run_job.path)
+check(figures_tissue.production_fraction(run_job, 30.0) is None)
+check(figures_tissue.production_fraction(done_job, 30.0) is not None)
+table_t, _ = figures_tissue.an_over_time([done_job, run_job], ["f0"], figures_tissue.x_measured,
+                                         (10.0, 30.0), figures_tissue.production_fraction)
+check(sorted(p["key"][0] for p in table_t[10.0]) == [0.001, 0.002], table_t[10.0])
+check([p["key"][0] for p in table_t[30.0]] == [0.001], table_t[30.0])
+
 # Fig. 8: lambda compared at the same phi_a. lambda = 1 has a higher A_n than lambda = 0 at
 # both shared phi_a, but an extra dense point at A_n = 0 lowers its scan mean: pointwise, the
 # statement disagrees. Delta phi_a rising 0.1 -> 0.2 -> 0.25 (errors 0.01) agrees. Each row

@@ -41,13 +41,18 @@ def an_over_time(jobs, keys, xfun, fractions, fraction_of=None):
     extremes over all points and times, so that curves at different times compare). A time
     is a fraction of each run's rows, or (fraction_of(job, mark) given) a mark each run maps
     to its own fraction (production_fraction: a time t). The values at a time are those of
-    the averaging window ending there (steady.window_mean). Returns {mark: [points]}, extremes."""
+    the averaging window ending there (steady.window_mean). A run that has not reached a mark
+    (fraction_of gives None) has no value there, and a state point none of whose runs has, no
+    point. Returns {mark: [points]}, extremes."""
     table, flat = {}, []
     for f in fractions:
         table[f] = []
         for key, reps in workspace.group(jobs, keys).items():
-            p = points.state_point(reps, lambda j: _window_values(j, xfun, fraction_of(j, f)
-                                                                if fraction_of else f))
+            at = {id(j): (fraction_of(j, f) if fraction_of else f) for j in reps}
+            reached = [j for j in reps if at[id(j)] is not None]
+            if not reached:
+                continue
+            p = points.state_point(reached, lambda j: _window_values(j, xfun, at[id(j)]))
             p["key"] = list(key)
             table[f].append(p)
             flat.append(p)
@@ -83,9 +88,12 @@ def time_step(job):
 
 
 def production_fraction(job, t):
-    """The fraction of the run's rows written by production time t (at least one row; a
-    run that has not reached t gives all its rows: its latest window)."""
+    """The fraction of the run's rows written by production time t (at least one row), or
+    None for a run whose production has not reached t (its latest window is an earlier time,
+    not a value at t)."""
     pt = production_time(job)
+    if len(pt) == 0 or pt[-1] < t * (1.0 - 1e-9):
+        return None
     return max(1, int(np.searchsorted(pt, t, side="right"))) / len(pt)
 
 
