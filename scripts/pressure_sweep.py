@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """E_c ~ 1/P from a pressure sweep's workspace (protocols/sweeps/pressure_fig5.lua;
-invasim_analysis/pressure.py). Usage: pressure_sweep.py WS -o DIR. A thin entry point:
+invasim_analysis/pressure.py). Usage: pressure_sweep.py WS [WS ...] -o DIR. A thin entry point:
 Python's path starts with this file's directory, which holds the package invasim_analysis."""
 
 import sys

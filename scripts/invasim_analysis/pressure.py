@@ -6,7 +6,11 @@ x_half where A_t/A_t^max, rising, crosses half-way between the sweep's lowest an
 steady state-point means (log-interpolated; nan where no steady pair brackets it). If
 E_c = k_B T/(a P sigma^3) with a independent of P, the onsets agree; the paper's
 a = c1 (1 + c2 beta eps_c/(P sigma^3)) tau_g/tau_d puts their ratio between two pressures at
-(1 + c2 beta/P_1)/(1 + c2 beta/P_2) (c2 ~ 0.02) for equal tau_d."""
+(1 + c2 beta/P_1)/(1 + c2 beta/P_2) (c2 ~ 0.02) for equal tau_d.
+
+Several workspaces of the same curve combine: a state point (P, f0) is taken from the last
+workspace that has it, so that longer runs of some points (pressure_fig5_long.lua,
+pressure_fig5_steady.lua) replace the shorter ones and the rest stay."""
 
 import json
 import math
@@ -54,10 +58,24 @@ def onsets(points, steady_only=True):
     return out, half
 
 
-def analyse(ws, out_dir, beta=None):
-    """Writes pressure.json and pressure.png in out_dir; returns the record."""
-    jobs = workspace.load(ws)
-    points = state_points(ws, jobs)
+def combined_points(workspaces):
+    """The state points of several workspaces, each (P, f0) from the last one that has it
+    (each marked with its workspace's name), and their jobs."""
+    by_key, all_jobs = {}, []
+    for ws in workspaces:
+        jobs = workspace.load(ws)
+        all_jobs += jobs
+        for p in state_points(ws, jobs):
+            p["from"] = os.path.basename(os.path.normpath(ws))
+            by_key[(p["P"], p["f0"])] = p
+    return sorted(by_key.values(), key=lambda p: (p["P"], p["x"])), all_jobs
+
+
+def analyse(workspaces, out_dir, beta=None):
+    """Writes pressure.json and pressure.png in out_dir; returns the record. `workspaces`: one
+    workspace or a list (combined as the module's text says)."""
+    workspaces = [workspaces] if isinstance(workspaces, str) else list(workspaces)
+    points, jobs = combined_points(workspaces)
     x_half, half = onsets(points)
     provisional, provisional_half = onsets(points, steady_only=False)
     beta = beta if beta is not None else jobs[0].sp.get("beta")
@@ -67,7 +85,8 @@ def analyse(ws, out_dir, beta=None):
         ref = pressures[-1]
         for P in pressures:
             predicted[P] = (1 + C2_PAPER * beta / P) / (1 + C2_PAPER * beta / ref)
-    rec = {"workspace": os.path.basename(os.path.normpath(ws)), "points": points, "half": half,
+    rec = {"workspace": ", ".join(os.path.basename(os.path.normpath(w)) for w in workspaces),
+           "points": points, "half": half,
            "onsets": {str(P): x for P, x in x_half.items()},
            "provisional_half": provisional_half,
            "provisional_onsets": {str(P): x for P, x in provisional.items()},
@@ -112,17 +131,21 @@ def plot(points, x_half, half, path):
 
 def table(rec):
     """The state points as a markdown table."""
-    lines = ["| P | f0 | 2 k_B T_c/(P sigma^3) | A_t/A_t^max | steady |", "|---|---|---|---|---|"]
+    lines = ["| P | f0 | 2 k_B T_c/(P sigma^3) | A_t/A_t^max | steady | runs of |",
+             "|---|---|---|---|---|---|"]
     for p in rec["points"]:
-        lines.append("| %g | %g | %.3g | %.3f +- %.3f | %s |" % (
-            p["P"], p["f0"], p["x"], p["ratio"], p["ratio_error"], "yes" if p["steady"] else "no"))
+        lines.append("| %g | %g | %.3g | %.3f +- %.3f | %s | %s |" % (
+            p["P"], p["f0"], p["x"], p["ratio"], p["ratio_error"], "yes" if p["steady"] else "no",
+            p.get("from", "")))
     return "\n".join(lines)
 
 
 def main(argv):
     import argparse
     ap = argparse.ArgumentParser(prog="pressure_sweep.py", description=__doc__)
-    ap.add_argument("workspace")
+    ap.add_argument("workspace", nargs="+",
+                    help="one or more workspaces of the curve; a state point is taken from the "
+                         "last that has it")
     ap.add_argument("-o", "--out", required=True)
     args = ap.parse_args(argv)
     try:

@@ -207,5 +207,21 @@ assert math.isnan(x[1e-3]), x
 x, half = onsets(points, steady_only=False)
 assert abs(x[1e-3] - 1.0) < 1e-12, x
 PY
+# Workspaces combined: a state point (P, f0) comes from the last workspace that has it.
+PYTHONPATH="$repo/scripts" /usr/bin/python3 - <<'PY' || fail "pressure workspaces combined"
+from invasim_analysis import workspace
+from invasim_analysis.pressure import combined_points, state_points
+first, last = "ws/pressure_fig5", "ws/pressure_fig5_steady"
+points, _ = combined_points([first, last])
+keys_first = {(p["P"], p["f0"]) for p in state_points(first)}
+keys_last = {(p["P"], p["f0"]) for p in state_points(last)}
+assert len(points) == len(keys_first | keys_last), points
+for p in points:
+    want = "pressure_fig5_steady" if (p["P"], p["f0"]) in keys_last else "pressure_fig5"
+    assert p["from"] == want, p
+PY
+"$repo/scripts/pressure_sweep.py" ws/pressure_fig5 ws/pressure_fig5_steady -o pressure2 > pressure2.log ||
+  { cat pressure2.log; fail "pressure_sweep.py with two workspaces"; }
+grep -q "pressure_fig5, pressure_fig5_steady" pressure2/pressure.json || fail "pressure.json names both workspaces"
 [ ${#failed_runs[@]} -eq 0 ] || fail "points failed to run in: ${failed_runs[*]} (errors above)"
 echo "validation_tiny: PASS"
