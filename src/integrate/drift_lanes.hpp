@@ -6,6 +6,10 @@
 // per-site loop (a stride-3 inner loop with the wrap test) scalar. The same operations as the
 // scalar loop, one rounding per fused multiply-add (core/fused.hpp), so the same bits. Only
 // with AVX-512 F: INVASIM_DRIFT_LANES says whether it is compiled.
+#include <limits>
+
+#include "core/box.hpp"
+
 #if defined(__AVX512F__) && defined(__FP_FAST_FMA)
 #include <immintrin.h>
 #define INVASIM_DRIFT_LANES 1
@@ -15,19 +19,34 @@
 
 namespace invasim::integrate_detail {
 
+// Bounds of the drift's wrap test: the box on a periodic axis, +-inf on a walled one (never
+// wraps); per axis, and repeated over a block's 24 components (component e is axis e mod 3),
+// made once per list of slots that the drift moves.
+struct WrapBounds {
+  double lo[3], hi[3];
+  alignas(64) double block_lo[24], block_hi[24];
+  explicit WrapBounds(const Box& box) {
+    for (int a = 0; a < 3; ++a) {
+      const bool p = box.periodic(a);
+      lo[a] = p ? box.lo()[a] : -std::numeric_limits<double>::infinity();
+      hi[a] = p ? box.hi()[a] : std::numeric_limits<double>::infinity();
+    }
+    for (int e = 0; e < 24; ++e) {
+      block_lo[e] = lo[e % 3];
+      block_hi[e] = hi[e % 3];
+    }
+  }
+};
+
 #if INVASIM_DRIFT_LANES
 // Drifts the whole blocks of 8 sites from `lo` on (flat arrays of 3 components per site, masses
 // m) and returns the first site not drifted (lo + a multiple of 8, at most hi). Sets `outside`
-// if a new position is not within [box_lo, box_hi) on some axis (a NaN counts as outside).
+// to 1 if a new position is not within the bounds on some axis (a NaN counts as outside).
 inline int drift_blocks_lanes(double* __restrict v, double* __restrict x, double* __restrict f,
-                              const double* __restrict m, const double box_lo[3],
-                              const double box_hi[3], int lo, int hi, double dt, bool& outside) {
-  // Component e of a block is axis e mod 3 of site e / 3; vector q holds components 8q..8q+7.
-  alignas(64) double blo[24], bhi[24];
-  for (int e = 0; e < 24; ++e) {
-    blo[e] = box_lo[e % 3];
-    bhi[e] = box_hi[e % 3];
-  }
+                              const double* __restrict m, const WrapBounds& bounds, int lo, int hi,
+                              double dt, int& outside) {
+  // Vector q of a block holds its components 8q .. 8q+7.
+  const double *blo = bounds.block_lo, *bhi = bounds.block_hi;
   const __m512i site_of[3] = {_mm512_setr_epi64(0, 0, 0, 1, 1, 1, 2, 2),
                               _mm512_setr_epi64(2, 3, 3, 3, 4, 4, 4, 5),
                               _mm512_setr_epi64(5, 5, 6, 6, 6, 7, 7, 7)};
@@ -50,7 +69,7 @@ inline int drift_blocks_lanes(double* __restrict v, double* __restrict x, double
              _mm512_cmp_pd_mask(pos, _mm512_load_pd(bhi + 8 * q), _CMP_NLT_UQ);
     }
   }
-  if (out) outside = true;
+  if (out) outside = 1;
   return i;
 }
 #endif

@@ -136,18 +136,7 @@ void Method::randomize_orientations(System& sys, std::uint64_t stream_step) cons
 }
 
 namespace {
-// Bounds of drift_range's wrap test: the box on a periodic axis, +-inf on a walled one (never
-// wraps).
-struct WrapBounds {
-  double lo[3], hi[3];
-  explicit WrapBounds(const Box& box) {
-    for (int a = 0; a < 3; ++a) {
-      const bool p = box.periodic(a);
-      lo[a] = p ? box.lo()[a] : -std::numeric_limits<double>::infinity();
-      hi[a] = p ? box.hi()[a] : std::numeric_limits<double>::infinity();
-    }
-  }
-};
+using integrate_detail::WrapBounds;
 
 // The drift of the slots [lo, hi): the half kick, the move and the zeroed force, whole blocks of
 // 8 sites in vector lanes (drift_lanes.hpp) and the rest in the scalar loop, then the wrap only
@@ -165,9 +154,7 @@ void drift_range(Sites& s, const Box& box, const WrapBounds& bounds, int lo, int
   int outside = 0;
   int first = lo;
 #if INVASIM_DRIFT_LANES
-  bool lanes_outside = false;
-  first = integrate_detail::drift_blocks_lanes(v, x, f, m, blo, bhi, lo, hi, dt, lanes_outside);
-  outside = lanes_outside;
+  first = integrate_detail::drift_blocks_lanes(v, x, f, m, bounds, lo, hi, dt, outside);
 #endif
   for (int i = first; i < hi; ++i) {
     const double h = 0.5 * dt / m[i];

@@ -47,24 +47,30 @@ inline void put_components(std::vector<double>& to, std::size_t base, std::size_
     c[2 * N + i] = x[i][2];
   }
 }
-// Converts snapshots between CorrelatorState's layout ((slot * N + site) * 3 + axis) and the
-// stored one ((slot * 3 + axis) * N + site).
-std::vector<double> interleaved(const std::vector<double>& by_component, std::size_t N) {
-  std::vector<double> out(by_component.size());
+// Snapshots converted between CorrelatorState's layout, interleaved ((slot * N + site) * 3 +
+// axis), and the stored one, by component ((slot * 3 + axis) * N + site).
+enum class To { kInterleaved, kByComponent };
+std::vector<double> regrouped(const std::vector<double>& in, std::size_t N, To to) {
+  std::vector<double> out(in.size());
   for (std::size_t slot = 0; slot < out.size() / (3 * N); ++slot)
     for (std::size_t i = 0; i < N; ++i)
-      for (std::size_t a = 0; a < 3; ++a)
-        out[(slot * N + i) * 3 + a] = by_component[(slot * 3 + a) * N + i];
+      for (std::size_t a = 0; a < 3; ++a) {
+        const std::size_t interleaved = (slot * N + i) * 3 + a, by_axis = (slot * 3 + a) * N + i;
+        if (to == To::kInterleaved)
+          out[interleaved] = in[by_axis];
+        else
+          out[by_axis] = in[interleaved];
+      }
   return out;
 }
-std::vector<double> by_component(const std::vector<double>& interleaved, std::size_t N) {
-  std::vector<double> out(interleaved.size());
-  for (std::size_t slot = 0; slot < out.size() / (3 * N); ++slot)
-    for (std::size_t i = 0; i < N; ++i)
-      for (std::size_t a = 0; a < 3; ++a)
-        out[(slot * 3 + a) * N + i] = interleaved[(slot * N + i) * 3 + a];
-  return out;
-}
+// Origins j (taken at sample j E) within the window of sample s: s - L + 1 <= j E <= s.
+struct OriginWindow {
+  std::uint64_t L, E;
+  explicit OriginWindow(const TimeCorrelatorParams& p)
+      : L(std::uint64_t(p.lags)), E(std::uint64_t(p.origin_every)) {}
+  std::uint64_t lo(std::uint64_t s) const { return s + 1 >= L ? (s + 1 - L + E - 1) / E : 0; }
+  std::uint64_t hi(std::uint64_t s) const { return s / E; }
+};
 }  // namespace
 
 TimeCorrelator::TimeCorrelator(std::vector<int> group, const TimeCorrelatorParams& params)
@@ -143,10 +149,8 @@ struct TimeCorrelator::Scratch {
   double moving[kSize];
 };
 
-TimeCorrelator::Partial TimeCorrelator::block_terms(std::size_t slot,
-                                                    const Components* const samples[3],
-                                                    std::size_t k_sample, std::size_t lo,
-                                                    std::size_t hi) const {
+TimeCorrelator::Partial TimeCorrelator::block_terms(std::size_t slot, std::size_t k_sample,
+                                                    std::size_t lo, std::size_t hi) const {
   Scratch sc;
   const std::size_t N = group_.size(), m = hi - lo;
   const double k = params_.k;
@@ -158,7 +162,7 @@ TimeCorrelator::Partial TimeCorrelator::block_terms(std::size_t slot,
   if (params_.velocity) {
     const double *ax = at(origin_v_, slot, 0), *ay = at(origin_v_, slot, 1),
                  *az = at(origin_v_, slot, 2);
-    const Components& b = *samples[0];
+    const Components& b = pending_.v;
     const double *bx = at(b, k_sample, 0), *by = at(b, k_sample, 1), *bz = at(b, k_sample, 2);
     const double* inv = inv_speed2_.data() + slot * N + lo;
 #pragma omp simd
@@ -172,14 +176,14 @@ TimeCorrelator::Partial TimeCorrelator::block_terms(std::size_t slot,
   if (params_.orientation) {
     const double *ax = at(origin_n_, slot, 0), *ay = at(origin_n_, slot, 1),
                  *az = at(origin_n_, slot, 2);
-    const Components& b = *samples[1];
+    const Components& b = pending_.n;
     const double *bx = at(b, k_sample, 0), *by = at(b, k_sample, 1), *bz = at(b, k_sample, 2);
 #pragma omp simd
     for (std::size_t i = 0; i < m; ++i) sc.nn[i] = ax[i] * bx[i] + (ay[i] * by[i] + az[i] * bz[i]);
   }
   if (params_.position) {
     const double* r0[3] = {at(origin_r_, slot, 0), at(origin_r_, slot, 1), at(origin_r_, slot, 2)};
-    const Components& b = *samples[2];
+    const Components& b = pending_.r;
     const double* r[3] = {at(b, k_sample, 0), at(b, k_sample, 1), at(b, k_sample, 2)};
     // dr = r(t) - r(t'), |dr|^2 summed as Eigen's squaredNorm does.
     auto dr = [&](std::size_t i, int a) { return r[a][i] - r0[a][i]; };
@@ -290,18 +294,9 @@ void TimeCorrelator::flush() const {
   complete_pending();
 }
 
-namespace {
-// Origins j (taken at sample j E) within the window of sample s: s - L + 1 <= j E <= s.
-struct OriginWindow {
-  std::uint64_t L, E;
-  std::uint64_t lo(std::uint64_t s) const { return s + 1 >= L ? (s + 1 - L + E - 1) / E : 0; }
-  std::uint64_t hi(std::uint64_t s) const { return s / E; }
-};
-}  // namespace
-
 void TimeCorrelator::post_kept(bool idle) const {
   if (kept_ == 0) return;
-  const OriginWindow window{std::uint64_t(params_.lags), std::uint64_t(params_.origin_every)};
+  const OriginWindow window(params_);
   Pending& p = pending_;
   p.first = state_.samples - kept_;
   p.o_lo = window.lo(p.first);
@@ -332,19 +327,18 @@ void TimeCorrelator::run_pending_task(std::size_t task) const {
   const Pending& p = pending_;
   const std::size_t b = task % p.blocks, o = (task / p.blocks) % p.n_orig,
                     k = task / (p.blocks * p.n_orig);
-  const OriginWindow window{std::uint64_t(params_.lags), std::uint64_t(params_.origin_every)};
+  const OriginWindow window(params_);
   const std::uint64_t j = p.o_lo + o, s = p.first + k;
   if (j < window.lo(s) || j > window.hi(s)) return;
   const std::size_t N = group_.size(), lo = b * kSumBlock, hi = std::min(N, lo + kSumBlock);
-  const Components* const samples[3] = {&p.v, &p.n, &p.r};
-  pending_.partial[task] = block_terms(std::size_t(j % slots()), samples, k, lo, hi);
+  pending_.partial[task] = block_terms(std::size_t(j % slots()), k, lo, hi);
 }
 
 void TimeCorrelator::complete_pending() const {
   Pending& p = pending_;
   if (!p.active) return;
   if (p.idle) idle_tasks().finish();
-  const OriginWindow window{std::uint64_t(params_.lags), std::uint64_t(params_.origin_every)};
+  const OriginWindow window(params_);
   for (std::size_t k = 0; k < p.K; ++k) {
     const std::uint64_t s = p.first + k;
     for (std::uint64_t j = window.lo(s); j <= window.hi(s); ++j) {
@@ -451,12 +445,14 @@ void TimeCorrelator::restore(CorrelatorState state) {
   check("position snapshots", state.position.size(), params_.position ? snap : 0);
   check("origin counts", state.origins.size(), std::size_t(params_.lags));
   check("sums", state.sums.size(), std::size_t(params_.lags) * kTerms);
-  const std::size_t N = group_.size();
-  origin_v_ = by_component(state.velocity, N);
-  origin_n_ = by_component(state.orientation, N);
-  origin_r_ = by_component(state.position, N);
-  if (pending_.active && pending_.idle) idle_tasks().finish();  // (their results are dropped)
+  // Posted tasks read the stored origins: finished before those are replaced (their results
+  // are dropped).
+  if (pending_.active && pending_.idle) idle_tasks().finish();
   pending_.active = pending_.has_origin = false;
+  const std::size_t N = group_.size();
+  origin_v_ = regrouped(state.velocity, N, To::kByComponent);
+  origin_n_ = regrouped(state.orientation, N, To::kByComponent);
+  origin_r_ = regrouped(state.position, N, To::kByComponent);
   state_ = std::move(state);
   state_.velocity.clear();
   state_.orientation.clear();
@@ -473,9 +469,9 @@ CorrelatorState TimeCorrelator::state() const {
   flush();
   CorrelatorState s = state_;
   const std::size_t N = group_.size();
-  s.velocity = interleaved(origin_v_, N);
-  s.orientation = interleaved(origin_n_, N);
-  s.position = interleaved(origin_r_, N);
+  s.velocity = regrouped(origin_v_, N, To::kInterleaved);
+  s.orientation = regrouped(origin_n_, N, To::kInterleaved);
+  s.position = regrouped(origin_r_, N, To::kInterleaved);
   return s;
 }
 

@@ -132,10 +132,8 @@ class TimeCorrelator {
   void post_kept(bool idle) const;
   void run_pending_task(std::size_t task) const;
   void complete_pending() const;
-  // Terms of sites [lo, hi) for origin `slot` and sample k of `samples` (by component, like
-  // the kept samples).
-  Partial block_terms(std::size_t slot, const Components* const samples[3], std::size_t k,
-                      std::size_t lo, std::size_t hi) const;
+  // Terms of sites [lo, hi) for origin `slot` and the k-th pending sample.
+  Partial block_terms(std::size_t slot, std::size_t k, std::size_t lo, std::size_t hi) const;
   // F_s's term of one site (displacement dr) from libm if its argument is beyond
   // fast_trig::kMaxArg, else `fast`.
   double libm_fs_term(const Vec3& dr, double fast) const;
