@@ -38,29 +38,11 @@ constexpr std::uint8_t kLastType = std::uint8_t(SectionType::kVec3iArray);
 }  // namespace
 
 const char* section_type_name(SectionType type) {
-  switch (type) {
-    case SectionType::kBytes:
-      return "bytes";
-    case SectionType::kF64:
-      return "f64";
-    case SectionType::kU64:
-      return "u64";
-    case SectionType::kI64:
-      return "i64";
-    case SectionType::kString:
-      return "string";
-    case SectionType::kF64Array:
-      return "f64 array";
-    case SectionType::kI32Array:
-      return "i32 array";
-    case SectionType::kU64Array:
-      return "u64 array";
-    case SectionType::kVec3Array:
-      return "vec3 array";
-    case SectionType::kVec3iArray:
-      return "vec3i array";
-  }
-  return "unknown";
+  static constexpr const char* kNames[] = {"bytes",     "f64",       "u64",       "i64",
+                                           "string",    "f64 array", "i32 array", "u64 array",
+                                           "vec3 array", "vec3i array"};
+  const auto k = static_cast<std::uint8_t>(type);
+  return k <= kLastType ? kNames[k] : "unknown";
 }
 
 // ---------------------------------------------------------------------------------------------

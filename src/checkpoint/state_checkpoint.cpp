@@ -317,26 +317,27 @@ void read_tethers(const CheckpointReader& in, const System& sys, TetherForce& te
   }
 }
 
+namespace {
+
+// The pressure wall's state, in the order of its sections.
+constexpr std::pair<const char*, double PressureWall::*> kWallFields[] = {
+    {"pressure", &PressureWall::pressure}, {"mass", &PressureWall::mass},
+    {"gamma", &PressureWall::gamma},       {"kT", &PressureWall::kT},
+    {"velocity", &PressureWall::velocity}, {"force", &PressureWall::force}};
+
+}  // namespace
+
 void write_pressure_wall(CheckpointWriter& out, const PressureWall& wall,
                          const std::string& prefix) {
   const Keys key{prefix};
-  out.put_f64(key("pressure"), wall.pressure);
-  out.put_f64(key("mass"), wall.mass);
-  out.put_f64(key("gamma"), wall.gamma);
-  out.put_f64(key("kT"), wall.kT);
-  out.put_f64(key("velocity"), wall.velocity);
-  out.put_f64(key("force"), wall.force);
+  for (const auto& [name, field] : kWallFields) out.put_f64(key(name), wall.*field);
 }
 
 void read_pressure_wall(const CheckpointReader& in, PressureWall& wall, const std::string& prefix) {
   const Keys key{prefix};
-  wall.pressure = in.get_f64(key("pressure"));
-  wall.mass = in.get_f64(key("mass"));
-  wall.gamma = in.get_f64(key("gamma"));
-  // Checkpoints written before the piston had a bath: kT = 0 (no noise), as they ran.
-  wall.kT = in.has(key("kT")) ? in.get_f64(key("kT")) : 0.0;
-  wall.velocity = in.get_f64(key("velocity"));
-  wall.force = in.get_f64(key("force"));
+  for (const auto& [name, field] : kWallFields)
+    // Checkpoints written before the piston had a bath have no kT: 0 (no noise), as they ran.
+    wall.*field = field == &PressureWall::kT && !in.has(key(name)) ? 0.0 : in.get_f64(key(name));
 }
 
 }  // namespace invasim

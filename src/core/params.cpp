@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <sstream>
@@ -13,17 +14,9 @@
 namespace invasim {
 
 const char* type_name(ParamType type) {
-  switch (type) {
-    case ParamType::kNumber:
-      return "number";
-    case ParamType::kInteger:
-      return "integer";
-    case ParamType::kBoolean:
-      return "boolean";
-    case ParamType::kString:
-      return "string";
-  }
-  return "?";
+  static constexpr const char* kNames[] = {"number", "integer", "boolean", "string"};
+  const auto k = static_cast<std::size_t>(type);
+  return k < std::size(kNames) ? kNames[k] : "?";
 }
 
 std::string format_value(const ParamValue& value) {

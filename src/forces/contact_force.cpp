@@ -163,10 +163,6 @@ void ContactForce::add_forces_impl(System& sys, RowScratch& scratch) {
   team_barrier();
 }
 
-ForceResult ContactForce::add_forces(System& sys, const ForceFlags& flags) {
-  return add_forces_in_own_region(sys, flags);
-}
-
 void ContactForce::prepare_team(System& sys, const ForceFlags& flags) {
   list_.prepare_update(sys);  // throws for a periodic box too short for the cutoffs
   const std::size_t n = sys.n_sites();

@@ -54,13 +54,11 @@ enum class ContactKernel { kHalfRows, kFullRows };
 // or the full rows as an orphaned `omp for`. The class table is rebuilt in prepare_team when
 // the list's rebuild is forced (sites added, checkpoint loaded, new parameters: the only
 // changes of kinds and diameters). add_forces runs the same code in a region of its own.
-class ContactForce : public Force {
+class ContactForce : public TeamForce {
  public:
   explicit ContactForce(const ContactParams& params);
   std::string name() const override { return "contact"; }
-  ForceResult add_forces(System& sys, const ForceFlags& flags) override;
   void prepare_team(System& sys, const ForceFlags& flags) override;
-  bool supports_team() const override { return true; }
   ForceResult add_forces_team(System& sys, const ForceFlags& flags) override;
   const ContactParams& params() const { return params_; }
   // Changes the parameters (e.g. cohesion switched on after compression); the neighbour

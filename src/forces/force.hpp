@@ -60,6 +60,18 @@ class Force {
   ForceResult add_forces_in_own_region(System& sys, const ForceFlags& flags);
 };
 
+// A term evaluated by a team (every term of the model is): add_forces runs prepare_team and
+// add_forces_team in a parallel region of its own.
+class TeamForce : public Force {
+ public:
+  ForceResult add_forces(System& sys, const ForceFlags& flags) final {
+    return add_forces_in_own_region(sys, flags);
+  }
+  bool supports_team() const final { return true; }
+  void prepare_team(System& sys, const ForceFlags& flags) override = 0;
+  ForceResult add_forces_team(System& sys, const ForceFlags& flags) override = 0;
+};
+
 // Work of the integrator done by every thread of ForceField::compute's parallel regions (its
 // loops shared with orphaned `omp for`, no exceptions; ForceField adds the barriers around
 // them). `before` runs in the first region before the forces are zeroed; if `zeroes_forces`,

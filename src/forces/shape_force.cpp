@@ -25,10 +25,6 @@ double body_shape_energy(const MeshBody& body, const Vec3* x, double eps_v, doub
   return energy;
 }
 
-ForceResult ShapeForce::add_forces(System& sys, const ForceFlags& flags) {
-  return add_forces_in_own_region(sys, flags);
-}
-
 void ShapeForce::prepare_team(System& sys, const ForceFlags&) {
   per_body_.resize(sys.bodies().size());
 }

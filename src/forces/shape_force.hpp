@@ -7,13 +7,11 @@
 
 namespace invasim {
 
-class ShapeForce : public Force {
+class ShapeForce : public TeamForce {
  public:
   ShapeForce(double eps_v, double eps_a);
   std::string name() const override { return "shape"; }
-  ForceResult add_forces(System& sys, const ForceFlags& flags) override;
   void prepare_team(System& sys, const ForceFlags& flags) override;
-  bool supports_team() const override { return true; }
   ForceResult add_forces_team(System& sys, const ForceFlags& flags) override;
   double eps_v() const { return eps_v_; }
   double eps_a() const { return eps_a_; }

@@ -81,10 +81,6 @@ Vec3 TetherForce::tether_force(const Box& box, const Tether& t, double* stretch)
   return r > 0.0 ? Vec3(-stiffness_ * *stretch / r * d) : Vec3(Vec3::Zero());
 }
 
-ForceResult TetherForce::add_forces(System& sys, const ForceFlags& flags) {
-  return add_forces_in_own_region(sys, flags);
-}
-
 void TetherForce::prepare_team(System& sys, const ForceFlags&) {
   const std::size_t nb = sys.bodies().size();
   centres_.resize(nb);

@@ -11,13 +11,11 @@ struct Tether {
   double rest_length;  // l_ij0
 };
 
-class TetherForce : public Force {
+class TetherForce : public TeamForce {
  public:
   explicit TetherForce(double stiffness);
   std::string name() const override { return "tether"; }
-  ForceResult add_forces(System& sys, const ForceFlags& flags) override;
   void prepare_team(System& sys, const ForceFlags& flags) override;
-  bool supports_team() const override { return true; }
   ForceResult add_forces_team(System& sys, const ForceFlags& flags) override;
 
   double stiffness() const { return stiffness_; }

@@ -10,10 +10,6 @@ WallForce::WallForce(double eps, bool left, bool right) : eps_(eps), left_(left)
   require_positive("wall eps", eps);
 }
 
-ForceResult WallForce::add_forces(System& sys, const ForceFlags& flags) {
-  return add_forces_in_own_region(sys, flags);
-}
-
 void WallForce::prepare_team(System& sys, const ForceFlags&) {
   if (sys.box().periodic(0))
     fail_input("walls: the box is periodic in x; walls need a walled x axis");

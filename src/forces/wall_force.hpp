@@ -7,13 +7,11 @@
 
 namespace invasim {
 
-class WallForce : public Force {
+class WallForce : public TeamForce {
  public:
   explicit WallForce(double eps = 1.0, bool left = true, bool right = true);
   std::string name() const override { return "wall"; }
-  ForceResult add_forces(System& sys, const ForceFlags& flags) override;
   void prepare_team(System& sys, const ForceFlags& flags) override;
-  bool supports_team() const override { return true; }
   ForceResult add_forces_team(System& sys, const ForceFlags& flags) override;
   // x component of the force the sites exert on the left / right wall (last evaluation).
   double left_wall_force() const { return left_force_; }

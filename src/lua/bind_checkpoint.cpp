@@ -188,18 +188,12 @@ int l_interrupted(lua_State* L) {
 
 void open_checkpoint(lua_State* L) {
   install_stop_handlers();
-  lua_pushcfunction(L, &lua_wrap<&l_save>);
-  lua_setfield(L, -2, "save_checkpoint");
-  lua_pushcfunction(L, &lua_wrap<&l_load>);
-  lua_setfield(L, -2, "load_checkpoint");
-  lua_pushcfunction(L, &lua_wrap<&l_load>);
-  lua_setfield(L, -2, "load");  // invasim.load(path, {...}): the same, shorter
-  lua_pushcfunction(L, &lua_wrap<&l_checkpoint_run>);
-  lua_setfield(L, -2, "checkpoint_run");
-  lua_pushcfunction(L, &lua_wrap<&l_decode_state>);
-  lua_setfield(L, -2, "decode_state");
-  lua_pushcfunction(L, &lua_wrap<&l_interrupted>);
-  lua_setfield(L, -2, "interrupted");
+  add_functions(L, {{"save_checkpoint", &lua_wrap<&l_save>},
+                    {"load_checkpoint", &lua_wrap<&l_load>},
+                    INVASIM_LUA_FN(load),  // invasim.load(path, {...}): the same, shorter
+                    INVASIM_LUA_FN(checkpoint_run),
+                    INVASIM_LUA_FN(decode_state),
+                    INVASIM_LUA_FN(interrupted)});
 }
 
 }  // namespace invasim::lua

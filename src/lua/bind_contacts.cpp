@@ -5,7 +5,7 @@
 
 #include "core/names.hpp"
 #include "lua/adapters.hpp"
-#include "lua/engine_types.hpp"
+#include "lua/engine_fields.hpp"
 #include "lua/fields.hpp"
 #include "lua/module.hpp"
 
@@ -53,14 +53,6 @@ void read_contact_params(Kwargs& kw, ContactParams& p) {
 
 namespace {
 
-int l_new(lua_State* L) {
-  Kwargs kw(L, 1, "Contacts");
-  const ContactParams p = contact_fields().make(kw);
-  auto force = engine_call("Contacts", [&] { return std::make_shared<ContactForce>(p); });
-  push(L, std::make_shared<Contacts>(std::move(force)));
-  return 1;
-}
-
 // c:set{alpha =, beta =, ...}: changes some parameters (the others keep their values), e.g.
 // switching cohesion on after an athermal compression.
 int l_set(lua_State* L) {
@@ -99,13 +91,10 @@ int l_check(lua_State* L) {
 }  // namespace
 
 void open_contacts(lua_State* L) {
-  define_type<Contacts>(
-      L, {
-             params_method<Contacts, &contact_fields,
-                           [](const Contacts& c) { return c.force->params(); }>("params"),
-             {"set", &lua_wrap<&l_set>},
-         });
-  set_constructor(L, "Contacts", &lua_wrap<&l_new>, contact_fields().infos());
+  define_params_type<Contacts, &contact_fields, [](const Contacts& c) { return c.force->params(); },
+                     [](const ContactParams& p) {
+                       return std::make_shared<Contacts>(std::make_shared<ContactForce>(p));
+                     }>(L, {INVASIM_LUA_FN(set)});
   set_static_function(L, "Contacts", "check", &lua_wrap<&l_check>);
 }
 

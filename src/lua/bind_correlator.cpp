@@ -61,15 +61,11 @@ const FieldTable<CorrelatorKeys>& correlator_fields() {
 
 }  // namespace
 
-template <>
-struct LuaType<CorrelatorHandle> {
-  static constexpr const char* name = "Correlator";
-  static constexpr const char* metatable = "invasim.Correlator";
-  static std::string describe(const CorrelatorHandle& c) {
-    return cat("Correlator(group '", c.group->name, "' of ", c.group->sites.size(), " sites, ",
-               c.correlator.params().lags, " lags, ", c.correlator.samples(), " samples)");
-  }
-};
+INVASIM_LUA_TYPE(CorrelatorHandle, "Correlator");
+std::string LuaType<CorrelatorHandle>::describe(const CorrelatorHandle& c) {
+  return cat("Correlator(group '", c.group->name, "' of ", c.group->sites.size(), " sites, ",
+             c.correlator.params().lags, " lags, ", c.correlator.samples(), " samples)");
+}
 
 namespace {
 
@@ -105,11 +101,8 @@ int l_result(lua_State* L) {
   const Columns cols = check<CorrelatorHandle>(L, 1).correlator.columns();
   return push_results(L, 1, [&cols](lua_State* S) noexcept {
     lua_createtable(S, 0, 2);
-    lua_createtable(S, int(cols.names.size()), 0);
-    for (std::size_t j = 0; j < cols.names.size(); ++j) {
-      lua_pushstring(S, cols.names[j].c_str());
-      lua_rawseti(S, -2, lua_Integer(j + 1));
-    }
+    push_list(S, cols.names.size(),
+              [&](std::size_t j) { lua_pushstring(S, cols.names[j].c_str()); });
     lua_setfield(S, -2, "names");
     lua_createtable(S, 0, int(cols.names.size()));
     for (std::size_t j = 0; j < cols.names.size(); ++j) {
@@ -132,20 +125,17 @@ std::shared_ptr<TimeCorrelator> shared_correlator(lua_State* L, int index) {
 void open_correlator(lua_State* L) {
   define_type<CorrelatorHandle>(
       L,
-      {
-          {"sample", &lua_wrap<&l_sample>},
-          {"result", &lua_wrap<&l_result>},
-          getter<CorrelatorHandle, [](const CorrelatorHandle& c) { return c.correlator.tau_d(); }>(
-              "tau_d"),
-          getter<CorrelatorHandle,
-                 [](const CorrelatorHandle& c) { return c.correlator.tau_d_standard(); }>(
-              "tau_d_standard"),
-          getter<CorrelatorHandle, [](const CorrelatorHandle& c) { return c.correlator.tau_r(); }>(
-              "tau_r"),
-          getter<CorrelatorHandle,
-                 [](const CorrelatorHandle& c) { return c.correlator.samples(); }>("samples"),
-          {"params", &lua_wrap<&l_params>},
-      });
+      {INVASIM_LUA_FN(sample), INVASIM_LUA_FN(result),
+       getter<CorrelatorHandle, [](const CorrelatorHandle& c) { return c.correlator.tau_d(); }>(
+           "tau_d"),
+       getter<CorrelatorHandle,
+              [](const CorrelatorHandle& c) { return c.correlator.tau_d_standard(); }>(
+           "tau_d_standard"),
+       getter<CorrelatorHandle, [](const CorrelatorHandle& c) { return c.correlator.tau_r(); }>(
+           "tau_r"),
+       getter<CorrelatorHandle, [](const CorrelatorHandle& c) { return c.correlator.samples(); }>(
+           "samples"),
+       INVASIM_LUA_FN(params)});
   set_constructor(L, "Correlator", &lua_wrap<&l_new>, correlator_fields().infos());
 }
 

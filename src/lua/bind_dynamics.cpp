@@ -208,11 +208,7 @@ int l_set_sort_every(lua_State* L) {
 
 int l_methods(lua_State* L) {
   const DynamicsHandle& d = check<DynamicsHandle>(L, 1);
-  lua_createtable(L, static_cast<int>(d.methods.size()), 0);
-  for (std::size_t k = 0; k < d.methods.size(); ++k) {
-    push(L, d.methods[k]);
-    lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
-  }
+  push_list(L, d.methods.size(), [&](std::size_t k) { push(L, d.methods[k]); });
   return 1;
 }
 
@@ -266,18 +262,10 @@ int l_run(lua_State* L) {
 
 void open_dynamics(lua_State* L) {
   define_type<DynamicsHandle>(
-      L, {
-             {"add", &lua_wrap<&l_add>},
-             {"pressure_wall", &lua_wrap<&l_pressure_wall>},
-             {"wall_state", &lua_wrap<&l_wall_state>},
-             getter<DynamicsHandle, [](const DynamicsHandle& d) { return d.dynamics.dt(); }>("dt"),
-             {"set_dt", &lua_wrap<&l_set_dt>},
-             {"set_sort_every", &lua_wrap<&l_set_sort_every>},
-             {"set_pressure", &lua_wrap<&l_set_pressure>},
-             {"set_wall_kT", &lua_wrap<&l_set_wall_kT>},
-             {"methods", &lua_wrap<&l_methods>},
-             {"run", &lua_wrap<&l_run>},
-         });
+      L, {INVASIM_LUA_FN(add), INVASIM_LUA_FN(pressure_wall), INVASIM_LUA_FN(wall_state),
+          getter<DynamicsHandle, [](const DynamicsHandle& d) { return d.dynamics.dt(); }>("dt"),
+          INVASIM_LUA_FN(set_dt), INVASIM_LUA_FN(set_sort_every), INVASIM_LUA_FN(set_pressure),
+          INVASIM_LUA_FN(set_wall_kT), INVASIM_LUA_FN(methods), INVASIM_LUA_FN(run)});
   set_constructor(L, "Dynamics", &lua_wrap<&l_new>, dynamics_fields().infos());
   set_method_keys(L, "Dynamics", "pressure_wall", pressure_wall_fields().infos());
 }

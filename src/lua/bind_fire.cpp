@@ -31,13 +31,6 @@ std::string LuaType<Fire>::describe(const Fire& f) {
 
 namespace {
 
-int l_new(lua_State* L) {
-  Kwargs kw(L, 1, "Fire");
-  const FireParams p = fire_table().make(kw);
-  push(L, engine_call("Fire", [&] { return std::make_shared<Fire>(p); }));
-  return 1;
-}
-
 int l_minimize(lua_State* L) {
   const Fire& fire = check<Fire>(L, 1);
   const std::shared_ptr<SystemHandle> sim = check_shared<SystemHandle>(L, 2);
@@ -91,13 +84,10 @@ int l_minimize(lua_State* L) {
 }  // namespace
 
 void open_fire(lua_State* L) {
-  define_type<Fire>(
-      L, {
-             // fire:params() -> {ftol =, dt =, dt_max =, max_steps =}
-             {"minimize", &lua_wrap<&l_minimize>},
-             params_method<Fire, &fire_table, [](const Fire& f) { return f.params(); }>("params"),
-         });
-  set_constructor(L, "Fire", &lua_wrap<&l_new>, fire_table().infos());
+  // fire:params() -> {ftol =, dt =, dt_max =, max_steps =}
+  define_params_type<Fire, &fire_table, [](const Fire& f) { return f.params(); },
+                     [](const FireParams& p) { return std::make_shared<Fire>(p); }>(
+      L, {INVASIM_LUA_FN(minimize)});
 }
 
 }  // namespace invasim::lua

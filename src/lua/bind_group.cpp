@@ -18,22 +18,16 @@ namespace {
 // g:sites() -> {i, ...}: the engine's site indices, which start at 0.
 int l_sites(lua_State* L) {
   const Group& g = check<Group>(L, 1);
-  lua_createtable(L, static_cast<int>(g.sites.size()), 0);
-  for (std::size_t k = 0; k < g.sites.size(); ++k) {
-    lua_pushinteger(L, g.sites[k]);
-    lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
-  }
+  push_integer_list(L, g.sites.data(), g.sites.size());
   return 1;
 }
 
 }  // namespace
 
 void open_group(lua_State* L) {
-  define_type<Group>(L, {
-                            getter<Group, [](const Group& g) { return g.sites.size(); }>("size"),
-                            getter<Group, [](const Group& g) { return g.name; }>("name"),
-                            {"sites", &lua_wrap<&l_sites>},
-                        });
+  define_type<Group>(
+      L, {getter<Group, [](const Group& g) { return g.sites.size(); }>("size"),
+          getter<Group, [](const Group& g) { return g.name; }>("name"), INVASIM_LUA_FN(sites)});
 }
 
 }  // namespace invasim::lua

@@ -22,14 +22,10 @@
 
 namespace invasim::lua {
 
-template <>
-struct LuaType<SnapshotWriter> {
-  static constexpr const char* name = "Snapshots";
-  static constexpr const char* metatable = "invasim.Snapshots";
-  static std::string describe(const SnapshotWriter& w) {
-    return cat("Snapshots(", w.directory().string(), ")");
-  }
-};
+INVASIM_LUA_TYPE(SnapshotWriter, "Snapshots");
+std::string LuaType<SnapshotWriter>::describe(const SnapshotWriter& w) {
+  return cat("Snapshots(", w.directory().string(), ")");
+}
 
 namespace {
 
@@ -136,16 +132,8 @@ const luaL_Reg kSnapshotMethods[] = {
 }  // namespace
 
 void open_io(lua_State* L) {
-  lua_pushcfunction(L, &lua_wrap<&l_write_file>);
-  lua_setfield(L, -2, "write_file");
-  lua_pushcfunction(L, &lua_wrap<&l_make_dirs>);
-  lua_setfield(L, -2, "make_dirs");
-  lua_pushcfunction(L, &lua_wrap<&l_exists>);
-  lua_setfield(L, -2, "exists");
-  lua_pushcfunction(L, &lua_wrap<&l_resolve_path>);
-  lua_setfield(L, -2, "resolve_path");
-  lua_pushcfunction(L, &lua_wrap<&l_remove_path>);
-  lua_setfield(L, -2, "remove_path");
+  add_functions(L, {INVASIM_LUA_FN(write_file), INVASIM_LUA_FN(make_dirs), INVASIM_LUA_FN(exists),
+                    INVASIM_LUA_FN(resolve_path), INVASIM_LUA_FN(remove_path)});
   define_type<SnapshotWriter>(L, kSnapshotMethods);
   set_constructor(L, "Snapshots", &lua_wrap<&l_snapshots>, snapshot_fields().infos());
 }

@@ -230,10 +230,7 @@ int l_read_json(lua_State* L) {
 }  // namespace
 
 void open_json(lua_State* L) {
-  lua_pushcfunction(L, &lua_wrap<&l_json_encode>);
-  lua_setfield(L, -2, "json_encode");
-  lua_pushcfunction(L, &lua_wrap<&l_read_json>);
-  lua_setfield(L, -2, "read_json");
+  add_functions(L, {INVASIM_LUA_FN(json_encode), INVASIM_LUA_FN(read_json)});
 }
 
 }  // namespace invasim::lua

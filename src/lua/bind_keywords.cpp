@@ -269,8 +269,7 @@ int l_keywords(lua_State* L) {
 }  // namespace
 
 void open_keywords(lua_State* L) {
-  lua_pushcfunction(L, &lua_wrap<&l_keywords>);
-  lua_setfield(L, -2, "keywords");
+  add_functions(L, {INVASIM_LUA_FN(keywords)});
 }
 
 }  // namespace invasim::lua

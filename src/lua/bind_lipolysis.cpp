@@ -8,7 +8,7 @@
 
 #include "core/names.hpp"
 #include "lua/adapters.hpp"
-#include "lua/engine_types.hpp"
+#include "lua/engine_fields.hpp"
 #include "lua/fields.hpp"
 #include "lua/module.hpp"
 
@@ -38,28 +38,16 @@ std::string LuaType<Lipolysis>::describe(const Lipolysis& l) {
 
 namespace {
 
-int l_new(lua_State* L) {
-  Kwargs kw(L, 1, "Lipolysis");
-  const LipolysisParams p = lipolysis_fields().make(kw);
-  push(L, engine_call("Lipolysis", [&] { return std::make_shared<Lipolysis>(p); }));
-  return 1;
-}
-
 // lip:touched(sys) -> {true, false, ...}: whether a cancer cell touches each adipocyte now.
 int l_touched(lua_State* L) {
   const Lipolysis& lip = check<Lipolysis>(L, 1);
   const SystemHandle& sim = check<SystemHandle>(L, 2);
   const std::vector<char> touched =
       engine_call("Lipolysis:touched", [&] { return lip.touched(sim.system); });
-  protected_call(L, 0, 1, [&touched](lua_State* S) noexcept {
-    lua_createtable(S, static_cast<int>(touched.size()), 0);
-    for (std::size_t b = 0; b < touched.size(); ++b) {
-      lua_pushboolean(S, touched[b] != 0);
-      lua_rawseti(S, -2, static_cast<lua_Integer>(b + 1));
-    }
+  return push_results(L, 1, [&touched](lua_State* S) noexcept {
+    push_list(S, touched.size(), [&](std::size_t b) { lua_pushboolean(S, touched[b] != 0); });
     return 1;
   });
-  return 1;
 }
 
 // lip:apply(sys, elapsed) -> the number of adipocytes touched (and shrunk, above their floor).
@@ -76,15 +64,9 @@ int l_apply(lua_State* L) {
 }  // namespace
 
 void open_lipolysis(lua_State* L) {
-  define_type<Lipolysis>(L,
-                         {
-                             // lip:params() -> {rate =, floor =}
-                             {"touched", &lua_wrap<&l_touched>},
-                             {"apply", &lua_wrap<&l_apply>},
-                             params_method<Lipolysis, &lipolysis_fields,
-                                           [](const Lipolysis& l) { return l.params(); }>("params"),
-                         });
-  set_constructor(L, "Lipolysis", &lua_wrap<&l_new>, lipolysis_fields().infos());
+  define_params_type<Lipolysis, &lipolysis_fields, [](const Lipolysis& l) { return l.params(); },
+                     [](const LipolysisParams& p) { return std::make_shared<Lipolysis>(p); }>(
+      L, {INVASIM_LUA_FN(touched), INVASIM_LUA_FN(apply)});
 }
 
 }  // namespace invasim::lua

@@ -169,17 +169,14 @@ int l_block_average(lua_State* L) {
 
 // System methods added to the System's method table (bind_system.cpp registers them).
 const luaL_Reg kSystemMeasureMethods[] = {
-    {"voronoi", &lua_wrap<&l_voronoi>},
-    {"shape_parameters", &lua_wrap<&l_shape_parameters>},
-    {"slices", &lua_wrap<&l_slices>},
+    INVASIM_LUA_FN(voronoi),
+    INVASIM_LUA_FN(shape_parameters),
+    INVASIM_LUA_FN(slices),
     {nullptr, nullptr},
 };
 
 void open_measure(lua_State* L) {
-  lua_pushcfunction(L, &lua_wrap<&l_histogram>);
-  lua_setfield(L, -2, "histogram");
-  lua_pushcfunction(L, &lua_wrap<&l_block_average>);
-  lua_setfield(L, -2, "block_average");
+  add_functions(L, {INVASIM_LUA_FN(histogram), INVASIM_LUA_FN(block_average)});
 }
 
 }  // namespace invasim::lua

@@ -164,12 +164,10 @@ int l_set(lua_State* L) {
 
 void open_method(lua_State* L) {
   define_type<MethodHandle>(
-      L, {
-             {"set", &lua_wrap<&l_set>},
-             getter<MethodHandle, [](const MethodHandle& m) { return m.kind; }>("kind"),
-             getter<MethodHandle, [](const MethodHandle& m) { return m.group; }>("group"),
-             params_method<MethodHandle, &active_fields, &keys_of>("params"),
-         });
+      L, {INVASIM_LUA_FN(set),
+          getter<MethodHandle, [](const MethodHandle& m) { return m.kind; }>("kind"),
+          getter<MethodHandle, [](const MethodHandle& m) { return m.group; }>("group"),
+          params_method<MethodHandle, &active_fields, &keys_of>("params")});
   set_constructor(L, "Damped", &lua_wrap<&l_damped>, damped_fields().infos());
   set_constructor(L, "Langevin", &lua_wrap<&l_langevin>, langevin_fields().infos());
   set_constructor(L, "Active", &lua_wrap<&l_active>, active_fields().infos());

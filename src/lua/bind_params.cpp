@@ -21,6 +21,7 @@
 #include "core/params.hpp"
 #include "lua/binding.hpp"
 #include "lua/context.hpp"
+#include "lua/fields.hpp"
 #include "lua/kwargs.hpp"
 #include "lua/module.hpp"
 
@@ -134,20 +135,6 @@ Param read_param(lua_State* L, const std::string& name) {
   return p;
 }
 
-// Inside a protected_call block.
-void push_value(lua_State* L, const ParamValue& value) noexcept {
-  if (const auto* d = std::get_if<double>(&value))
-    lua_pushnumber(L, *d);
-  else if (const auto* i = std::get_if<long long>(&value))
-    lua_pushinteger(L, *i);
-  else if (const auto* b = std::get_if<bool>(&value))
-    lua_pushboolean(L, *b);
-  else {
-    const auto& s = std::get<std::string>(value);
-    lua_pushlstring(L, s.data(), s.size());
-  }
-}
-
 // Names of the declared parameters (keys of the values table at `index`).
 std::vector<std::string> declared_names(lua_State* L, int index) {
   std::vector<std::string> names;
@@ -256,7 +243,7 @@ int l_params(lua_State* L) {
   return push_results(L, 1, [&params](lua_State* S) noexcept {
     lua_createtable(S, 0, static_cast<int>(params.size()));
     for (const auto& p : params) {
-      push_value(S, p.value);
+      push_param_value(S, p.value);
       lua_setfield(S, -2, p.name.c_str());
     }
     push_proxy(S);
@@ -267,8 +254,7 @@ int l_params(lua_State* L) {
 }  // namespace
 
 void open_params(lua_State* L) {
-  lua_pushcfunction(L, &lua_wrap<&l_params>);
-  lua_setfield(L, -2, "params");
+  add_functions(L, {INVASIM_LUA_FN(params)});
 }
 
 }  // namespace invasim::lua

@@ -16,15 +16,11 @@
 
 namespace invasim::lua {
 
-template <>
-struct LuaType<Progress> {
-  static constexpr const char* name = "Progress";
-  static constexpr const char* metatable = "invasim.Progress";
-  static std::string describe(const Progress& p) {
-    return cat("Progress(step ", p.step(), p.total() > 0 ? cat("/", p.total()) : "",
-               p.finished() ? ", finished)" : ")");
-  }
-};
+INVASIM_LUA_TYPE(Progress, "Progress");
+std::string LuaType<Progress>::describe(const Progress& p) {
+  return cat("Progress(step ", p.step(), p.total() > 0 ? cat("/", p.total()) : "",
+             p.finished() ? ", finished)" : ")");
+}
 
 // Declared in engine_types.hpp: the Progress at `index`, or nullptr if it is none.
 Progress* test_progress(lua_State* L, int index) {
@@ -77,10 +73,7 @@ int l_finish(lua_State* L) {
 }  // namespace
 
 void open_progress(lua_State* L) {
-  define_type<Progress>(L, {
-                               {"update", &lua_wrap<&l_update>},
-                               {"finish", &lua_wrap<&l_finish>},
-                           });
+  define_type<Progress>(L, {INVASIM_LUA_FN(update), INVASIM_LUA_FN(finish)});
   set_constructor(L, "Progress", &lua_wrap<&l_new>, progress_fields().infos());
 }
 

@@ -83,10 +83,7 @@ int l_params(lua_State* L) {
 }  // namespace
 
 void open_ramp(lua_State* L) {
-  define_type<Ramp>(L, {
-                           {"value", &lua_wrap<&l_value>},
-                           {"params", &lua_wrap<&l_params>},
-                       });
+  define_type<Ramp>(L, {INVASIM_LUA_FN(value), INVASIM_LUA_FN(params)});
   set_constructor(L, "ramp", &lua_wrap<&l_ramp>, ramp_fields().infos());
 }
 

@@ -58,27 +58,15 @@ int l_remove_temporaries(lua_State* L) {
   engine_call("remove_temporaries", [&] {
     for (const auto& path : remove_atomic_temporaries(dir)) removed.push_back(path.string());
   });
-  return push_results(L, 1, [&removed](lua_State* S) noexcept {
-    lua_createtable(S, int(removed.size()), 0);
-    for (std::size_t i = 0; i < removed.size(); ++i) {
-      lua_pushlstring(S, removed[i].data(), removed[i].size());
-      lua_rawseti(S, -2, lua_Integer(i + 1));
-    }
-    return 1;
-  });
+  push_string_list(L, removed);
+  return 1;
 }
 
 }  // namespace
 
 void open_run_dir(lua_State* L) {
-  lua_pushcfunction(L, &lua_wrap<&l_lock_run_dir>);
-  lua_setfield(L, -2, "lock_run_dir");
-  lua_pushcfunction(L, &lua_wrap<&l_record_run_lock>);
-  lua_setfield(L, -2, "record_run_lock");
-  lua_pushcfunction(L, &lua_wrap<&l_hash_file>);
-  lua_setfield(L, -2, "hash_file");
-  lua_pushcfunction(L, &lua_wrap<&l_remove_temporaries>);
-  lua_setfield(L, -2, "remove_temporaries");
+  add_functions(L, {INVASIM_LUA_FN(lock_run_dir), INVASIM_LUA_FN(record_run_lock),
+                    INVASIM_LUA_FN(hash_file), INVASIM_LUA_FN(remove_temporaries)});
 }
 
 }  // namespace invasim::lua

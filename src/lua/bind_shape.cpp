@@ -3,7 +3,7 @@
 
 #include "core/names.hpp"
 #include "lua/adapters.hpp"
-#include "lua/engine_types.hpp"
+#include "lua/engine_fields.hpp"
 #include "lua/fields.hpp"
 #include "lua/module.hpp"
 
@@ -38,24 +38,11 @@ std::string LuaType<Shape>::describe(const Shape& s) {
   return shape_fields().describe(keys_of(s));
 }
 
-namespace {
-
-int l_new(lua_State* L) {
-  Kwargs kw(L, 1, "Shape");
-  const ShapeKeys k = shape_fields().make(kw);
-  auto force = engine_call("Shape", [&] { return std::make_shared<ShapeForce>(k.eps_v, k.eps_a); });
-  push(L, std::make_shared<Shape>(std::move(force)));
-  return 1;
-}
-
-}  // namespace
-
+// s:params() -> {eps_v =, eps_a =}
 void open_shape(lua_State* L) {
-  define_type<Shape>(L, {
-                            // s:params() -> {eps_v =, eps_a =}
-                            params_method<Shape, &shape_fields, &keys_of>("params"),
-                        });
-  set_constructor(L, "Shape", &lua_wrap<&l_new>, shape_fields().infos());
+  define_params_type<Shape, &shape_fields, &keys_of, [](const ShapeKeys& k) {
+    return std::make_shared<Shape>(std::make_shared<ShapeForce>(k.eps_v, k.eps_a));
+  }>(L, {});
 }
 
 }  // namespace invasim::lua

@@ -36,15 +36,11 @@ struct SimulationHandle {
   std::vector<std::shared_ptr<LuaFunctionOperation>> lua_ops;
 };
 
-template <>
-struct LuaType<SimulationHandle> {
-  static constexpr const char* name = "Simulation";
-  static constexpr const char* metatable = "invasim.Simulation";
-  static std::string describe(const SimulationHandle& s) {
-    return cat("Simulation(", s.run.operations().size(), " operations, step ",
-               s.system->system.step, ")");
-  }
-};
+INVASIM_LUA_TYPE(SimulationHandle, "Simulation");
+std::string LuaType<SimulationHandle>::describe(const SimulationHandle& s) {
+  return cat("Simulation(", s.run.operations().size(), " operations, step ", s.system->system.step,
+             ")");
+}
 
 namespace {
 
@@ -113,14 +109,20 @@ Trigger schedule_arg(lua_State* L, int index, const char* what) {
   return t;
 }
 
+// Adds `op` to the run of `s` on the schedule table at argument 3; `what` names the method.
+int add_scheduled(lua_State* L, SimulationHandle& s, std::shared_ptr<Operation> op,
+                  const char* what) {
+  const Trigger t = schedule_arg(L, 3, what);
+  engine_call(what, [&] { s.run.add(std::move(op), t); });
+  return 0;
+}
+
 // sim:sample(correlator, schedule)
 int l_sample(lua_State* L) {
   SimulationHandle& s = check<SimulationHandle>(L, 1);
   auto correlator = shared_correlator(L, 2);
   if (!correlator) throw InputError(bad_argument(L, 2, "Correlator"));
-  const Trigger t = schedule_arg(L, 3, "sample");
-  engine_call("sample", [&] { s.run.add(std::make_shared<CorrelatorSampler>(correlator), t); });
-  return 0;
+  return add_scheduled(L, s, std::make_shared<CorrelatorSampler>(correlator), "sample");
 }
 
 // sim:lipolysis(lipolysis, {every = N}): applies an invasim.Lipolysis every N steps (N dt of
@@ -143,9 +145,7 @@ int l_snapshots(lua_State* L) {
   SimulationHandle& s = check<SimulationHandle>(L, 1);
   auto writer = shared_snapshots(L, 2);
   if (!writer) throw InputError(bad_argument(L, 2, "Snapshots"));
-  const Trigger t = schedule_arg(L, 3, "snapshots");
-  engine_call("snapshots", [&] { s.run.add(std::make_shared<SnapshotOperation>(writer), t); });
-  return 0;
+  return add_scheduled(L, s, std::make_shared<SnapshotOperation>(writer), "snapshots");
 }
 
 // sim:observe(fn, schedule)
@@ -247,30 +247,18 @@ int l_operations(lua_State* L) {
   std::vector<std::string> lines;
   for (const auto& op : s.run.operations())
     lines.push_back(op.operation->name() + ": " + op.trigger.describe());
-  return push_results(L, 1, [&lines](lua_State* S) noexcept {
-    lua_createtable(S, int(lines.size()), 0);
-    for (std::size_t k = 0; k < lines.size(); ++k) {
-      lua_pushlstring(S, lines[k].data(), lines[k].size());
-      lua_rawseti(S, -2, lua_Integer(k + 1));
-    }
-    return 1;
-  });
+  push_string_list(L, lines);
+  return 1;
 }
 
 }  // namespace
 
 void open_simulation(lua_State* L) {
-  define_type<SimulationHandle>(L, {
-                                       {"sample", &lua_wrap<&l_sample>},
-                                       {"lipolysis", &lua_wrap<&l_lipolysis>},
-                                       {"snapshots", &lua_wrap<&l_snapshots>},
-                                       {"observe", &lua_wrap<&l_observe>},
-                                       {"checkpoint", &lua_wrap<&l_checkpoint>},
-                                       {"run", &lua_wrap<&l_run>},
-                                       {"operations", &lua_wrap<&l_operations>},
-                                   });
-  lua_pushcfunction(L, &lua_wrap<&l_new>);
-  lua_setfield(L, -2, "Simulation");
+  define_type<SimulationHandle>(
+      L, {INVASIM_LUA_FN(sample), INVASIM_LUA_FN(lipolysis), INVASIM_LUA_FN(snapshots),
+          INVASIM_LUA_FN(observe), INVASIM_LUA_FN(checkpoint), INVASIM_LUA_FN(run),
+          INVASIM_LUA_FN(operations)});
+  add_functions(L, {{"Simulation", &lua_wrap<&l_new>}});
 }
 
 }  // namespace invasim::lua

@@ -206,11 +206,7 @@ int l_box(lua_State* L) {
   lua_setfield(L, -2, "lo");
   push_vec3(L, box.hi());
   lua_setfield(L, -2, "hi");
-  lua_createtable(L, 3, 0);
-  for (int a = 0; a < 3; ++a) {
-    lua_pushboolean(L, box.periodic(a));
-    lua_rawseti(L, -2, a + 1);
-  }
+  push_list(L, 3, [&](std::size_t a) { lua_pushboolean(L, box.periodic(int(a))); });
   lua_setfield(L, -2, "periodic");
   set_number(L, "volume", box.volume());
   return 1;
@@ -251,11 +247,7 @@ int l_positions(lua_State* L) {
   const std::vector<int> sites = group_arg(L, 2, sim, "positions");
   const auto& pos = sim.system.sites().pos;
   return push_results(L, 1, [&sites, &pos](lua_State* S) noexcept {
-    lua_createtable(S, int(sites.size()), 0);
-    for (std::size_t k = 0; k < sites.size(); ++k) {
-      push_vec3(S, pos[sites[k]]);
-      lua_rawseti(S, -2, lua_Integer(k + 1));
-    }
+    push_list(S, sites.size(), [&](std::size_t k) { push_vec3(S, pos[sites[k]]); });
     return 1;
   });
 }
@@ -371,11 +363,7 @@ int l_add(lua_State* L) {
 // sys:forces() -> {force, ...} in the order added.
 int l_forces(lua_State* L) {
   const SystemHandle& sim = check<SystemHandle>(L, 1);
-  lua_createtable(L, static_cast<int>(sim.handles.size()), 0);
-  for (std::size_t k = 0; k < sim.handles.size(); ++k) {
-    push_force(L, sim.handles[k]);
-    lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
-  }
+  push_list(L, sim.handles.size(), [&](std::size_t k) { push_force(L, sim.handles[k]); });
   return 1;
 }
 
@@ -404,23 +392,23 @@ int l_compute(lua_State* L) {
 }
 
 const luaL_Reg kMethods[] = {
-    {"place", &lua_wrap<&l_place>},
-    {"group", &lua_wrap<&l_group>},
+    INVASIM_LUA_FN(place),
+    INVASIM_LUA_FN(group),
     getter<SystemHandle, [](const SystemHandle& s) { return s.system.n_sites(); }>("n_sites"),
     getter<SystemHandle, [](const SystemHandle& s) { return s.system.bodies().size(); }>(
         "n_adipocytes"),
     getter<SystemHandle, [](const SystemHandle& s) { return s.system.step; }>("step"),
     getter<SystemHandle, [](const SystemHandle& s) { return s.system.time; }>("time"),
-    {"box", &lua_wrap<&l_box>},
-    {"packing", &lua_wrap<&l_packing>},
-    {"temperature", &lua_wrap<&l_temperature>},
-    {"set_velocities", &lua_wrap<&l_set_velocities>},
-    {"set_mass", &lua_wrap<&l_set_mass>},
-    {"positions", &lua_wrap<&l_positions>},
-    {"adipocytes", &lua_wrap<&l_adipocytes>},
-    {"add", &lua_wrap<&l_add>},
-    {"forces", &lua_wrap<&l_forces>},
-    {"compute", &lua_wrap<&l_compute>},
+    INVASIM_LUA_FN(box),
+    INVASIM_LUA_FN(packing),
+    INVASIM_LUA_FN(temperature),
+    INVASIM_LUA_FN(set_velocities),
+    INVASIM_LUA_FN(set_mass),
+    INVASIM_LUA_FN(positions),
+    INVASIM_LUA_FN(adipocytes),
+    INVASIM_LUA_FN(add),
+    INVASIM_LUA_FN(forces),
+    INVASIM_LUA_FN(compute),
     {nullptr, nullptr},
 };
 

@@ -108,31 +108,27 @@ int l_list(lua_State* L) {
   const std::vector<Tether>& tethers = t.force->tethers();
   const std::vector<Vec3> c =
       engine_call("list", [&] { return TetherForce::body_centres(sim.system); });
-  lua_createtable(L, int(tethers.size()), 0);
-  for (std::size_t k = 0; k < tethers.size(); ++k) {
-    const Tether& e = tethers[k];
-    lua_createtable(L, 0, 4);
-    set_integer(L, "i", e.a + 1);
-    set_integer(L, "j", e.b + 1);
-    set_number(L, "rest_length", e.rest_length);
-    set_number(L, "length", sim.system.box().minimum_image(c[e.a] - c[e.b]).norm());
-    lua_rawseti(L, -2, lua_Integer(k + 1));
-  }
-  return 1;
+  const Box& box = sim.system.box();
+  return push_results(L, 1, [&](lua_State* S) noexcept {
+    push_list(S, tethers.size(), [&](std::size_t k) {
+      const Tether& e = tethers[k];
+      lua_createtable(S, 0, 4);
+      set_integer(S, "i", e.a + 1);
+      set_integer(S, "j", e.b + 1);
+      set_number(S, "rest_length", e.rest_length);
+      set_number(S, "length", box.minimum_image(c[e.a] - c[e.b]).norm());
+    });
+    return 1;
+  });
 }
 
 }  // namespace
 
 void open_tethers(lua_State* L) {
   define_type<Tethers>(
-      L, {
-             {"connect", &lua_wrap<&l_connect>},
-             {"heterogeneity", &lua_wrap<&l_heterogeneity>},
-             getter<Tethers, [](const Tethers& t) { return t.force->tethers().size(); }>("count"),
-             {"K", &lua_wrap<&l_K>},
-             {"set_K", &lua_wrap<&l_set_K>},
-             {"list", &lua_wrap<&l_list>},
-         });
+      L, {INVASIM_LUA_FN(connect), INVASIM_LUA_FN(heterogeneity),
+          getter<Tethers, [](const Tethers& t) { return t.force->tethers().size(); }>("count"),
+          INVASIM_LUA_FN(K), INVASIM_LUA_FN(set_K), INVASIM_LUA_FN(list)});
   set_constructor(L, "Tethers", &lua_wrap<&l_new>, tether_fields().infos());
   set_method_keys(L, "Tethers", "connect", connect_fields().infos());
 }

@@ -3,7 +3,7 @@
 
 #include "core/names.hpp"
 #include "lua/adapters.hpp"
-#include "lua/engine_types.hpp"
+#include "lua/engine_fields.hpp"
 #include "lua/fields.hpp"
 #include "lua/module.hpp"
 
@@ -44,15 +44,6 @@ std::string LuaType<Walls>::describe(const Walls& w) {
 
 namespace {
 
-int l_new(lua_State* L) {
-  Kwargs kw(L, 1, "Walls");
-  const WallKeys k = wall_fields().make(kw);
-  auto force =
-      engine_call("Walls", [&] { return std::make_shared<WallForce>(k.eps, k.left, k.right); });
-  push(L, std::make_shared<Walls>(std::move(force), k.left, k.right));
-  return 1;
-}
-
 // w:params() -> {eps =, left =, right =}
 // w:reaction() -> left, right: x force the sites exert on each wall at the last evaluation.
 int l_reaction(lua_State* L) {
@@ -65,11 +56,10 @@ int l_reaction(lua_State* L) {
 }  // namespace
 
 void open_walls(lua_State* L) {
-  define_type<Walls>(L, {
-                            {"reaction", &lua_wrap<&l_reaction>},
-                            params_method<Walls, &wall_fields, &keys_of>("params"),
-                        });
-  set_constructor(L, "Walls", &lua_wrap<&l_new>, wall_fields().infos());
+  define_params_type<Walls, &wall_fields, &keys_of, [](const WallKeys& k) {
+    return std::make_shared<Walls>(std::make_shared<WallForce>(k.eps, k.left, k.right), k.left,
+                                   k.right);
+  }>(L, {INVASIM_LUA_FN(reaction)});
 }
 
 }  // namespace invasim::lua

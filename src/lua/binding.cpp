@@ -11,6 +11,23 @@
 
 namespace invasim::lua {
 
+void add_functions(lua_State* L, std::initializer_list<luaL_Reg> functions) {
+  luaL_Reg list[kMaxMethods + 1];
+  if (functions.size() > kMaxMethods) throw std::logic_error("add_functions: too many");
+  std::size_t n = 0;
+  for (const luaL_Reg& f : functions) list[n++] = f;
+  list[n] = {nullptr, nullptr};
+  luaL_setfuncs(L, list, 0);
+}
+
+void push_string_list(lua_State* L, const std::vector<std::string>& items) {
+  protected_call(L, 0, 1, [&items](lua_State* S) noexcept {
+    push_list(S, items.size(),
+              [&](std::size_t k) { lua_pushlstring(S, items[k].data(), items[k].size()); });
+    return 1;
+  });
+}
+
 void push_value(lua_State* L, const std::string& v) {
   protected_call(L, 0, 1, [&v](lua_State* S) noexcept {
     lua_pushlstring(S, v.data(), v.size());

@@ -1,11 +1,8 @@
 #pragma once
 // The shape every Lua binding shares (one bind_<type>.cpp per exposed C++ type):
 //
-//   template <> struct LuaType<Progress> {               // names and __tostring
-//     static constexpr const char* name = "Progress";
-//     static constexpr const char* metatable = "invasim.Progress";
-//     static std::string describe(const Progress& p);
-//   };
+//   INVASIM_LUA_TYPE(Progress, "Progress");   // LuaType<Progress>: names and __tostring
+//   std::string LuaType<Progress>::describe(const Progress& p) { ... }
 //   int l_update(lua_State* L) { check<Progress>(L, 1).update(...); return 0; }  // may throw
 //   define_type<Progress>(L, {{"update", &lua_wrap<&l_update>}});  // when the module opens
 //   push(L, std::make_shared<Progress>(...));             // from a constructor
@@ -37,6 +34,7 @@
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include "core/errors.hpp"
 
@@ -49,6 +47,16 @@ std::string type_name_at(lua_State* L, int index);
 // Per-type names and description; specialised next to each binding.
 template <typename T>
 struct LuaType;
+
+// Specialises LuaType<T> with the Lua name NAME (metatable "invasim.NAME"); its describe(), the
+// __tostring text, is defined next to the binding.
+#define INVASIM_LUA_TYPE(T, NAME)                             \
+  template <>                                                 \
+  struct LuaType<T> {                                         \
+    static constexpr const char* name = NAME;                 \
+    static constexpr const char* metatable = "invasim." NAME; \
+    static std::string describe(const T& object);             \
+  }
 
 // A C++ exception that already carries a complete Lua error message (with its location),
 // e.g. from a failed Lua callback: lua_wrap re-raises it as is.
@@ -330,5 +338,31 @@ void define_type(lua_State* L, std::initializer_list<luaL_Reg> methods) {
   list[n] = {nullptr, nullptr};
   define_type<T>(L, static_cast<const luaL_Reg*>(list));
 }
+
+// {"name", &lua_wrap<&l_name>}: the list entry of a binding's function l_<name> under its own
+// name, so that the name is written once: define_type<T>(L, {INVASIM_LUA_FN(run), ...}).
+#define INVASIM_LUA_FN(name)                      \
+  luaL_Reg {                                      \
+#name, &::invasim::lua::lua_wrap < &l_##name> \
+  }
+
+// Sets each function of the list (already wrapped with lua_wrap) as a field of the table on top
+// of the stack, the module table when a bind_<part>.cpp opens:
+//   add_functions(L, {{"write_file", &lua_wrap<&l_write_file>}, {"exists", ...}});
+void add_functions(lua_State* L, std::initializer_list<luaL_Reg> functions);
+
+// Pushes the list {item 0, ..., item n-1}, where push_item(k) pushes item k. It allocates: call
+// it inside a protected_call block, or from a frame that owns no C++ object (see above).
+template <typename PushItem>
+void push_list(lua_State* L, std::size_t n, PushItem&& push_item) {
+  lua_createtable(L, n < 0x7fffffff ? static_cast<int>(n) : 0, 0);
+  for (std::size_t k = 0; k < n; ++k) {
+    push_item(k);
+    lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+  }
+}
+
+// Pushes a list of strings (protected: may be called anywhere).
+void push_string_list(lua_State* L, const std::vector<std::string>& items);
 
 }  // namespace invasim::lua

@@ -4,6 +4,7 @@
 #include <memory>
 #include <optional>
 
+#include "lua/adapters.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/fields.hpp"
 
@@ -63,5 +64,31 @@ std::vector<Field<P>> fire_fields(Access fire) {
 
 // The keys of invasim.Fire{} (bind_fire.cpp), also read by sys:compress and sys:rescale.
 const FieldTable<FireParams>& fire_table();
+
+namespace detail {
+template <auto Table, auto Make>
+int construct_from_fields(lua_State* L) {
+  Kwargs kw(L, 1, Table().type());
+  const auto params = Table().make(kw);
+  push(L, engine_call(Table().type(), [&] { return Make(params); }));
+  return 1;
+}
+}  // namespace detail
+
+// Binds a type T whose parameters are one FieldTable: its methods plus obj:params() (the
+// table's keys read from ParamsOf(obj)), and the constructor invasim.<Table().type()>{...},
+// which reads the keys and builds the object with Make(params) (a std::shared_ptr<T>).
+template <typename T, auto Table, auto ParamsOf, auto Make>
+void define_params_type(lua_State* L, std::initializer_list<luaL_Reg> methods) {
+  if (methods.size() >= kMaxMethods) throw std::logic_error("define_params_type: too many");
+  luaL_Reg list[kMaxMethods + 1];
+  std::size_t n = 0;
+  for (const luaL_Reg& m : methods) list[n++] = m;
+  list[n++] = params_method<T, Table, ParamsOf>("params");
+  list[n] = {nullptr, nullptr};
+  define_type<T>(L, static_cast<const luaL_Reg*>(list));
+  set_constructor(L, Table().type().c_str(), &lua_wrap<&detail::construct_from_fields<Table, Make>>,
+                  Table().infos());
+}
 
 }  // namespace invasim::lua

@@ -43,11 +43,7 @@ void require_same_system(const Group& group, const SystemHandle& sim, const std:
 }
 
 void push_vec3(lua_State* L, const Vec3& v) noexcept {
-  lua_createtable(L, 3, 0);
-  for (int a = 0; a < 3; ++a) {
-    lua_pushnumber(L, v[a]);
-    lua_rawseti(L, -2, a + 1);
-  }
+  push_list(L, 3, [&](std::size_t a) { lua_pushnumber(L, v[int(a)]); });
 }
 
 void set_number(lua_State* L, const char* key, double value) noexcept {
@@ -66,19 +62,11 @@ void set_boolean(lua_State* L, const char* key, bool value) noexcept {
 }
 
 void push_number_list(lua_State* L, const double* values, std::size_t n) noexcept {
-  lua_createtable(L, n < 0x7fffffff ? int(n) : 0, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    lua_pushnumber(L, values[i]);
-    lua_rawseti(L, -2, lua_Integer(i + 1));
-  }
+  push_list(L, n, [&](std::size_t i) { lua_pushnumber(L, values[i]); });
 }
 
 void push_integer_list(lua_State* L, const int* values, std::size_t n) noexcept {
-  lua_createtable(L, n < 0x7fffffff ? int(n) : 0, 0);
-  for (std::size_t i = 0; i < n; ++i) {
-    lua_pushinteger(L, values[i]);
-    lua_rawseti(L, -2, lua_Integer(i + 1));
-  }
+  push_list(L, n, [&](std::size_t i) { lua_pushinteger(L, values[i]); });
 }
 
 void push_force(lua_State* L, const ForceHandle& handle) {

@@ -87,13 +87,6 @@ struct DynamicsHandle {
   RunRecord record;              // the System of the last run and its revision after it
 };
 
-#define INVASIM_LUA_TYPE(T, NAME)                             \
-  template <>                                                 \
-  struct LuaType<T> {                                         \
-    static constexpr const char* name = NAME;                 \
-    static constexpr const char* metatable = "invasim." NAME; \
-    static std::string describe(const T& object);             \
-  }
 INVASIM_LUA_TYPE(SystemHandle, "System");
 INVASIM_LUA_TYPE(Group, "Group");
 INVASIM_LUA_TYPE(Contacts, "Contacts");
@@ -105,7 +98,6 @@ INVASIM_LUA_TYPE(DynamicsHandle, "Dynamics");
 INVASIM_LUA_TYPE(Fire, "Fire");
 INVASIM_LUA_TYPE(Ramp, "Ramp");
 INVASIM_LUA_TYPE(Lipolysis, "Lipolysis");
-#undef INVASIM_LUA_TYPE
 
 // --- helpers shared by the engine bindings (engine_glue.cpp) ---
 

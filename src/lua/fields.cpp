@@ -17,20 +17,6 @@ std::string text_of(const ParamValue& value) {
   return format_value(value);
 }
 
-// Pushes a ParamValue (inside a protected call: strings allocate).
-void push_value(lua_State* S, const ParamValue& value) noexcept {
-  if (const auto* d = std::get_if<double>(&value))
-    lua_pushnumber(S, *d);
-  else if (const auto* i = std::get_if<long long>(&value))
-    lua_pushinteger(S, *i);
-  else if (const auto* b = std::get_if<bool>(&value))
-    lua_pushboolean(S, *b);
-  else {
-    const std::string& s = std::get<std::string>(value);
-    lua_pushlstring(S, s.data(), s.size());
-  }
-}
-
 std::map<std::string, std::vector<FieldInfo>>& registry() {
   static std::map<std::string, std::vector<FieldInfo>> tables;
   return tables;
@@ -90,6 +76,19 @@ std::string allowed_text(const FieldInfo& f) {
 
 }  // namespace
 
+void push_param_value(lua_State* S, const ParamValue& value) noexcept {
+  if (const auto* d = std::get_if<double>(&value))
+    lua_pushnumber(S, *d);
+  else if (const auto* i = std::get_if<long long>(&value))
+    lua_pushinteger(S, *i);
+  else if (const auto* b = std::get_if<bool>(&value))
+    lua_pushboolean(S, *b);
+  else {
+    const std::string& s = std::get<std::string>(value);
+    lua_pushlstring(S, s.data(), s.size());
+  }
+}
+
 namespace fields_detail {
 
 std::string describe(const std::vector<std::pair<std::string, ParamValue>>& values) {
@@ -105,7 +104,7 @@ void push_values(lua_State* L, const std::vector<std::pair<std::string, ParamVal
   protected_call(L, 0, 1, [&values](lua_State* S) noexcept {
     lua_createtable(S, 0, static_cast<int>(values.size()));
     for (const auto& [name, value] : values) {
-      push_value(S, value);
+      push_param_value(S, value);
       lua_setfield(S, -2, name.c_str());
     }
     return 1;
@@ -135,7 +134,7 @@ void push_field_list_raw(lua_State* S, const std::vector<FieldInfo>& infos,
     lua_pushstring(S, f.type.c_str());
     lua_setfield(S, -2, "type");
     if (f.default_value) {
-      push_value(S, *f.default_value);
+      push_param_value(S, *f.default_value);
       lua_setfield(S, -2, "default");
     }
     if (!allowed[k].empty()) {
@@ -143,11 +142,8 @@ void push_field_list_raw(lua_State* S, const std::vector<FieldInfo>& infos,
       lua_setfield(S, -2, "range");
     }
     if (!f.choices.empty()) {
-      lua_createtable(S, static_cast<int>(f.choices.size()), 0);
-      for (std::size_t c = 0; c < f.choices.size(); ++c) {
-        lua_pushstring(S, f.choices[c].c_str());
-        lua_rawseti(S, -2, static_cast<lua_Integer>(c + 1));
-      }
+      push_list(S, f.choices.size(),
+                [&](std::size_t c) { lua_pushstring(S, f.choices[c].c_str()); });
       lua_setfield(S, -2, "choices");
     }
     lua_pushstring(S, f.unit.c_str());
@@ -168,7 +164,7 @@ void push_defaults_raw(lua_State* S, const std::vector<FieldInfo>& infos,
   lua_createtable(S, 0, static_cast<int>(infos.size()));
   for (const auto& f : infos) {
     if (!f.default_value) continue;
-    push_value(S, *f.default_value);
+    push_param_value(S, *f.default_value);
     lua_setfield(S, -2, f.name.c_str());
   }
   make_read_only(S, name.c_str());

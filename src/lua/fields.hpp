@@ -51,6 +51,10 @@ struct Field {
   std::function<std::optional<ParamValue>(const P&)> value;
 };
 
+// Pushes a ParamValue as a number, integer, boolean or string (inside a protected_call block:
+// strings allocate).
+void push_param_value(lua_State* L, const ParamValue& value) noexcept;
+
 // Non-template halves of FieldTable (fields.cpp).
 namespace fields_detail {
 // "alpha=0.2, beta=0" for the state fields (numbers as `cat` prints them).

@@ -7,6 +7,7 @@
 
 #include "core/fnv1a.hpp"
 #include "invasim_version.hpp"
+#include "lua/binding.hpp"
 #include "lua/context.hpp"
 
 namespace invasim::lua {
@@ -68,12 +69,11 @@ int open_invasim(lua_State* L) {
   lua_setfield(L, -2, "overwrite");
   lua_pushstring(L, context.options.script_path.c_str());
   lua_setfield(L, -2, "script");
-  lua_pushcfunction(L, &l_threads);
-  lua_setfield(L, -2, "threads");
-  lua_pushcfunction(L, &l_clock);
-  lua_setfield(L, -2, "clock");
-  lua_pushcfunction(L, &l_hash);
-  lua_setfield(L, -2, "hash");
+  add_functions(L, {
+                       {"threads", &l_threads},
+                       {"clock", &l_clock},
+                       {"hash", &l_hash},
+                   });
 #define INVASIM_LUA_PART(part) open_##part(L);
 #include "lua_bindings.inc"
 #undef INVASIM_LUA_PART
