@@ -52,6 +52,21 @@ function M.lipolysis(tissue, lipolysis)
   }
 end
 
+-- Proliferation (docs/model.md, "Proliferation and death"): follow_cells makes the tissue's
+-- groups again after cells divided or died (a group keeps the indices of its time; the
+-- production stage calls it before the observers sample), and the observer gives N_c.
+function M.follow_cells(tissue)
+  tissue.cells = tissue.sys:group("cancer")
+  if tissue.vertices then tissue.vertices = tissue.sys:group("vertices") end
+end
+
+function M.proliferation(tissue)
+  return {
+    columns = { "N_c" }, units = { N_c = "cells" },
+    sample = function(row) row.N_c = tissue.cells:size() end,
+  }
+end
+
 -- Energy of each force term (one extra force evaluation per sample; the trajectory is not
 -- changed: sys:compute() restores the forces the Dynamics keeps).
 function M.energy(tissue)

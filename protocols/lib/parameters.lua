@@ -62,6 +62,10 @@ function M.declarations()
     lipolysis_rate = declare.engine("Lipolysis", "rate", 0.0, "0: no lipolysis, the paper; docs/model.md, Bodies"),
     lipolysis_floor = declare.engine("Lipolysis", "floor"),
     lipolysis_every = declare.keyword(production.keys, "lipolysis_every"),
+    division_rate = declare.engine("Proliferation", "division_rate", 0.0, "0: no proliferation, the paper; docs/model.md, Proliferation and death"),
+    death_rate = declare.engine("Proliferation", "death_rate"),
+    inhibition_contacts = declare.engine("Proliferation", "inhibition_contacts"),
+    proliferation_every = declare.keyword(production.keys, "proliferation_every"),
   }
 end
 
@@ -87,6 +91,11 @@ function M.production_options(p, out, extra)
               lipolysis_every = p.lipolysis_every }
   if p.lipolysis_rate > 0 then
     o.lipolysis = iv.Lipolysis{ rate = p.lipolysis_rate, floor = p.lipolysis_floor }
+  end
+  if p.division_rate > 0 or p.death_rate > 0 then
+    o.proliferation = iv.Proliferation{ division_rate = p.division_rate, death_rate = p.death_rate,
+                                        inhibition_contacts = p.inhibition_contacts }
+    o.proliferation_every = p.proliferation_every
   end
   for k, v in pairs(extra or {}) do o[k] = v end
   return o

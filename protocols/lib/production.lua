@@ -9,6 +9,8 @@
 --                                  `energy`; one row of the series (series.csv in `out`)
 --   every `snapshot_every` steps:  a frame of `snapshots` (an invasim.Snapshots), if given
 --   every `checkpoint_every` steps and on SIGINT/SIGTERM: out/checkpoint/state.ckpt
+-- With `proliferation`, cells divide and die every `proliferation_every` steps, before all of
+-- these; the series gains N_c and the correlators are off.
 --   at the end:                    tau_d, tau_r, 3D shape parameters and random slices
 --
 --   local result = require("lib.production")(tissue, { steps = 1e5, every = 1000, out = dir })
@@ -35,6 +37,8 @@ local spec = {
   checkpoint_every = { "integer", default = 0, range = "[0, inf)", help = "steps between checkpoints in out/checkpoint/ (0: only on SIGINT/SIGTERM)" },
   lipolysis = { "Lipolysis", help = "adipocytes shrinking where cancer cells touch them (off: nil)" },
   lipolysis_every = { "integer", default = 1000, range = "[1, inf)", help = "steps between two applications of lipolysis (each recomputes the touched adipocytes' V_i, ~2 ms each)" },
+  proliferation = { "Proliferation", help = "cancer cells dividing and dying (off: nil); the correlators are off with it (they follow a fixed set of cells)" },
+  proliferation_every = { "integer", default = 100, range = "[1, inf)", help = "steps between two applications of proliferation" },
   snapshots = { "Snapshots" },  -- an invasim.Snapshots writing a frame every snapshot_every steps
   snapshot_every = { "integer", default = 0, range = "[0, inf)" },  -- steps between snapshots (0: none)
   progress = true,
@@ -90,7 +94,12 @@ local function production(tissue, opts)
   local o = iv.keywords(opts and opts.label or "production", opts, spec)
   if not tissue.dyn then error(o.label .. ": run the quench stage first (it makes the Dynamics)", 2) end
   local sys, dyn = tissue.sys, tissue.dyn
+  if o.proliferation and o.correlate_every > 0 then
+    log.say(o.label, "correlators off: they follow a fixed set of cells, and cells divide and die")
+    o.correlate_every = 0
+  end
   local active = { observers.thermo(tissue) }
+  if o.proliferation then active[#active + 1] = observers.proliferation(tissue) end
   if o.interface and sys:n_adipocytes() > 0 then active[#active + 1] = observers.interface(tissue, o.radical) end
   if o.energy then active[#active + 1] = observers.energy(tissue) end
   if o.lipolysis then active[#active + 1] = observers.lipolysis(tissue, o.lipolysis) end
@@ -127,6 +136,7 @@ local function production(tissue, opts)
     local state = resume.deserialize(iv.load_checkpoint(checkpoint, parts), checkpoint)
     rows, end_step, tissue.compression = state.rows, state.end_step, state.compression
     resume.done()
+    if o.proliferation then observers.follow_cells(tissue) end
     -- Frames after the checkpoint's step belong to the abandoned part of the run: out of the
     -- ParaView indexes until they are written again.
     if o.snapshots then o.snapshots:forget_after(sys:step()) end
@@ -136,10 +146,13 @@ local function production(tissue, opts)
   local file = o.out and series_file.open(o.out .. "/series.csv", columns, units) or nil
   if file then for _, row in ipairs(rows) do file:write(row) end end
   local sim = iv.Simulation{ system = sys, dynamics = dyn }
-  -- Lipolysis first: at a step where it is due, the samples and the checkpoint see its result.
+  -- Proliferation and lipolysis first: at a step where they are due, the samples and the
+  -- checkpoint see their result.
+  if o.proliferation then sim:proliferation(o.proliferation, { every = o.proliferation_every }) end
   if o.lipolysis then sim:lipolysis(o.lipolysis, { every = o.lipolysis_every }) end
   if correlator then sim:sample(correlator, { every = o.correlate_every }) end
   sim:observe(function()
+    if o.proliferation then observers.follow_cells(tissue) end  -- before any observer reads them
     local row = {}
     for _, ob in ipairs(active) do ob.sample(row) end
     rows[#rows + 1] = row
@@ -166,6 +179,7 @@ local function production(tissue, opts)
   local clock = iv.clock()
   local ok, err = pcall(sim.run, sim, n, { progress = progress })
   if file then file:close() end
+  if o.proliferation then observers.follow_cells(tissue) end
   if not ok then
     local last = tissue.last_checkpoint
     local where = last and string.format("; last good checkpoint: %s (step %d)", last.path, last.step)

@@ -60,7 +60,11 @@ function M.final(tissue, p, result, seconds, out, extra)
       doc[k] = v
     end
     require("lib.files").write(out .. "/summary.json", iv.json_encode(doc))
-    log.say("summary", "results in %s (series.csv, summary.json, correlations.csv, shapes.csv, snapshots/)", out)
+    local files = {}
+    for _, name in ipairs{ "series.csv", "summary.json", "correlations.csv", "shapes.csv", "snapshots/" } do
+      if iv.exists(out .. "/" .. name) then files[#files + 1] = name end
+    end
+    log.say("summary", "results in %s (%s)", out, table.concat(files, ", "))
   end
 end
 

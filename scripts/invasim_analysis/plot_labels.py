@@ -46,6 +46,9 @@ QUANTITIES = {
     "A_ratio": (r"$A_t/A_t^\mathrm{max}$", "degree of invasion"),
     "A_wall_a": (r"$A_\mathrm{wall,a}$", "adipocyte area on the walls"),
     "A_n": (r"$A_n$", "normalised interfacial area"),
+    "N_c": (r"$N_c$", "cancer cells"),
+    "V0_ratio": (r"$v_0/v_0^\mathrm{initial}$", "mean over the adipocytes"),
+    "N_touched": (r"$N_\mathrm{touched}$", "adipocytes touched"),
     "tau_d": (r"$\tau_d$", "velocity decorrelation time"),
     "tau_r": (r"$\tau_r$", "structural relaxation time"),
     # sweep state-point keys

@@ -7,7 +7,9 @@ numbers per sample) and writes PNG plots into RUN_DIR/plots/, one per group of c
 present: A_t.png (A_t, A_t_max, A_wall_a and, below, A_ratio = A_t/A_t^max),
 temperature.png (T_c, T_a, on a log scale when they span a decade or more, and T_c/T_a
 below), pressure.png (P_left, P_right), box_length.png (L_x), packing.png (phi, phi_c,
-phi_a and, on its own axis below, the standard deviation phi_a_local_std). Missing columns
+phi_a and, on its own axis below, the standard deviation phi_a_local_std), growth.png (the
+number of cancer cells N_c, the adipocytes' mean reference volume V0_ratio and N_touched, of
+proliferation and lipolysis runs). Missing columns
 are skipped. The horizontal axis is `time` if present, else `step`. Every axis carries its
 unit and every legend entry a human label from plot_labels.py; the labels drawn are
 recorded in RUN_DIR/plots/labels.json (figure -> axes -> x/y label, y scale, legend).
@@ -38,6 +40,9 @@ GROUPS = [
     ("packing.png", [(["phi", "phi_c", "phi_a", "phi_a_local_mean"], "packing fraction"),
                      (["phi_a_local_std"], plot_labels.symbol("phi_a_local_std")
                       + r", std of the local $\phi_a$")]),
+    ("growth.png", [(["N_c"], "number of cancer cells"),
+                    (["V0_ratio"], plot_labels.symbol("V0_ratio") + ", adipocyte volume"),
+                    (["N_touched"], "adipocytes touched by cancer cells")]),
 ]
 
 

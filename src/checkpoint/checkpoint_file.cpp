@@ -38,8 +38,8 @@ constexpr std::uint8_t kLastType = std::uint8_t(SectionType::kVec3iArray);
 }  // namespace
 
 const char* section_type_name(SectionType type) {
-  static constexpr const char* kNames[] = {"bytes",     "f64",       "u64",       "i64",
-                                           "string",    "f64 array", "i32 array", "u64 array",
+  static constexpr const char* kNames[] = {"bytes",      "f64",        "u64",       "i64",
+                                           "string",     "f64 array",  "i32 array", "u64 array",
                                            "vec3 array", "vec3i array"};
   const auto k = static_cast<std::uint8_t>(type);
   return k <= kLastType ? kNames[k] : "unknown";

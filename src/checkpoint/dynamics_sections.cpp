@@ -30,13 +30,20 @@ void write_method(CheckpointWriter& out, const Method& m, const std::string& pre
   out.put_f64(prefix + ".f0", p.f0);
   out.put_f64(prefix + ".tau_p", p.tau_p);
   out.put_u64(prefix + ".sites", m.group().size());
+  if (m.group_changed()) out.put_i32s(prefix + ".group", m.group());
   write_ramp(out, m.kT_ramp(), prefix + ".kT_ramp");
   write_ramp(out, m.f0_ramp(), prefix + ".f0_ramp");
 }
 
 void read_method(const CheckpointReader& in, Method& m, const std::string& prefix) {
   const std::uint64_t sites = in.get_u64(prefix + ".sites");
-  if (sites != m.group().size())
+  // A group that cells joined or left (Proliferation) is stored: the restored run takes it.
+  if (in.has(prefix + ".group")) {
+    std::vector<int> group = in.get_i32s(prefix + ".group");
+    if (group.size() != sites)
+      in.fail("section ", prefix, ".group holds ", group.size(), " sites, not ", sites);
+    m.set_group(std::move(group));
+  } else if (sites != m.group().size())
     in.fail(prefix, " moves ", sites, " sites in the checkpoint but ", m.group().size(),
             " here (not the same protocol?)");
   MethodParams p{in.get_f64(prefix + ".gamma"), in.get_f64(prefix + ".kT"),

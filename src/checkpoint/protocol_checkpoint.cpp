@@ -23,7 +23,9 @@ std::string read_protocol_checkpoint(const CheckpointReader& in, const std::stri
                                      std::optional<std::uint64_t> seed) {
   System restored = read_system(in);
   System& sys = *objects.system;
-  if (restored.n_sites() != sys.n_sites() || restored.bodies().size() != sys.bodies().size())
+  // The number of sites may differ only when cells were born or died (System::site_epoch).
+  const bool same_sites = restored.n_sites() == sys.n_sites() || restored.site_epoch() > 0;
+  if (!same_sites || restored.bodies().size() != sys.bodies().size())
     fail_input("the checkpoint '", path, "' holds ", restored.n_sites(), " sites and ",
                restored.bodies().size(), " adipocytes, this System ", sys.n_sites(), " sites and ",
                sys.bodies().size(), " adipocytes (load into a System built with the same sizes)");

@@ -171,6 +171,8 @@ void write_system(CheckpointWriter& out, const System& sys, const std::string& p
   out.put_u64(key("seed"), sys.seed());
   out.put_u64(key("step"), sys.step);
   out.put_f64(key("time"), sys.time);
+  // Only once cells were born or died (Proliferation), so that other checkpoints stay as they were.
+  if (sys.site_epoch() > 0) out.put_u64(key("site_epoch"), sys.site_epoch());
 
   const Sites& s = sys.sites();
   out.put_vec3s(key("sites.pos"), s.pos);
@@ -279,6 +281,7 @@ System read_system(const CheckpointReader& in, const std::string& prefix) {
   sys.box().restore_version(version);
   sys.step = in.get_u64(key("step"));
   sys.time = in.get_f64(key("time"));
+  if (in.has(key("site_epoch"))) sys.set_site_epoch(in.get_u64(key("site_epoch")));
   return sys;
 }
 

@@ -42,12 +42,13 @@ inline std::array<std::uint32_t, 4> philox4x32_10(std::array<std::uint32_t, 4> c
 
 // Named streams so that different uses of randomness never share a counter.
 enum class RngStream : std::uint32_t {
-  kThermal = 1,      // Langevin force on a site
-  kOrientation = 2,  // rotational diffusion of an active cell
-  kPlacement = 3,    // initial placement
-  kVelocity = 4,     // initial velocities
-  kPiston = 5,       // Langevin force on the pressure wall (site 0)
-  kUser = 16         // first id free for later uses
+  kThermal = 1,        // Langevin force on a site
+  kOrientation = 2,    // rotational diffusion of an active cell
+  kPlacement = 3,      // initial placement
+  kVelocity = 4,       // initial velocities
+  kPiston = 5,         // Langevin force on the pressure wall (site 0)
+  kProliferation = 6,  // division and death of cancer cells (integrate/proliferation.hpp)
+  kUser = 16           // first id free for later uses
 };
 
 // The 128-layer ziggurat for the standard normal (Marsaglia and Tsang 2000, in the form of

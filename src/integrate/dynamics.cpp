@@ -324,6 +324,13 @@ Dynamics::Dynamics(double dt) : dt_(dt) {
   require_time_step(dt);
 }
 
+void Dynamics::sites_changed(const SiteChange& change) {
+  if (change.empty()) return;
+  for (const auto& m : methods_) m->set_group(change.follow(m->group()));
+  slots_valid_ = false;
+  prepared_ = false;
+}
+
 void Dynamics::set_dt(double dt) {
   require_time_step(dt);
   dt_ = dt;

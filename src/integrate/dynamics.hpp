@@ -13,6 +13,7 @@
 #include "forces/force.hpp"
 #include "integrate/blowup_guard.hpp"
 #include "integrate/pressure_wall.hpp"
+#include "integrate/proliferation.hpp"
 #include "integrate/ramp.hpp"
 #include "integrate/step_threads.hpp"
 
@@ -44,6 +45,13 @@ class Method {
                                         double tau_p, double kT = 0.0);
 
   const std::vector<int>& group() const { return group_; }
+  // A new list of sites (when cells were born or died: Dynamics::sites_changed); a checkpoint
+  // then stores the list (group_changed()), which a restored run takes instead of its own.
+  void set_group(std::vector<int> group) {
+    group_ = std::move(group);
+    group_changed_ = true;
+  }
+  bool group_changed() const { return group_changed_; }
   const MethodParams& params() const { return params_; }
   MethodParams& params() { return params_; }
   // Optional linear ramps of kT and f0 (applied at every step by the Dynamics); setting a
@@ -86,6 +94,7 @@ class Method {
 
  private:
   std::vector<int> group_;
+  bool group_changed_ = false;
   MethodParams params_;
   std::optional<Ramp> kT_ramp_, f0_ramp_;
 };
@@ -111,6 +120,9 @@ class Dynamics {
   // run() call it once when forces are stale (after construction or a state change).
   void prepare(System& sys, ForceField& ff);
   void invalidate() { prepared_ = false; }
+  // After cells were born or died (Proliferation): every method's group follows its cells
+  // (SiteChange::follow: a daughter joins its parent's method), and the next step re-prepares.
+  void sites_changed(const SiteChange& change);
   // Declares the site forces current (restored from a checkpoint together with the state they
   // belong to), so that the next step does not re-evaluate them: a restored run then
   // continues bit for bit like one that was never interrupted.

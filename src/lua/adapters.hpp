@@ -12,13 +12,15 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <vector>
 
 #include "lua/binding.hpp"
 
 namespace invasim::lua {
 
 // Pushes one C++ value as its Lua counterpart: numbers, integers, booleans, strings, a bound
-// object (binding.hpp's push), and an empty optional as nil.
+// object (binding.hpp's push), a vector of numbers as a list, and an empty optional as nil.
 inline void push_value(lua_State* L, double v) {
   lua_pushnumber(L, v);
 }
@@ -33,6 +35,14 @@ void push_value(lua_State* L, const std::string& v);
 template <typename U>
 void push_value(lua_State* L, const std::shared_ptr<U>& object) {  // a bound object
   push(L, object);
+}
+template <typename V>
+requires std::is_arithmetic_v<V>
+void push_value(lua_State* L, const std::vector<V>& v) {
+  protected_call(L, 0, 1, [&v](lua_State* S) noexcept {
+    push_list(S, v.size(), [&](std::size_t k) { push_value(S, v[k]); });
+    return 1;
+  });
 }
 template <typename V>
 void push_value(lua_State* L, const std::optional<V>& v) {

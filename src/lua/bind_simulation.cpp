@@ -125,19 +125,32 @@ int l_sample(lua_State* L) {
   return add_scheduled(L, s, std::make_shared<CorrelatorSampler>(correlator), "sample");
 }
 
-// sim:lipolysis(lipolysis, {every = N}): applies an invasim.Lipolysis every N steps (N dt of
-// lipolysis each time), before the operations added after it at the same step.
-int l_lipolysis(lua_State* L) {
+// sim:<what>(object, {every = N}): the operation Op(object, N) every N steps, before the
+// operations added after it at the same step.
+template <typename T, typename Op>
+int add_every(lua_State* L, const char* what) {
   SimulationHandle& s = check<SimulationHandle>(L, 1);
-  if (!is<Lipolysis>(L, 2)) throw InputError(bad_argument(L, 2, "Lipolysis"));
-  std::shared_ptr<const Lipolysis> lipolysis = check_shared<Lipolysis>(L, 2);
-  Kwargs kw(L, 3, "lipolysis");
+  if (!is<T>(L, 2)) throw InputError(bad_argument(L, 2, LuaType<T>::name));
+  std::shared_ptr<const T> object = check_shared<T>(L, 2);
+  Kwargs kw(L, 3, what);
   const auto every = kw.integer<std::uint64_t>("every", Range::at_least(1));
   kw.finish();
-  engine_call("lipolysis", [&] {
-    s.run.add(std::make_shared<LipolysisOperation>(lipolysis, every), Trigger::every(every, 0));
+  engine_call(what, [&] {
+    s.run.add(std::make_shared<Op>(std::move(object), every), Trigger::every(every, 0));
   });
   return 0;
+}
+
+// sim:lipolysis(lipolysis, {every = N}): an invasim.Lipolysis, N dt of lipolysis each time.
+int l_lipolysis(lua_State* L) {
+  return add_every<Lipolysis, LipolysisOperation>(L, "lipolysis");
+}
+
+// sim:proliferation(proliferation, {every = N}): an invasim.Proliferation, N dt of divisions
+// and deaths each time; the Dynamics' methods follow the cells (a daughter joins its parent's
+// method) and groups made before a change are refused afterwards.
+int l_proliferation(lua_State* L) {
+  return add_every<Proliferation, ProliferationOperation>(L, "proliferation");
 }
 
 // sim:snapshots(snapshots, schedule)
@@ -255,9 +268,9 @@ int l_operations(lua_State* L) {
 
 void open_simulation(lua_State* L) {
   define_type<SimulationHandle>(
-      L, {INVASIM_LUA_FN(sample), INVASIM_LUA_FN(lipolysis), INVASIM_LUA_FN(snapshots),
-          INVASIM_LUA_FN(observe), INVASIM_LUA_FN(checkpoint), INVASIM_LUA_FN(run),
-          INVASIM_LUA_FN(operations)});
+      L, {INVASIM_LUA_FN(sample), INVASIM_LUA_FN(lipolysis), INVASIM_LUA_FN(proliferation),
+          INVASIM_LUA_FN(snapshots), INVASIM_LUA_FN(observe), INVASIM_LUA_FN(checkpoint),
+          INVASIM_LUA_FN(run), INVASIM_LUA_FN(operations)});
   add_functions(L, {{"Simulation", &lua_wrap<&l_new>}});
 }
 

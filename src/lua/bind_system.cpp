@@ -116,7 +116,8 @@ std::vector<double> read_diameters(Kwargs& kw, std::vector<double> fallback) {
 
 void push_group(lua_State* L, const std::shared_ptr<SystemHandle>& sim, std::string name,
                 std::vector<int> sites) {
-  push(L, std::make_shared<Group>(Group{std::move(name), std::move(sites), sim}));
+  const std::uint64_t epoch = sim->system.site_epoch();
+  push(L, std::make_shared<Group>(Group{std::move(name), std::move(sites), sim, epoch}));
 }
 
 // sys:place{cells = {n =, diameters =, x = {lo, hi}}, adipocytes = {n =, diameter =,
@@ -230,6 +231,7 @@ std::vector<int> group_arg(lua_State* L, int index, const SystemHandle& sim, con
   }
   const Group& group = check<Group>(L, index);
   require_same_system(group, sim, what);
+  require_current(group, what);
   return group.sites;
 }
 

@@ -25,6 +25,7 @@ std::shared_ptr<Group> kw_group(Kwargs& kw, std::string_view key, bool required)
   if (!*slot) fail_input(kw.owner(), ": key '", key, "': Group object is no longer valid");
   std::shared_ptr<Group> group = *slot;
   lua_pop(L, 1);
+  require_current(*group, kw.owner() + ": key '" + std::string(key) + "'");
   return group;
 }
 
@@ -40,6 +41,14 @@ SystemHandle& owner_of(const std::weak_ptr<SystemHandle>& owner, const std::stri
 void require_same_system(const Group& group, const SystemHandle& sim, const std::string& what) {
   if (group.owner.lock().get() != &sim)
     fail_input(what, ": group '", group.name, "' belongs to another System");
+}
+
+void require_current(const Group& group, const std::string& what) {
+  const auto sim = group.owner.lock();
+  if (sim && sim->system.site_epoch() != group.epoch)
+    fail_input(what, ": group '", group.name,
+               "' was made before cells divided or died, and its site indices name other cells "
+               "now; make it again (sys:group{...})");
 }
 
 void push_vec3(lua_State* L, const Vec3& v) noexcept {

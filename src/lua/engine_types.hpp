@@ -26,6 +26,7 @@
 #include "integrate/dynamics.hpp"
 #include "integrate/fire.hpp"
 #include "integrate/lipolysis.hpp"
+#include "integrate/proliferation.hpp"
 #include "lua/binding.hpp"
 #include "lua/kwargs.hpp"
 #include "run/model.hpp"
@@ -69,6 +70,7 @@ struct Group {
   std::string name;
   std::vector<int> sites;  // engine site indices (0-based)
   std::weak_ptr<SystemHandle> owner;
+  std::uint64_t epoch = 0;  // the System's site_epoch() when the group was made
 };
 
 // An integration method (Damped, Langevin, Active) and the group it moves.
@@ -98,6 +100,7 @@ INVASIM_LUA_TYPE(DynamicsHandle, "Dynamics");
 INVASIM_LUA_TYPE(Fire, "Fire");
 INVASIM_LUA_TYPE(Ramp, "Ramp");
 INVASIM_LUA_TYPE(Lipolysis, "Lipolysis");
+INVASIM_LUA_TYPE(Proliferation, "Proliferation");
 
 // --- helpers shared by the engine bindings (engine_glue.cpp) ---
 
@@ -138,6 +141,9 @@ SystemHandle& owner_of(const std::weak_ptr<SystemHandle>& owner, const std::stri
 
 // Throws unless `group` belongs to `sim`: "<what>: group 'cancer' belongs to another System".
 void require_same_system(const Group& group, const SystemHandle& sim, const std::string& what);
+// Throws when cells were born or died since `group` was made (its indices name other cells
+// now), "<what>: group 'cancer' was made before cells divided or died; make it again".
+void require_current(const Group& group, const std::string& what);
 
 // Lua table helpers (the table is on top of the stack). They allocate, so they may raise a
 // Lua error: call them only inside a protected_call block (binding.hpp).

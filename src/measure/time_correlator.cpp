@@ -103,6 +103,10 @@ std::size_t TimeCorrelator::slots() const {
 
 void TimeCorrelator::sample(const System& sys) {
   const std::size_t n = group_.size();
+  if (!site_epoch_) site_epoch_ = sys.site_epoch();
+  if (*site_epoch_ != sys.site_epoch())
+    fail_input("time correlator: cells divided or died since its first sample; it follows a ",
+               "fixed set of cells (a Correlator of a proliferating tissue is not supported)");
   if (state_.samples > 0) {
     const double elapsed = sys.time - state_.last_time;
     if (std::abs(elapsed - params_.sample_interval) > 1e-3 * params_.sample_interval)

@@ -90,7 +90,8 @@ class TimeCorrelator {
   ~TimeCorrelator();
 
   // Samples the group's velocities, orientations and unwrapped positions. Throws InputError
-  // if sys.time has not advanced by sample_interval (to 1e-3 relative) since the last sample.
+  // if sys.time has not advanced by sample_interval (to 1e-3 relative) since the last sample,
+  // or if cells divided or died since the first sample (System::site_epoch).
   void sample(const System& sys);
   // Same from arrays in group order (size N each); a disabled channel's array is ignored.
   void add_sample(const Vec3* velocity, const Vec3* orientation, const Vec3* position);
@@ -140,6 +141,9 @@ class TimeCorrelator {
   std::size_t slots() const;
   std::vector<int> group_;
   TimeCorrelatorParams params_;
+  // System::site_epoch() at the first sample(const System&) since construction or restore: the
+  // group is a fixed set of cells, so a later sample after divisions or deaths is refused.
+  std::optional<std::uint64_t> site_epoch_;
   // The counters and sums; its snapshot vectors stay empty (the origins are in origin_*).
   mutable CorrelatorState state_;
   // The stored origins, `slots()` of each channel (mutable: a held-back origin is stored when

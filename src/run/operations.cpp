@@ -14,15 +14,25 @@ void CorrelatorSampler::apply(Simulation& sim) {
   correlator_->sample(sim.system());
 }
 
-LipolysisOperation::LipolysisOperation(std::shared_ptr<const Lipolysis> lipolysis,
-                                       std::uint64_t every)
-    : lipolysis_(std::move(lipolysis)), every_(every) {
-  if (!lipolysis_) throw InputError("lipolysis: no Lipolysis given");
-  if (every_ < 1) throw InputError("lipolysis: every = 0 steps (must be >= 1)");
+template <typename T>
+double EveryOperation<T>::elapsed(Simulation& sim) const {
+  return double(every_) * sim.dynamics().dt();
 }
+template class EveryOperation<Lipolysis>;
+template class EveryOperation<Proliferation>;
 
 void LipolysisOperation::apply(Simulation& sim) {
-  lipolysis_->apply(sim.system(), double(every_) * sim.dynamics().dt());
+  object_->apply(sim.system(), elapsed(sim));
+}
+
+void ProliferationOperation::apply(Simulation& sim) {
+  const SiteChange change = object_->apply(sim.system(), elapsed(sim));
+  births_ += change.born.size();
+  deaths_ += std::uint64_t(change.deaths);
+  if (change.empty()) return;
+  sim.dynamics().sites_changed(change);
+  for (const auto& term : sim.forces().terms()) term->invalidate_caches();
+  sim.dynamics().prepare(sim.system(), sim.forces());
 }
 
 SnapshotOperation::SnapshotOperation(std::shared_ptr<SnapshotWriter> writer)

@@ -9,6 +9,7 @@
 
 #include "checkpoint/checkpoint_file.hpp"
 #include "integrate/lipolysis.hpp"
+#include "integrate/proliferation.hpp"
 #include "io/snapshot_writer.hpp"
 #include "measure/time_correlator.hpp"
 #include "run/operation.hpp"
@@ -54,20 +55,53 @@ class CheckpointOperation : public Operation {
   WrittenFn written_;
 };
 
+// An operation that applies a T (Lipolysis, Proliferation) every `every` steps, for `every`
+// x dt of elapsed time (schedule it with Trigger::every(every)); refuses a missing T and
+// every = 0, naming `what`.
+template <typename T>
+class EveryOperation : public Operation {
+ public:
+  EveryOperation(std::shared_ptr<const T> object, std::uint64_t every, const char* what)
+      : object_(std::move(object)), every_(every), what_(what) {
+    if (!object_) throw InputError(std::string(what) + ": no " + what + " given");
+    if (every_ < 1) throw InputError(std::string(what) + ": every = 0 steps (must be >= 1)");
+  }
+  std::string name() const override { return what_; }
+
+ protected:
+  double elapsed(Simulation& sim) const;  // every x dt
+  std::shared_ptr<const T> object_;
+  std::uint64_t every_;
+  const char* what_;
+};
+
 // Applies lipolysis to the System every `every` steps (elapsed time every x dt: schedule it
 // with Trigger::every(every)). Like a parameter change between two steps, the new reference
 // volumes act from the next force evaluation: the step's first half-kick uses the forces
 // already computed, as a run restored from a checkpoint written at this step (which stores
 // them) does, so both continue bit for bit.
-class LipolysisOperation : public Operation {
+class LipolysisOperation : public EveryOperation<Lipolysis> {
  public:
-  LipolysisOperation(std::shared_ptr<const Lipolysis> lipolysis, std::uint64_t every);
-  std::string name() const override { return "lipolysis"; }
+  LipolysisOperation(std::shared_ptr<const Lipolysis> lipolysis, std::uint64_t every)
+      : EveryOperation(std::move(lipolysis), every, "lipolysis") {}
   void apply(Simulation& sim) override;
+};
+
+// Applies a Proliferation every `every` steps (every x dt of divisions and deaths), then makes
+// the run follow the new set of sites: the methods' groups (Dynamics::sites_changed), the force
+// terms' caches, and the forces of the new state (Dynamics::prepare), so that a checkpoint
+// written at this step holds them and a run restored from it continues bit for bit.
+class ProliferationOperation : public EveryOperation<Proliferation> {
+ public:
+  ProliferationOperation(std::shared_ptr<const Proliferation> proliferation, std::uint64_t every)
+      : EveryOperation(std::move(proliferation), every, "proliferation") {}
+  void apply(Simulation& sim) override;
+  // Cells born and dead since the operation was made.
+  std::uint64_t births() const { return births_; }
+  std::uint64_t deaths() const { return deaths_; }
 
  private:
-  std::shared_ptr<const Lipolysis> lipolysis_;
-  std::uint64_t every_;
+  std::uint64_t births_ = 0, deaths_ = 0;
 };
 
 // Calls a function (an observer); returning false ends the run at this step boundary.

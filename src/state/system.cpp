@@ -119,6 +119,49 @@ int System::push_site(const Vec3& r, double diameter, double mass, int body, Sit
   return int(id);
 }
 
+std::vector<int> System::remove_sites(const std::vector<int>& sites) {
+  require_user_layout("removing sites");
+  const std::size_t n = sites_.size();
+  std::vector<int> new_index(n, 0);
+  for (int i : sites) {
+    if (i < 0 || std::size_t(i) >= n) fail_input("remove_sites: no site ", i);
+    if (sites_.body[i] >= 0)
+      fail_input("remove_sites: site ", i, " is a vertex of adipocyte ", sites_.body[i]);
+    new_index[i] = -1;
+  }
+  int next = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (new_index[i] < 0) continue;
+    new_index[i] = next;
+    if (std::size_t(next) != i) {
+      sites_.pos[next] = sites_.pos[i];
+      sites_.vel[next] = sites_.vel[i];
+      sites_.force[next] = sites_.force[i];
+      sites_.orient[next] = sites_.orient[i];
+      sites_.image[next] = sites_.image[i];
+      sites_.diameter[next] = sites_.diameter[i];
+      sites_.mass[next] = sites_.mass[i];
+      sites_.body[next] = sites_.body[i];
+      sites_.kind[next] = sites_.kind[i];
+    }
+    ++next;
+  }
+  sites_.pos.resize(next);
+  sites_.vel.resize(next);
+  sites_.force.resize(next);
+  sites_.orient.resize(next);
+  sites_.image.resize(next);
+  sites_.diameter.resize(next);
+  sites_.mass.resize(next);
+  sites_.body.resize(next);
+  sites_.kind.resize(next);
+  for (MeshBody& b : bodies_) b.first_site = new_index[b.first_site];
+  order_.clear();
+  slot_.clear();
+  ++site_epoch_;
+  return new_index;
+}
+
 int System::add_sphere(const Vec3& r, double diameter, double mass, const Vec3& orientation) {
   return push_site(r, diameter, mass, -1, SiteKind::kCancer, orientation);
 }

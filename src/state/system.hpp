@@ -99,6 +99,16 @@ class System {
   int add_mesh_scaled(const MeshShape& shape, const Vec3& center, double radius,
                       double vertex_diameter, double shape_param, double mass = 1.0);
 
+  // Removes free spheres (sites in no body, e.g. cancer cells that die), given by permanent
+  // index; the others keep their order. Returns the new index of every old site (-1: removed)
+  // and moves the site epoch on. User layout only.
+  std::vector<int> remove_sites(const std::vector<int>& sites);
+  // Changes whenever a site was removed or born (Proliferation): a list of permanent indices
+  // taken at another epoch (a group) no longer names the same cells. 0 for a System whose
+  // number of sites changed only by its setup.
+  std::uint64_t site_epoch() const { return site_epoch_; }
+  void set_site_epoch(std::uint64_t epoch) { site_epoch_ = epoch; }
+
   // Unwrapped position of the site in storage slot i.
   Vec3 unwrapped(std::size_t i) const { return box_.unwrap(sites_.pos[i], sites_.image[i]); }
   // Unwrapped vertex positions of body b, written to out (size n_vertices).
@@ -126,6 +136,7 @@ class System {
   Sites sites_;
   std::vector<MeshBody> bodies_;
   std::uint64_t seed_;
+  std::uint64_t site_epoch_ = 0;
   // The engine order (slot -> permanent index) and its inverse, the layout in use, and the
   // engine order's process-wide number.
   std::vector<int> order_, slot_;

@@ -92,9 +92,11 @@ class SpecReader {
   }
 
   // The Lua type name of the value at `index`, "integer"/"float" for numbers.
+  // "an integer", "a float", "a string", ... : the type of the value at `index` with its article.
   std::string type_at(int index) const {
-    if (lua_type(L_, index) == LUA_TNUMBER) return lua_isinteger(L_, index) ? "integer" : "float";
-    return luaL_typename(L_, index);
+    if (lua_type(L_, index) == LUA_TNUMBER)
+      return lua_isinteger(L_, index) ? "an integer" : "a float";
+    return std::string("a ") + luaL_typename(L_, index);
   }
 
   // String keys of the table at the top, sorted; a non-string key is an error.
@@ -125,7 +127,7 @@ class SpecReader {
     const std::string got = type_at(-1);
     const auto wrong = [&](const std::string& expected) {
       fail(line, key,
-           "parameter '" + name + "' is " + expected + "; got a " + got +
+           "parameter '" + name + "' is " + expected + "; got " + got +
                (lua_type(L_, -1) == LUA_TNUMBER || lua_type(L_, -1) == LUA_TSTRING
                     ? std::string(" (") + luaL_tolstring(L_, -1, nullptr) + ")"
                     : ""));
@@ -170,7 +172,7 @@ class SpecReader {
   // A table of name = value (set = {...}) at the top into `out`.
   void parameters(const std::string& where, int line, Json& out) const {
     if (!lua_istable(L_, -1))
-      fail(line, where, "expected a table of name = value; got a " + type_at(-1));
+      fail(line, where, "expected a table of name = value; got " + type_at(-1));
     for (const auto& name : keys(where, line)) {
       const int at = source_.find(name, line);
       lua_getfield(L_, -1, name.c_str());
@@ -182,7 +184,7 @@ class SpecReader {
   // The list of values at the top for parameter `name`.
   std::vector<Json> list(const std::string& key, const std::string& name, int line) const {
     if (!lua_istable(L_, -1))
-      fail(line, key, "expected a list of values { v1, v2, ... }; got a " + type_at(-1));
+      fail(line, key, "expected a list of values { v1, v2, ... }; got " + type_at(-1));
     const auto n = static_cast<lua_Integer>(lua_rawlen(L_, -1));
     std::size_t entries = 0;
     lua_pushnil(L_);
@@ -206,7 +208,7 @@ class SpecReader {
   // name = { values } entries of the table at the top.
   std::vector<Axis> axes(const std::string& where, int line) const {
     if (!lua_istable(L_, -1))
-      fail(line, where, "expected a table of name = { values }; got a " + type_at(-1));
+      fail(line, where, "expected a table of name = { values }; got " + type_at(-1));
     std::vector<Axis> out;
     for (const auto& name : keys(where, line)) {
       const int at = source_.find(name, line);
@@ -222,7 +224,7 @@ class SpecReader {
   void read_tiny(int at) {
     lua_getfield(L_, -1, "tiny");
     if (!lua_istable(L_, -1))
-      fail(at, "tiny", "expected { set = { ... }, take = N } (the CI size); got a " + type_at(-1));
+      fail(at, "tiny", "expected { set = { ... }, take = N } (the CI size); got " + type_at(-1));
     for (const auto& key : keys("tiny", at))
       if (key != "set" && key != "take")
         fail(source_.find(key, at), "tiny." + key,
@@ -230,10 +232,12 @@ class SpecReader {
     spec_.has_tiny = true;
     lua_getfield(L_, -1, "take");
     if (!lua_isnil(L_, -1)) {
-      if (!lua_isinteger(L_, -1) || lua_tointeger(L_, -1) < 1)
+      if (!lua_isinteger(L_, -1) || lua_tointeger(L_, -1) < 1) {
+        const std::string got = type_at(-1);  // before luaL_tolstring pushes the text
         fail(source_.find("take", at), "tiny.take",
-             "expected an integer >= 1 (values kept per axis); got a " + type_at(-1) + " (" +
+             "expected an integer >= 1 (values kept per axis); got " + got + " (" +
                  luaL_tolstring(L_, -1, nullptr) + ")");
+      }
       spec_.tiny_take = static_cast<int>(lua_tointeger(L_, -1));
     }
     lua_pop(L_, 1);
@@ -263,7 +267,7 @@ class SpecReader {
     lua_getfield(L_, -1, "protocol");
     if (lua_type(L_, -1) != LUA_TSTRING)
       fail(line["protocol"], "protocol",
-           "expected the path of a protocol file; got a " + type_at(-1));
+           "expected the path of a protocol file; got " + type_at(-1));
     fs::path protocol = lua_tostring(L_, -1);
     lua_pop(L_, 1);
     if (protocol.is_relative()) protocol = fs::absolute(path_).parent_path() / protocol;

@@ -171,6 +171,14 @@ def main():
     check("skipped (no such columns): pressure.png (P_left, P_right); box_length.png (L_x)"
           in p.stdout, "partial series: pressure and box length reported as skipped")
 
+    # A proliferation and lipolysis run (protocols/growth.lua): N_c, V0_ratio, N_touched.
+    growth = make_run(scratch, "growth", "step,time [tau],N_c [cells],V0_ratio,"
+                      "N_touched [adipocytes]\n0,0,400,1,3\n100,5,410,0.99,4\n200,10,431,0.97,5\n")
+    p = run(script, growth)
+    check(p.returncode == 0 and "growth.png: N_c, V0_ratio, N_touched\n" in p.stdout,
+          "growth series: growth.png shows N_c, V0_ratio and N_touched")
+    check(png_size(os.path.join(growth, "plots", "growth.png")) is not None, "growth.png is a PNG")
+
     # A_t and A_t_max without A_ratio: the ratio is computed.
     ratio = make_run(scratch, "ratio", "time [tau],A_t [sigma^2],A_t_max [sigma^2]\n"
                      "0,10,40\n1,12,40\n")

@@ -4,7 +4,8 @@
 # snapshot (positions, velocities, orientations in shortest round-trip form), series.csv and
 # correlations.csv are identical. The kill waits for the first checkpoint of production (an
 # event, not a time). Further arguments go to both runs (e.g. --set lipolysis_rate=1e-3:
-# the reference volumes change during the run and the checkpoints hold them).
+# the reference volumes change during the run and the checkpoints hold them; --set
+# division_rate=...: the number of cells changes).
 # Usage: resume_after_kill.sh INVASIM WORKDIR [ARGS...]
 set -euo pipefail
 invasim=$1
@@ -44,7 +45,9 @@ fi
   { echo "FAILED: resume"; cat "$work/resumed.log"; exit 1; }
 grep -q "resumed at step" "$work/resumed.log" || { echo "FAILED: did not resume"; cat "$work/resumed.log"; exit 1; }
 
-for f in series.csv correlations.csv snapshots/cells_000030000.xyz; do
+# RESUME_COMPARE names other files to compare (a run without correlators has no
+# correlations.csv).
+for f in ${RESUME_COMPARE:-series.csv correlations.csv snapshots/cells_000030000.xyz}; do
   cmp "$work/straight/$f" "$work/killed/$f" || { echo "FAILED: $f differs"; exit 1; }
 done
 echo "resume_after_kill: identical after SIGTERM at $(grep -o 'at step [0-9]*' "$work/killed.log" | head -1) and --resume"
