@@ -10,7 +10,8 @@
 --   every `snapshot_every` steps:  a frame of `snapshots` (an invasim.Snapshots), if given
 --   every `checkpoint_every` steps and on SIGINT/SIGTERM: out/checkpoint/state.ckpt
 -- With `proliferation`, cells divide and die every `proliferation_every` steps, before all of
--- these; the series gains N_c and the correlators are off.
+-- these; the series gains N_c, and the correlators follow the cells present at the start (a
+-- cell that dies leaves them; daughters, without a time origin, do not join).
 --   at the end:                    tau_d, tau_r, 3D shape parameters and random slices
 --
 --   local result = require("lib.production")(tissue, { steps = 1e5, every = 1000, out = dir })
@@ -37,7 +38,7 @@ local spec = {
   checkpoint_every = { "integer", default = 0, range = "[0, inf)", help = "steps between checkpoints in out/checkpoint/ (0: only on SIGINT/SIGTERM)" },
   lipolysis = { "Lipolysis", help = "adipocytes shrinking where cancer cells touch them (off: nil)" },
   lipolysis_every = { "integer", default = 1000, range = "[1, inf)", help = "steps between two applications of lipolysis (each recomputes the touched adipocytes' V_i, ~2 ms each)" },
-  proliferation = { "Proliferation", help = "cancer cells dividing and dying (off: nil); the correlators are off with it (they follow a fixed set of cells)" },
+  proliferation = { "Proliferation", help = "cancer cells dividing and dying (off: nil); the correlators follow the cells present at the start, the dead leaving them" },
   proliferation_every = { "integer", default = 100, range = "[1, inf)", help = "steps between two applications of proliferation" },
   snapshots = { "Snapshots" },  -- an invasim.Snapshots writing a frame every snapshot_every steps
   snapshot_every = { "integer", default = 0, range = "[0, inf)" },  -- steps between snapshots (0: none)
@@ -94,10 +95,6 @@ local function production(tissue, opts)
   local o = iv.keywords(opts and opts.label or "production", opts, spec)
   if not tissue.dyn then error(o.label .. ": run the quench stage first (it makes the Dynamics)", 2) end
   local sys, dyn = tissue.sys, tissue.dyn
-  if o.proliferation and o.correlate_every > 0 then
-    log.say(o.label, "correlators off: they follow a fixed set of cells, and cells divide and die")
-    o.correlate_every = 0
-  end
   local active = { observers.thermo(tissue) }
   if o.proliferation then active[#active + 1] = observers.proliferation(tissue) end
   if o.interface and sys:n_adipocytes() > 0 then active[#active + 1] = observers.interface(tissue, o.radical) end

@@ -11,6 +11,9 @@ void write_correlator(CheckpointWriter& out, const TimeCorrelator& c, const std:
   out.put_f64s(prefix + ".position", s.position);
   out.put_u64s(prefix + ".origins", s.origins);
   out.put_f64s(prefix + ".sums", s.sums);
+  // Only once cells divided or died (TimeCorrelator::sites_changed).
+  if (!s.group.empty()) out.put_i32s(prefix + ".group", s.group);
+  if (!s.site_pairs.empty()) out.put_f64s(prefix + ".site_pairs", s.site_pairs);
 }
 
 void read_correlator(const CheckpointReader& in, TimeCorrelator& c, const std::string& prefix) {
@@ -22,6 +25,8 @@ void read_correlator(const CheckpointReader& in, TimeCorrelator& c, const std::s
   s.position = in.get_f64s(prefix + ".position");
   s.origins = in.get_u64s(prefix + ".origins");
   s.sums = in.get_f64s(prefix + ".sums");
+  if (in.has(prefix + ".group")) s.group = in.get_i32s(prefix + ".group");
+  if (in.has(prefix + ".site_pairs")) s.site_pairs = in.get_f64s(prefix + ".site_pairs");
   c.restore(std::move(s));
 }
 

@@ -63,7 +63,7 @@ const FieldTable<CorrelatorKeys>& correlator_fields() {
 
 INVASIM_LUA_TYPE(CorrelatorHandle, "Correlator");
 std::string LuaType<CorrelatorHandle>::describe(const CorrelatorHandle& c) {
-  return cat("Correlator(group '", c.group->name, "' of ", c.group->sites.size(), " sites, ",
+  return cat("Correlator(group '", c.group->name, "' of ", c.correlator.group().size(), " sites, ",
              c.correlator.params().lags, " lags, ", c.correlator.samples(), " samples)");
 }
 

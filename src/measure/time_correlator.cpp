@@ -353,6 +353,7 @@ void TimeCorrelator::complete_pending() const {
       const std::size_t lag = std::size_t(s - j * window.E);
       for (int t = 0; t < kTerms; ++t) state_.sums[lag * kTerms + t] += total.t[t];
       ++state_.origins[lag];
+      if (!state_.site_pairs.empty()) state_.site_pairs[lag] += double(group_.size());
     }
   }
   p.active = false;
@@ -374,13 +375,17 @@ CorrelationFunctions TimeCorrelator::result() const {
       std::size_t(std::min<std::uint64_t>(state_.samples, std::uint64_t(params_.lags)));
   auto sum = [&](std::size_t lag, Term t) { return state_.sums[lag * kTerms + t]; };
   const double nan = std::numeric_limits<double>::quiet_NaN();
+  // The (origin, sample, cell) terms of a lag: origins x N, unless cells of the group died.
+  auto pairs_at = [&](std::size_t lag) {
+    return state_.site_pairs.empty() ? double(state_.origins[lag]) * N : state_.site_pairs[lag];
+  };
   for (std::size_t lag = 0; lag < reached; ++lag) {
-    const double pairs = double(state_.origins[lag]) * N;
+    const double pairs = pairs_at(lag);
     f.time.push_back(double(lag) * params_.sample_interval);
     f.origins.push_back(double(state_.origins[lag]));
     if (params_.velocity) {
       const double vv = sum(lag, kVV) / pairs;
-      const double vv0 = sum(0, kVV) / (double(state_.origins[0]) * N);
+      const double vv0 = sum(0, kVV) / pairs_at(0);
       const double count = sum(lag, kVVCount);
       f.vv.push_back(vv);
       f.cvv_standard.push_back(vv0 > 0.0 ? vv / vv0 : nan);
@@ -438,7 +443,57 @@ std::optional<double> TimeCorrelator::tau_r() const {
   return decay_time(f.time, f.fs);
 }
 
+void TimeCorrelator::sites_changed(const std::vector<int>& new_index, std::uint64_t epoch) {
+  flush();  // every kept sample correlated with the group as it was
+  const std::size_t N = group_.size();
+  std::vector<std::size_t> keep;
+  std::vector<int> group;
+  for (std::size_t k = 0; k < N; ++k) {
+    const int j = new_index.at(std::size_t(group_[k]));
+    if (j < 0) continue;
+    keep.push_back(k);
+    group.push_back(j);
+  }
+  site_epoch_ = epoch;
+  const std::size_t M = keep.size();
+  if (M == 0) fail_input("time correlator: every cell of its group died");
+  if (M < N) {
+    if (state_.site_pairs.empty())
+      for (std::uint64_t o : state_.origins) state_.site_pairs.push_back(double(o) * double(N));
+    // Rows of N values (a slot's component, or a slot) become rows of the M survivors.
+    auto compact = [&](std::vector<double>& c) {
+      if (c.empty()) return;
+      const std::size_t rows = c.size() / N;
+      std::vector<double> out(rows * M);
+      for (std::size_t r = 0; r < rows; ++r)
+        for (std::size_t m = 0; m < M; ++m) out[r * M + m] = c[r * N + keep[m]];
+      c.swap(out);
+    };
+    compact(origin_v_);
+    compact(origin_n_);
+    compact(origin_r_);
+    compact(inv_speed2_);
+    // The sample buffers are made again for M at the next sample.
+    for (Components* c : {&kept_v_, &kept_n_, &kept_r_, &pending_.v, &pending_.n, &pending_.r})
+      c->clear();
+  }
+  if (group != group_) state_.group = group;  // checkpoints hold it from now on
+  group_ = std::move(group);
+}
+
 void TimeCorrelator::restore(CorrelatorState state) {
+  if (!state.site_pairs.empty() && state.site_pairs.size() != std::size_t(params_.lags))
+    fail_input("time correlator: restored site pairs have ", state.site_pairs.size(),
+               " values, expected ", params_.lags);
+  // A checkpoint written after cells divided or died holds the group as it is now.
+  if (!state.group.empty()) {
+    if (pending_.active && pending_.idle) idle_tasks().finish();
+    pending_.active = pending_.has_origin = false;
+    group_ = state.group;
+    if (params_.velocity) inv_speed2_.assign(slots() * group_.size(), 0.0);
+    for (Components* c : {&kept_v_, &kept_n_, &kept_r_, &pending_.v, &pending_.n, &pending_.r})
+      c->clear();
+  }
   const std::size_t snap = slots() * group_.size() * 3;
   auto check = [](const char* what, std::size_t got, std::size_t want) {
     if (got != want)

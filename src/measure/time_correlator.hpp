@@ -75,6 +75,12 @@ struct CorrelatorState {
   std::vector<double> velocity, orientation, position;          // origin snapshots
   std::vector<std::uint64_t> origins;                           // per lag: origins accumulated
   std::vector<double> sums;                                     // per lag x kTerms
+  // Empty unless cells divided or died (TimeCorrelator::sites_changed): the group's site
+  // indices once they changed, and, once cells of the group died, per lag the number of
+  // (origin, sample, cell) terms summed, the normalisation in place of origins x N (a pair
+  // counts the cells alive at both of its times).
+  std::vector<int> group;
+  std::vector<double> site_pairs;
 };
 
 class TimeCorrelator {
@@ -91,8 +97,15 @@ class TimeCorrelator {
 
   // Samples the group's velocities, orientations and unwrapped positions. Throws InputError
   // if sys.time has not advanced by sample_interval (to 1e-3 relative) since the last sample,
-  // or if cells divided or died since the first sample (System::site_epoch).
+  // or if cells divided or died since the first sample (System::site_epoch) without
+  // sites_changed being told.
   void sample(const System& sys);
+  // Cells divided or died (Proliferation): new_index is the new index of every old site (-1:
+  // died), epoch the System's site_epoch() after the change. The group's dead cells leave it:
+  // their columns leave the stored origins, and the pairs correlated from now on average over
+  // the cells alive at both of their times (daughters do not join: they have no origin). The
+  // survivors keep their sums and origins. Throws InputError if no cell of the group is left.
+  void sites_changed(const std::vector<int>& new_index, std::uint64_t epoch);
   // Same from arrays in group order (size N each); a disabled channel's array is ignored.
   void add_sample(const Vec3* velocity, const Vec3* orientation, const Vec3* position);
 

@@ -14,6 +14,10 @@ void CorrelatorSampler::apply(Simulation& sim) {
   correlator_->sample(sim.system());
 }
 
+void CorrelatorSampler::sites_changed(Simulation& sim, const std::vector<int>& new_index) {
+  correlator_->sites_changed(new_index, sim.system().site_epoch());
+}
+
 template <typename T>
 double EveryOperation<T>::elapsed(Simulation& sim) const {
   return double(every_) * sim.dynamics().dt();
@@ -31,6 +35,8 @@ void ProliferationOperation::apply(Simulation& sim) {
   deaths_ += std::uint64_t(change.deaths);
   if (change.empty()) return;
   sim.dynamics().sites_changed(change);
+  for (const auto& scheduled : sim.operations())
+    scheduled.operation->sites_changed(sim, change.new_index);
   for (const auto& term : sim.forces().terms()) term->invalidate_caches();
   sim.dynamics().prepare(sim.system(), sim.forces());
 }

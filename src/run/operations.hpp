@@ -22,6 +22,8 @@ class CorrelatorSampler : public Operation {
   explicit CorrelatorSampler(std::shared_ptr<TimeCorrelator> correlator);
   std::string name() const override { return "correlator sampler"; }
   void apply(Simulation& sim) override;
+  // The correlator's group follows its cells; dead ones leave it (TimeCorrelator::sites_changed).
+  void sites_changed(Simulation& sim, const std::vector<int>& new_index) override;
 
  private:
   std::shared_ptr<TimeCorrelator> correlator_;
@@ -88,9 +90,10 @@ class LipolysisOperation : public EveryOperation<Lipolysis> {
 };
 
 // Applies a Proliferation every `every` steps (every x dt of divisions and deaths), then makes
-// the run follow the new set of sites: the methods' groups (Dynamics::sites_changed), the force
-// terms' caches, and the forces of the new state (Dynamics::prepare), so that a checkpoint
-// written at this step holds them and a run restored from it continues bit for bit.
+// the run follow the new set of sites: the methods' groups (Dynamics::sites_changed), the
+// other operations (Operation::sites_changed: a correlator's group), the force terms' caches,
+// and the forces of the new state (Dynamics::prepare), so that a checkpoint written at this
+// step holds them and a run restored from it continues bit for bit.
 class ProliferationOperation : public EveryOperation<Proliferation> {
  public:
   ProliferationOperation(std::shared_ptr<const Proliferation> proliferation, std::uint64_t every)

@@ -10,6 +10,7 @@
 #include "forces/wall_force.hpp"
 #include "integrate/dynamics.hpp"
 #include "integrate/proliferation.hpp"
+#include "measure/time_correlator.hpp"
 #include "mesh/geometry.hpp"
 #include "mesh/topology.hpp"
 #include "run/operations.hpp"
@@ -152,4 +153,78 @@ TEST_CASE("proliferation: the operation keeps a Dynamics' methods on their cells
   for (int o : owner) CHECK(o == 1);
   CHECK(std::is_sorted(dyn->methods()[0]->group().begin(), dyn->methods()[0]->group().end()));
   CHECK(dyn->methods()[0]->group_changed());
+}
+
+namespace {
+
+// Cell `id`'s state at sample t (a smooth, distinct motion per cell).
+void set_cell(System& sys, int site, int id, int t) {
+  Sites& s = sys.sites();
+  s.pos[site] = Vec3(20.0 + 0.1 * id * t, 10.0 + 0.05 * t * t + id, 30.0 + 0.3 * id);
+  s.image[site] = Vec3i::Zero();
+  s.vel[site] = Vec3(1.0 + id, 0.5 * t, 0.5);
+  s.orient[site] = Vec3(std::cos(0.3 * t + id), std::sin(0.3 * t + id), 0.0);
+}
+
+}  // namespace
+
+TEST_CASE("proliferation: a correlator's dead cells leave it; pairs average over the living") {
+  const int n = 6, lags = 4, samples = 7, death = 3;  // cells 1 and 4 die before sample 3
+  System sys(Box(Vec3::Zero(), Vec3(100.0, 100.0, 100.0), {false, true, true}), 1);
+  for (int i = 0; i < n; ++i) sys.add_sphere(Vec3(20.0, 10.0 + i, 30.0), 1.0);
+  TimeCorrelatorParams p;
+  p.lags = lags;
+  p.origin_every = 1;
+  p.sample_interval = 1.0;
+  std::vector<int> all(n);
+  for (int i = 0; i < n; ++i) all[i] = i;
+  TimeCorrelator c(all, p);
+  std::vector<int> ids = all;  // original id of each current site
+  std::unique_ptr<TimeCorrelator> restored;
+  for (int t = 0; t < samples; ++t) {
+    if (t == death) {
+      const std::vector<int> map = sys.remove_sites({1, 4});
+      c.sites_changed(map, sys.site_epoch());
+      ids = {0, 2, 3, 5};
+      // A checkpoint now, restored into a correlator built with the original group.
+      restored = std::make_unique<TimeCorrelator>(all, p);
+      restored->restore(c.state());
+      CHECK(restored->group() == std::vector<int>{0, 1, 2, 3});
+    }
+    for (std::size_t k = 0; k < ids.size(); ++k) set_cell(sys, int(k), ids[k], t);
+    sys.time = double(t);
+    c.sample(sys);
+    if (restored) restored->sample(sys);
+  }
+  // Brute force: every (t0, t) with t - t0 < lags, over the cells alive at both times.
+  std::vector<double> msd(lags, 0.0), nn(lags, 0.0), vv(lags, 0.0), count(lags, 0.0);
+  System probe(Box(Vec3::Zero(), Vec3(100.0, 100.0, 100.0), {false, true, true}), 1);
+  probe.add_sphere(Vec3(1.0, 1.0, 1.0), 1.0);
+  probe.add_sphere(Vec3(1.0, 1.0, 1.0), 1.0);
+  for (int t0 = 0; t0 < samples; ++t0)
+    for (int t = t0; t < samples && t - t0 < lags; ++t)
+      for (int id = 0; id < n; ++id) {
+        if ((id == 1 || id == 4) && t >= death) continue;
+        set_cell(probe, 0, id, t0);
+        set_cell(probe, 1, id, t);
+        const Sites& s = probe.sites();
+        msd[t - t0] += (s.pos[1] - s.pos[0]).squaredNorm();
+        nn[t - t0] += s.orient[1].dot(s.orient[0]);
+        vv[t - t0] += s.vel[1].dot(s.vel[0]);
+        count[t - t0] += 1.0;
+      }
+  const CorrelationFunctions f = c.result(), g = restored->result();
+  REQUIRE(f.msd.size() == std::size_t(lags));
+  for (int lag = 0; lag < lags; ++lag) {
+    CHECK(f.msd[lag] == Approx(msd[lag] / count[lag]).epsilon(1e-12).margin(1e-14));
+    CHECK(f.nn[lag] == Approx(nn[lag] / count[lag]).epsilon(1e-12));
+    CHECK(f.vv[lag] == Approx(vv[lag] / count[lag]).epsilon(1e-12));
+    // The restored correlator continued to the same bits.
+    CHECK(g.msd[lag] == f.msd[lag]);
+    CHECK(g.vv[lag] == f.vv[lag]);
+  }
+  // A sample after a change it was not told of is refused.
+  sys.remove_sites({0});
+  sys.time = double(samples);
+  CHECK_THROWS_AS(c.sample(sys), InputError);
 }
