@@ -37,7 +37,8 @@ function M.production(tissue, opts)
   local own = {}
   for k, v in pairs(opts) do own[k] = v end
   if every > 0 and opts.out then
-    own.snapshots = iv.Snapshots{ dir = opts.out .. "/snapshots" }
+    -- With proliferation, each cell's identity (deaths shift the cells' order).
+    own.snapshots = iv.Snapshots{ dir = opts.out .. "/snapshots", ids = opts.proliferation ~= nil }
     if not resume.pending() then own.snapshots:write(tissue.sys) end
   else
     own.snapshot_every = nil

@@ -171,8 +171,13 @@ void write_system(CheckpointWriter& out, const System& sys, const std::string& p
   out.put_u64(key("seed"), sys.seed());
   out.put_u64(key("step"), sys.step);
   out.put_f64(key("time"), sys.time);
-  // Only once cells were born or died (Proliferation), so that other checkpoints stay as they were.
-  if (sys.site_epoch() > 0) out.put_u64(key("site_epoch"), sys.site_epoch());
+  // Only once cells were born or died (Proliferation), so that other checkpoints stay as they
+  // were: the epoch and the sites' identities (System::site_ids).
+  if (sys.site_epoch() > 0) {
+    out.put_u64(key("site_epoch"), sys.site_epoch());
+    out.put_u64s(key("sites.id"), sys.site_ids());
+    out.put_u64(key("next_site_id"), sys.next_site_id());
+  }
 
   const Sites& s = sys.sites();
   out.put_vec3s(key("sites.pos"), s.pos);
@@ -282,6 +287,13 @@ System read_system(const CheckpointReader& in, const std::string& prefix) {
   sys.step = in.get_u64(key("step"));
   sys.time = in.get_f64(key("time"));
   if (in.has(key("site_epoch"))) sys.set_site_epoch(in.get_u64(key("site_epoch")));
+  if (in.has(key("sites.id"))) {
+    try {
+      sys.set_site_ids(in.get_u64s(key("sites.id")), in.get_u64(key("next_site_id")));
+    } catch (const InputError& e) {
+      in.fail("section '", key("sites.id"), "': ", e.what());
+    }
+  }
   return sys;
 }
 

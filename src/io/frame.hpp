@@ -15,6 +15,7 @@ namespace invasim {
 struct CellFrame {
   std::vector<Vec3> pos, vel, orient;
   std::vector<double> radius;
+  std::vector<std::uint64_t> id;  // System::site_ids if the writer asks for them (SnapshotOptions)
   std::size_t size() const { return pos.size(); }
 };
 

@@ -26,6 +26,7 @@ struct SnapshotOptions {
   bool spheres_vtp = true;     // spheres_<step>.vtp + spheres.pvd
   bool adipocytes_vtp = true;  // adipocytes_<step>.vtp + adipocytes.pvd
   bool trajectory = false;     // trajectory.xyz (multi-frame, appended)
+  bool ids = false;            // an id column: each cell's System::site_ids (proliferation)
 };
 
 // The files one frame produced.

@@ -150,6 +150,7 @@ std::string xyz_frame_text(const Frame& frame) {
   }
   out += "\" Properties=";
   out += kXyzProperties;
+  if (!c.id.empty()) out += ":id:I:1";
   out += " pbc=\"";
   for (int a = 0; a < 3; ++a) {
     if (a) out += ' ';
@@ -167,6 +168,10 @@ std::string xyz_frame_text(const Frame& frame) {
     text::append(out, c.radius[i]);
     append_vec(out, c.vel[i]);
     append_vec(out, c.orient[i]);
+    if (!c.id.empty()) {
+      out += ' ';
+      text::append(out, c.id[i]);
+    }
     out += '\n';
   }
   return out;

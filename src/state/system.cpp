@@ -113,6 +113,7 @@ int System::push_site(const Vec3& r, double diameter, double mass, int body, Sit
   sites_.mass.push_back(mass);
   sites_.body.push_back(body);
   sites_.kind.push_back(kind);
+  ids_.push_back(next_id_++);
   // A new site: the engine order is chosen again (by Dynamics) for the new set of sites.
   order_.clear();
   slot_.clear();
@@ -143,6 +144,7 @@ std::vector<int> System::remove_sites(const std::vector<int>& sites) {
       sites_.mass[next] = sites_.mass[i];
       sites_.body[next] = sites_.body[i];
       sites_.kind[next] = sites_.kind[i];
+      ids_[next] = ids_[i];
     }
     ++next;
   }
@@ -155,11 +157,21 @@ std::vector<int> System::remove_sites(const std::vector<int>& sites) {
   sites_.mass.resize(next);
   sites_.body.resize(next);
   sites_.kind.resize(next);
+  ids_.resize(next);
   for (MeshBody& b : bodies_) b.first_site = new_index[b.first_site];
   order_.clear();
   slot_.clear();
   ++site_epoch_;
   return new_index;
+}
+
+void System::set_site_ids(std::vector<std::uint64_t> ids, std::uint64_t next) {
+  if (ids.size() != sites_.size())
+    fail_input("site ids: ", ids.size(), " for ", sites_.size(), " sites");
+  for (std::uint64_t id : ids)
+    if (id >= next) fail_input("site ids: id ", id, " is not below the next id ", next);
+  ids_ = std::move(ids);
+  next_id_ = next;
 }
 
 int System::add_sphere(const Vec3& r, double diameter, double mass, const Vec3& orientation) {

@@ -108,6 +108,13 @@ class System {
   // number of sites changed only by its setup.
   std::uint64_t site_epoch() const { return site_epoch_; }
   void set_site_epoch(std::uint64_t epoch) { site_epoch_ = epoch; }
+  // Each site's identity, by permanent index: the number it got when it was created (0, 1, ...
+  // in creation order), kept when earlier sites are removed, so that a cell can be followed
+  // across deaths (snapshots' id column); next_site_id() is the number the next site gets.
+  const std::vector<std::uint64_t>& site_ids() const { return ids_; }
+  std::uint64_t next_site_id() const { return next_id_; }
+  // Restores the identities (a checkpoint): one per site, each below next.
+  void set_site_ids(std::vector<std::uint64_t> ids, std::uint64_t next);
 
   // Unwrapped position of the site in storage slot i.
   Vec3 unwrapped(std::size_t i) const { return box_.unwrap(sites_.pos[i], sites_.image[i]); }
@@ -137,6 +144,8 @@ class System {
   std::vector<MeshBody> bodies_;
   std::uint64_t seed_;
   std::uint64_t site_epoch_ = 0;
+  std::vector<std::uint64_t> ids_;  // by permanent index
+  std::uint64_t next_id_ = 0;
   // The engine order (slot -> permanent index) and its inverse, the layout in use, and the
   // engine order's process-wide number.
   std::vector<int> order_, slot_;

@@ -147,16 +147,32 @@ check(fingerprint(b_sys) == fingerprint(straight_sys), "restored mid-growth = st
 do
   local sys, _, sim = growing(p.seed)
   local dir = iv.out_dir .. "/snap"
-  sim:snapshots(iv.Snapshots{ dir = dir }, { every = 200 })
+  sim:snapshots(iv.Snapshots{ dir = dir, ids = true }, { every = 200 })
   sim:run(400)
-  local function count(step)
+  -- A frame's count and its cells' ids (the last column).
+  local function frame(step)
     local f = assert(io.open(string.format("%s/cells_%09d.xyz", dir, step)))
     local n = tonumber(f:read("l"))
+    local header = f:read("l")
+    local ids = {}
+    for _ = 1, n do ids[#ids + 1] = math.tointeger(tonumber(f:read("l"):match("(%S+)$"))) end
     f:close()
-    return n
+    check(header:find("Properties=species:S:1:pos:R:3:radius:R:1:velo:R:3:orient:R:3:id:I:1", 1, true),
+          "the id column is declared: " .. header)
+    return n, ids
   end
-  check(count(400) == n_cells(sys) and count(200) ~= count(400),
-        string.format("frame counts %s, %s, cells %d", count(200), count(400), n_cells(sys)))
+  local n200, ids200 = frame(200)
+  local n400, ids400 = frame(400)
+  check(n400 == n_cells(sys) and n200 ~= n400, string.format("frame counts %d, %d, cells %d", n200, n400, n_cells(sys)))
+  -- Ids are unique, the initial cells keep theirs (0..299 in order among themselves), and the
+  -- daughters get new ones (above every earlier id): a cell can be followed across deaths.
+  local seen, born, last_initial = {}, 0, -1
+  for _, id in ipairs(ids400) do
+    check(not seen[id], "id " .. id .. " once")
+    seen[id] = true
+    if id >= 300 then born = born + 1 else check(id > last_initial, "initial cells in order"); last_initial = id end
+  end
+  check(born > 0 and n400 - born < 300, string.format("%d daughters with new ids, %d initial cells left", born, n400 - born))
 end
 iv.write_file(iv.out_dir .. "/fingerprint.txt", fingerprint(straight_sys) .. "\n")
 print(string.format("proliferation: all %d checks passed; %d cells after 400 steps; identical after 200 + 200 steps",

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "checkpoint/state_checkpoint.hpp"
 #include "core/errors.hpp"
 #include "forces/wall_force.hpp"
 #include "integrate/dynamics.hpp"
@@ -227,4 +228,32 @@ TEST_CASE("proliferation: a correlator's dead cells leave it; pairs average over
   sys.remove_sites({0});
   sys.time = double(samples);
   CHECK_THROWS_AS(c.sample(sys), InputError);
+}
+
+TEST_CASE("proliferation: cells keep their identity through deaths, divisions and checkpoints") {
+  System sys(slab(), 4);
+  for (int i = 0; i < 5; ++i) sys.add_sphere(Vec3(2.0 + 3.0 * i, 5.0, 5.0), 1.0);
+  CHECK(sys.site_ids() == std::vector<std::uint64_t>{0, 1, 2, 3, 4});
+  sys.remove_sites({1, 3});
+  const int daughter = sys.add_sphere(Vec3(3.0, 9.0, 5.0), 1.0);
+  sys.set_site_epoch(sys.site_epoch() + 1);
+  CHECK(daughter == 3);
+  CHECK(sys.site_ids() == std::vector<std::uint64_t>{0, 2, 4, 5});
+  CHECK(sys.next_site_id() == 6);
+  // The identities and the epoch go through a checkpoint; a System built with the initial
+  // number of cells takes them.
+  CheckpointWriter w;
+  write_system(w, sys);
+  const CheckpointReader r = CheckpointReader::parse(w.bytes(), "test");
+  const System back = read_system(r);
+  CHECK(back.site_ids() == sys.site_ids());
+  CHECK(back.next_site_id() == 6);
+  CHECK(back.site_epoch() == sys.site_epoch());
+  // Before any change no section is written: such checkpoints stay as they were.
+  System fresh(slab(), 4);
+  fresh.add_sphere(Vec3(2.0, 5.0, 5.0), 1.0);
+  CheckpointWriter plain;
+  write_system(plain, fresh);
+  CHECK_FALSE(CheckpointReader::parse(plain.bytes(), "test").has("system.sites.id"));
+  CHECK_THROWS_AS(sys.set_site_ids({0, 1, 2, 9}, 6), InputError);
 }
