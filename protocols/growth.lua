@@ -12,6 +12,7 @@ local parameters = require("lib.parameters")
 local declare = require("lib.declare")
 local stage = require("lib.stages")
 local motion = require("lib.motion")
+local production = require("lib.production")
 
 -- Parameters: the shared ones (lib/parameters.lua) with this protocol's defaults for the
 -- growth, the lipolysis and the adipocytes' sizes.
@@ -21,9 +22,9 @@ local p = iv.params(parameters.merge{
   death_rate = declare.engine("Proliferation", "death_rate", 1e-4, note),
   inhibition_contacts = declare.engine("Proliferation", "inhibition_contacts", 6, note),
   lipolysis_rate = declare.engine("Lipolysis", "rate", 2e-4, note),
-  lipolysis_every = declare.keyword(require("lib.production").keys, "lipolysis_every", 500),
+  lipolysis_every = declare.keyword(production.keys, "lipolysis_every", 500),
   adipocyte_spread = { 0.2, range = "[0, 1]", help = "log-normal spread of the adipocytes' diameters, mean kept (" .. note .. ")" },
-  steps = declare.keyword(require("lib.production").keys, "steps", 100000),
+  steps = declare.keyword(production.keys, "steps", 100000),
 })
 parameters.validate(p)
 local N_a, N_c, L0 = parameters.size(p)

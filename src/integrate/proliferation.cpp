@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 
 #include "core/errors.hpp"
@@ -149,16 +150,15 @@ SiteChange Proliferation::apply(System& sys, double elapsed) const {
     sys.sites().vel[daughter] = velocity;
     born_old.emplace_back(daughter, i);
   }
-  change.new_index.resize(n);
-  for (std::size_t i = 0; i < n; ++i) change.new_index[i] = int(i);
-  if (!dead.empty()) {
-    const std::vector<int> map = sys.remove_sites(dead);
-    for (std::size_t i = 0; i < n; ++i) change.new_index[i] = map[i];
-    for (const auto& [d, p] : born_old) change.born.emplace_back(map[d], map[p]);
-  } else {
-    change.born = born_old;
-    if (!born_old.empty()) sys.set_site_epoch(sys.site_epoch() + 1);
-  }
+  // Then the deaths (remove_sites moves the site epoch on; births alone move it here).
+  std::vector<int> map(sys.n_sites());
+  std::iota(map.begin(), map.end(), 0);
+  if (!dead.empty())
+    map = sys.remove_sites(dead);
+  else if (!born_old.empty())
+    sys.set_site_epoch(sys.site_epoch() + 1);
+  change.new_index.assign(map.begin(), map.begin() + std::ptrdiff_t(n));
+  for (const auto& [d, p] : born_old) change.born.emplace_back(map[d], map[p]);
   change.deaths = int(dead.size());
   return change;
 }

@@ -37,7 +37,7 @@ void shift_into_box(const Box& box, std::vector<Vec3>& points) {
   for (Vec3& p : points) p += shift;
 }
 
-Frame frame_from_system(const System& sys) {
+Frame frame_from_system(const System& sys, bool ids) {
   Frame f;
   f.box = sys.box();
   f.step = sys.step;
@@ -49,6 +49,7 @@ Frame frame_from_system(const System& sys) {
       f.cells.vel.push_back(s.vel[i]);
       f.cells.orient.push_back(s.orient[i]);
       f.cells.radius.push_back(0.5 * s.diameter[i]);
+      if (ids) f.cells.id.push_back(sys.site_ids()[i]);
     }
   std::vector<Vec3> x;
   for (std::size_t b = 0; b < sys.bodies().size(); ++b) {

@@ -15,7 +15,7 @@ namespace invasim {
 struct CellFrame {
   std::vector<Vec3> pos, vel, orient;
   std::vector<double> radius;
-  std::vector<std::uint64_t> id;  // System::site_ids if the writer asks for them (SnapshotOptions)
+  std::vector<std::uint64_t> id;  // System::site_ids, if asked for (else empty)
   std::size_t size() const { return pos.size(); }
 };
 
@@ -39,9 +39,9 @@ struct Frame {
   MeshFrame meshes;
 };
 
-// The frame of the current state: every SiteKind::kCancer site as a cell (radius = diameter/2)
-// and every body as a mesh.
-Frame frame_from_system(const System& sys);
+// The frame of the current state: every SiteKind::kCancer site as a cell (radius = diameter/2,
+// and its System::site_ids entry if `ids`) and every body as a mesh.
+Frame frame_from_system(const System& sys, bool ids = false);
 
 // Whether two boxes read from the files of one frame are the same box. The formats store
 // different quantities (extended XYZ: Origin and Lattice lengths; VTP: box_lo and box_hi), each

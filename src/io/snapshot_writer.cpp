@@ -88,11 +88,7 @@ void SnapshotWriter::forget_after(std::uint64_t step) {
 }
 
 SnapshotFiles SnapshotWriter::write(const System& sys) {
-  Frame frame = frame_from_system(sys);
-  if (options_.ids)  // the cells' identities, in the frame's order (the cancer sites')
-    for (std::size_t i = 0; i < sys.n_sites(); ++i)
-      if (sys.sites().kind[i] == SiteKind::kCancer) frame.cells.id.push_back(sys.site_ids()[i]);
-  return write(frame);
+  return write(frame_from_system(sys, options_.ids));
 }
 
 SnapshotFiles SnapshotWriter::write(const Frame& frame) {

@@ -158,10 +158,7 @@ std::string spheres_vtp_text(const Frame& f) {
   scalar_array(out, "        ", "Float64", "radius", c.radius);
   vec3_array(out, "        ", "velocity", c.vel);
   vec3_array(out, "        ", "orientation", c.orient);
-  if (!c.id.empty()) {
-    std::vector<std::int64_t> id(c.id.begin(), c.id.end());
-    scalar_array(out, "        ", "Int64", "id", id);
-  }
+  if (!c.id.empty()) scalar_array(out, "        ", "UInt64", "id", c.id);
   out += "      </PointData>\n      <Points>\n";
   vec3_array(out, "        ", "Points", c.pos);
   out += "      </Points>\n";

@@ -418,15 +418,10 @@ const luaL_Reg kMethods[] = {
 
 void open_system(lua_State* L) {
   // The System's own methods plus the measurements (bind_measure.cpp).
-  std::vector<luaL_Reg> methods;
-  for (const luaL_Reg* r = kMethods; r->name; ++r) methods.push_back(*r);
-  for (const luaL_Reg* r = kSystemMeasureMethods; r->name; ++r) methods.push_back(*r);
-  methods.push_back({nullptr, nullptr});
-  lua_pushvalue(L, -1);  // the module table
-  protected_call(L, 1, 0, [&methods](lua_State* S) noexcept {
-    define_type<SystemHandle>(S, methods.data());
-    return 0;
-  });
+  RegList methods({});
+  for (const luaL_Reg* r = kMethods; r->name; ++r) methods.add(*r);
+  for (const luaL_Reg* r = kSystemMeasureMethods; r->name; ++r) methods.add(*r);
+  define_type<SystemHandle>(L, methods.data());
   set_constructor(L, "System", &lua_wrap<&l_new>, system_fields().infos());
 }
 

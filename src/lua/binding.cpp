@@ -12,12 +12,7 @@
 namespace invasim::lua {
 
 void add_functions(lua_State* L, std::initializer_list<luaL_Reg> functions) {
-  luaL_Reg list[kMaxMethods + 1];
-  if (functions.size() > kMaxMethods) throw std::logic_error("add_functions: too many");
-  std::size_t n = 0;
-  for (const luaL_Reg& f : functions) list[n++] = f;
-  list[n] = {nullptr, nullptr};
-  luaL_setfuncs(L, list, 0);
+  luaL_setfuncs(L, RegList(functions).data(), 0);
 }
 
 void push_string_list(lua_State* L, const std::vector<std::string>& items) {

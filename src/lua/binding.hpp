@@ -324,19 +324,32 @@ void define_type(lua_State* L, const luaL_Reg* methods) {
                            &lua_wrap<&detail::tostring<T>>);
 }
 
+// A list of functions as luaL_setfuncs takes it (ending in {nullptr, nullptr}), built from
+// lists written in place. A plain array, so it has no destructor for a Lua error to skip.
+inline constexpr std::size_t kMaxMethods = 64;
+class RegList {
+ public:
+  RegList(std::initializer_list<luaL_Reg> entries) {
+    for (const luaL_Reg& r : entries) add(r);
+  }
+  void add(const luaL_Reg& r) {
+    if (n_ >= kMaxMethods)
+      throw std::logic_error("a binding lists more than kMaxMethods functions");
+    list_[n_++] = r;
+    list_[n_] = {nullptr, nullptr};
+  }
+  const luaL_Reg* data() const { return list_; }
+
+ private:
+  luaL_Reg list_[kMaxMethods + 1] = {{nullptr, nullptr}};
+  std::size_t n_ = 0;
+};
+
 // The same with the method list written in place (no terminating {nullptr, nullptr}):
 //   define_type<Group>(L, {getter<Group, ...>("size"), {"name", &lua_wrap<&l_name>}});
-// The list is copied into a plain array (no destructor in a frame a Lua error may unwind).
-inline constexpr std::size_t kMaxMethods = 64;
 template <typename T>
 void define_type(lua_State* L, std::initializer_list<luaL_Reg> methods) {
-  if (methods.size() > kMaxMethods)
-    throw std::logic_error(std::string(LuaType<T>::name) + ": more than kMaxMethods methods");
-  luaL_Reg list[kMaxMethods + 1];
-  std::size_t n = 0;
-  for (const luaL_Reg& m : methods) list[n++] = m;
-  list[n] = {nullptr, nullptr};
-  define_type<T>(L, static_cast<const luaL_Reg*>(list));
+  define_type<T>(L, RegList(methods).data());
 }
 
 // {"name", &lua_wrap<&l_name>}: the list entry of a binding's function l_<name> under its own

@@ -95,13 +95,9 @@ constexpr luaL_Reg system_query(const char* name) {
 // which reads the keys and builds the object with Make(params) (a std::shared_ptr<T>).
 template <typename T, auto Table, auto ParamsOf, auto Make>
 void define_params_type(lua_State* L, std::initializer_list<luaL_Reg> methods) {
-  if (methods.size() >= kMaxMethods) throw std::logic_error("define_params_type: too many");
-  luaL_Reg list[kMaxMethods + 1];
-  std::size_t n = 0;
-  for (const luaL_Reg& m : methods) list[n++] = m;
-  list[n++] = params_method<T, Table, ParamsOf>("params");
-  list[n] = {nullptr, nullptr};
-  define_type<T>(L, static_cast<const luaL_Reg*>(list));
+  RegList list(methods);
+  list.add(params_method<T, Table, ParamsOf>("params"));
+  define_type<T>(L, list.data());
   set_constructor(L, Table().type().c_str(), &lua_wrap<&detail::construct_from_fields<Table, Make>>,
                   Table().infos());
 }

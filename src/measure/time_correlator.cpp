@@ -105,8 +105,8 @@ void TimeCorrelator::sample(const System& sys) {
   const std::size_t n = group_.size();
   if (!site_epoch_) site_epoch_ = sys.site_epoch();
   if (*site_epoch_ != sys.site_epoch())
-    fail_input("time correlator: cells divided or died since its first sample; it follows a ",
-               "fixed set of cells (a Correlator of a proliferating tissue is not supported)");
+    fail_input("time correlator: cells divided or died since its first sample and it was not ",
+               "told (sample it through the Simulation that runs the proliferation)");
   if (state_.samples > 0) {
     const double elapsed = sys.time - state_.last_time;
     if (std::abs(elapsed - params_.sample_interval) > 1e-3 * params_.sample_interval)
@@ -443,6 +443,11 @@ std::optional<double> TimeCorrelator::tau_r() const {
   return decay_time(f.time, f.fs);
 }
 
+void TimeCorrelator::drop_sample_buffers() {
+  for (Components* c : {&kept_v_, &kept_n_, &kept_r_, &pending_.v, &pending_.n, &pending_.r})
+    c->clear();
+}
+
 void TimeCorrelator::sites_changed(const std::vector<int>& new_index, std::uint64_t epoch) {
   flush();  // every kept sample correlated with the group as it was
   const std::size_t N = group_.size();
@@ -473,28 +478,16 @@ void TimeCorrelator::sites_changed(const std::vector<int>& new_index, std::uint6
     compact(origin_n_);
     compact(origin_r_);
     compact(inv_speed2_);
-    // The sample buffers are made again for M at the next sample.
-    for (Components* c : {&kept_v_, &kept_n_, &kept_r_, &pending_.v, &pending_.n, &pending_.r})
-      c->clear();
+    drop_sample_buffers();
   }
   if (group != group_) state_.group = group;  // checkpoints hold it from now on
   group_ = std::move(group);
 }
 
 void TimeCorrelator::restore(CorrelatorState state) {
-  if (!state.site_pairs.empty() && state.site_pairs.size() != std::size_t(params_.lags))
-    fail_input("time correlator: restored site pairs have ", state.site_pairs.size(),
-               " values, expected ", params_.lags);
   // A checkpoint written after cells divided or died holds the group as it is now.
-  if (!state.group.empty()) {
-    if (pending_.active && pending_.idle) idle_tasks().finish();
-    pending_.active = pending_.has_origin = false;
-    group_ = state.group;
-    if (params_.velocity) inv_speed2_.assign(slots() * group_.size(), 0.0);
-    for (Components* c : {&kept_v_, &kept_n_, &kept_r_, &pending_.v, &pending_.n, &pending_.r})
-      c->clear();
-  }
-  const std::size_t snap = slots() * group_.size() * 3;
+  const std::size_t N = state.group.empty() ? group_.size() : state.group.size();
+  const std::size_t snap = slots() * N * 3;
   auto check = [](const char* what, std::size_t got, std::size_t want) {
     if (got != want)
       fail_input("time correlator: restored ", what, " has ", got, " values, expected ", want);
@@ -504,11 +497,17 @@ void TimeCorrelator::restore(CorrelatorState state) {
   check("position snapshots", state.position.size(), params_.position ? snap : 0);
   check("origin counts", state.origins.size(), std::size_t(params_.lags));
   check("sums", state.sums.size(), std::size_t(params_.lags) * kTerms);
-  // Posted tasks read the stored origins: finished before those are replaced (their results
-  // are dropped).
+  if (!state.site_pairs.empty())
+    check("site pairs", state.site_pairs.size(), std::size_t(params_.lags));
+  // Posted tasks read the stored origins and the group: finished before those are replaced
+  // (their results are dropped).
   if (pending_.active && pending_.idle) idle_tasks().finish();
   pending_.active = pending_.has_origin = false;
-  const std::size_t N = group_.size();
+  if (!state.group.empty()) {
+    group_ = state.group;
+    if (params_.velocity) inv_speed2_.assign(slots() * N, 0.0);
+    drop_sample_buffers();
+  }
   origin_v_ = regrouped(state.velocity, N, To::kByComponent);
   origin_n_ = regrouped(state.orientation, N, To::kByComponent);
   origin_r_ = regrouped(state.position, N, To::kByComponent);

@@ -152,10 +152,14 @@ class TimeCorrelator {
   // fast_trig::kMaxArg, else `fast`.
   double libm_fs_term(const Vec3& dr, double fast) const;
   std::size_t slots() const;
+  // Frees the kept and pending sample buffers, made again for the group's size at the next
+  // sample (after the group changed size).
+  void drop_sample_buffers();
   std::vector<int> group_;
   TimeCorrelatorParams params_;
-  // System::site_epoch() at the first sample(const System&) since construction or restore: the
-  // group is a fixed set of cells, so a later sample after divisions or deaths is refused.
+  // System::site_epoch() at the first sample(const System&) since construction or restore, and
+  // after each sites_changed: a sample at another epoch (cells divided or died without this
+  // correlator being told) is refused.
   std::optional<std::uint64_t> site_epoch_;
   // The counters and sums; its snapshot vectors stay empty (the origins are in origin_*).
   mutable CorrelatorState state_;

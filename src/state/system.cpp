@@ -130,34 +130,15 @@ std::vector<int> System::remove_sites(const std::vector<int>& sites) {
       fail_input("remove_sites: site ", i, " is a vertex of adipocyte ", sites_.body[i]);
     new_index[i] = -1;
   }
-  int next = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (new_index[i] < 0) continue;
-    new_index[i] = next;
-    if (std::size_t(next) != i) {
-      sites_.pos[next] = sites_.pos[i];
-      sites_.vel[next] = sites_.vel[i];
-      sites_.force[next] = sites_.force[i];
-      sites_.orient[next] = sites_.orient[i];
-      sites_.image[next] = sites_.image[i];
-      sites_.diameter[next] = sites_.diameter[i];
-      sites_.mass[next] = sites_.mass[i];
-      sites_.body[next] = sites_.body[i];
-      sites_.kind[next] = sites_.kind[i];
-      ids_[next] = ids_[i];
+  std::vector<int> kept;  // the old index of each new site
+  for (std::size_t i = 0; i < n; ++i)
+    if (new_index[i] >= 0) {
+      new_index[i] = int(kept.size());
+      kept.push_back(int(i));
     }
-    ++next;
-  }
-  sites_.pos.resize(next);
-  sites_.vel.resize(next);
-  sites_.force.resize(next);
-  sites_.orient.resize(next);
-  sites_.image.resize(next);
-  sites_.diameter.resize(next);
-  sites_.mass.resize(next);
-  sites_.body.resize(next);
-  sites_.kind.resize(next);
-  ids_.resize(next);
+  gather_sites(sites_, spare_, kept);
+  std::vector<std::uint64_t> spare_ids;
+  gather(ids_, spare_ids, kept);
   for (MeshBody& b : bodies_) b.first_site = new_index[b.first_site];
   order_.clear();
   slot_.clear();
