@@ -40,11 +40,11 @@ local spec = {
   to_phi = 0.72, step = iv.compress.defaults.step, ftol = 1e-3, final_ftol = 1e-6,
   cohesion = false,           -- keep the cancer cells' cohesion (beta) and adhesion (beta_cv) on while compressing
   max_steps = iv.Fire.defaults.max_steps,  -- FIRE iterations per minimisation
-  dt_max = { "number", range = "(0, inf)" },  -- FIRE's largest time step (default: default_dt_max)
+  dt_max = { type = "number", range = "(0, inf)" },  -- FIRE's largest time step (default: default_dt_max)
   progress = true,
-  out = { "string" },         -- the run directory: compressed.ckpt (for --from) and, on
+  out = { type = "string" },         -- the run directory: compressed.ckpt (for --from) and, on
                               -- SIGINT/SIGTERM, compressing.ckpt (for --resume)
-  from = { "string" },        -- a run directory whose compressed tissue replaces the compression
+  from = { type = "string" },        -- a run directory whose compressed tissue replaces the compression
 }
 
 local resume = require("lib.resume")

@@ -13,12 +13,12 @@ local M = {}
 
 local function fail(fmt, ...) error(string.format(fmt, ...), 3) end
 
--- The iv.params{} entry of a declaration (type, range, unit, help, choices) with a default.
+-- A declaration in the one form of iv.params{} and iv.keywords (docs/lua.md): the default
+-- first, then type, range, unit, help and choices.
 local function entry(default, type_name, range, unit, help, choices, note)
-  local d = { default, range = range, choices = choices,
+  local d = { default, type = type_name, range = range, choices = choices,
               help = note and (help .. " (" .. note .. ")") or help }
   if unit and unit ~= "" and unit ~= "1" then d.unit = unit end
-  if type_name == "integer" then d.type = "integer" end
   return d
 end
 
@@ -44,32 +44,32 @@ end
 
 -- The parameter that sets field `key` of the engine type invasim.<path> (its `fields` list):
 -- `default` replaces the engine's default (nil: the engine's), `note` says what the field is
--- in this protocol ("of the cancer cells").
+-- in this protocol ("of the cancer cells"). A field that also takes a Ramp is a number here.
 function M.engine(path, key, default, note)
   local f, d = engine_field("declare.engine", path, key, default)
-  return entry(d, f.type, f.range, f.unit, f.help, f.choices, note)
+  local t = f.type == "number or Ramp" and "number" or f.type
+  return entry(d, t, f.range, f.unit, f.help, f.choices, note)
 end
 
--- The same field as a stage keyword (invasim.keywords' spec form {type, default =, range =,
--- unit =, help =}), for a stage that passes it on to the engine; `type_name` narrows the
--- engine's type ("number" where the engine also takes a Ramp but the stage does not).
+-- The same field as a stage keyword, for a stage that passes it on to the engine; `type_name`
+-- narrows the engine's type ("number" where the engine also takes a Ramp but the stage does
+-- not).
 function M.engine_keyword(path, key, default, type_name)
   local f, d = engine_field("declare.engine_keyword", path, key, default)
   local t = type_name or (f.type == "number or Ramp" and "number|Ramp" or f.type)
-  return { t, default = d, range = f.range, unit = f.unit ~= "" and f.unit or nil, help = f.help,
-           choices = f.choices }
+  return entry(d, t, f.range, f.unit, f.help, f.choices)
 end
 
--- The parameter that sets keyword `key` of a stage, from the stage's keyword spec (a table in
--- invasim.keywords' form: {type, default =, range =, unit =, help =}); `default` replaces
--- the stage's default (nil: the stage's).
+-- The parameter that sets keyword `key` of a stage, from the stage's keyword spec; `default`
+-- replaces the stage's default (nil: the stage's).
 function M.keyword(spec, key, default, note)
   local s = spec[key]
   if type(s) ~= "table" or not s.help then
     fail("declare.keyword: the stage declares no key '%s' with its help", tostring(key))
   end
-  if default == nil then default = s.default end
-  return entry(default, s[1], s.range, s.unit, s.help, s.choices, note)
+  local t = s.type or math.type(s[1]) or type(s[1])  -- the stage's type, named or of its default
+  if default == nil then default = s[1] end
+  return entry(default, t, s.range, s.unit, s.help, s.choices, note)
 end
 
 return M

@@ -6,7 +6,7 @@
 local iv = require("invasim")
 local log = require("lib.log")
 
-local spec = { lambda = { "number", required = true, range = "[0, 1]", help = "rest-length contrast" } }
+local spec = { lambda = { type = "number", required = true, range = "[0, 1]", help = "rest-length contrast" } }
 
 return function(tissue, opts)
   local o = iv.keywords("heterogeneity", opts, spec)

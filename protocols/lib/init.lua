@@ -21,12 +21,12 @@ local log = require("lib.log")
 local contact = iv.Contacts.defaults
 local spec = {
   N_a = 28, N_c = 1500, L0 = 70.0, seed = 1,
-  diameters = { "table", default = { 0.9, 1.1 } },  -- cancer-cell diameters, used in turn (bidisperse 50/50)
+  diameters = { { 0.9, 1.1 }, type = "table" },  -- cancer-cell diameters, used in turn (bidisperse 50/50)
   diameter = 6.0,                  -- adipocyte outer diameter (vertex radii included)
   diameter_spread = 0.0,           -- adipocytes of many sizes: log-normal diameters of mean `diameter` (0: one size, the paper)
   vertex_diameter = 2.0,
   shape_param = 1.1,               -- reference shape parameter A_0
-  start = { "string", default = "demixed", choices = { "demixed", "mixed" } },  -- or "mixed": cells and adipocytes over the whole box
+  start = { "demixed", choices = { "demixed", "mixed" } },  -- or "mixed": cells and adipocytes over the whole box
   eps_v = 1e3, eps_a = 1.0,        -- shape energy (docs/model.md: defaults and why)
   alpha = contact.alpha, beta = contact.beta,  -- cohesion of cancer cells (the compress stage may override)
   alpha_cv = contact.alpha_cv, beta_cv = contact.beta_cv,  -- adhesion of cells to adipocytes (0: the paper's repulsion)

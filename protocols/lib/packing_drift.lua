@@ -10,8 +10,8 @@ local iv = require("invasim")
 local log = require("lib.log")
 
 local spec = {
-  P = { "number", help = "the pressure wall's P, named in the warning" },
-  drift = { "number", default = 0.05, range = "(0, inf)", help = "tolerance of |mean phi_a - target|" },
+  P = { type = "number", help = "the pressure wall's P, named in the warning" },
+  drift = { 0.05, range = "(0, inf)", help = "tolerance of |mean phi_a - target|" },
 }
 
 return function(target, result, opts)

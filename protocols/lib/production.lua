@@ -22,29 +22,29 @@ local series_file = require("lib.series")
 local resume = require("lib.resume")
 
 local spec = {
-  steps = { "integer", default = 100000, range = "[0, inf)", help = "production steps" },
-  every = { "integer", default = 1000, range = "[1, inf)", help = "steps between measurements (a row of series.csv)" },
+  steps = { 100000, range = "[0, inf)", help = "production steps" },
+  every = { 1000, range = "[1, inf)", help = "steps between measurements (a row of series.csv)" },
   interface = true,          -- Voronoi interfacial area every `every` steps
   radical = false,           -- radical (power) tessellation instead of the paper's Voronoi
   energy = false,            -- energy of each force term every `every` steps
-  columns = { "table" },    -- the series' columns, LAMMPS thermo style: {"step", "A_t", ...}
+  columns = { type = "table" },    -- the series' columns, LAMMPS thermo style: {"step", "A_t", ...}
                                -- (default: every column of the observers switched on)
-  correlate_every = { "integer", default = 20, range = "[0, inf)", help = "steps between correlator samples (0: none)" },
+  correlate_every = { 20, range = "[0, inf)", help = "steps between correlator samples (0: none)" },
   lags = 250,                -- correlator window: lags * correlate_every steps
   origin_every = 5,          -- a new time origin every this many correlator samples
-  slices_per_body = { "number", default = 20, range = "[0, inf)" },  -- random slices per adipocyte at the end (0: none)
+  slices_per_body = { 20, type = "number", range = "[0, inf)" },  -- random slices per adipocyte at the end (0: none)
   average_fraction = 0.5,    -- the summary averages the last half of the samples
-  out = { "string" },        -- directory for series.csv, correlations.csv, shapes.csv
-  checkpoint_every = { "integer", default = 0, range = "[0, inf)", help = "steps between checkpoints in out/checkpoint/ (0: only on SIGINT/SIGTERM)" },
-  lipolysis = { "Lipolysis", help = "adipocytes shrinking where cancer cells touch them (off: nil)" },
-  lipolysis_every = { "integer", default = 1000, range = "[1, inf)", help = "steps between two applications of lipolysis (each recomputes the touched adipocytes' V_i, ~2 ms each)" },
-  proliferation = { "Proliferation", help = "cancer cells dividing and dying (off: nil); the correlators follow the cells present at the start, the dead leaving them" },
-  proliferation_every = { "integer", default = 100, range = "[1, inf)", help = "steps between two applications of proliferation" },
-  snapshots = { "Snapshots" },  -- an invasim.Snapshots writing a frame every snapshot_every steps
-  snapshot_every = { "integer", default = 0, range = "[0, inf)" },  -- steps between snapshots (0: none)
+  out = { type = "string" },        -- directory for series.csv, correlations.csv, shapes.csv
+  checkpoint_every = { 0, range = "[0, inf)", help = "steps between checkpoints in out/checkpoint/ (0: only on SIGINT/SIGTERM)" },
+  lipolysis = { type = "Lipolysis", help = "adipocytes shrinking where cancer cells touch them (off: nil)" },
+  lipolysis_every = { 1000, range = "[1, inf)", help = "steps between two applications of lipolysis (each recomputes the touched adipocytes' V_i, ~2 ms each)" },
+  proliferation = { type = "Proliferation", help = "cancer cells dividing and dying (off: nil); the correlators follow the cells present at the start, the dead leaving them" },
+  proliferation_every = { 100, range = "[1, inf)", help = "steps between two applications of proliferation" },
+  snapshots = { type = "Snapshots" },  -- an invasim.Snapshots writing a frame every snapshot_every steps
+  snapshot_every = { 0, range = "[0, inf)" },  -- steps between snapshots (0: none)
   progress = true,
   label = "production",
-  on_sample = { "function" },   -- function(row, tissue) called after each sample
+  on_sample = { type = "function" },   -- function(row, tissue) called after each sample
 }
 
 local function summarise(rows, columns, fraction)

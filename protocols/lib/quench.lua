@@ -21,11 +21,11 @@ local spec = {
   gamma = declare.engine_keyword("Active", "gamma"),
   vertex_bath = "langevin",   -- "langevin" (noise at kT, vertices and piston) or "damped"
   vertex_gamma = declare.engine_keyword("Langevin", "gamma"),  -- the vertices' damping coefficient
-  vertex_mass = { "number", range = "(0, inf)" },  -- each vertex's mass (default 1, the cells'); set
+  vertex_mass = { type = "number", range = "(0, inf)" },  -- each vertex's mass (default 1, the cells'); set
                                                   -- by the first quench, a later different one refused
   vertex_kT = 0.0,              -- the langevin vertices' noise temperature (0: the background kT)
-  dt = declare.engine_keyword("Dynamics", "dt"), steps = { "number", default = 20000, range = "[0, inf)" },
-  wall_mass = iv.Dynamics.pressure_wall.defaults.mass, wall_gamma = { "number" },  -- default: gamma
+  dt = declare.engine_keyword("Dynamics", "dt"), steps = { 20000, type = "number", range = "[0, inf)" },
+  wall_mass = iv.Dynamics.pressure_wall.defaults.mass, wall_gamma = { type = "number" },  -- default: gamma
   barostat = true,      -- false: both walls stay fixed (the box keeps its size; P unused)
   every = 1000,         -- steps between progress updates
   progress = true,

@@ -8,9 +8,9 @@ local iv = require("invasim")
 local log = require("lib.log")
 
 local spec = {
-  phi_a = { "number", required = true, range = "[0, 1]", help = "adipocyte packing fraction to reach" },
-  ftol = { "number", default = 1e-6, range = "(0, inf)", help = "FIRE tolerance after the rescale" },
-  max_steps = { "integer", default = iv.rescale.defaults.max_steps, range = "[0, inf)" },
+  phi_a = { type = "number", required = true, range = "[0, 1]", help = "adipocyte packing fraction to reach" },
+  ftol = { 1e-6, range = "(0, inf)", help = "FIRE tolerance after the rescale" },
+  max_steps = { iv.rescale.defaults.max_steps, type = "integer", range = "[0, inf)" },
 }
 
 return function(tissue, opts)

@@ -9,8 +9,8 @@ local iv = require("invasim")
 local log = require("lib.log")
 
 local spec = {
-  K = { "number", default = 0.04, range = "[0, inf)", unit = "eps_c/sigma^2", help = "tether stiffness" },
-  mean_degree = { "number", default = iv.Tethers.connect.defaults.mean_degree, range = "(0, inf)" },
+  K = { 0.04, range = "[0, inf)", unit = "eps_c/sigma^2", help = "tether stiffness" },
+  mean_degree = { iv.Tethers.connect.defaults.mean_degree, type = "number", range = "(0, inf)" },
 }
 
 return function(tissue, opts)

@@ -158,6 +158,11 @@ std::string value_violation(const Param& p, const ParamValue& value) {
              s ? did_you_mean(*s, p.choices) : "");
 }
 
+std::string default_violation(const Param& p) {
+  if (allowed(p, p.default_value)) return "";
+  return cat("must be ", allowed_text(p), "; its default is ", quoted(p.default_value));
+}
+
 void check_declaration(const Param& p) {
   const bool numeric = p.type == ParamType::kNumber || p.type == ParamType::kInteger;
   if (p.range && !numeric)
@@ -166,9 +171,8 @@ void check_declaration(const Param& p) {
   if (!p.choices.empty() && p.type != ParamType::kString)
     fail_input("params: parameter '", p.name, "' is a ", type_name(p.type),
                ": choices apply to string parameters only");
-  if (!allowed(p, p.default_value))
-    fail_input("params: parameter '", p.name, "' must be ", allowed_text(p), "; its default is ",
-               quoted(p.default_value));
+  if (const std::string why = default_violation(p); !why.empty())
+    fail_input("params: parameter '", p.name, "' ", why);
 }
 
 Override parse_override(const std::string& argument) {

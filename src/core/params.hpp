@@ -57,6 +57,9 @@ Range parse_range(const std::string& key, const std::string& text);
 // 'c'"), or "" if it is allowed (or p has no range or choices).
 std::string value_violation(const Param& p, const ParamValue& value);
 
+// Why p's default is not allowed ("must be in (0, inf); its default is 0"), or "".
+std::string default_violation(const Param& p);
+
 // Checks a declaration: a range only on a number or integer, choices only on a string, and the
 // default inside them. Throws "params: parameter 'dt' must be in (0, inf); its default is 0".
 void check_declaration(const Param& p);

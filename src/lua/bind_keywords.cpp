@@ -1,9 +1,9 @@
 // invasim.keywords(stage, given, spec [, level]) -> options: the engine's keyword checking
 // (lua/kwargs) for stages written in Lua. `given` is the caller's table (nil: {}), `spec` maps
-// every valid key to either its default (a number, string or boolean: the type follows it) or
-// a table {type, default =, range =, choices =, required =, unit =, help =}; type is "number",
-// "integer", "string", "boolean", "function", "table", "userdata", "any", a bound type name
-// ("Ramp", "Contacts", ...) or alternatives joined by '|' ("number|Ramp"). Returns a new table
+// every valid key to its declaration, in the form invasim.params also reads
+// (lua/declaration.hpp): a bare default or {default, type =, range =, choices =, required =,
+// unit =, help =}, with stage-only types ("function", "table", a bound type name such as
+// "Ramp", alternatives such as "number|Ramp"). Returns a new table
 // with the given values and the defaults of the absent keys. Errors are the constructors'
 // ("quench: key 'kT' = -1 is out of range (must be >= 0)", "unknown key 'stpes' (did you mean
 // 'steps'?); valid keys: ...") at the stage's caller's file:line (`level` levels above the
@@ -18,6 +18,7 @@
 #include "core/names.hpp"
 #include "core/params.hpp"
 #include "lua/binding.hpp"
+#include "lua/declaration.hpp"
 #include "lua/kwargs.hpp"
 #include "lua/module.hpp"
 
@@ -25,114 +26,8 @@ namespace invasim::lua {
 
 namespace {
 
-// One key of a spec.
-struct KeySpec {
-  std::string name;
-  std::vector<std::string> types;  // alternatives; empty: any
-  std::optional<Range> range;
-  std::vector<std::string> choices;
-  bool required = false;
-};
-
-const std::vector<std::string> kPlainTypes = {"number",   "integer", "string",   "boolean",
-                                              "function", "table",   "userdata", "any"};
-
-// Whether t is a plain type or the name of a bound type (its metatable "invasim.<t>" exists).
-bool known_type(lua_State* L, const std::string& t) {
-  if (std::find(kPlainTypes.begin(), kPlainTypes.end(), t) != kPlainTypes.end()) return true;
-  const std::string metatable = "invasim." + t;
-  bool found = false;
-  protected_call(L, 0, 0, [&metatable, &found](lua_State* S) noexcept {
-    found = luaL_getmetatable(S, metatable.c_str()) == LUA_TTABLE;
-    lua_pop(S, 1);
-    return 0;
-  });
-  return found;
-}
-
-std::vector<std::string> split_types(const std::string& text) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  while (true) {
-    const auto bar = text.find('|', start);
-    out.push_back(text.substr(start, bar == std::string::npos ? std::string::npos : bar - start));
-    if (bar == std::string::npos) break;
-    start = bar + 1;
-  }
-  return out;
-}
-
-// "a number", "an integer", "a Ramp"; alternatives joined by "or".
-std::string expected_text(const std::vector<std::string>& types) {
-  std::string out;
-  for (const auto& t : types) {
-    if (!out.empty()) out += " or ";
-    if (t == "Ramp") {  // as the engine's own keys say it
-      out += "an invasim.ramp{}";
-      continue;
-    }
-    const bool vowel = !t.empty() && std::string("aeiouAEIOU").find(t[0]) != std::string::npos;
-    out += cat(vowel ? "an " : "a ", t);
-  }
-  return out;
-}
-
-// Reads spec[name] (on top of the stack, popped) into a KeySpec.
-KeySpec read_key_spec(lua_State* L, const std::string& stage, const std::string& name) {
-  KeySpec k;
-  k.name = name;
-  const int type = lua_type(L, -1);
-  if (type == LUA_TNUMBER || type == LUA_TSTRING || type == LUA_TBOOLEAN) {
-    k.types = {type == LUA_TNUMBER ? "number" : type == LUA_TSTRING ? "string" : "boolean"};
-    lua_pop(L, 1);
-    return k;
-  }
-  const std::string owner = cat("keywords: ", stage, ": spec of key '", name, "'");
-  if (type != LUA_TTABLE)
-    fail_input(owner, " must be a default value or a table {type, default = ...}, got ",
-               type_name_at(L, -1));
-  const int top = lua_gettop(L);
-  Kwargs entry(L, top, owner);
-  if (entry.push_index(1) != LUA_TSTRING)
-    fail_input(owner,
-               ": its first entry must be the type (\"number\", \"integer\", \"string\", "
-               "\"boolean\", \"function\", \"table\", \"userdata\", \"any\", a bound type "
-               "name or alternatives such as \"number|Ramp\"), got ",
-               type_name_at(L, -1));
-  const std::string types = lua_tostring(L, -1);
-  lua_pop(L, 1);
-  k.types = split_types(types);
-  if (std::find(k.types.begin(), k.types.end(), "any") != k.types.end()) k.types.clear();
-  for (const auto& t : k.types)
-    if (!known_type(L, t))
-      fail_input(owner, ": unknown type '", t, "'", did_you_mean(t, kPlainTypes),
-                 "; a type is one of ", join_names(kPlainTypes),
-                 ", a bound type name (Ramp, Group, Contacts, ...) or alternatives joined by '|'");
-  if (const auto range = entry.maybe_string("range")) k.range = parse_range(name, *range);
-  if (entry.push("choices") != LUA_TNIL) {
-    if (!lua_istable(L, -1)) fail_input(owner, ": choices must be a list of strings");
-    const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, -1));
-    for (lua_Integer i = 1; i <= n; ++i) {
-      if (lua_rawgeti(L, -1, i) != LUA_TSTRING)
-        fail_input(owner, ": choices[", i, "] must be a string");
-      k.choices.emplace_back(lua_tostring(L, -1));
-      lua_pop(L, 1);
-    }
-  }
-  lua_pop(L, 1);
-  k.required = entry.boolean("required", false);
-  const bool has_default = entry.has("default");
-  entry.string("unit", "");
-  entry.string("help", "");
-  entry.finish();
-  if (k.required && has_default)
-    fail_input(owner, ": a key is either required or has a default, not both");
-  lua_settop(L, top - 1);
-  return k;
-}
-
 // Checks given[key] against k (via kw, which marks the key known).
-void check_value(Kwargs& kw, const KeySpec& k) {
+void check_value(Kwargs& kw, const Declaration& k) {
   lua_State* L = kw.state();
   const std::string& key = k.name;
   if (!kw.has(key)) {
@@ -215,12 +110,14 @@ int checked(lua_State* L, const std::string& stage, int level) {
     names.emplace_back(lua_tostring(L, -1));
   }
   std::sort(names.begin(), names.end());
-  std::vector<KeySpec> specs;
+  std::vector<Declaration> specs;
   for (const auto& name : names) {
     lua_checkstack(L, 4);
     lua_pushstring(L, name.c_str());  // an existing key of the spec: interned, no allocation
     lua_rawget(L, 3);
-    specs.push_back(read_key_spec(L, stage, name));
+    specs.push_back(read_declaration(L, -1, cat("keywords: ", stage, ": key '", name, "'"), name,
+                                     DeclarationUse::kKeyword));
+    lua_pop(L, 1);
   }
   try {
     Kwargs kw(L, 2, stage);
@@ -240,8 +137,7 @@ int checked(lua_State* L, const std::string& stage, int level) {
         lua_pop(S, 1);
         lua_pushstring(S, name.c_str());
         if (lua_rawget(S, 2) == LUA_TTABLE) {
-          lua_pushliteral(S, "default");
-          lua_rawget(S, -2);
+          lua_rawgeti(S, -1, 1);
           lua_remove(S, -2);
         }
       }

@@ -8,8 +8,9 @@
 //     seed = 1,                                  -- bare default: no unit, no help
 //   }
 //
-// The type comes from the default (integer, number, boolean, string) unless `type = ...` says
-// otherwise; `range` (interval notation) and `choices` restrict the values. --set/--seed
+// Each entry is a declaration in the form invasim.keywords also reads (lua/declaration.hpp):
+// the type follows the default unless `type = ...` names it; `range` (interval notation) and
+// `choices` restrict the values. --set/--seed
 // overrides are applied and checked here, before the protocol does anything else, and the
 // result is a read-only table.
 #include <lua.hpp>
@@ -21,6 +22,7 @@
 #include "core/params.hpp"
 #include "lua/binding.hpp"
 #include "lua/context.hpp"
+#include "lua/declaration.hpp"
 #include "lua/fields.hpp"
 #include "lua/kwargs.hpp"
 #include "lua/module.hpp"
@@ -30,110 +32,6 @@ namespace invasim::lua {
 namespace {
 
 constexpr const char* kForm = "write name = default or name = {default, unit = ..., help = ...}";
-
-// The `choices = {"a", "b"}` of parameter `name` (a list of strings) on top of the stack.
-std::vector<std::string> read_choices(lua_State* L, const std::string& name) {
-  const auto bad = [&] {
-    fail_input("params: parameter '", name, "': key 'choices' must be a list of strings, as in ",
-               "choices = {\"a\", \"b\"}");
-  };
-  if (lua_type(L, -1) != LUA_TTABLE) bad();
-  std::vector<std::string> choices;
-  const auto n = static_cast<lua_Integer>(lua_rawlen(L, -1));
-  for (lua_Integer i = 1; i <= n; ++i) {
-    if (lua_rawgeti(L, -1, i) != LUA_TSTRING) bad();
-    choices.emplace_back(lua_tostring(L, -1));
-    lua_pop(L, 1);
-  }
-  // Only the list part: any other key (choices = {a = 1}) is a mistake.
-  lua_pushnil(L);
-  while (lua_next(L, -2) != 0) {
-    lua_pop(L, 1);
-    if (!lua_isinteger(L, -1) || lua_tointeger(L, -1) < 1 || lua_tointeger(L, -1) > n) bad();
-  }
-  if (choices.empty()) bad();
-  return choices;
-}
-
-// The value at `index` as a default of the given (or inferred, when type is empty) type.
-Param read_default(lua_State* L, int index, const std::string& name, const std::string& type) {
-  Param p;
-  p.name = name;
-  const int lua_type_id = lua_type(L, index);
-  if (lua_type_id == LUA_TNUMBER) {
-    p.type = lua_isinteger(L, index) ? ParamType::kInteger : ParamType::kNumber;
-  } else if (lua_type_id == LUA_TBOOLEAN) {
-    p.type = ParamType::kBoolean;
-  } else if (lua_type_id == LUA_TSTRING) {
-    p.type = ParamType::kString;
-  } else if (lua_type_id == LUA_TNIL) {
-    fail_input("params: parameter '", name, "' has no default; ", kForm);
-  } else {
-    fail_input("params: parameter '", name, "' has a ", luaL_typename(L, index),
-               " default; defaults are numbers, integers, booleans or strings");
-  }
-  if (!type.empty()) {
-    const bool number = lua_type_id == LUA_TNUMBER;
-    if (type == "number" && number) {
-      p.type = ParamType::kNumber;
-    } else if (type == "integer" && number) {
-      int exact = 0;
-      lua_tointegerx(L, index, &exact);
-      if (!exact)
-        fail_input("params: parameter '", name, "' is declared an integer but its default ",
-                   lua_tonumber(L, index), " is not");
-      p.type = ParamType::kInteger;
-    } else if (type != type_name(p.type)) {
-      fail_input("params: parameter '", name, "' is declared type = '", type,
-                 "' but its default is a ", type_name(p.type));
-    }
-  }
-  switch (p.type) {
-    case ParamType::kNumber:
-      p.default_value = double(lua_tonumber(L, index));
-      break;
-    case ParamType::kInteger:
-      p.default_value = static_cast<long long>(lua_tointeger(L, index));
-      break;
-    case ParamType::kBoolean:
-      p.default_value = bool(lua_toboolean(L, index));
-      break;
-    case ParamType::kString: {
-      std::size_t size = 0;
-      const char* data = lua_tolstring(L, index, &size);
-      p.default_value = std::string(data, size);
-      break;
-    }
-  }
-  if (p.type == ParamType::kNumber && !std::isfinite(std::get<double>(p.default_value)))
-    fail_input("params: parameter '", name, "' has a non-finite default");
-  p.value = p.default_value;
-  return p;
-}
-
-// One entry `name = value` of the declaration table (key at -2, value at -1).
-Param read_param(lua_State* L, const std::string& name) {
-  if (lua_type(L, -1) != LUA_TTABLE) return read_default(L, -1, name, "");
-  Kwargs kw(L, -1, "params: parameter '" + name + "'");
-  const std::string unit = kw.string("unit", "");
-  const std::string help = kw.string("help", "");
-  const std::string type =
-      kw.choice("type", {"number", "integer", "boolean", "string"}, std::string());
-  const auto range = kw.maybe_string("range");
-  std::vector<std::string> choices;
-  if (kw.push("choices") != LUA_TNIL) choices = read_choices(L, name);
-  lua_pop(L, 1);
-  kw.push_index(1);
-  Param p = read_default(L, -1, name, type);
-  lua_pop(L, 1);
-  kw.finish();
-  p.unit = unit;
-  p.help = help;
-  if (range) p.range = parse_range(name, *range);
-  p.choices = choices;
-  check_declaration(p);
-  return p;
-}
 
 // Names of the declared parameters (keys of the values table at `index`).
 std::vector<std::string> declared_names(lua_State* L, int index) {
@@ -228,7 +126,10 @@ int l_params(lua_State* L) {
                                                    : std::string("of type ") + luaL_typename(L, -2);
       fail_input("params: unexpected entry ", key, "; ", kForm);
     }
-    params.push_back(read_param(L, lua_tostring(L, -2)));
+    const std::string name = lua_tostring(L, -2);
+    params.push_back(read_declaration(L, -1, cat("params: parameter '", name, "'"), name,
+                                      DeclarationUse::kParameter)
+                         .to_param());
     lua_settop(L, 2);  // keep the key for lua_next
   }
   std::sort(params.begin(), params.end(),

@@ -28,10 +28,10 @@ check(d.dt[1] == iv.Dynamics.defaults.dt and d.dt.unit == "tau", "dt: the engine
 check(d.vertex_gamma.help:find("of the adipocyte vertices", 1, true), "vertex_gamma: the protocol's note")
 -- Stage keywords: production's declaration, with the protocols' default.
 local ck = production.keys.checkpoint_every
-check(d.checkpoint_every[1] == 10000 and ck.default == 0, "checkpoint_every: 10000 over the stage's 0")
+check(d.checkpoint_every[1] == 10000 and ck[1] == 0, "checkpoint_every: 10000 over the stage's 0")
 check(d.checkpoint_every.type == "integer" and d.checkpoint_every.help == ck.help and
       d.checkpoint_every.range == ck.range, "checkpoint_every: the stage's type, range and help")
-check(d.every[1] == production.keys.every.default and d.every.range == "[1, inf)", "every: the stage's")
+check(d.every[1] == production.keys.every[1] and d.every.range == "[1, inf)", "every: the stage's")
 
 -- declare names what it cannot find.
 local function fails(pattern, fn, ...)

@@ -5,17 +5,17 @@ local iv = require("invasim")
 local checks = 0
 
 local spec = {
-  steps = { "integer", default = 100, range = "[0, inf)" },
-  dt = { "number", default = 0.05, range = "(0, inf)", unit = "tau", help = "time step" },
-  phi = { "number", required = true, range = "(0, 1)" },
-  bath = { "string", default = "langevin", choices = { "langevin", "damped" } },
+  steps = { 100, range = "[0, inf)" },
+  dt = { 0.05, range = "(0, inf)", unit = "tau", help = "time step" },
+  phi = { type = "number", required = true, range = "(0, 1)" },
+  bath = { "langevin", choices = { "langevin", "damped" } },
   label = "stage",                 -- a default value: the type follows it
   progress = true,
-  on_sample = { "function" },      -- optional, no default
-  columns = { "table" },
-  P = { "number|Ramp", default = 1e-3, range = "[0, inf)" },
-  group = { "Group" },
-  anything = { "any" },
+  on_sample = { type = "function" },      -- optional, no default
+  columns = { type = "table" },
+  P = { 1e-3, type = "number|Ramp", range = "[0, inf)" },
+  group = { type = "Group" },
+  anything = { type = "any" },
 }
 
 -- A stage as the protocol library writes one: it checks its keywords first (here in a tail
@@ -91,14 +91,40 @@ assert(not ok and err:find("^keywords.lua:" .. this_line .. ": wrapped: unknown 
 checks = checks + 1
 
 -- Mistakes in the spec itself are the stage author's: reported at the stage's own line.
-ok, err = pcall(iv.keywords, "bad", {}, { x = { "nubmer" } })
-assert(not ok and err:find("bad") , err)
-ok, err = pcall(iv.keywords, "bad", {}, { x = { "number", default = 1, required = true } })
+ok, err = pcall(iv.keywords, "bad", {}, { x = { type = "nubmer" } })
+assert(not ok and err:find("keywords: bad: key 'x': unknown type 'nubmer' (did you mean 'number'?)", 1, true), err)
+ok, err = pcall(iv.keywords, "bad", {}, { x = { 1, type = "number", required = true } })
 assert(not ok and err:find("either required or has a default", 1, true), err)
-ok, err = pcall(iv.keywords, "bad", {}, { x = { "number", rnage = "[0, 1]" } })
+ok, err = pcall(iv.keywords, "bad", {}, { x = { type = "number", rnage = "[0, 1]" } })
 assert(not ok and err:find("unknown key 'rnage' (did you mean 'range'?)", 1, true), err)
-ok, err = pcall(iv.keywords, "bad", {}, { x = { "number", range = "0..1" } })
+ok, err = pcall(iv.keywords, "bad", {}, { x = { type = "number", range = "0..1" } })
 assert(not ok and err:find("not in interval notation", 1, true), err)
 checks = checks + 4
+
+-- The declaration form is iv.params': the first entry is the default, the type follows it
+-- unless `type` names it, and a plain default must lie inside its range and choices.
+local function spec_error(pattern, entry)
+  local ok, err = pcall(iv.keywords, "bad", {}, { x = entry })
+  assert(not ok and err:find(pattern, 1, true), "expected '" .. pattern .. "', got " .. tostring(err))
+  checks = checks + 1
+end
+spec_error("keywords: bad: key 'x' must be in (0, inf); its default is 0", { 0.0, range = "(0, inf)" })
+spec_error("keywords: bad: key 'x' must be one of a, b; its default is 'c'", { "c", choices = { "a", "b" } })
+spec_error("keywords: bad: key 'x' is declared an integer but its default 2.5 is not", { 2.5, type = "integer" })
+spec_error("keywords: bad: key 'x' is declared type = 'string' but its default is a number", { 2.5, type = "string" })
+spec_error("keywords: bad: key 'x' is declared type = 'Ramp' but its default is a table", { {}, type = "Ramp" })
+spec_error("keywords: bad: key 'x' has neither a type nor a default", { help = "no type" })
+spec_error("keywords: bad: key 'x' is a boolean: a range applies to number and integer keys only", { true, range = "[0, 1]" })
+spec_error("keywords: bad: key 'x' is a number: choices apply to string keys only", { type = "number", choices = { "a" } })
+spec_error("keywords: bad: key 'x': key 'choices' must be a list of strings", { "a", choices = "a" })
+-- A table default (not plain) is returned as it is; an integer default makes an integer key.
+local list = { 0.9, 1.1 }
+o = iv.keywords("t", { n = 3.0 }, { d = { list }, n = 1, s = { "x", choices = { "x", "y" } } })
+assert(o.d == list and o.n == 3.0 and o.s == "x")
+ok, err = pcall(iv.keywords, "t", { n = 1.5 }, { n = 1 })
+assert(not ok and err:find("t: key 'n' must be an integer, got 1.5", 1, true), err)
+ok, err = pcall(iv.keywords, "t", { d = 5 }, { d = { list } })
+assert(not ok and err:find("t: key 'd' must be a table, got number", 1, true), err)
+checks = checks + 3
 
 print(string.format("keywords: all %d checks passed", checks))

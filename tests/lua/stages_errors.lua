@@ -19,10 +19,12 @@ end
 local init = require("lib.init")
 expect_error("^stages_errors.lua:%d+: init: unknown key 'N_cc' %(did you mean 'N_c'%?%); valid keys: .*N_a, N_c",
              init, { N_cc = 10 })
-expect_error("^stages_errors.lua:%d+: init: key 'N_a' must be a number, got string", init, { N_a = "many" })
+expect_error("^stages_errors.lua:%d+: init: key 'N_a' must be an integer, got string", init, { N_a = "many" })
 expect_error("^stages_errors.lua:%d+: init: expected a keyword table, as in init{key = value, ...}; got number", init, 5)
--- Engine errors pass through the stages with their own messages.
-expect_error("cells: key 'n' must be an integer", init, { N_a = 0, N_c = 2.5, L0 = 30.0 })
+-- The stage checks its own declarations first (N_c is an integer), and engine errors pass
+-- through the stages with their own messages (the engine's range of a cell count).
+expect_error("^stages_errors.lua:%d+: init: key 'N_c' must be an integer, got 2.5", init, { N_a = 0, N_c = 2.5, L0 = 30.0 })
+expect_error("cells: key 'n' = %-1 is out of range", init, { N_a = 0, N_c = -1, L0 = 30.0 })
 
 local tissue = init{ N_a = 1, N_c = 20, L0 = 30.0 }
 expect_error("compress: unknown key 'to_ph' %(did you mean 'to_phi'%?%)", require("lib.compress"), tissue, { to_ph = 0.5 })

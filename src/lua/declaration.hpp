@@ -1,0 +1,49 @@
+#pragma once
+// The one form that declares a protocol parameter (invasim.params) and a stage keyword
+// (invasim.keywords): a bare default (`seed = 1`, `label = "stage"`) or a table
+//
+//   {default, type = "number", range = "(0, inf)", choices = {"a", "b"}, unit = "tau",
+//    help = "time step", required = true}
+//
+// whose first entry is the default. The type follows the default (a Lua integer: "integer",
+// a float: "number", a string, a boolean) unless `type` names it. A parameter has a default and
+// one of the four plain types; a keyword may also be required (no default), optional (neither),
+// of type "function", "table", "userdata", "any", a bound type name ("Ramp", "Group") or
+// alternatives joined by '|' ("number|Ramp"). `range` applies to numbers and integers,
+// `choices` to strings, and a plain default must lie inside them.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/params.hpp"
+
+struct lua_State;
+
+namespace invasim::lua {
+
+enum class DeclarationUse { kParameter, kKeyword };
+
+struct Declaration {
+  std::string name;
+  std::vector<std::string> types;           // alternatives; empty: any value
+  std::optional<ParamValue> default_value;  // a default of a plain type
+  bool has_default = false;                 // any default, a table's included
+  std::optional<Range> range;
+  std::vector<std::string> choices;
+  std::string unit;
+  std::string help;
+  bool required = false;
+
+  // As a protocol parameter (for a kParameter declaration: one plain type and a default).
+  Param to_param() const;
+};
+
+// Reads the declaration of `name` at `index`. `owner` prefixes every message ("params:
+// parameter 'dt'"). A default that is not plain (a table) stays in the entry: entry[1].
+Declaration read_declaration(lua_State* L, int index, const std::string& owner,
+                             const std::string& name, DeclarationUse use);
+
+// "a number", "an integer", "an invasim.ramp{}"; alternatives joined by "or".
+std::string expected_text(const std::vector<std::string>& types);
+
+}  // namespace invasim::lua
