@@ -58,6 +58,38 @@ check(v.log_verdict(0.2, 0.0, 0.03, 3.0, trend_holds=True) == v.TREND)
 check(v.range_verdict([(1.0, 0.1), (2.4, 0.0)], 0.5, 2.5) == v.AGREES)
 check(v.range_verdict([(1.0, 0.1), (3.4, 0.1)], 0.5, 2.5) == v.TREND)
 check(v.range_verdict([(13.0, 0.1)], 1.0, 1.2) == v.DISAGREES)
+# The glass temperature from tau_r (validation/relaxation.py): exact fits, then the verdict.
+from invasim_analysis.validation import relaxation  # noqa: E402
+xs = np.array([0.05, 0.07, 0.1, 0.14, 0.2])
+a_fit, e_fit, cov_fit = relaxation.arrhenius_fit(xs, np.exp(2.0 + 0.6 / xs))
+check(abs(a_fit - 2.0) < 1e-9 and abs(e_fit - 0.6) < 1e-9, (a_fit, e_fit))
+tg_x, _ = relaxation.x_where(math.exp(2.0 + 0.6 / 0.04), a_fit, e_fit, cov_fit)
+check(abs(tg_x - 0.04) < 1e-9, tg_x)                         # tau_r = 5e5-like target at 0.04
+x0_fit = relaxation.vft_fit(xs, np.exp(1.0 + 0.5 / (xs - 0.03)))[0]
+check(abs(x0_fit - 0.03) < 1e-6, x0_fit)                      # the VFT divergence recovered
+
+
+class _Relax:  # a relaxation run as relaxation_points reads one
+    def __init__(self, kt, tau, window):
+        self.sp, self.id, self._v = {"kT": kt}, "r%g" % kt, {"tau_r": tau, "correlation_window": window}
+
+    def scalar(self, name):
+        return self._v[name]
+
+
+short = [_Relax(k, t, 1e4) for k, t in [(1, math.nan), (2, 5e3), (3, 900.0), (4, 300.0)]]
+long_ = [_Relax(1, 3e4, 5e4)]  # the longer window reaches tau_r where the short one did not
+pts = relaxation.relaxation_points([short, long_], lambda j: 0.025 * j.sp["kT"])
+check([p["tau_r"] for p in pts] == [3e4, 5e3, 900.0, 300.0], pts)
+st_tg = {"value": 0.03, "log_factor": 3.0}
+exact = [{"x": x, "tau_r": math.exp(2.0 + 0.6 / x), "window": 1e5} for x in xs]
+row_tg = relaxation.tg_row(exact, st_tg, run_length=math.exp(2.0 + 0.6 / 0.04))
+check(row_tg["verdict"] == v.AGREES and abs(row_tg["data"]["arrhenius"]["T_g"] - 0.04) < 1e-9,
+      row_tg)
+row_tg = relaxation.tg_row(exact, st_tg, run_length=math.exp(2.0 + 0.6 / 0.5))
+check(row_tg["verdict"] == v.DISAGREES, row_tg)              # T_g 0.5: beyond a factor 3
+check(relaxation.tg_row(exact[:2], st_tg)["verdict"] == v.NO_DATA)  # too few reached
+
 # Every statement the figures use is in the paper file, with a source in the paper.
 ids = v.paper()
 for needed in ["fig3_invasion_grows", "fig4a_Tg", "fig4b_An_at_0.3", "fig5_b_range", "fig5_c1",

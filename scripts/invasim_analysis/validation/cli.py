@@ -4,7 +4,7 @@ Usage:
   validation.py figure NAME WS [WS2] -o DIR [--invasim PATH]
       one figure from its sweep workspace(s): DIR/NAME.json (rows of the side-by-side
       table, verdicts, steady-state evidence, numbers, the command) and the images.
-      NAME and workspaces: fig3 WS | fig4a WS | fig4b WS [INSET_WS] | fig5 ACTIVE_WS
+      NAME and workspaces: fig3 WS | fig4a WS [RELAX_WS [RELAX_LONG_WS]] | fig4b WS [INSET_WS] | fig5 ACTIVE_WS
       [PASSIVE_WS [LONG_WS [EXTRA_WS]]] | fig6 WS | fig7a WS | fig7b WS | fig8 WS | fig9 WS
       (LONG_WS: curves run longer, each replacing ACTIVE_WS's curve of the same beta and
       tau_p; EXTRA_WS: further curves; '-' for an optional workspace not given: the record
@@ -44,14 +44,14 @@ from ..repo_paths import REPO, repo_path
 
 # figure -> the sweep files (workspace names) it reads, in argument order
 FIGURES = {
-    "fig3": ["fig3_passive_slices"], "fig4a": ["fig4a_passive"],
+    "fig3": ["fig3_passive_slices"], "fig4a": ["fig4a_passive", "fig4a_relaxation", "fig4a_relaxation_long"],
     "fig4b": ["fig4b_cohesive", "fig4b_inset"],
     "fig5": ["fig5_active", "fig5_passive", "fig5_long", "fig5_extra_curves"],
     "fig6": ["fig6_cells_only"], "fig7a": ["fig7a_tethered"], "fig7b": ["fig7b_tethered"],
     "fig8": ["fig8_packing"], "fig9": ["fig9_shapes"],
 }
 NOT_GIVEN = "-"  # an optional workspace left out (figure fig5 A - LONG)
-REQUIRED = {"fig4b": 1, "fig5": 1}  # the others need all their workspaces
+REQUIRED = {"fig4a": 1, "fig4b": 1, "fig5": 1}  # the others need all their workspaces
 
 
 def default_invasim():

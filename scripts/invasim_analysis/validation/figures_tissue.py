@@ -13,7 +13,7 @@ import subprocess
 import numpy as np
 
 from .. import normalise, steady, workspace
-from . import points, verdict
+from . import points, relaxation, verdict
 from .plotting import T_PAPER, figure, label, log_axis, save
 
 P_DEFAULT = 1.3e-3
@@ -186,10 +186,11 @@ def render_slice(job, out, name, invasim):
     return [name]
 
 
-def fig4a(jobs, out, invasim, times=None):
+def fig4a(jobs, out, invasim, *relaxation_sets, times=None):
     """A_n against the measured 2 T_c/P at three times (a quarter, half and all of the run;
     or the production times `times`, the paper's t = 1e4, 1e5, 5e5); the midpoint's move
-    between the first and the last, and T_g at the last."""
+    between the first and the last, and T_g at the last; with the relaxation sweeps' jobs,
+    T_g where tau_r diverges (relaxation.py)."""
     fractions = tuple(times) if times else (0.25, 0.5, 1.0)
     table, extremes = an_over_time(jobs, ["kT"], x_measured, fractions,
                                    production_fraction if times else None)
@@ -227,6 +228,13 @@ def fig4a(jobs, out, invasim, times=None):
                     "2T_c/P within a factor %g of %g (+ 2 errors), the paper's convention"
                     % (st["log_factor"], st["value"])),
         tc_equals_ta_row("fig4a_Tc_equals_Ta", jobs, ["kT"])]
+    if any(relaxation_sets):
+        pts = relaxation.relaxation_points(relaxation_sets, x_measured)
+        row = relaxation.tg_row(pts, verdict.paper()["fig4a_Tg_relaxation"])
+        fig, (ax,) = figure()
+        relaxation.plot(ax, pts, row["data"], st["value"])
+        images.append(save(fig, out, "fig4a_tau_r.png"))
+        rows.append(row)
     return {"images": images, "rows": rows,
             "numbers": {"midpoints": {str(f): m for f, m in mids.items()},
                         "normalisation": extremes, "points": table},
