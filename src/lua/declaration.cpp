@@ -68,7 +68,8 @@ bool matches(lua_State* L, int index, const std::string& t) {
   if (t == "integer") {
     if (type != LUA_TNUMBER) return false;
     const double x = lua_tonumber(L, index);
-    return lua_isinteger(L, index) || (std::isfinite(x) && x == std::floor(x));
+    constexpr double kTwo63 = 9223372036854775808.0;  // the integers a long long holds
+    return lua_isinteger(L, index) || (x == std::floor(x) && x >= -kTwo63 && x < kTwo63);
   }
   if (t == "number") return type == LUA_TNUMBER;
   if (t == "function") return type == LUA_TFUNCTION;
@@ -103,7 +104,9 @@ std::vector<std::string> read_choices(lua_State* L, const std::string& owner) {
 // The default at `index` as a plain value of type t ("number", "integer", "string", "boolean").
 ParamValue plain_value(lua_State* L, int index, const std::string& t) {
   if (t == "number") return double(lua_tonumber(L, index));
-  if (t == "integer") return static_cast<long long>(lua_tonumber(L, index));
+  if (t == "integer")  // a Lua integer as it is (beyond 2^53 a double would round it)
+    return lua_isinteger(L, index) ? static_cast<long long>(lua_tointeger(L, index))
+                                   : static_cast<long long>(lua_tonumber(L, index));
   if (t == "boolean") return bool(lua_toboolean(L, index));
   std::size_t size = 0;
   const char* data = lua_tolstring(L, index, &size);

@@ -111,6 +111,7 @@ end
 spec_error("keywords: bad: key 'x' must be in (0, inf); its default is 0", { 0.0, range = "(0, inf)" })
 spec_error("keywords: bad: key 'x' must be one of a, b; its default is 'c'", { "c", choices = { "a", "b" } })
 spec_error("keywords: bad: key 'x' is declared an integer but its default 2.5 is not", { 2.5, type = "integer" })
+spec_error("keywords: bad: key 'x' is declared an integer but its default 1e+30 is not", { 1e30, type = "integer" })
 spec_error("keywords: bad: key 'x' is declared type = 'string' but its default is a number", { 2.5, type = "string" })
 spec_error("keywords: bad: key 'x' is declared type = 'Ramp' but its default is a table", { {}, type = "Ramp" })
 spec_error("keywords: bad: key 'x' has neither a type nor a default", { help = "no type" })
@@ -118,6 +119,10 @@ spec_error("keywords: bad: key 'x' is a boolean: a range applies to number and i
 spec_error("keywords: bad: key 'x' is a number: choices apply to string keys only", { type = "number", choices = { "a" } })
 spec_error("keywords: bad: key 'x': key 'choices' must be a list of strings", { "a", choices = "a" })
 -- A table default (not plain) is returned as it is; an integer default makes an integer key.
+-- An integer default is kept exactly, beyond 2^53 too (the reader iv.params shares).
+assert(iv.keywords("t", {}, { n = { 9007199254740993 } }).n == 9007199254740993)
+assert(iv.params{ big = { 9007199254740993, help = "2^53 + 1" } }.big == 9007199254740993)
+checks = checks + 2
 local list = { 0.9, 1.1 }
 o = iv.keywords("t", { n = 3.0 }, { d = { list }, n = 1, s = { "x", choices = { "x", "y" } } })
 assert(o.d == list and o.n == 3.0 and o.s == "x")
