@@ -12,6 +12,7 @@ import math
 import numpy as np
 
 from . import verdict
+from .plotting import log_axis
 
 
 def relaxation_points(job_sets, x_of):
@@ -131,7 +132,9 @@ def plot(ax, pts, fits, paper_tg):
                 label="Arrhenius; $\\tau_r = %g$ at %.3g" % (fits["run_length"], arr["T_g"]))
     ax.axhline(fits["run_length"], color="0.7", ls=":", lw=0.8)
     ax.axvline(paper_tg, color="0.4", ls="--", lw=0.8)
-    ax.set_xscale("log")
+    ax.text(paper_tg, 0.98, r" paper's $T_g$", fontsize=7, va="top", color="0.3",
+            transform=ax.get_xaxis_transform())
+    log_axis(ax, [p["x"] for p in pts] + [paper_tg])
     ax.set_yscale("log")
     ax.set_xlabel(r"$2 k_B T_c/(P\sigma^3)$")
     ax.set_ylabel(r"$\tau_r$")
