@@ -11,7 +11,6 @@
 #include <lua.hpp>
 
 #include <algorithm>
-#include <optional>
 #include <string>
 #include <vector>
 

@@ -16,7 +16,6 @@
 #include <lua.hpp>
 
 #include <algorithm>
-#include <cmath>
 
 #include "core/names.hpp"
 #include "core/params.hpp"
@@ -30,8 +29,6 @@
 namespace invasim::lua {
 
 namespace {
-
-constexpr const char* kForm = "write name = default or name = {default, unit = ..., help = ...}";
 
 // Names of the declared parameters (keys of the values table at `index`).
 std::vector<std::string> declared_names(lua_State* L, int index) {
@@ -124,7 +121,7 @@ int l_params(lua_State* L) {
     if (lua_type(L, -2) != LUA_TSTRING) {
       const std::string key = lua_isinteger(L, -2) ? cat("[", lua_tointeger(L, -2), "]")
                                                    : std::string("of type ") + luaL_typename(L, -2);
-      fail_input("params: unexpected entry ", key, "; ", kForm);
+      fail_input("params: unexpected entry ", key, "; ", kDeclarationForm);
     }
     const std::string name = lua_tostring(L, -2);
     params.push_back(read_declaration(L, -1, cat("params: parameter '", name, "'"), name,

@@ -14,8 +14,6 @@ namespace invasim::lua {
 
 namespace {
 
-constexpr const char* kForm = "write name = default or name = {default, unit = ..., help = ...}";
-
 const std::vector<std::string> kPlainTypes = {"number", "integer", "string", "boolean"};
 const std::vector<std::string> kKeywordTypes = {"number",   "integer", "string",   "boolean",
                                                 "function", "table",   "userdata", "any"};
@@ -119,7 +117,7 @@ std::vector<std::string> declared_types(lua_State* L, const std::optional<std::s
   if (!type) {
     if (lua_isnil(L, value))
       fail_input(owner, parameter ? " has no default; " : " has neither a type nor a default; ",
-                 kForm, parameter ? "" : " or name = {type = \"number\", ...}");
+                 kDeclarationForm, parameter ? "" : " or name = {type = \"number\", ...}");
     return {type_of_default(L, value)};
   }
   const auto types = split_types(*type);

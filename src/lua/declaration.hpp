@@ -23,6 +23,10 @@ namespace invasim::lua {
 
 enum class DeclarationUse { kParameter, kKeyword };
 
+// How a declaration is written, for the messages that refuse one.
+inline constexpr const char* kDeclarationForm =
+    "write name = default or name = {default, unit = ..., help = ...}";
+
 struct Declaration {
   std::string name;
   std::vector<std::string> types;           // alternatives; empty: any value
