@@ -67,41 +67,22 @@ const FieldTable<RescaleKeys>& rescale_fields() {
   return table;
 }
 
-// The compression report as a Lua table {steps, fire_steps, converged, phi, max_force, box}.
+// Pushes the compression report {stopped, steps, fire_steps, converged, phi, max_force, box
+// [, fire_state]}.
 void push_compression_report(lua_State* L, const CompressionReport& r) {
-  protected_call(L, 0, 1, [&r](lua_State* S) noexcept {
-    lua_createtable(S, 0, 7);
-    set_boolean(S, "stopped", r.stopped);
-    set_integer(S, "steps", static_cast<long long>(r.steps));
-    set_integer(S, "fire_steps", static_cast<long long>(r.fire_steps));
-    set_boolean(S, "converged", r.converged);
-    set_number(S, "phi", r.phi);
-    set_number(S, "max_force", r.max_force);
-    push_vec3(S, r.box_lengths);
-    lua_setfield(S, -2, "box");
-    if (r.fire_state) set_fire_state(S, *r.fire_state);  // stopped inside a FIRE
-    return 1;
-  });
+  Record record{{"stopped", r.stopped},     {"steps", r.steps}, {"fire_steps", r.fire_steps},
+                {"converged", r.converged}, {"phi", r.phi},     {"max_force", r.max_force},
+                {"box", r.box_lengths}};
+  if (r.fire_state) record.push_back({"fire_state", fire_state_record(*r.fire_state)});
+  push_record(L, record);
 }
 
 int l_compress(lua_State* L) {
   const std::shared_ptr<SystemHandle> sim = check_shared<SystemHandle>(L, 1);
   Kwargs kw(L, 2, "compress");
   const CompressionParams p = compress_fields().read(kw);
-  Progress* progress = nullptr;
-  if (kw.push("progress") != LUA_TNIL) {
-    progress = test_progress(L, -1);
-    if (!progress)
-      fail_input("compress: key 'progress' must be a Progress, got ", type_name_at(L, -1));
-  }
-  int callback = 0;  // stack index of the Lua callback, 0 if none
-  if (kw.push("callback") != LUA_TNIL) {
-    if (!lua_isfunction(L, -1))
-      fail_input("compress: key 'callback' must be a function, got ", type_name_at(L, -1));
-    callback = lua_gettop(L);
-  } else {
-    lua_pop(L, 1);
-  }
+  const std::shared_ptr<Progress> progress = kw_object<Progress>(kw, "progress");
+  const int callback = kw_function(kw, "callback");  // stack index of the Lua callback, or 0
   CompressionReport so_far;
   if (kw.push("continue_from") != LUA_TNIL) {
     if (!lua_istable(L, -1))

@@ -89,29 +89,12 @@ int l_params(lua_State* L) {
   return 1;
 }
 
-int l_sample(lua_State* L) {
-  CorrelatorHandle& c = check<CorrelatorHandle>(L, 1);
-  const SystemHandle& sim = check<SystemHandle>(L, 2);
-  require_same_system(*c.group, sim, "sample");
-  engine_call("sample", [&] { c.correlator.sample(sim.system); });
-  return 0;
-}
-
 int l_result(lua_State* L) {
   const Columns cols = check<CorrelatorHandle>(L, 1).correlator.columns();
-  return push_results(L, 1, [&cols](lua_State* S) noexcept {
-    lua_createtable(S, 0, 2);
-    push_list(S, cols.names.size(),
-              [&](std::size_t j) { lua_pushstring(S, cols.names[j].c_str()); });
-    lua_setfield(S, -2, "names");
-    lua_createtable(S, 0, int(cols.names.size()));
-    for (std::size_t j = 0; j < cols.names.size(); ++j) {
-      push_number_list(S, cols.values[j].data(), cols.values[j].size());
-      lua_setfield(S, -2, cols.names[j].c_str());
-    }
-    lua_setfield(S, -2, "columns");
-    return 1;
-  });
+  Record columns;
+  for (std::size_t j = 0; j < cols.names.size(); ++j)
+    columns.push_back({cols.names[j], cols.values[j]});
+  return push_record(L, {{"names", cols.names}, {"columns", std::move(columns)}});
 }
 
 }  // namespace
@@ -125,7 +108,12 @@ std::shared_ptr<TimeCorrelator> shared_correlator(lua_State* L, int index) {
 void open_correlator(lua_State* L) {
   define_type<CorrelatorHandle>(
       L,
-      {INVASIM_LUA_FN(sample), INVASIM_LUA_FN(result),
+      {method<"sample",
+              [](CorrelatorHandle& c, const SystemHandle& sim) {
+                require_same_system(*c.group, sim, "sample");
+                c.correlator.sample(sim.system);
+              }>(),
+       INVASIM_LUA_FN(result),
        getter<CorrelatorHandle, [](const CorrelatorHandle& c) { return c.correlator.tau_d(); }>(
            "tau_d"),
        getter<CorrelatorHandle,

@@ -117,13 +117,7 @@ int l_pressure_wall(lua_State* L) {
   DynamicsHandle& d = check<DynamicsHandle>(L, 1);
   Kwargs kw(L, 2, "pressure_wall");
   auto wall = std::make_shared<PressureWall>(pressure_wall_fields().read(kw));
-  std::shared_ptr<Walls> walls;
-  if (kw.push("walls") != LUA_TNIL) {
-    if (!is<Walls>(L, -1))
-      fail_input("pressure_wall: key 'walls' must be a Walls force, got ", type_name_at(L, -1));
-    walls = check_shared<Walls>(L, lua_gettop(L));
-  }
-  lua_pop(L, 1);
+  std::shared_ptr<Walls> walls = kw_object<Walls>(kw, "walls", false, "a Walls force");
   kw.finish();
   d.walls = walls;
   d.dynamics.set_pressure_wall(std::move(wall));
@@ -138,14 +132,10 @@ int l_wall_state(lua_State* L) {
     lua_pushnil(L);
     return 1;
   }
-  return push_results(L, 1, [&wall](lua_State* S) noexcept {
-    lua_createtable(S, 0, 4);
-    set_number(S, "P", wall->pressure);
-    set_number(S, "velocity", wall->velocity);
-    set_number(S, "force", wall->force);
-    set_number(S, "kT", wall->kT);
-    return 1;
-  });
+  return push_record(L, {{"P", wall->pressure},
+                         {"velocity", wall->velocity},
+                         {"force", wall->force},
+                         {"kT", wall->kT}});
 }
 
 // The Dynamics' pressure wall, or an error naming the method `what` that needs one.
@@ -156,17 +146,6 @@ std::shared_ptr<PressureWall> require_pressure_wall(DynamicsHandle& d, const cha
                ": this Dynamics has no pressure wall; add one with dyn:pressure_wall{P = "
                "...}");
   return wall;
-}
-
-// dyn:set_wall_kT(kT): the temperature of the piston's bath (>= 0; 0: no noise).
-int l_set_wall_kT(lua_State* L) {
-  DynamicsHandle& d = check<DynamicsHandle>(L, 1);
-  const auto wall = require_pressure_wall(d, "set_wall_kT");
-  const double kT = arg_number(L, 2);
-  if (!(kT >= 0.0)) fail_input("set_wall_kT: kT = ", kT, " must be >= 0");
-  wall->kT = kT;
-  d.dynamics.invalidate();
-  return 0;
 }
 
 // dyn:set_pressure(P): a number or a ramp; the piston keeps its velocity.
@@ -189,23 +168,6 @@ int l_set_pressure(lua_State* L) {
   return 0;
 }
 
-// dyn:set_dt(dt)
-int l_set_dt(lua_State* L) {
-  DynamicsHandle& d = check<DynamicsHandle>(L, 1);
-  const double dt = arg_number(L, 2);
-  engine_call("set_dt", [&] { d.dynamics.set_dt(dt); });
-  d.dynamics.invalidate();
-  return 0;
-}
-
-// dyn:set_sort_every(n): steps between two choices of the engine order (Dynamics::sort_every).
-int l_set_sort_every(lua_State* L) {
-  DynamicsHandle& d = check<DynamicsHandle>(L, 1);
-  const long long n = arg_integer(L, 2, 1, std::numeric_limits<long long>::max());
-  engine_call("set_sort_every", [&] { d.dynamics.set_sort_every(std::uint64_t(n)); });
-  return 0;
-}
-
 int l_methods(lua_State* L) {
   const DynamicsHandle& d = check<DynamicsHandle>(L, 1);
   push_list(L, d.methods.size(), [&](std::size_t k) { push(L, d.methods[k]); });
@@ -223,20 +185,12 @@ int l_run(lua_State* L) {
   const long long n = arg_integer(L, 3, 0, std::numeric_limits<long long>::max());  // steps
   std::optional<long long> every;
   int callback = 0;
-  Progress* progress = nullptr;
+  std::shared_ptr<Progress> progress;
   if (!lua_isnoneornil(L, 4)) {
     Kwargs kw(L, 4, "run");
     every = kw.maybe_integer<long long>("every", Range::at_least(1));
-    const int type = kw.push("callback");
-    if (type == LUA_TFUNCTION)
-      callback = lua_gettop(L);
-    else if (type != LUA_TNIL)
-      fail_input("run: key 'callback' must be a function, got ", type_name_at(L, -1));
-    if (kw.push("progress") != LUA_TNIL) {
-      progress = test_progress(L, -1);
-      if (!progress)
-        fail_input("run: key 'progress' must be a Progress, got ", type_name_at(L, -1));
-    }
+    callback = kw_function(kw, "callback");
+    progress = kw_object<Progress>(kw, "progress");
     kw.finish();
     if (callback && !every) fail_input("run: a callback needs key 'every' (call it every N steps)");
   }
@@ -264,8 +218,24 @@ void open_dynamics(lua_State* L) {
   define_type<DynamicsHandle>(
       L, {INVASIM_LUA_FN(add), INVASIM_LUA_FN(pressure_wall), INVASIM_LUA_FN(wall_state),
           getter<DynamicsHandle, [](const DynamicsHandle& d) { return d.dynamics.dt(); }>("dt"),
-          INVASIM_LUA_FN(set_dt), INVASIM_LUA_FN(set_sort_every), INVASIM_LUA_FN(set_pressure),
-          INVASIM_LUA_FN(set_wall_kT), INVASIM_LUA_FN(methods), INVASIM_LUA_FN(run)});
+          method<"set_dt",
+                 [](DynamicsHandle& d, double dt) {
+                   d.dynamics.set_dt(dt);
+                   d.dynamics.invalidate();
+                 }>(),
+          // steps between two choices of the engine order (Dynamics::sort_every)
+          method<"set_sort_every",
+                 [](DynamicsHandle& d, std::uint64_t n) { d.dynamics.set_sort_every(n); }>(),
+          INVASIM_LUA_FN(set_pressure),
+          // the temperature of the piston's bath (>= 0; 0: no noise)
+          method<"set_wall_kT",
+                 [](DynamicsHandle& d, double kT) {
+                   const auto wall = require_pressure_wall(d, "set_wall_kT");
+                   if (!(kT >= 0.0)) fail_input("kT = ", kT, " must be >= 0");
+                   wall->kT = kT;
+                   d.dynamics.invalidate();
+                 }>(),
+          INVASIM_LUA_FN(methods), INVASIM_LUA_FN(run)});
   set_constructor(L, "Dynamics", &lua_wrap<&l_new>, dynamics_fields().infos());
   set_method_keys(L, "Dynamics", "pressure_wall", pressure_wall_fields().infos());
 }

@@ -13,21 +13,11 @@ std::string LuaType<Group>::describe(const Group& g) {
              g.owner.expired() ? ", no System" : "", ")");
 }
 
-namespace {
-
-// g:sites() -> {i, ...}: the engine's site indices, which start at 0.
-int l_sites(lua_State* L) {
-  const Group& g = check<Group>(L, 1);
-  push_integer_list(L, g.sites.data(), g.sites.size());
-  return 1;
-}
-
-}  // namespace
-
 void open_group(lua_State* L) {
-  define_type<Group>(
-      L, {getter<Group, [](const Group& g) { return g.sites.size(); }>("size"),
-          getter<Group, [](const Group& g) { return g.name; }>("name"), INVASIM_LUA_FN(sites)});
+  define_type<Group>(L, {getter<Group, [](const Group& g) { return g.sites.size(); }>("size"),
+                         getter<Group, [](const Group& g) { return g.name; }>("name"),
+                         // the engine's site indices, which start at 0
+                         getter<Group, [](const Group& g) { return g.sites; }>("sites")});
 }
 
 }  // namespace invasim::lua

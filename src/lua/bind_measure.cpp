@@ -25,19 +25,6 @@ namespace invasim::lua {
 
 namespace {
 
-// Inside a protected_call block: pushes {values[1], ...}.
-void push_numbers(lua_State* L, const std::vector<double>& values) noexcept {
-  push_number_list(L, values.data(), values.size());
-}
-
-// Pushes {values[1], ...} (protected: a Lua error comes back as a C++ exception).
-int push_number_result(lua_State* L, const std::vector<double>& values) {
-  return push_results(L, 1, [&values](lua_State* S) noexcept {
-    push_numbers(S, values);
-    return 1;
-  });
-}
-
 // A Lua array of numbers at `index` (every entry a number).
 std::vector<double> check_numbers(lua_State* L, int index, const char* what) {
   if (!lua_istable(L, index))
@@ -68,29 +55,18 @@ int l_voronoi(lua_State* L) {
       engine_call("voronoi", [&] { return measure_voronoi(sim.system, options); });
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return push_results(L, 1, [&m, seconds](lua_State* S) noexcept {
-    lua_createtable(S, 0, 12);
-    set_number(S, "A_t", m.interface_area);
-    set_number(S, "A_t_max", m.max_interface_area);
-    set_number(S, "A_ratio", m.interface_ratio);
-    set_number(S, "cancer_adipocyte", m.cancer_adipocyte_area);
-    set_number(S, "cancer_wall", m.cancer_wall_area);
-    set_number(S, "adipocyte_wall", m.adipocyte_wall_total);
-    set_number(S, "phi_a_local_mean", m.mean_local_phi_a);
-    set_number(S, "phi_a_local_std", m.std_local_phi_a);
-    set_number(S, "seconds", seconds);
-    push_numbers(S, m.adipocyte_surface);
-    lua_setfield(S, -2, "adipocyte_surface");
-    push_numbers(S, m.adipocyte_wall_area);
-    lua_setfield(S, -2, "adipocyte_wall_area");
-    push_numbers(S, m.local_phi_a);
-    lua_setfield(S, -2, "local_phi_a");
-    return 1;
-  });
-}
-
-int l_shape_parameters(lua_State* L) {
-  return push_number_result(L, body_shape_parameters(check<SystemHandle>(L, 1).system));
+  return push_record(L, {{"A_t", m.interface_area},
+                         {"A_t_max", m.max_interface_area},
+                         {"A_ratio", m.interface_ratio},
+                         {"cancer_adipocyte", m.cancer_adipocyte_area},
+                         {"cancer_wall", m.cancer_wall_area},
+                         {"adipocyte_wall", m.adipocyte_wall_total},
+                         {"phi_a_local_mean", m.mean_local_phi_a},
+                         {"phi_a_local_std", m.std_local_phi_a},
+                         {"seconds", seconds},
+                         {"adipocyte_surface", m.adipocyte_surface},
+                         {"adipocyte_wall_area", m.adipocyte_wall_area},
+                         {"local_phi_a", m.local_phi_a}});
 }
 
 int l_slices(lua_State* L) {
@@ -109,7 +85,8 @@ int l_slices(lua_State* L) {
   std::vector<double> shapes;
   shapes.reserve(slices.size());
   for (const BodySlice& s : slices) shapes.push_back(s.shape);
-  return push_number_result(L, shapes);
+  push_value(L, shapes);
+  return 1;
 }
 
 int l_histogram(lua_State* L) {
@@ -124,19 +101,11 @@ int l_histogram(lua_State* L) {
   // slots (3 x 16 bytes).
   check_memory("histogram", "bins", double(bins), 80.0);
   const Histogram h = histogram(values, lo, hi, bins);
-  const std::vector<double> counts(h.counts.begin(), h.counts.end());
-  return push_results(L, 1, [&h, &counts](lua_State* S) noexcept {
-    lua_createtable(S, 0, 5);
-    push_numbers(S, h.edges);
-    lua_setfield(S, -2, "edges");
-    push_numbers(S, counts);
-    lua_setfield(S, -2, "counts");
-    push_numbers(S, h.density);
-    lua_setfield(S, -2, "density");
-    set_integer(S, "below", (long long)h.below);
-    set_integer(S, "above", (long long)h.above);
-    return 1;
-  });
+  return push_record(L, {{"edges", h.edges},
+                         {"counts", std::vector<double>(h.counts.begin(), h.counts.end())},
+                         {"density", h.density},
+                         {"below", h.below},
+                         {"above", h.above}});
 }
 
 int l_block_average(lua_State* L) {
@@ -152,17 +121,13 @@ int l_block_average(lua_State* L) {
   }
   const BlockAverage b =
       engine_call("block_average", [&] { return block_average_tail(values, fraction, options); });
-  return push_results(L, 1, [&b](lua_State* S) noexcept {
-    lua_createtable(S, 0, 7);
-    set_number(S, "mean", b.mean);
-    set_number(S, "error", b.error);
-    set_number(S, "naive_error", b.naive_error);
-    set_integer(S, "n", (long long)b.n);
-    set_integer(S, "block_size", (long long)b.block_size);
-    set_integer(S, "n_blocks", (long long)b.n_blocks);
-    set_boolean(S, "plateau", b.plateau);
-    return 1;
-  });
+  return push_record(L, {{"mean", b.mean},
+                         {"error", b.error},
+                         {"naive_error", b.naive_error},
+                         {"n", b.n},
+                         {"block_size", b.block_size},
+                         {"n_blocks", b.n_blocks},
+                         {"plateau", b.plateau}});
 }
 
 }  // namespace
@@ -170,7 +135,8 @@ int l_block_average(lua_State* L) {
 // System methods added to the System's method table (bind_system.cpp registers them).
 const luaL_Reg kSystemMeasureMethods[] = {
     INVASIM_LUA_FN(voronoi),
-    INVASIM_LUA_FN(shape_parameters),
+    method<"shape_parameters",
+           [](const SystemHandle& sim) { return body_shape_parameters(sim.system); }>(),
     INVASIM_LUA_FN(slices),
     {nullptr, nullptr},
 };

@@ -9,25 +9,15 @@
 
 #include "core/names.hpp"
 #include "core/progress.hpp"
-#include "lua/binding.hpp"
+#include "lua/engine_types.hpp"
 #include "lua/fields.hpp"
-#include "lua/kwargs.hpp"
 #include "lua/module.hpp"
 
 namespace invasim::lua {
 
-INVASIM_LUA_TYPE(Progress, "Progress");
 std::string LuaType<Progress>::describe(const Progress& p) {
   return cat("Progress(step ", p.step(), p.total() > 0 ? cat("/", p.total()) : "",
              p.finished() ? ", finished)" : ")");
-}
-
-// Declared in engine_types.hpp: the Progress at `index`, or nullptr if it is none.
-Progress* test_progress(lua_State* L, int index) {
-  auto* slot = test<Progress>(L, index);
-  if (slot == nullptr) return nullptr;
-  if (!*slot) throw InputError("Progress object is no longer valid");
-  return slot->get();
 }
 
 namespace {
@@ -58,22 +48,14 @@ int l_new(lua_State* L) {
   return 1;
 }
 
-int l_update(lua_State* L) {
-  Progress& progress = check<Progress>(L, 1);
-  const long long step = arg_integer(L, 2, 0, std::numeric_limits<long long>::max());
-  progress.update(step, opt_number(L, 3));
-  return 0;
-}
-
-int l_finish(lua_State* L) {
-  check<Progress>(L, 1).finish();
-  return 0;
-}
-
 }  // namespace
 
 void open_progress(lua_State* L) {
-  define_type<Progress>(L, {INVASIM_LUA_FN(update), INVASIM_LUA_FN(finish)});
+  define_type<Progress>(L, {method<"update",
+                                   [](Progress& p, std::uint64_t step, std::optional<double> time) {
+                                     p.update(static_cast<long long>(step), time);
+                                   }>(),
+                            method<"finish", [](Progress& p) { p.finish(); }>()});
   set_constructor(L, "Progress", &lua_wrap<&l_new>, progress_fields().infos());
 }
 

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "core/names.hpp"
+#include "lua/adapters.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/fields.hpp"
 #include "lua/module.hpp"
@@ -61,29 +62,18 @@ int l_ramp(lua_State* L) {
   return 1;
 }
 
-// r:value(k): the value k steps after the ramp's start.
-int l_value(lua_State* L) {
-  Ramp r = check<Ramp>(L, 1);
-  r.start = 0;
-  const long long k = arg_integer(L, 2, 0, std::numeric_limits<long long>::max());
-  lua_pushnumber(L, r.value(static_cast<std::uint64_t>(k)));
-  return 1;
-}
-
-// r:params() -> {from =, to =, steps =}
-int l_params(lua_State* L) {
-  const Ramp& r = check<Ramp>(L, 1);
-  lua_createtable(L, 0, 3);
-  set_number(L, "from", r.from);
-  set_number(L, "to", r.to);
-  set_integer(L, "steps", static_cast<long long>(r.steps));
-  return 1;
-}
-
 }  // namespace
 
 void open_ramp(lua_State* L) {
-  define_type<Ramp>(L, {INVASIM_LUA_FN(value), INVASIM_LUA_FN(params)});
+  define_type<Ramp>(L,
+                    {// r:value(k): the value k steps after the ramp's start
+                     method<"value",
+                            [](const Ramp& ramp, std::uint64_t k) {
+                              Ramp r = ramp;
+                              r.start = 0;
+                              return r.value(k);
+                            }>(),
+                     params_method<Ramp, &ramp_fields, [](const Ramp& r) { return r; }>("params")});
   set_constructor(L, "ramp", &lua_wrap<&l_ramp>, ramp_fields().infos());
 }
 

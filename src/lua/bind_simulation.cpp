@@ -90,12 +90,8 @@ Trigger kw_trigger(Kwargs& kw) {
 
 int l_new(lua_State* L) {
   Kwargs kw(L, 1, "Simulation");
-  if (kw.push("system") == LUA_TNIL || !is<SystemHandle>(L, -1))
-    fail_input("Simulation: key 'system' must be a System, got ", type_name_at(L, -1));
-  auto system = check_shared<SystemHandle>(L, lua_gettop(L));
-  if (kw.push("dynamics") == LUA_TNIL || !is<DynamicsHandle>(L, -1))
-    fail_input("Simulation: key 'dynamics' must be a Dynamics, got ", type_name_at(L, -1));
-  auto dyn = check_shared<DynamicsHandle>(L, lua_gettop(L));
+  auto system = kw_object<SystemHandle>(kw, "system", true);
+  auto dyn = kw_object<DynamicsHandle>(kw, "dynamics", true);
   kw.finish();
   push(L, std::make_shared<SimulationHandle>(std::move(system), std::move(dyn)));
   return 1;
@@ -156,8 +152,7 @@ int l_proliferation(lua_State* L) {
 // sim:snapshots(snapshots, schedule)
 int l_snapshots(lua_State* L) {
   SimulationHandle& s = check<SimulationHandle>(L, 1);
-  auto writer = shared_snapshots(L, 2);
-  if (!writer) throw InputError(bad_argument(L, 2, "Snapshots"));
+  auto writer = check_shared<SnapshotWriter>(L, 2);
   return add_scheduled(L, s, std::make_shared<SnapshotOperation>(writer), "snapshots");
 }
 
@@ -187,15 +182,12 @@ int l_checkpoint(lua_State* L) {
     fail_input("checkpoint: run_parameters without run_id (give the run's identity too)");
   std::shared_ptr<LuaFunctionOperation> extra, written;
   for (const char* key : {"extra", "written"}) {
-    const int type = kw.push(key);
-    if (type == LUA_TFUNCTION) {
-      auto op = std::make_shared<LuaFunctionOperation>(L, -1, s->system, s->dyn, key);
+    if (const int index = kw_function(kw, key)) {
+      auto op = std::make_shared<LuaFunctionOperation>(L, index, s->system, s->dyn, key);
       s->lua_ops.push_back(op);
       (std::string(key) == "extra" ? extra : written) = op;
-    } else if (type != LUA_TNIL) {
-      fail_input("checkpoint: key '", key, "' must be a function, got ", type_name_at(L, -1));
+      lua_pop(L, 1);
     }
-    lua_pop(L, 1);
   }
   const Trigger t = kw_trigger(kw);
   kw.finish();
@@ -217,14 +209,10 @@ int l_checkpoint(lua_State* L) {
 int l_run(lua_State* L) {
   const auto& s = check_shared<SimulationHandle>(L, 1);
   const long long n = arg_integer(L, 2, 0, std::numeric_limits<long long>::max());
-  Progress* progress = nullptr;
+  std::shared_ptr<Progress> progress;
   if (!lua_isnoneornil(L, 3)) {
     Kwargs kw(L, 3, "run");
-    if (kw.push("progress") != LUA_TNIL) {
-      progress = test_progress(L, -1);
-      if (!progress)
-        fail_input("run: key 'progress' must be a Progress, got ", type_name_at(L, -1));
-    }
+    progress = kw_object<Progress>(kw, "progress");
     kw.finish();
   }
   s->run.set_progress(

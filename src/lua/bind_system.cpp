@@ -200,26 +200,18 @@ int l_group(lua_State* L) {
 // sys:box() -> {lengths = {..}, lo = {..}, hi = {..}, periodic = {..}, volume = V}
 int l_box(lua_State* L) {
   const Box& box = check<SystemHandle>(L, 1).system.box();
-  lua_createtable(L, 0, 5);
-  push_vec3(L, box.lengths());
-  lua_setfield(L, -2, "lengths");
-  push_vec3(L, box.lo());
-  lua_setfield(L, -2, "lo");
-  push_vec3(L, box.hi());
-  lua_setfield(L, -2, "hi");
-  push_list(L, 3, [&](std::size_t a) { lua_pushboolean(L, box.periodic(int(a))); });
-  lua_setfield(L, -2, "periodic");
-  set_number(L, "volume", box.volume());
-  return 1;
+  return push_record(
+      L, {{"lengths", box.lengths()},
+          {"lo", box.lo()},
+          {"hi", box.hi()},
+          {"periodic", std::vector<bool>{box.periodic(0), box.periodic(1), box.periodic(2)}},
+          {"volume", box.volume()}});
 }
 
 int l_packing(lua_State* L) {
   const PackingFractions phi = packing_fractions(check<SystemHandle>(L, 1).system);
-  lua_createtable(L, 0, 3);
-  set_number(L, "total", phi.total);
-  set_number(L, "cancer", phi.cancer);
-  set_number(L, "adipocyte", phi.adipocyte);
-  return 1;
+  return push_record(L,
+                     {{"total", phi.total}, {"cancer", phi.cancer}, {"adipocyte", phi.adipocyte}});
 }
 
 // The sites of the optional Group argument at `index` (all sites when absent).
@@ -262,43 +254,25 @@ int l_positions(lua_State* L) {
 int l_adipocytes(lua_State* L) {
   const SystemHandle& sim = check<SystemHandle>(L, 1);
   const auto& bodies = sim.system.bodies();
-  struct Row {
-    double volume, ref_volume, ref_volume_initial, area, shape, ref_shape;
-    Vec3 centre;
-  };
-  std::vector<Row> rows(bodies.size());
+  std::vector<Record> rows;
   std::vector<Vec3> x;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const MeshBody& body = bodies[b];
     x.resize(body.n_vertices());
     sim.system.body_vertices(int(b), x.data());
-    Row& r = rows[b];
-    r.volume = mesh_volume(*body.topology, x.data());
-    r.area = mesh_area(*body.topology, x.data());
-    r.ref_volume = body.ref_volume;
-    r.ref_volume_initial = body.ref_volume_initial;
-    r.shape = shape_parameter(r.area, r.volume);
-    r.centre = vertex_centroid(body.n_vertices(), x.data());
+    const double volume = mesh_volume(*body.topology, x.data());
+    const double area = mesh_area(*body.topology, x.data());
     double ref_area = 0.0;
     for (double a : body.ref_area) ref_area += a;
-    r.ref_shape = shape_parameter(ref_area, body.ref_volume);
+    rows.push_back({{"volume", volume},
+                    {"ref_volume", body.ref_volume},
+                    {"ref_volume_initial", body.ref_volume_initial},
+                    {"area", area},
+                    {"shape_parameter", shape_parameter(area, volume)},
+                    {"ref_shape_parameter", shape_parameter(ref_area, body.ref_volume)},
+                    {"centre", vertex_centroid(body.n_vertices(), x.data())}});
   }
-  return push_results(L, 1, [&rows](lua_State* S) noexcept {
-    lua_createtable(S, int(rows.size()), 0);
-    for (std::size_t b = 0; b < rows.size(); ++b) {
-      lua_createtable(S, 0, 7);
-      set_number(S, "volume", rows[b].volume);
-      set_number(S, "ref_volume", rows[b].ref_volume);
-      set_number(S, "ref_volume_initial", rows[b].ref_volume_initial);
-      set_number(S, "area", rows[b].area);
-      set_number(S, "shape_parameter", rows[b].shape);
-      set_number(S, "ref_shape_parameter", rows[b].ref_shape);
-      push_vec3(S, rows[b].centre);
-      lua_setfield(S, -2, "centre");
-      lua_rawseti(S, -2, lua_Integer(b + 1));
-    }
-    return 1;
-  });
+  return push_records(L, rows);
 }
 
 // sys:set_velocities{group = g, kT = x}: Maxwell-Boltzmann velocities (stream kVelocity,
@@ -382,15 +356,9 @@ int l_compute(lua_State* L) {
     sim.changed();  // site forces left as they are: a Dynamics re-prepares
     throw;
   }
-  return push_results(L, 1, [&](lua_State* S) noexcept {
-    lua_createtable(S, 0, static_cast<int>(e.names.size()) + 2);
-    set_number(S, "total", e.total.energy);
-    push_vec3(S, e.total.virial);
-    lua_setfield(S, -2, "virial");
-    for (std::size_t k = 0; k < e.names.size(); ++k)
-      set_number(S, e.names[k].c_str(), e.energies[k]);
-    return 1;
-  });
+  Record record{{"total", e.total.energy}, {"virial", e.total.virial}};
+  for (std::size_t k = 0; k < e.names.size(); ++k) record.push_back({e.names[k], e.energies[k]});
+  return push_record(L, record);
 }
 
 const luaL_Reg kMethods[] = {

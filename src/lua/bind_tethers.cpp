@@ -85,20 +85,6 @@ int l_heterogeneity(lua_State* L) {
   return 0;
 }
 
-// t:K() -> stiffness; t:set_K(k)
-int l_K(lua_State* L) {
-  lua_pushnumber(L, check<Tethers>(L, 1).force->stiffness());
-  return 1;
-}
-
-int l_set_K(lua_State* L) {
-  Tethers& t = check<Tethers>(L, 1);
-  const double k = arg_number(L, 2);
-  engine_call("set_K", [&] { t.force->set_stiffness(k); });
-  if (auto sim = t.owner.lock()) sim->changed();
-  return 0;
-}
-
 // t:list() -> {{i =, j =, rest_length =, length =}, ...} in tether order: the two adipocytes
 // (1-based, as in sys:adipocytes()), l_ij0 and the current centre separation R_ij (minimum
 // image) in the System the tethers act on.
@@ -109,17 +95,13 @@ int l_list(lua_State* L) {
   const std::vector<Vec3> c =
       engine_call("list", [&] { return TetherForce::body_centres(sim.system); });
   const Box& box = sim.system.box();
-  return push_results(L, 1, [&](lua_State* S) noexcept {
-    push_list(S, tethers.size(), [&](std::size_t k) {
-      const Tether& e = tethers[k];
-      lua_createtable(S, 0, 4);
-      set_integer(S, "i", e.a + 1);
-      set_integer(S, "j", e.b + 1);
-      set_number(S, "rest_length", e.rest_length);
-      set_number(S, "length", box.minimum_image(c[e.a] - c[e.b]).norm());
-    });
-    return 1;
-  });
+  std::vector<Record> rows;
+  for (const Tether& e : tethers)
+    rows.push_back({{"i", e.a + 1},
+                    {"j", e.b + 1},
+                    {"rest_length", e.rest_length},
+                    {"length", box.minimum_image(c[e.a] - c[e.b]).norm()}});
+  return push_records(L, rows);
 }
 
 }  // namespace
@@ -128,7 +110,13 @@ void open_tethers(lua_State* L) {
   define_type<Tethers>(
       L, {INVASIM_LUA_FN(connect), INVASIM_LUA_FN(heterogeneity),
           getter<Tethers, [](const Tethers& t) { return t.force->tethers().size(); }>("count"),
-          INVASIM_LUA_FN(K), INVASIM_LUA_FN(set_K), INVASIM_LUA_FN(list)});
+          getter<Tethers, [](const Tethers& t) { return t.force->stiffness(); }>("K"),
+          method<"set_K",
+                 [](Tethers& t, double k) {
+                   t.force->set_stiffness(k);
+                   if (auto sim = t.owner.lock()) sim->changed();
+                 }>(),
+          INVASIM_LUA_FN(list)});
   set_constructor(L, "Tethers", &lua_wrap<&l_new>, tether_fields().infos());
   set_method_keys(L, "Tethers", "connect", connect_fields().infos());
 }

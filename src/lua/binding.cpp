@@ -30,6 +30,74 @@ void push_value(lua_State* L, const std::string& v) {
   });
 }
 
+namespace {
+
+// Pushes one record value (inside a protected_call block).
+void push_record_value(lua_State* S, const RecordValue& value) noexcept;
+
+void push_record_table(lua_State* S, const Record& record) noexcept {
+  lua_createtable(S, 0, static_cast<int>(record.size()));
+  for (const RecordEntry& e : record) {
+    push_record_value(S, e.value);
+    lua_setfield(S, -2, e.key.c_str());
+  }
+}
+
+void push_record_value(lua_State* S, const RecordValue& value) noexcept {
+  std::visit(
+      [S](const auto& x) {
+        using V = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<V, double>)
+          lua_pushnumber(S, x);
+        else if constexpr (std::is_same_v<V, long long>)
+          lua_pushinteger(S, x);
+        else if constexpr (std::is_same_v<V, bool>)
+          lua_pushboolean(S, x);
+        else if constexpr (std::is_same_v<V, std::string>)
+          lua_pushlstring(S, x.data(), x.size());
+        else if constexpr (std::is_same_v<V, std::vector<double>>)
+          push_list(S, x.size(), [&](std::size_t k) { lua_pushnumber(S, x[k]); });
+        else if constexpr (std::is_same_v<V, std::vector<bool>>)
+          push_list(S, x.size(), [&](std::size_t k) { lua_pushboolean(S, x[k]); });
+        else if constexpr (std::is_same_v<V, std::vector<std::string>>)
+          push_list(S, x.size(),
+                    [&](std::size_t k) { lua_pushlstring(S, x[k].data(), x[k].size()); });
+        else if constexpr (std::is_same_v<V, Vec3>)
+          push_list(S, 3, [&](std::size_t k) { lua_pushnumber(S, x[int(k)]); });
+        else if constexpr (std::is_same_v<V, Record>)
+          push_record_table(S, x);
+        else
+          push_list(S, x.size(), [&](std::size_t k) { push_record_table(S, x[k]); });
+      },
+      value.v);
+}
+
+}  // namespace
+
+int push_record(lua_State* L, const Record& record) {
+  return push_results(L, 1, [&record](lua_State* S) noexcept {
+    push_record_table(S, record);
+    return 1;
+  });
+}
+
+int push_records(lua_State* L, const std::vector<Record>& records) {
+  return push_results(L, 1, [&records](lua_State* S) noexcept {
+    push_list(S, records.size(), [&](std::size_t k) { push_record_table(S, records[k]); });
+    return 1;
+  });
+}
+
+int kw_function(Kwargs& kw, std::string_view key) {
+  lua_State* L = kw.state();
+  const int type = kw.push(key);
+  if (type == LUA_TFUNCTION) return lua_gettop(L);
+  if (type != LUA_TNIL)
+    fail_input(kw.owner(), ": key '", key, "' must be a function, got ", type_name_at(L, -1));
+  lua_pop(L, 1);
+  return 0;
+}
+
 void push_where(lua_State* L) {
   lua_Debug ar;
   for (int level = 1; lua_getstack(L, level, &ar); ++level) {

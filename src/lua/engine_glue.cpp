@@ -82,31 +82,24 @@ void push_force(lua_State* L, const ForceHandle& handle) {
   std::visit([L](const auto& h) { push(L, h); }, handle);
 }
 
-// Sets field "fire_state" of the table on top of S to {dt, alpha, n_positive, steps,
-// wall_velocity}.
-void set_fire_state(lua_State* S, const FireState& st) noexcept {
-  lua_createtable(S, 0, 5);
-  set_number(S, "dt", st.dt);
-  set_number(S, "alpha", st.alpha);
-  set_integer(S, "n_positive", st.n_positive);
-  set_integer(S, "steps", static_cast<long long>(st.steps));
-  set_number(S, "wall_velocity", st.wall_velocity);
-  lua_setfield(S, -2, "fire_state");
+Record fire_state_record(const FireState& st) {
+  return {{"dt", st.dt},
+          {"alpha", st.alpha},
+          {"n_positive", st.n_positive},
+          {"steps", st.steps},
+          {"wall_velocity", st.wall_velocity}};
 }
 
 void push_fire_result(lua_State* L, const FireResult& r) {
-  protected_call(L, 0, 1, [&r](lua_State* S) noexcept {
-    lua_createtable(S, 0, 6);
-    set_boolean(S, "converged", r.converged);
-    set_integer(S, "steps", static_cast<long long>(r.steps));
-    set_number(S, "max_force", r.max_force);
-    set_number(S, "energy", r.energy);
-    if (r.stopped) {
-      set_boolean(S, "stopped", true);
-      set_fire_state(S, r.state);
-    }
-    return 1;
-  });
+  Record record{{"converged", r.converged},
+                {"steps", r.steps},
+                {"max_force", r.max_force},
+                {"energy", r.energy}};
+  if (r.stopped) {
+    record.push_back({"stopped", true});
+    record.push_back({"fire_state", fire_state_record(r.state)});
+  }
+  push_record(L, record);
 }
 
 std::optional<FireState> read_fire_state(Kwargs& kw) {

@@ -27,13 +27,13 @@
 #include "integrate/fire.hpp"
 #include "integrate/lipolysis.hpp"
 #include "integrate/proliferation.hpp"
-#include "lua/binding.hpp"
-#include "lua/kwargs.hpp"
+#include "lua/adapters.hpp"
 #include "run/model.hpp"
 
 namespace invasim {
-class Progress;  // core/progress.hpp
-}
+class Progress;        // core/progress.hpp
+class SnapshotWriter;  // io/snapshot_writer.hpp
+}  // namespace invasim
 
 namespace invasim::lua {
 
@@ -101,22 +101,10 @@ INVASIM_LUA_TYPE(Fire, "Fire");
 INVASIM_LUA_TYPE(Ramp, "Ramp");
 INVASIM_LUA_TYPE(Lipolysis, "Lipolysis");
 INVASIM_LUA_TYPE(Proliferation, "Proliferation");
+INVASIM_LUA_TYPE(Progress, "Progress");
+INVASIM_LUA_TYPE(SnapshotWriter, "Snapshots");
 
 // --- helpers shared by the engine bindings (engine_glue.cpp) ---
-
-// Runs fn(); an InputError from the engine is rethrown with "owner: " in front (unless the
-// message already starts with it), so messages name the Lua call they came from.
-template <typename Fn>
-decltype(auto) engine_call(std::string_view owner, Fn&& fn) {
-  try {
-    return fn();
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    const std::string prefix = std::string(owner) + ": ";
-    if (what.rfind(prefix, 0) == 0) throw;
-    throw InputError(prefix + what);
-  }
-}
 
 // The Group of key `key` (required unless `required` is false: nullptr when absent).
 std::shared_ptr<Group> kw_group(Kwargs& kw, std::string_view key, bool required = true);
@@ -158,9 +146,6 @@ void push_integer_list(lua_State* L, const int* values, std::size_t n) noexcept;
 // Pushes the Lua object of a force handle (a new userdata sharing the handle).
 void push_force(lua_State* L, const ForceHandle& handle);
 
-// A Progress userdata at `index` (nullptr if the value is not one).
-Progress* test_progress(lua_State* L, int index);
-
 // Before stepping or minimising `sim` with `d` (bind_dynamics.cpp): checks that every method's
 // group belongs to sim, connects the pressure wall to its Walls (the given ones, else the
 // System's only Walls), and invalidates the Dynamics when the System changed since its last
@@ -175,9 +160,9 @@ extern const luaL_Reg kSystemMeasureMethods[];
 // (protected: may be called anywhere; a Lua error comes back as a C++ exception).
 void push_fire_result(lua_State* L, const FireResult& r);
 
-// Sets field "fire_state" = {dt, alpha, n_positive, steps, wall_velocity} of the table on top
-// of S (the state of a stopped minimisation, to continue it bit for bit).
-void set_fire_state(lua_State* S, const FireState& st) noexcept;
+// {dt, alpha, n_positive, steps, wall_velocity}: the state of a stopped minimisation, to
+// continue it bit for bit.
+Record fire_state_record(const FireState& st);
 
 // Key `fire_state` of kw (such a table), if present.
 std::optional<FireState> read_fire_state(Kwargs& kw);

@@ -47,7 +47,4 @@ class LuaFunctionOperation : public Operation {
   std::string name_;
 };
 
-// The writer of a Snapshots userdata at `index`, or nullptr (bind_io.cpp).
-std::shared_ptr<SnapshotWriter> shared_snapshots(lua_State* L, int index);
-
 }  // namespace invasim::lua
