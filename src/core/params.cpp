@@ -163,18 +163,6 @@ std::string default_violation(const Param& p) {
   return cat("must be ", allowed_text(p), "; its default is ", quoted(p.default_value));
 }
 
-void check_declaration(const Param& p) {
-  const bool numeric = p.type == ParamType::kNumber || p.type == ParamType::kInteger;
-  if (p.range && !numeric)
-    fail_input("params: parameter '", p.name, "' is a ", type_name(p.type),
-               ": a range applies to number and integer parameters only");
-  if (!p.choices.empty() && p.type != ParamType::kString)
-    fail_input("params: parameter '", p.name, "' is a ", type_name(p.type),
-               ": choices apply to string parameters only");
-  if (const std::string why = default_violation(p); !why.empty())
-    fail_input("params: parameter '", p.name, "' ", why);
-}
-
 Override parse_override(const std::string& argument) {
   const auto eq = argument.find('=');
   if (eq == std::string::npos) fail_input("--set expects key=value, got '", argument, "'");

@@ -60,10 +60,6 @@ std::string value_violation(const Param& p, const ParamValue& value);
 // Why p's default is not allowed ("must be in (0, inf); its default is 0"), or "".
 std::string default_violation(const Param& p);
 
-// Checks a declaration: a range only on a number or integer, choices only on a string, and the
-// default inside them. Throws "params: parameter 'dt' must be in (0, inf); its default is 0".
-void check_declaration(const Param& p);
-
 // Splits "key=value" from the command line; throws InputError if there is no '=' or no key.
 Override parse_override(const std::string& argument);
 

@@ -56,6 +56,9 @@ void push_value(lua_State* L, const std::vector<V>& v) {
     return 1;
   });
 }
+inline void push_value(lua_State* L, const std::vector<std::string>& v) {
+  push_string_list(L, v);
+}
 template <typename V>
 void push_value(lua_State* L, const std::optional<V>& v) {
   if (v)

@@ -32,31 +32,17 @@ namespace invasim::lua {
 CheckpointParts read_checkpoint_parts(Kwargs& kw, bool need_system) {
   lua_State* L = kw.state();
   CheckpointParts p;
-  // The stack index of kw[key] (0 if nil); `is_type` checks its type tag, `wanted` names it.
-  auto object = [&](const char* key, bool (*is_type)(lua_State*, int), const char* wanted) -> int {
-    const int type = kw.push(key);
-    if (type == LUA_TNIL) {
-      lua_pop(L, 1);
-      return 0;
-    }
-    if (is_type && !is_type(L, -1))
-      fail_input(kw.owner(), ": key '", key, "' must be a ", wanted, ", got ", type_name_at(L, -1));
-    return lua_gettop(L);
-  };
   if (need_system) {
-    const int s = object("system", &is<SystemHandle>, "System");
-    if (!s) fail_input(kw.owner(), ": missing required key 'system' (a System)");
-    p.sim = check_shared<SystemHandle>(L, s);
-    if (const int d = object("dynamics", &is<DynamicsHandle>, "Dynamics"))
-      p.dyn = check_shared<DynamicsHandle>(L, d);
+    p.sim = kw_object<SystemHandle>(kw, "system", true);
+    p.dyn = kw_object<DynamicsHandle>(kw, "dynamics");
   }
-  if (const int t = object("tethers", &is<Tethers>, "Tethers"))
-    p.tethers = check_shared<Tethers>(L, t);
-  if (const int c = object("correlator", nullptr, "Correlator")) {
-    p.correlator = shared_correlator(L, c);
+  p.tethers = kw_object<Tethers>(kw, "tethers");
+  if (kw.push("correlator") != LUA_TNIL) {
+    p.correlator = shared_correlator(L, -1);
     if (!p.correlator)
-      fail_input(kw.owner(), ": key 'correlator' must be a Correlator, got ", type_name_at(L, c));
+      fail_input(kw.owner(), ": key 'correlator' must be a Correlator, got ", type_name_at(L, -1));
   }
+  lua_pop(L, 1);
   return p;
 }
 
@@ -173,17 +159,6 @@ int l_decode_state(lua_State* L) {
   });
 }
 
-int l_interrupted(lua_State* L) {
-  const int signal = stop_requested();
-  return push_results(L, 1, [signal](lua_State* S) noexcept {
-    if (signal)
-      lua_pushstring(S, stop_signal_name(signal));
-    else
-      lua_pushnil(S);
-    return 1;
-  });
-}
-
 }  // namespace
 
 void open_checkpoint(lua_State* L) {
@@ -193,7 +168,10 @@ void open_checkpoint(lua_State* L) {
                     INVASIM_LUA_FN(load),  // invasim.load(path, {...}): the same, shorter
                     INVASIM_LUA_FN(checkpoint_run),
                     INVASIM_LUA_FN(decode_state),
-                    INVASIM_LUA_FN(interrupted)});
+                    method<"interrupted", []() -> std::optional<std::string> {
+                      if (const int signal = stop_requested()) return stop_signal_name(signal);
+                      return std::nullopt;
+                    }>()});
 }
 
 }  // namespace invasim::lua

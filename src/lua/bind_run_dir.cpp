@@ -14,7 +14,6 @@
 #include "core/fnv1a.hpp"
 #include "io/atomic_file.hpp"
 #include "io/run_lock.hpp"
-#include "lua/binding.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
 
@@ -37,36 +36,19 @@ int l_lock_run_dir(lua_State* L) {
   });
 }
 
-int l_record_run_lock(lua_State* L) {
-  const std::string dir = arg_string(L, 1);
-  engine_call("record_run_lock", [&] { record_run_lock_holder(dir); });
-  return 0;
-}
-
-int l_hash_file(lua_State* L) {
-  const std::string path = arg_string(L, 1);
-  const std::string hex = engine_call("hash_file", [&] { return fnv1a64_hex(read_file(path)); });
-  return push_results(L, 1, [&hex](lua_State* S) noexcept {
-    lua_pushlstring(S, hex.data(), hex.size());
-    return 1;
-  });
-}
-
-int l_remove_temporaries(lua_State* L) {
-  const std::string dir = arg_string(L, 1);
-  std::vector<std::string> removed;
-  engine_call("remove_temporaries", [&] {
-    for (const auto& path : remove_atomic_temporaries(dir)) removed.push_back(path.string());
-  });
-  push_string_list(L, removed);
-  return 1;
-}
-
 }  // namespace
 
 void open_run_dir(lua_State* L) {
-  add_functions(L, {INVASIM_LUA_FN(lock_run_dir), INVASIM_LUA_FN(record_run_lock),
-                    INVASIM_LUA_FN(hash_file), INVASIM_LUA_FN(remove_temporaries)});
+  add_functions(
+      L, {INVASIM_LUA_FN(lock_run_dir),
+          method<"record_run_lock", [](std::string dir) { record_run_lock_holder(dir); }>(),
+          method<"hash_file", [](std::string path) { return fnv1a64_hex(read_file(path)); }>(),
+          method<"remove_temporaries", [](std::string dir) {
+            std::vector<std::string> removed;
+            for (const auto& path : remove_atomic_temporaries(dir))
+              removed.push_back(path.string());
+            return removed;
+          }>()});
 }
 
 }  // namespace invasim::lua

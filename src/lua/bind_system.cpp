@@ -39,23 +39,15 @@ const FieldTable<SystemKeys>& system_fields() {
   using P = SystemKeys;
   static const FieldTable<P> table("System", [] {
     Field<P> box;
-    box.info = {"box",
-                "list of 3 numbers",
-                std::nullopt,
-                shown_range(Range::positive(), false),
-                {},
-                "sigma",
-                "box side lengths (the box spans [0, L] in each axis)"};
+    box.info = field_declaration("box", {"table"}, shown_range(Range::positive(), false), "sigma",
+                                 "box side lengths (the box spans [0, L] in each axis)");
+    box.info.list_form = "list of 3 numbers";
     box.info.required = true;
     box.read = [](Kwargs& kw, P& p, bool) { p.box = kw.number_list("box", 3, Range::positive()); };
     Field<P> periodic;
-    periodic.info = {"periodic",
-                     "list of 3 booleans",
-                     std::nullopt,
-                     std::nullopt,
-                     {},
-                     "",
-                     "periodic axes (default: walls in x, periodic in y and z)"};
+    periodic.info = field_declaration("periodic", {"table"}, std::nullopt, "",
+                                      "periodic axes (default: walls in x, periodic in y and z)");
+    periodic.info.list_form = "list of 3 booleans";
     periodic.read = [](Kwargs& kw, P& p, bool) {
       if (auto v = kw.maybe_boolean_list("periodic", 3)) p.periodic = *v;
     };

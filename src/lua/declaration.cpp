@@ -164,8 +164,7 @@ void check_default(lua_State* L, int value, Declaration& d, const std::string& o
 void check_rules(const Declaration& d, const std::string& owner, bool parameter) {
   const auto has = [&d](const char* t) { return d.types.empty() || contains(d.types, t); };
   const char* noun = parameter ? "parameters" : "keys";
-  std::string types;
-  for (const auto& t : d.types) types += (types.empty() ? "" : " or ") + t;
+  const std::string types = d.type_text();
   if (d.range && !has("number") && !has("integer"))
     fail_input(owner, " is a ", types, ": a range applies to number and integer ", noun, " only");
   if (!d.choices.empty() && !has("string"))
@@ -198,6 +197,13 @@ Param Declaration::to_param() const {
   p.range = range;
   p.choices = choices;
   return p;
+}
+
+std::string Declaration::type_text() const {
+  if (!list_form.empty()) return list_form;
+  std::string out;
+  for (const auto& t : types) out += (out.empty() ? "" : " or ") + t;
+  return out;
 }
 
 std::string expected_text(const std::vector<std::string>& types) {

@@ -27,6 +27,8 @@ enum class DeclarationUse { kParameter, kKeyword };
 inline constexpr const char* kDeclarationForm =
     "write name = default or name = {default, unit = ..., help = ...}";
 
+// One declared key: a protocol parameter, a stage keyword, or a key of an engine type's keyword
+// table (a Field of lua/fields.hpp, whose default is the engine struct's own).
 struct Declaration {
   std::string name;
   std::vector<std::string> types;           // alternatives; empty: any value
@@ -37,9 +39,16 @@ struct Declaration {
   std::string unit;
   std::string help;
   bool required = false;
+  // Engine fields only: part of the object's state (params(), describe, set{}) rather than a
+  // construction option such as `group`; and the list form shown instead of the type ("list
+  // of 3 numbers").
+  bool state = true;
+  std::string list_form;
 
   // As a protocol parameter (for a kParameter declaration: one plain type and a default).
   Param to_param() const;
+  // The type as listings and messages show it: "number", "number or Ramp", "list of 3 numbers".
+  std::string type_text() const;
 };
 
 // Reads the declaration of `name` at `index`. `owner` prefixes every message ("params:

@@ -16,8 +16,8 @@ template <typename P, typename Value, typename RampSlot>
 Field<P> number_or_ramp(std::string name, Value value, RampSlot ramp, Range range, std::string unit,
                         std::string help) {
   Field<P> f;
-  f.info = {name, "number or Ramp", std::nullopt,   shown_range(range, false),
-            {},   std::move(unit),  std::move(help)};
+  f.info = field_declaration(name, {"number", "Ramp"}, shown_range(range, false), std::move(unit),
+                             std::move(help));
   f.read = [name, value, ramp, range](Kwargs& kw, P& p, bool required) {
     if (!required && !kw.has(name)) return;
     const NumberOrRamp v = kw_number_or_ramp(kw, name, range);
@@ -34,7 +34,7 @@ Field<P> number_or_ramp(std::string name, Value value, RampSlot ramp, Range rang
 template <typename P>
 Field<P> group_field(std::shared_ptr<Group> P::*slot, std::string help) {
   Field<P> f;
-  f.info = {"group", "Group", std::nullopt, std::nullopt, {}, "", std::move(help)};
+  f.info = field_declaration("group", {"Group"}, std::nullopt, "", std::move(help));
   f.info.required = true;
   f.info.state = false;
   f.read = [slot](Kwargs& kw, P& p, bool required) {

@@ -17,8 +17,8 @@ std::string text_of(const ParamValue& value) {
   return format_value(value);
 }
 
-std::map<std::string, std::vector<FieldInfo>>& registry() {
-  static std::map<std::string, std::vector<FieldInfo>> tables;
+std::map<std::string, std::vector<Declaration>>& registry() {
+  static std::map<std::string, std::vector<Declaration>> tables;
   return tables;
 }
 
@@ -68,7 +68,7 @@ void make_read_only(lua_State* S, const char* name) noexcept {
 }
 
 // The allowed values as text: "(0, inf)", "{isotropic, yz}", or "".
-std::string allowed_text(const FieldInfo& f) {
+std::string allowed_text(const Declaration& f) {
   if (f.range) return f.range->notation();
   if (!f.choices.empty()) return cat("{", join_names(f.choices), "}");
   return "";
@@ -115,30 +115,37 @@ void push_values(lua_State* L, const std::vector<std::pair<std::string, ParamVal
 
 namespace {
 
-// The allowed ranges in interval notation ("" for none), computed before any Lua call.
-std::vector<std::string> range_texts(const std::vector<FieldInfo>& infos) {
-  std::vector<std::string> out;
-  for (const auto& f : infos) out.push_back(f.range ? f.range->notation() : "");
+// The texts of the fields list, computed before any Lua call: each key's type ("number or
+// Ramp") and allowed range in interval notation ("" for none).
+struct ListTexts {
+  std::vector<std::string> types, ranges;
+};
+ListTexts list_texts(const std::vector<Declaration>& infos) {
+  ListTexts out;
+  for (const auto& f : infos) {
+    out.types.push_back(f.type_text());
+    out.ranges.push_back(f.range ? f.range->notation() : "");
+  }
   return out;
 }
 
 // Pushes the fields list (inside a protected call).
-void push_field_list_raw(lua_State* S, const std::vector<FieldInfo>& infos,
-                         const std::vector<std::string>& allowed) noexcept {
+void push_field_list_raw(lua_State* S, const std::vector<Declaration>& infos,
+                         const ListTexts& texts) noexcept {
   lua_createtable(S, static_cast<int>(infos.size()), 0);
   for (std::size_t k = 0; k < infos.size(); ++k) {
-    const FieldInfo& f = infos[k];
+    const Declaration& f = infos[k];
     lua_createtable(S, 0, 8);
     lua_pushstring(S, f.name.c_str());
     lua_setfield(S, -2, "name");
-    lua_pushstring(S, f.type.c_str());
+    lua_pushstring(S, texts.types[k].c_str());
     lua_setfield(S, -2, "type");
     if (f.default_value) {
       push_param_value(S, *f.default_value);
       lua_setfield(S, -2, "default");
     }
-    if (!allowed[k].empty()) {
-      lua_pushstring(S, allowed[k].c_str());
+    if (!texts.ranges[k].empty()) {
+      lua_pushstring(S, texts.ranges[k].c_str());
       lua_setfield(S, -2, "range");
     }
     if (!f.choices.empty()) {
@@ -159,7 +166,7 @@ void push_field_list_raw(lua_State* S, const std::vector<FieldInfo>& infos,
 }
 
 // Pushes the read-only defaults table named `name` (inside a protected call).
-void push_defaults_raw(lua_State* S, const std::vector<FieldInfo>& infos,
+void push_defaults_raw(lua_State* S, const std::vector<Declaration>& infos,
                        const std::string& name) noexcept {
   lua_createtable(S, 0, static_cast<int>(infos.size()));
   for (const auto& f : infos) {
@@ -171,27 +178,26 @@ void push_defaults_raw(lua_State* S, const std::vector<FieldInfo>& infos,
 }
 
 // Pushes {defaults =, fields =} (inside a protected call).
-void push_key_table_raw(lua_State* S, const std::vector<FieldInfo>& infos,
-                        const std::vector<std::string>& allowed,
+void push_key_table_raw(lua_State* S, const std::vector<Declaration>& infos, const ListTexts& texts,
                         const std::string& defaults_name) noexcept {
   lua_createtable(S, 0, 2);
   push_defaults_raw(S, infos, defaults_name);
   lua_setfield(S, -2, "defaults");
-  push_field_list_raw(S, infos, allowed);
+  push_field_list_raw(S, infos, texts);
   lua_setfield(S, -2, "fields");
 }
 
 }  // namespace
 
-void push_field_list(lua_State* L, const std::vector<FieldInfo>& infos) {
-  const std::vector<std::string> allowed = range_texts(infos);
-  protected_call(L, 0, 1, [&infos, &allowed](lua_State* S) noexcept {
-    push_field_list_raw(S, infos, allowed);
+void push_field_list(lua_State* L, const std::vector<Declaration>& infos) {
+  const ListTexts texts = list_texts(infos);
+  protected_call(L, 0, 1, [&infos, &texts](lua_State* S) noexcept {
+    push_field_list_raw(S, infos, texts);
     return 1;
   });
 }
 
-void push_defaults(lua_State* L, const std::vector<FieldInfo>& infos, const std::string& name) {
+void push_defaults(lua_State* L, const std::vector<Declaration>& infos, const std::string& name) {
   protected_call(L, 0, 1, [&infos, &name](lua_State* S) noexcept {
     push_defaults_raw(S, infos, name);
     return 1;
@@ -199,13 +205,13 @@ void push_defaults(lua_State* L, const std::vector<FieldInfo>& infos, const std:
 }
 
 void set_constructor(lua_State* L, const char* name, lua_CFunction constructor,
-                     const std::vector<FieldInfo>& infos) {
+                     const std::vector<Declaration>& infos) {
   registry()[name] = infos;
   const std::string defaults_name = cat("invasim.", name, ".defaults");
-  const std::vector<std::string> allowed = range_texts(infos);
+  const ListTexts texts = list_texts(infos);
   lua_pushvalue(L, -1);  // the module table, argument 1 of the block
   protected_call(L, 1, 0, [&](lua_State* S) noexcept {
-    push_key_table_raw(S, infos, allowed, defaults_name);
+    push_key_table_raw(S, infos, texts, defaults_name);
     lua_createtable(S, 0, 1);
     lua_pushcfunction(S, constructor);
     lua_pushcclosure(S, &call_constructor, 1);
@@ -217,14 +223,14 @@ void set_constructor(lua_State* L, const char* name, lua_CFunction constructor,
 }
 
 void set_method_keys(lua_State* L, const char* type, const char* method,
-                     const std::vector<FieldInfo>& infos) {
+                     const std::vector<Declaration>& infos) {
   registry()[cat(type, ":", method)] = infos;
   const std::string defaults_name = cat("invasim.", type, ".", method, ".defaults");
-  const std::vector<std::string> allowed = range_texts(infos);
+  const ListTexts texts = list_texts(infos);
   lua_pushvalue(L, -1);  // the module table, argument 1 of the block
   protected_call(L, 1, 0, [&](lua_State* S) noexcept {
     lua_getfield(S, 1, type);
-    push_key_table_raw(S, infos, allowed, defaults_name);
+    push_key_table_raw(S, infos, texts, defaults_name);
     lua_setfield(S, -2, method);
     return 0;
   });
@@ -240,11 +246,11 @@ void set_static_function(lua_State* L, const char* type, const char* name, lua_C
   });
 }
 
-const std::map<std::string, std::vector<FieldInfo>>& registered_field_tables() {
+const std::map<std::string, std::vector<Declaration>>& registered_field_tables() {
   return registry();
 }
 
-std::string format_field_table(const std::vector<FieldInfo>& infos) {
+std::string format_field_table(const std::vector<Declaration>& infos) {
   std::vector<std::vector<std::string>> rows = {
       {"key", "type", "default", "allowed", "unit", "meaning"}};
   for (const auto& f : infos) {
@@ -254,7 +260,7 @@ std::string format_field_table(const std::vector<FieldInfo>& infos) {
                 ? cat('"', format_value(*f.default_value), '"')
                 : format_value(*f.default_value);
     const std::string allowed = allowed_text(f);
-    rows.push_back({f.name, f.type, def, allowed.empty() ? "-" : allowed,
+    rows.push_back({f.name, f.type_text(), def, allowed.empty() ? "-" : allowed,
                     f.unit.empty() ? "-" : f.unit, f.help});
   }
   return aligned_table(rows);

@@ -23,28 +23,29 @@
 
 #include "core/params.hpp"
 #include "core/range.hpp"
+#include "lua/declaration.hpp"
 #include "lua/kwargs.hpp"
 
 namespace invasim::lua {
 
-// The facts about one key: shown by `invasim.X.fields`, the listings and the messages.
-struct FieldInfo {
-  std::string name;
-  std::string type;  // "number", "integer", "boolean", "string", "number or Ramp", "Group"
-  std::optional<ParamValue> default_value;  // nullopt: required, or no plain default
-  std::optional<Range> range;
-  std::vector<std::string> choices;
-  std::string unit;
-  std::string help;
-  bool required = false;
-  bool state = true;  // part of the object's state (params(), describe, set{}), not only a
-                      // construction option such as `group` or `randomize`
-};
+// An engine field's declaration (lua/declaration.hpp): type, range, choices, unit, help.
+inline Declaration field_declaration(std::string name, std::vector<std::string> types,
+                                     std::optional<Range> range, std::string unit, std::string help,
+                                     std::vector<std::string> choices = {}) {
+  Declaration d;
+  d.name = std::move(name);
+  d.types = std::move(types);
+  d.range = std::move(range);
+  d.choices = std::move(choices);
+  d.unit = std::move(unit);
+  d.help = std::move(help);
+  return d;
+}
 
 // One key of P: its facts, how to read it from a keyword table into a P, and its value in a P.
 template <typename P>
 struct Field {
-  FieldInfo info;
+  Declaration info;
   // Reads the key into p. Absent: an error when `required`, else p keeps its value.
   std::function<void(Kwargs&, P&, bool required)> read;
   // The value in p, when it is a plain value (nullopt for a Group).
@@ -70,14 +71,17 @@ class FieldTable {
   FieldTable(std::string type, std::vector<Field<P>> fields, P defaults = P{})
       : type_(std::move(type)), fields_(std::move(fields)), defaults_(std::move(defaults)) {
     for (auto& f : fields_)
-      if (!f.info.required && f.value) f.info.default_value = f.value(defaults_);
+      if (!f.info.required && f.value) {
+        f.info.default_value = f.value(defaults_);
+        f.info.has_default = f.info.default_value.has_value();
+      }
   }
 
   const std::string& type() const { return type_; }
   const P& defaults() const { return defaults_; }
   const std::vector<Field<P>>& fields() const { return fields_; }
-  std::vector<FieldInfo> infos() const {
-    std::vector<FieldInfo> out;
+  std::vector<Declaration> infos() const {
+    std::vector<Declaration> out;
     for (const auto& f : fields_) out.push_back(f.info);
     return out;
   }
@@ -137,8 +141,8 @@ template <typename P, typename Access>
 Field<P> number(std::string name, Access access, Range range, std::string unit, std::string help,
                 bool allow_infinity = false) {
   Field<P> f;
-  f.info = {name, "number",        std::nullopt,   shown_range(range, allow_infinity),
-            {},   std::move(unit), std::move(help)};
+  f.info = field_declaration(name, {"number"}, shown_range(range, allow_infinity), std::move(unit),
+                             std::move(help));
   f.read = [name, access, range, allow_infinity](Kwargs& kw, P& p, bool required) {
     double& slot = std::invoke(access, p);
     if (allow_infinity && kw.is_infinity(name)) {
@@ -158,8 +162,8 @@ template <typename P, typename Access>
 Field<P> integer(std::string name, Access access, Range range, std::string unit, std::string help) {
   using T = FieldRef<P, Access>;
   Field<P> f;
-  f.info = {name, "integer",       std::nullopt,   shown_range(range, false),
-            {},   std::move(unit), std::move(help)};
+  f.info = field_declaration(name, {"integer"}, shown_range(range, false), std::move(unit),
+                             std::move(help));
   f.read = [name, access, range](Kwargs& kw, P& p, bool required) {
     T& slot = std::invoke(access, p);
     slot = required ? kw.integer<T>(name, range) : kw.integer<T>(name, slot, range);
@@ -173,7 +177,7 @@ Field<P> integer(std::string name, Access access, Range range, std::string unit,
 template <typename P, typename Access>
 Field<P> boolean(std::string name, Access access, std::string help) {
   Field<P> f;
-  f.info = {name, "boolean", std::nullopt, std::nullopt, {}, "", std::move(help)};
+  f.info = field_declaration(name, {"boolean"}, std::nullopt, "", std::move(help));
   f.read = [name, access](Kwargs& kw, P& p, bool required) {
     bool& slot = std::invoke(access, p);
     slot = required ? kw.boolean(name) : kw.boolean(name, slot);
@@ -187,7 +191,7 @@ Field<P> boolean(std::string name, Access access, std::string help) {
 template <typename P, typename Access>
 Field<P> string(std::string name, Access access, std::string unit, std::string help) {
   Field<P> f;
-  f.info = {name, "string", std::nullopt, std::nullopt, {}, std::move(unit), std::move(help)};
+  f.info = field_declaration(name, {"string"}, std::nullopt, std::move(unit), std::move(help));
   f.read = [name, access](Kwargs& kw, P& p, bool required) {
     std::string& slot = std::invoke(access, p);
     slot = required ? kw.string(name) : kw.string(name, slot);
@@ -206,7 +210,7 @@ Field<P> choice(std::string name, Access access,
   Field<P> f;
   std::vector<std::string> choices;
   for (const auto& [text, e] : names) choices.push_back(text);
-  f.info = {name, "string", std::nullopt, std::nullopt, choices, "", std::move(help)};
+  f.info = field_declaration(name, {"string"}, std::nullopt, "", std::move(help), choices);
   f.read = [name, access, names, choices](Kwargs& kw, P& p, bool required) {
     E& slot = std::invoke(access, p);
     std::optional<std::string> fallback;
@@ -242,19 +246,19 @@ Field<P> option(Field<P> f) {
 
 // Pushes the `invasim.X.fields` list ({{name =, type =, default =, range =, choices =, unit =,
 // help =, required =}, ...}) and the read-only `invasim.X.defaults` table.
-void push_field_list(lua_State* L, const std::vector<FieldInfo>& infos);
-void push_defaults(lua_State* L, const std::vector<FieldInfo>& infos, const std::string& name);
+void push_field_list(lua_State* L, const std::vector<Declaration>& infos);
+void push_defaults(lua_State* L, const std::vector<Declaration>& infos, const std::string& name);
 
 // Sets field `name` of the table on top of the stack to a callable table: calling it calls
 // `constructor` with the call's arguments; `.defaults` and `.fields` describe its keys.
 void set_constructor(lua_State* L, const char* name, lua_CFunction constructor,
-                     const std::vector<FieldInfo>& infos);
+                     const std::vector<Declaration>& infos);
 
 // Sets `invasim.<type>.<method>` to {defaults =, fields =}, describing the keyword table of a
 // method (dyn:pressure_wall{}, sys:compress{}); the table on top of the stack is `invasim`,
 // whose field `type` must already be a constructor table.
 void set_method_keys(lua_State* L, const char* type, const char* method,
-                     const std::vector<FieldInfo>& infos);
+                     const std::vector<Declaration>& infos);
 
 // Sets `invasim.<type>.<name>` to the function fn (invasim.Contacts.check); the table on top
 // of the stack is `invasim`, whose field `type` must already be a constructor table.
@@ -262,10 +266,10 @@ void set_static_function(lua_State* L, const char* type, const char* name, lua_C
 
 // The tables set_constructor and set_method_keys have published, by name ("Contacts",
 // "Dynamics:pressure_wall"): for `invasim keys` and the documentation.
-const std::map<std::string, std::vector<FieldInfo>>& registered_field_tables();
+const std::map<std::string, std::vector<Declaration>>& registered_field_tables();
 
 // The listing of a type's keys for documentation and `invasim fields`: one line per key (name,
 // type, default or "required", range or choices, unit, help).
-std::string format_field_table(const std::vector<FieldInfo>& infos);
+std::string format_field_table(const std::vector<Declaration>& infos);
 
 }  // namespace invasim::lua

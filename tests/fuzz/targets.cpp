@@ -259,12 +259,13 @@ bool foreign_exception(const std::string& message) {
   return false;
 }
 
-std::string datum_text(const lua::FieldInfo& f) {
-  if (f.type.find("list of 3") != std::string::npos)
-    return f.type.find("boolean") != std::string::npos ? "{[1]=true,[2]=false,[3]=true}"
-                                                       : "{[1]=8,[2]=8,[3]=8}";
-  if (f.type == "Group" || f.type.find("Group") != std::string::npos) return "\"@Group\"";
-  if (f.type == "System") return "\"@System\"";
+std::string datum_text(const lua::Declaration& f) {
+  const std::string type = f.type_text();
+  if (type.find("list of 3") != std::string::npos)
+    return type.find("boolean") != std::string::npos ? "{[1]=true,[2]=false,[3]=true}"
+                                                     : "{[1]=8,[2]=8,[3]=8}";
+  if (type.find("Group") != std::string::npos) return "\"@Group\"";
+  if (type == "System") return "\"@System\"";
   if (f.default_value) {
     const ParamValue& v = *f.default_value;
     if (const auto* s = std::get_if<std::string>(&v)) return "\"" + *s + "\"";
@@ -276,9 +277,9 @@ std::string datum_text(const lua::FieldInfo& f) {
     return format_value(v);
   }
   if (!f.choices.empty()) return "\"" + f.choices[0] + "\"";
-  if (f.type == "integer") return "1";
-  if (f.type == "boolean") return "true";
-  if (f.type == "string") return "\"x\"";
+  if (type == "integer") return "1";
+  if (type == "boolean") return "true";
+  if (type == "string") return "\"x\"";
   return "0x1p-1";
 }
 

@@ -11,6 +11,7 @@
 #include "core/params.hpp"
 #include "core/progress.hpp"
 #include "lua/binding.hpp"
+#include "lua/declaration.hpp"
 #include "lua/kwargs.hpp"
 #include "lua/lua_state.hpp"
 
@@ -23,6 +24,15 @@ namespace {
 void eval(lua_State* L, const std::string& expression) {
   const std::string code = "return " + expression;
   REQUIRE(luaL_dostring(L, code.c_str()) == LUA_OK);
+}
+
+// Reads the invasim.params entry `entry` (Lua source) of parameter `name` as invasim.params does.
+Param declare(lua_State* L, const std::string& name, const std::string& entry) {
+  eval(L, entry);
+  const Declaration d =
+      read_declaration(L, -1, "params: parameter '" + name + "'", name, DeclarationUse::kParameter);
+  lua_pop(L, 1);
+  return d.to_param();
 }
 
 // A small bound type for the binding tests.
@@ -391,16 +401,16 @@ TEST_CASE("parse_range reads interval notation", "[lua][params]") {
 }
 
 TEST_CASE("ranges and choices refuse overrides and defaults outside them", "[lua][params]") {
-  Param dt = declared("dt", ParamType::kNumber, 0.05, "tau", "time step");
-  dt.range = parse_range("dt", "(0, inf)");
-  Param every = declared("every", ParamType::kInteger, 1000LL, "", "sampling");
-  every.range = parse_range("every", "[1, inf)");
-  Param seed = declared("seed", ParamType::kInteger, 1LL, "", "seed");
-  seed.range = parse_range("seed", "[0, inf)");
-  Param system = declared("system", ParamType::kString, std::string("reduced"), "", "preset");
-  system.choices = {"reduced", "paper", "large"};
+  LuaState state;
+  lua_State* L = state.get();
+  const Param dt =
+      declare(L, "dt", R"lua({0.05, range = "(0, inf)", unit = "tau", help = "time step"})lua");
+  const Param every = declare(L, "every", R"lua({1000, range = "[1, inf)", help = "sampling"})lua");
+  const Param seed = declare(L, "seed", R"lua({1, range = "[0, inf)", help = "seed"})lua");
+  const Param system =
+      declare(L, "system",
+              R"lua({"reduced", choices = {"reduced", "paper", "large"}, help = "preset"})lua");
   std::vector<Param> params = {dt, every, seed, system};
-  for (const auto& p : params) CHECK_NOTHROW(check_declaration(p));
 
   SECTION("inside") {
     apply_overrides(params, {parse_override("dt=1e-3"), parse_override("every=1"),
@@ -427,27 +437,18 @@ TEST_CASE("ranges and choices refuse overrides and defaults outside them", "[lua
                       "reduced; got 'paer' (did you mean 'paper'?)");
   }
   SECTION("a default outside its own range") {
-    Param bad = dt;
-    bad.default_value = 0.0;
-    CHECK_THROWS_WITH(check_declaration(bad),
+    CHECK_THROWS_WITH(declare(L, "dt", R"lua({0.0, range = "(0, inf)"})lua"),
                       "params: parameter 'dt' must be in (0, inf); its default is 0");
-    Param bad_choice = system;
-    bad_choice.default_value = std::string("medium");
-    CHECK_THROWS_WITH(check_declaration(bad_choice),
-                      "params: parameter 'system' must be one of large, paper, reduced; its "
-                      "default is 'medium'");
+    CHECK_THROWS_WITH(
+        declare(L, "system", R"lua({"medium", choices = {"reduced", "paper", "large"}})lua"),
+        "params: parameter 'system' must be one of large, paper, reduced; its "
+        "default is 'medium'");
   }
   SECTION("a range on a string, choices on a number") {
-    Param s = system;
-    s.choices.clear();
-    s.range = parse_range("system", "[0, 1]");
-    CHECK_THROWS_WITH(check_declaration(s),
+    CHECK_THROWS_WITH(declare(L, "system", R"lua({"reduced", range = "[0, 1]"})lua"),
                       "params: parameter 'system' is a string: a range applies to number and "
                       "integer parameters only");
-    Param n = dt;
-    n.range.reset();
-    n.choices = {"a"};
-    CHECK_THROWS_WITH(check_declaration(n),
+    CHECK_THROWS_WITH(declare(L, "dt", R"lua({0.05, choices = {"a"}})lua"),
                       "params: parameter 'dt' is a number: choices apply to string parameters "
                       "only");
   }
