@@ -36,37 +36,22 @@ std::string LuaType<Lipolysis>::describe(const Lipolysis& l) {
   return lipolysis_fields().describe(l.params());
 }
 
-namespace {
-
-// lip:touched(sys) -> {true, false, ...}: whether a cancer cell touches each adipocyte now.
-int l_touched(lua_State* L) {
-  const Lipolysis& lip = check<Lipolysis>(L, 1);
-  const SystemHandle& sim = check<SystemHandle>(L, 2);
-  const std::vector<char> touched =
-      engine_call("Lipolysis:touched", [&] { return lip.touched(sim.system); });
-  return push_results(L, 1, [&touched](lua_State* S) noexcept {
-    push_list(S, touched.size(), [&](std::size_t b) { lua_pushboolean(S, touched[b] != 0); });
-    return 1;
-  });
-}
-
-// lip:apply(sys, elapsed) -> the number of adipocytes touched (and shrunk, above their floor).
-int l_apply(lua_State* L) {
-  const Lipolysis& lip = check<Lipolysis>(L, 1);
-  SystemHandle& sim = check<SystemHandle>(L, 2);
-  const double elapsed = arg_number(L, 3);
-  const int n = engine_call("Lipolysis:apply", [&] { return lip.apply(sim.system, elapsed); });
-  sim.changed();
-  lua_pushinteger(L, n);
-  return 1;
-}
-
-}  // namespace
-
 void open_lipolysis(lua_State* L) {
   define_params_type<Lipolysis, &lipolysis_fields, [](const Lipolysis& l) { return l.params(); },
                      [](const LipolysisParams& p) { return std::make_shared<Lipolysis>(p); }>(
-      L, {INVASIM_LUA_FN(touched), INVASIM_LUA_FN(apply)});
+      L, {// lip:touched(sys) -> {true, false, ...}: whether a cancer cell touches each adipocyte
+          method<"touched",
+                 [](const Lipolysis& lip, const SystemHandle& sim) {
+                   const std::vector<char> touched = lip.touched(sim.system);
+                   return std::vector<bool>(touched.begin(), touched.end());
+                 }>(),
+          // lip:apply(sys, elapsed) -> the number of adipocytes touched (and shrunk, above
+          // their floor)
+          method<"apply", [](const Lipolysis& lip, SystemHandle& sim, double elapsed) {
+            const int n = lip.apply(sim.system, elapsed);
+            sim.changed();
+            return n;
+          }>()});
 }
 
 }  // namespace invasim::lua

@@ -42,9 +42,9 @@ void open_proliferation(lua_State* L) {
   define_params_type<
       Proliferation, &proliferation_fields, [](const Proliferation& p) { return p.params(); },
       [](const ProliferationParams& p) { return std::make_shared<Proliferation>(p); }>(
-      L, {system_query<Proliferation, [](const Proliferation& p, const System& sys) {
-        return p.contacts(sys);
-      }>("contacts")});
+      L, {method<"contacts", [](const Proliferation& p, const SystemHandle& sim) {
+        return p.contacts(sim.system);
+      }>()});
 }
 
 }  // namespace invasim::lua

@@ -164,7 +164,8 @@ int l_place(lua_State* L) {
     lua_setfield(S, -2, "cells");
     lua_pushvalue(S, 2);
     lua_setfield(S, -2, "vertices");
-    set_integer(S, "adipocytes", n_bodies);
+    lua_pushinteger(S, n_bodies);
+    lua_setfield(S, -2, "adipocytes");
     return 1;
   });
   return 1;

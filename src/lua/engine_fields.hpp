@@ -66,14 +66,6 @@ std::vector<Field<P>> fire_fields(Access fire) {
 const FieldTable<FireParams>& fire_table();
 
 namespace detail {
-template <typename T, auto Query>
-int query_system(lua_State* L) {
-  const T& object = check<T>(L, 1);
-  const SystemHandle& sim = check<SystemHandle>(L, 2);
-  push_value(L, engine_call(LuaType<T>::name, [&] { return Query(object, sim.system); }));
-  return 1;
-}
-
 template <auto Table, auto Make>
 int construct_from_fields(lua_State* L) {
   Kwargs kw(L, 1, Table().type());
@@ -82,13 +74,6 @@ int construct_from_fields(lua_State* L) {
   return 1;
 }
 }  // namespace detail
-
-// obj:name(sys) -> Query(obj, the System of sys), pushed by push_value: a question an engine
-// object answers about a System (Proliferation:contacts).
-template <typename T, auto Query>
-constexpr luaL_Reg system_query(const char* name) {
-  return {name, &lua_wrap<&detail::query_system<T, Query>>};
-}
 
 // Binds a type T whose parameters are one FieldTable: its methods plus obj:params() (the
 // table's keys read from ParamsOf(obj)), and the constructor invasim.<Table().type()>{...},

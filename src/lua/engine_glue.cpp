@@ -55,29 +55,6 @@ void push_vec3(lua_State* L, const Vec3& v) noexcept {
   push_list(L, 3, [&](std::size_t a) { lua_pushnumber(L, v[int(a)]); });
 }
 
-void set_number(lua_State* L, const char* key, double value) noexcept {
-  lua_pushnumber(L, value);
-  lua_setfield(L, -2, key);
-}
-
-void set_integer(lua_State* L, const char* key, long long value) noexcept {
-  lua_pushinteger(L, value);
-  lua_setfield(L, -2, key);
-}
-
-void set_boolean(lua_State* L, const char* key, bool value) noexcept {
-  lua_pushboolean(L, value);
-  lua_setfield(L, -2, key);
-}
-
-void push_number_list(lua_State* L, const double* values, std::size_t n) noexcept {
-  push_list(L, n, [&](std::size_t i) { lua_pushnumber(L, values[i]); });
-}
-
-void push_integer_list(lua_State* L, const int* values, std::size_t n) noexcept {
-  push_list(L, n, [&](std::size_t i) { lua_pushinteger(L, values[i]); });
-}
-
 void push_force(lua_State* L, const ForceHandle& handle) {
   std::visit([L](const auto& h) { push(L, h); }, handle);
 }

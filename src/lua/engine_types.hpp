@@ -133,15 +133,8 @@ void require_same_system(const Group& group, const SystemHandle& sim, const std:
 // now), "<what>: group 'cancer' was made before cells divided or died; make it again".
 void require_current(const Group& group, const std::string& what);
 
-// Lua table helpers (the table is on top of the stack). They allocate, so they may raise a
-// Lua error: call them only inside a protected_call block (binding.hpp).
-void push_vec3(lua_State* L, const Vec3& v) noexcept;  // pushes {x, y, z}
-void set_number(lua_State* L, const char* key, double value) noexcept;
-void set_integer(lua_State* L, const char* key, long long value) noexcept;
-void set_boolean(lua_State* L, const char* key, bool value) noexcept;
-// Pushes a list {v1, ..., vn} of numbers or integers (inside a protected_call block).
-void push_number_list(lua_State* L, const double* values, std::size_t n) noexcept;
-void push_integer_list(lua_State* L, const int* values, std::size_t n) noexcept;
+// Pushes {x, y, z} (inside a protected_call block: binding.hpp).
+void push_vec3(lua_State* L, const Vec3& v) noexcept;
 
 // Pushes the Lua object of a force handle (a new userdata sharing the handle).
 void push_force(lua_State* L, const ForceHandle& handle);
