@@ -124,8 +124,9 @@ std::vector<std::string> declared_types(lua_State* L, const std::optional<std::s
   for (const auto& t : types) {
     const bool ok = parameter ? contains(kPlainTypes, t) && types.size() == 1 : known_type(L, t);
     if (!ok)
-      fail_input(owner, ": unknown type '", *type, "'", did_you_mean(t, kKeywordTypes),
-                 "; a type is one of ", join_names(parameter ? kPlainTypes : kKeywordTypes),
+      fail_input(owner, ": unknown type '", *type, "'",
+                 did_you_mean(t, parameter ? kPlainTypes : kKeywordTypes), "; a type is one of ",
+                 join_names(parameter ? kPlainTypes : kKeywordTypes),
                  parameter ? ""
                            : ", a bound type name (Ramp, Group, ...) or alternatives "
                              "joined by '|'");

@@ -75,9 +75,11 @@ long long Kwargs::to_integer(std::string_view key, const IntegerBounds& bounds) 
     case IntegerCheck::kOk:
       break;
     case IntegerCheck::kNotNumber:
-    case IntegerCheck::kNotIntegral:
+    case IntegerCheck::kNotIntegral: {
+      const std::string allowed = bounds.describe();
       fail_input(owner_, ": key '", key, "' must be an integer, got ", text,
-                 " (allowed: ", bounds.describe(), ")");
+                 allowed == "any integer" ? "" : " (allowed: " + allowed + ")");
+    }
     case IntegerCheck::kOutOfRange:
       fail_input(owner_, ": key '", key, "' = ", text, " is out of range (must be ",
                  bounds.describe(), ")");

@@ -168,7 +168,7 @@ TEST_CASE("Kwargs errors name the owner, the key and the valid keys", "[lua][kwa
     eval(L, "{seed = 'x'}");
     Kwargs kw(L, -1, "System");
     CHECK_THROWS_WITH(kw.integer<long long>("seed", Range{}),
-                      "System: key 'seed' must be an integer, got string (allowed: any integer)");
+                      "System: key 'seed' must be an integer, got string");
   }
   SECTION("fractional integer") {
     eval(L, "{n = 1.5}");
@@ -443,6 +443,14 @@ TEST_CASE("ranges and choices refuse overrides and defaults outside them", "[lua
         declare(L, "system", R"lua({"medium", choices = {"reduced", "paper", "large"}})lua"),
         "params: parameter 'system' must be one of large, paper, reduced; its "
         "default is 'medium'");
+  }
+  SECTION("a parameter's type is one of the four plain ones, and only those are suggested") {
+    CHECK_THROWS_WITH(declare(L, "x", R"lua({1, type = "tabel"})lua"),
+                      "params: parameter 'x': unknown type 'tabel'; a type is one of boolean, "
+                      "integer, number, string");
+    CHECK_THROWS_WITH(declare(L, "x", R"lua({1, type = "nubmer"})lua"),
+                      "params: parameter 'x': unknown type 'nubmer' (did you mean 'number'?); a "
+                      "type is one of boolean, integer, number, string");
   }
   SECTION("a range on a string, choices on a number") {
     CHECK_THROWS_WITH(declare(L, "system", R"lua({"reduced", range = "[0, 1]"})lua"),
