@@ -207,14 +207,18 @@ int push_record(lua_State* L, const Record& record);
 int push_records(lua_State* L, const std::vector<Record>& records);
 
 // The bound T of key `key` of kw (nullptr when absent and not required): "run: key 'progress'
-// must be a Progress, got number"; `noun` replaces "a Progress" in the message.
+// must be a Progress, got number", "Simulation: missing required key 'system' (a System)";
+// `noun` replaces "a Progress" in the messages.
 template <typename T>
 std::shared_ptr<T> kw_object(Kwargs& kw, std::string_view key, bool required = false,
                              const char* noun = nullptr) {
   lua_State* L = kw.state();
   const int type = kw.push(key);
   std::shared_ptr<T> object;
-  if (type != LUA_TNIL || required) {
+  if (type == LUA_TNIL && required)
+    throw InputError(kw.owner() + ": missing required key '" + std::string(key) + "' (" +
+                     (noun ? std::string(noun) : std::string("a ") + LuaType<T>::name) + ")");
+  if (type != LUA_TNIL) {
     const auto* slot = test<T>(L, -1);
     if (slot == nullptr || !*slot)
       throw InputError(kw.owner() + ": key '" + std::string(key) + "' must be " +

@@ -256,4 +256,12 @@ orphan = nil
 collectgarbage(); collectgarbage()
 expect_error("Active: group 'all': its System no longer exists", iv.Active, { group = orphan_group, f0 = 1, tau_p = 1 })
 
+-- Keys holding bound objects (kw_object): absent when required, and of the wrong type.
+expect_error("save_checkpoint: missing required key 'system' %(a System%)", iv.save_checkpoint,
+             "unused.ckpt", { extra = "" })
+expect_error("save_checkpoint: key 'tethers' must be a Tethers, got Contacts", iv.save_checkpoint,
+             "unused.ckpt", { system = sys, tethers = iv.Contacts{} })
+expect_error("run: key 'progress' must be a Progress, got string", iv.Dynamics{}.run, iv.Dynamics{},
+             sys, 1, { progress = "p" })
+
 print("engine_api: all " .. checks .. " checks passed")

@@ -54,5 +54,8 @@ refused(function() sim:observe(function() end, { every = 3, phase = 3 }) end, "p
 refused(function() sim:observe(function() end, { every = 0 }) end, "every")
 refused(function() sim:observe(function() end, { at = { 1.5 } }) end, "key 'at%[1%]' must be an integer step >= 0")
 refused(function() sim:observe(function() end, { evry = 3 }) end, "unknown key 'evry'")
-refused(function() iv.Simulation{ system = sys } end, "key 'dynamics' must be a Dynamics")
+refused(function() iv.Simulation{ system = sys } end,
+        "Simulation: missing required key 'dynamics' %(a Dynamics%)")
+refused(function() iv.Simulation{ system = sys, dynamics = 1 } end,
+        "Simulation: key 'dynamics' must be a Dynamics, got number")
 print("simulation_binding: ok")
