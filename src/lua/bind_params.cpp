@@ -67,22 +67,6 @@ int l_param_newindex(lua_State* L) {
              lua_tostring(L, 2), "=VALUE");
 }
 
-// Iterator of __pairs over the values table. Plain C-style code (lua_next may raise).
-int l_param_next(lua_State* L) {
-  lua_settop(L, 2);
-  if (lua_next(L, 1) != 0) return 2;
-  lua_pushnil(L);
-  return 1;
-}
-
-// __pairs: for name, value in pairs(p) iterates the declared parameters.
-int l_param_pairs(lua_State* L) {
-  lua_pushcfunction(L, &l_param_next);
-  lua_pushvalue(L, lua_upvalueindex(1));
-  lua_pushnil(L);
-  return 3;
-}
-
 // Pushes the read-only proxy of the values table on top of the stack (replacing it); inside a
 // protected_call block.
 void push_proxy(lua_State* L) noexcept {
@@ -96,7 +80,7 @@ void push_proxy(lua_State* L) noexcept {
   lua_pushcclosure(L, &lua_wrap<&l_param_newindex>, 1);
   lua_setfield(L, -2, "__newindex");
   lua_pushvalue(L, values);
-  lua_pushcclosure(L, &l_param_pairs, 1);
+  lua_pushcclosure(L, &hidden_table_pairs, 1);
   lua_setfield(L, -2, "__pairs");
   lua_pushboolean(L, false);
   lua_setfield(L, -2, "__metatable");

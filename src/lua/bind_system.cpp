@@ -3,6 +3,7 @@
 #include <lua.hpp>
 
 #include <cmath>
+#include <numeric>
 
 #include "core/names.hpp"
 #include "lua/adapters.hpp"
@@ -106,6 +107,13 @@ std::vector<double> read_diameters(Kwargs& kw, std::vector<double> fallback) {
   return d;
 }
 
+// Every site index of the System, 0 .. n - 1.
+std::vector<int> all_sites(const SystemHandle& sim) {
+  std::vector<int> all(sim.system.n_sites());
+  std::iota(all.begin(), all.end(), 0);
+  return all;
+}
+
 void push_group(lua_State* L, const std::shared_ptr<SystemHandle>& sim, std::string name,
                 std::vector<int> sites) {
   const std::uint64_t epoch = sim->system.site_epoch();
@@ -182,7 +190,7 @@ int l_group(lua_State* L) {
   else if (name == "vertices")
     sites = sim->system.sites_of_kind(SiteKind::kVertex);
   else if (name == "all")
-    for (std::size_t i = 0; i < sim->system.n_sites(); ++i) sites.push_back(int(i));
+    sites = all_sites(*sim);
   else
     fail_input("group: unknown group '", name, "'", did_you_mean(name, names),
                "; groups: ", join_names(names));
@@ -209,11 +217,7 @@ int l_packing(lua_State* L) {
 
 // The sites of the optional Group argument at `index` (all sites when absent).
 std::vector<int> group_arg(lua_State* L, int index, const SystemHandle& sim, const char* what) {
-  if (lua_isnoneornil(L, index)) {
-    std::vector<int> all(sim.system.n_sites());
-    for (std::size_t i = 0; i < all.size(); ++i) all[i] = int(i);
-    return all;
-  }
+  if (lua_isnoneornil(L, index)) return all_sites(sim);
   const Group& group = check<Group>(L, index);
   require_same_system(group, sim, what);
   require_current(group, what);
@@ -276,13 +280,8 @@ int l_set_velocities(lua_State* L) {
   const auto group = kw_group(kw, "group", false);
   const double kT = kw.number("kT", Range::non_negative());
   kw.finish();
-  std::vector<int> sites;
-  if (group) {
-    require_same_system(*group, sim, "set_velocities");
-    sites = group->sites;
-  } else {
-    for (std::size_t i = 0; i < sim.system.n_sites(); ++i) sites.push_back(int(i));
-  }
+  if (group) require_same_system(*group, sim, "set_velocities");
+  const std::vector<int> sites = group ? group->sites : all_sites(sim);
   engine_call("set_velocities", [&] { set_maxwell_boltzmann(sim.system, sites, kT); });
   sim.changed();
   return 0;

@@ -98,6 +98,23 @@ int kw_function(Kwargs& kw, std::string_view key) {
   return 0;
 }
 
+namespace {
+// The iterator of hidden_table_pairs: next(t, k) with raw access.
+int raw_next(lua_State* L) {
+  lua_settop(L, 2);
+  if (lua_next(L, 1) != 0) return 2;
+  lua_pushnil(L);
+  return 1;
+}
+}  // namespace
+
+int hidden_table_pairs(lua_State* L) {
+  lua_pushcfunction(L, &raw_next);
+  lua_pushvalue(L, lua_upvalueindex(1));
+  lua_pushnil(L);
+  return 3;
+}
+
 void push_where(lua_State* L) {
   lua_Debug ar;
   for (int level = 1; lua_getstack(L, level, &ar); ++level) {

@@ -375,6 +375,10 @@ void push_list(lua_State* L, std::size_t n, PushItem&& push_item) {
   }
 }
 
+// __pairs of a read-only proxy table: iterates, with raw access, the table it hides (its
+// upvalue 1), whatever the script did to the global `next`. Plain C-style code (may raise).
+int hidden_table_pairs(lua_State* L);
+
 // Pushes a list of strings (protected: may be called anywhere).
 void push_string_list(lua_State* L, const std::vector<std::string>& items);
 

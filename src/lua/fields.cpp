@@ -31,14 +31,6 @@ int read_only_newindex(lua_State* L) {
   return lua_error(L);
 }
 
-// __pairs of a read-only proxy: iterates the table it hides (upvalue 1).
-int read_only_pairs(lua_State* L) {
-  lua_getglobal(L, "next");
-  lua_pushvalue(L, lua_upvalueindex(1));
-  lua_pushnil(L);
-  return 3;
-}
-
 // __call of a constructor table: drops the table itself and calls the constructor (upvalue 1)
 // with the remaining arguments. Owns no C++ object, so a Lua error may pass through it.
 int call_constructor(lua_State* L) {
@@ -59,7 +51,7 @@ void make_read_only(lua_State* S, const char* name) noexcept {
   lua_pushcclosure(S, &read_only_newindex, 1);
   lua_setfield(S, -2, "__newindex");
   lua_pushvalue(S, -3);
-  lua_pushcclosure(S, &read_only_pairs, 1);
+  lua_pushcclosure(S, &hidden_table_pairs, 1);
   lua_setfield(S, -2, "__pairs");
   lua_pushliteral(S, "read-only");
   lua_setfield(S, -2, "__metatable");

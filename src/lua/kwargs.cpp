@@ -46,6 +46,12 @@ int Kwargs::fetch(std::string_view key) {
   return lua_type(L_, -1);
 }
 
+int Kwargs::fetch_present(std::string_view key) {
+  const int type = fetch(key);
+  if (type == LUA_TNIL) lua_pop(L_, 1);
+  return type;
+}
+
 void Kwargs::type_error(std::string_view key, const char* expected) const {
   fail_input(owner_, ": key '", key, "' must be ", expected, ", got ", got(L_, -1));
 }
@@ -193,28 +199,19 @@ std::string Kwargs::string(std::string_view key, const std::string& fallback) {
 }
 
 std::optional<double> Kwargs::maybe_number(std::string_view key, Range range) {
-  if (fetch(key) == LUA_TNIL) {
-    lua_pop(L_, 1);
-    return std::nullopt;
-  }
+  if (fetch_present(key) == LUA_TNIL) return std::nullopt;
   return to_number(key, range);
 }
 
 std::optional<long long> Kwargs::optional_integer(std::string_view key,
                                                   const IntegerBounds& bounds) {
-  if (fetch(key) == LUA_TNIL) {
-    lua_pop(L_, 1);
-    return std::nullopt;
-  }
+  if (fetch_present(key) == LUA_TNIL) return std::nullopt;
   return to_integer(key, bounds);
 }
 
 std::optional<bool> Kwargs::maybe_boolean(std::string_view key) {
-  const int type = fetch(key);
-  if (type == LUA_TNIL) {
-    lua_pop(L_, 1);
-    return std::nullopt;
-  }
+  const int type = fetch_present(key);
+  if (type == LUA_TNIL) return std::nullopt;
   if (type != LUA_TBOOLEAN) type_error(key, "a boolean (true or false)");
   const bool value = lua_toboolean(L_, -1);
   lua_pop(L_, 1);
@@ -222,11 +219,8 @@ std::optional<bool> Kwargs::maybe_boolean(std::string_view key) {
 }
 
 std::optional<std::string> Kwargs::maybe_string(std::string_view key) {
-  const int type = fetch(key);
-  if (type == LUA_TNIL) {
-    lua_pop(L_, 1);
-    return std::nullopt;
-  }
+  const int type = fetch_present(key);
+  if (type == LUA_TNIL) return std::nullopt;
   if (type != LUA_TSTRING) type_error(key, "a string");
   std::size_t size = 0;
   const char* data = lua_tolstring(L_, -1, &size);
@@ -251,11 +245,8 @@ std::string Kwargs::choice(std::string_view key, const std::vector<std::string>&
 
 std::optional<std::vector<double>> Kwargs::maybe_number_list(std::string_view key, std::size_t size,
                                                              Range range) {
-  const int type = fetch(key);
-  if (type == LUA_TNIL) {
-    lua_pop(L_, 1);
-    return std::nullopt;
-  }
+  const int type = fetch_present(key);
+  if (type == LUA_TNIL) return std::nullopt;
   const std::string expected = "a list of " + std::to_string(size) + " numbers";
   if (type != LUA_TTABLE) type_error(key, expected.c_str());
   const std::size_t length = lua_rawlen(L_, -1);
@@ -280,11 +271,8 @@ std::vector<double> Kwargs::number_list(std::string_view key, std::size_t size, 
 
 std::optional<std::vector<bool>> Kwargs::maybe_boolean_list(std::string_view key,
                                                             std::size_t size) {
-  const int type = fetch(key);
-  if (type == LUA_TNIL) {
-    lua_pop(L_, 1);
-    return std::nullopt;
-  }
+  const int type = fetch_present(key);
+  if (type == LUA_TNIL) return std::nullopt;
   const std::string expected = "a list of " + std::to_string(size) + " booleans";
   if (type != LUA_TTABLE || lua_rawlen(L_, -1) != size) type_error(key, expected.c_str());
   std::vector<bool> values(size);
@@ -301,11 +289,8 @@ std::optional<std::vector<bool>> Kwargs::maybe_boolean_list(std::string_view key
 }
 
 std::optional<Kwargs> Kwargs::maybe_table(std::string_view key) {
-  const int type = fetch(key);
-  if (type == LUA_TNIL) {
-    lua_pop(L_, 1);
-    return std::nullopt;
-  }
+  const int type = fetch_present(key);
+  if (type == LUA_TNIL) return std::nullopt;
   if (type != LUA_TTABLE) type_error(key, "a keyword table");
   return Kwargs(L_, -1, owner_ + "." + std::string(key));
 }

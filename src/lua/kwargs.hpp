@@ -134,6 +134,8 @@ class Kwargs {
  private:
   // Pushes the value of key (raw get) and records the key; returns its Lua type.
   int fetch(std::string_view key);
+  // The same, but an absent key (nil) leaves nothing on the stack.
+  int fetch_present(std::string_view key);
   [[noreturn]] void type_error(std::string_view key, const char* expected) const;
   // Throws "missing required key", naming a misspelt key of the table if there is one.
   [[noreturn]] void missing(std::string_view key, const char* expected) const;

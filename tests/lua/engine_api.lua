@@ -256,6 +256,15 @@ orphan = nil
 collectgarbage(); collectgarbage()
 expect_error("Active: group 'all': its System no longer exists", iv.Active, { group = orphan_group, f0 = 1, tau_p = 1 })
 
+-- A defaults table iterates by raw access, whatever the script did to the global `next`.
+do
+  local saved_next, n = next, 0
+  next = nil
+  for _ in pairs(iv.Contacts.defaults) do n = n + 1 end
+  next = saved_next
+  check(n == 8, "pairs(iv.Contacts.defaults) gave " .. n .. " keys")
+end
+
 -- Keys holding bound objects (kw_object): absent when required, and of the wrong type.
 expect_error("save_checkpoint: missing required key 'system' %(a System%)", iv.save_checkpoint,
              "unused.ckpt", { extra = "" })
