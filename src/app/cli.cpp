@@ -1,10 +1,10 @@
 #include "app/cli.hpp"
 
-#include "app/resume_options.hpp"
-
 #include <charconv>
 #include <filesystem>
 
+#include "app/options.hpp"
+#include "app/resume_options.hpp"
 #include "core/errors.hpp"
 
 namespace invasim::app {
@@ -120,41 +120,14 @@ std::string default_out_dir(const lua::RunOptions& options) {
 Command parse_render(const std::vector<std::string>& args) {
   Command command = of_kind(Command::Kind::kRender);
   RenderOptions& render = command.render;
-  std::vector<std::string> positional;
-  std::optional<std::string> slice, output, size;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    if (arg == "-h" || arg == "--help") return of_kind(Command::Kind::kHelp);
-    if (arg == "--version") return of_kind(Command::Kind::kVersion);
-    if (arg == "--") throw UsageError("unexpected '--'");
-    std::string name = arg, value;  // -o is --output
-    bool has_value = false;
-    if (arg == "-o") {
-      name = "--output";
-    } else if (arg.rfind("--", 0) == 0) {
-      if (const auto eq = arg.find('='); eq != std::string::npos) {
-        name = arg.substr(0, eq);
-        value = arg.substr(eq + 1);
-        has_value = true;
-      }
-    } else if (arg.size() > 1 && arg[0] == '-') {
-      throw UsageError("unknown option '" + arg + "' (render takes --slice, -o and --size)");
-    } else {
-      positional.push_back(arg);
-      continue;
-    }
-    if (name == "--out")
+  for (const auto& arg : args)
+    if (arg == "--out" || arg.rfind("--out=", 0) == 0)
       throw UsageError("invasim render writes one file: give it with -o FILE.svg, not --out");
-    if (name != "--output" && name != "--slice" && name != "--size")
-      throw UsageError("unknown option '" + name + "' (render takes --slice, -o and --size)");
-    if (!has_value) {
-      if (i + 1 >= args.size()) throw UsageError((arg == "-o" ? arg : name) + " needs a value");
-      value = args[++i];
-    }
-    std::optional<std::string>& slot = name == "--slice" ? slice : name == "--size" ? size : output;
-    if (slot) throw UsageError((name == "--output" ? "-o" : name) + " given twice");
-    slot = value;
-  }
+  const ParsedOptions p =
+      parse_options(args, {{"--slice", "--output", "--size"}, {}, {}, "", "render"});
+  if (p.help || p.version) return of_kind(p.help ? Command::Kind::kHelp : Command::Kind::kVersion);
+  const std::vector<std::string>& positional = p.positional;
+  const auto slice = p.value("--slice"), output = p.value("--output"), size = p.value("--size");
   if (positional.size() < 2)
     throw UsageError(
         "invasim render: missing SNAPSHOT (a cells_*.xyz, spheres_*.vtp or adipocytes_*.vtp "
@@ -201,71 +174,30 @@ Command parse_command_line(const std::vector<std::string>& args) {
     }
     return command;
   }
+  const ParsedOptions p =
+      parse_options(args, {{"--set", "--seed", "--out", "--threads", "--resume", "--from"},
+                           {"--overwrite", "--traceback"},
+                           {"--set"},
+                           ""});
+  if (p.help || p.version) return of_kind(p.help ? Command::Kind::kHelp : Command::Kind::kVersion);
   Command command;
-  std::vector<std::string> positional;
-  std::optional<std::string> out, resume;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    std::string arg = args[i];
-    if (arg == "-h" || arg == "--help") return of_kind(Command::Kind::kHelp);
-    if (arg == "--version") return of_kind(Command::Kind::kVersion);
-    if (arg.rfind("--", 0) != 0 || arg == "--") {
-      if (arg == "--") throw UsageError("unexpected '--'");
-      positional.push_back(arg);
-      continue;
-    }
-    // --name value or --name=value
-    std::string name = arg, value;
-    bool has_value = false;
-    if (const auto eq = arg.find('='); eq != std::string::npos) {
-      name = arg.substr(0, eq);
-      value = arg.substr(eq + 1);
-      has_value = true;
-    }
-    if (name == "--traceback") {
-      if (has_value) throw UsageError("--traceback takes no value");
-      command.traceback = true;
-      continue;
-    }
-    if (name == "--overwrite") {
-      if (has_value) throw UsageError("--overwrite takes no value");
-      command.options.overwrite = true;
-      continue;
-    }
-    if (name != "--set" && name != "--seed" && name != "--out" && name != "--threads" &&
-        name != "--resume" && name != "--from")
-      throw UsageError("unknown option '" + name + "'");
-    if (!has_value) {
-      if (i + 1 >= args.size()) throw UsageError(name + " needs a value");
-      value = args[++i];
-    }
-    if (name == "--set") {
-      try {
-        command.options.overrides.push_back(parse_override(value));
+  command.traceback = p.flag("--traceback");
+  command.options.overwrite = p.flag("--overwrite");
+  if (p.values.count("--set"))
+    for (const auto& text : p.values.at("--set")) try {
+        command.options.overrides.push_back(parse_override(text));
       } catch (const InputError& e) {
         throw UsageError(e.what());
       }
-    } else if (name == "--seed") {
-      if (command.options.seed) throw UsageError("--seed given twice");
-      command.options.seed = value;
-    } else if (name == "--out") {
-      if (value.empty()) throw UsageError("--out needs a directory");
-      if (out) throw UsageError("--out given twice ('" + *out + "' and '" + value + "')");
-      out = value;
-    } else if (name == "--resume") {
-      if (value.empty()) throw UsageError("--resume needs a run directory");
-      if (resume) throw UsageError("--resume given twice");
-      resume = value;
-    } else if (name == "--from") {
-      if (value.empty()) throw UsageError("--from needs a run directory");
-      if (!command.options.from_dir.empty()) throw UsageError("--from given twice");
-      command.options.from_dir = value;
-    } else {
-      if (command.threads)
-        throw UsageError("--threads given twice (" + std::to_string(*command.threads) + " and '" +
-                         value + "')");
-      command.threads = parse_threads(value);
-    }
-  }
+  command.options.seed = p.value("--seed");
+  const auto out = p.value("--out"), resume = p.value("--resume");
+  if (out && out->empty()) throw UsageError("--out needs a directory");
+  if (resume && resume->empty()) throw UsageError("--resume needs a run directory");
+  command.options.from_dir = p.value("--from").value_or("");
+  if (p.values.count("--from") && command.options.from_dir.empty())
+    throw UsageError("--from needs a run directory");
+  if (const auto threads = p.value("--threads")) command.threads = parse_threads(*threads);
+  const std::vector<std::string>& positional = p.positional;
   if (positional.empty()) throw UsageError("missing command (run, params, keys or render)");
   const std::string& verb = positional[0];
   if (verb == "run")

@@ -5,16 +5,15 @@
 #include <sched.h>
 #include <unistd.h>
 
-#include <charconv>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <map>
 #include <optional>
 
 #include "app/cli.hpp"
 #include "app/error_report.hpp"
+#include "app/options.hpp"
 #include "app/sweep_analyze.hpp"
 #include "app/tee_output.hpp"
 #include "core/errors.hpp"
@@ -69,74 +68,23 @@ Usage:
 
 namespace {
 
-// The options of one sweep subcommand: positional words and --name value pairs.
-struct Parsed {
-  std::vector<std::string> positional;
-  std::map<std::string, std::vector<std::string>> values;
-  std::map<std::string, bool> flags;
-};
-
-Parsed parse(const std::string& verb, const std::vector<std::string>& args,
-             const std::vector<std::string>& with_value, const std::vector<std::string>& flags) {
-  Parsed p;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    std::string name = args[i], value;
-    bool has_value = false;
-    if (name == "-o") name = "--output";
-    if (name.rfind("--", 0) != 0) {
-      p.positional.push_back(name);
-      continue;
-    }
-    if (const auto eq = name.find('='); eq != std::string::npos) {
-      value = name.substr(eq + 1);
-      name = name.substr(0, eq);
-      has_value = true;
-    }
-    if (std::find(flags.begin(), flags.end(), name) != flags.end()) {
-      if (has_value) throw UsageError(name + " takes no value");
-      p.flags[name] = true;
-      continue;
-    }
-    if (std::find(with_value.begin(), with_value.end(), name) == with_value.end()) {
-      std::string known;
-      for (const auto& w : with_value) known += (known.empty() ? "" : ", ") + w;
-      for (const auto& f : flags) known += (known.empty() ? "" : ", ") + f;
-      throw UsageError("invasim sweep " + verb + ": unknown option '" + name + "'" +
-                       (known.empty() ? " (it takes none)" : " (it takes " + known + ")"));
-    }
-    if (!has_value) {
-      if (i + 1 >= args.size()) throw UsageError(name + " needs a value");
-      value = args[++i];
-    }
-    if (name != "--sbatch-arg" && name != "--set" && p.values.count(name))
-      throw UsageError(name + " given twice");
-    p.values[name].push_back(value);
-  }
+// The options of sweep subcommand `verb` (app/options.hpp).
+ParsedOptions parse(const std::string& verb, const std::vector<std::string>& args,
+                    const std::vector<std::string>& with_value,
+                    const std::vector<std::string>& flags) {
+  const std::string prefix = "invasim sweep " + verb + ": ";
+  ParsedOptions p = parse_options(args, {with_value, flags, {"--sbatch-arg", "--set"}, prefix});
+  if (p.version) throw UsageError(prefix + "--version goes alone: invasim --version");
   return p;
-}
-
-int positive(const std::string& name, const std::string& text, int max = kMaxThreads) {
-  int value = 0;
-  const auto r = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (r.ec != std::errc() || r.ptr != text.data() + text.size() || value < 1 || value > max)
-    throw UsageError(name + " expects an integer in [1, " + std::to_string(max) + "], got '" +
-                     text + "'");
-  return value;
 }
 
 // --max-requeues N: an integer in [0, 1000] (0: a stopped point waits for sweep submit).
 int requeue_count(const std::string& text) {
-  return text == "0" ? 0 : positive("--max-requeues", text, 1000);
-}
-
-std::optional<std::string> value(const Parsed& p, const std::string& name) {
-  const auto it = p.values.find(name);
-  if (it == p.values.end()) return std::nullopt;
-  return it->second.front();
+  return text == "0" ? 0 : positive_option("--max-requeues", text, 1000);
 }
 
 // The workspace argument: exactly one positional word after the verb (plus `extra` more).
-std::vector<std::string> words(const std::string& verb, const Parsed& p, std::size_t count,
+std::vector<std::string> words(const std::string& verb, const ParsedOptions& p, std::size_t count,
                                const std::string& usage) {
   if (p.positional.size() != count)
     throw UsageError(
@@ -161,21 +109,21 @@ std::string executable() {
 }
 
 int init(const std::vector<std::string>& args) {
-  const Parsed p =
+  const ParsedOptions p =
       parse("init", args, {"--workspace", "--set", "--take", "--max-points"}, {"--tiny"});
   const auto spec_path = words("init", p, 1, "SPEC.lua")[0];
   sweep::SpecOverrides overrides;
   overrides.tiny = p.flags.count("--tiny") > 0;
   if (p.values.count("--set"))
     for (const auto& s : p.values.at("--set")) overrides.set.push_back(parse_override(s));
-  if (auto take = value(p, "--take")) overrides.take = positive("--take", *take, 1000000);
+  if (auto take = p.value("--take")) overrides.take = positive_option("--take", *take, 1000000);
   sweep::SweepSpec spec = sweep::load_spec(spec_path);
   sweep::apply_spec_overrides(spec, overrides);
   const fs::path default_ws = overrides.tiny ? fs::path("out") / "tiny" : fs::path("out");
   const std::string ws =
-      value(p, "--workspace").value_or((default_ws / fs::path(spec_path).stem()).string());
+      p.value("--workspace").value_or((default_ws / fs::path(spec_path).stem()).string());
   std::size_t max_points = sweep::kDefaultMaxPoints;
-  if (auto m = value(p, "--max-points")) max_points = positive("--max-points", *m, 100000000);
+  if (auto m = p.value("--max-points")) max_points = positive_option("--max-points", *m, 100000000);
   const auto report = sweep::init_workspace(spec, ws, max_points);
   std::cout << "sweep init: " << ws << ": " << report.added << " new points, " << report.kept
             << " kept (" << report.added + report.kept << " in " << spec_path << ")"
@@ -185,13 +133,13 @@ int init(const std::vector<std::string>& args) {
 }
 
 int run(const std::vector<std::string>& args) {
-  const Parsed p = parse("run", args, {"--jobs", "--threads"}, {});
+  const ParsedOptions p = parse("run", args, {"--jobs", "--threads"}, {});
   const auto ws = sweep::Workspace::open(words("run", p, 1, "a workspace directory")[0]);
   const int n = cores();
-  const auto jobs = value(p, "--jobs"), threads = value(p, "--threads");
+  const auto jobs = p.value("--jobs"), threads = p.value("--threads");
   sweep::LocalRunSettings settings;
-  settings.threads = threads ? positive("--threads", *threads) : 1;
-  settings.jobs = jobs ? positive("--jobs", *jobs) : std::max(1, n / settings.threads);
+  settings.threads = threads ? positive_option("--threads", *threads) : 1;
+  settings.jobs = jobs ? positive_option("--jobs", *jobs) : std::max(1, n / settings.threads);
   if (jobs && !threads) settings.threads = std::max(1, n / settings.jobs);
   if (settings.jobs * settings.threads > n)
     std::cout << "sweep run: note: " << settings.jobs << " jobs x " << settings.threads
@@ -204,9 +152,9 @@ int run(const std::vector<std::string>& args) {
 }
 
 int collect(const std::vector<std::string>& args) {
-  const Parsed p = parse("collect", args, {"--output"}, {});
+  const ParsedOptions p = parse("collect", args, {"--output"}, {});
   const auto ws = sweep::Workspace::open(words("collect", p, 1, "a workspace directory")[0]);
-  const auto output = value(p, "--output");
+  const auto output = p.value("--output");
   if (!output) {
     sweep::collect(ws, std::cout);
     return 0;
@@ -219,7 +167,7 @@ int collect(const std::vector<std::string>& args) {
 }
 
 int submit(const std::vector<std::string>& args) {
-  const Parsed p =
+  const ParsedOptions p =
       parse("submit", args,
             {"--partition", "--time", "--cpus-per-task", "--array-limit", "--max-array-size",
              "--sbatch-arg", "--mem", "--account", "--qos", "--prep-time", "--prep-mem",
@@ -229,23 +177,24 @@ int submit(const std::vector<std::string>& args) {
   if (!p.flags.count("--slurm"))
     throw UsageError("invasim sweep submit: say which batch system: --slurm (the only one so far)");
   sweep::SlurmOptions o;
-  o.partition = value(p, "--partition").value_or("");
-  o.time = value(p, "--time").value_or("");
-  if (auto c = value(p, "--cpus-per-task")) o.cpus_per_task = positive("--cpus-per-task", *c);
-  if (auto l = value(p, "--array-limit")) o.array_limit = positive("--array-limit", *l, 1000000);
-  if (auto m = value(p, "--max-array-size"))
-    o.max_array_size = positive("--max-array-size", *m, 4000001);
+  o.partition = p.value("--partition").value_or("");
+  o.time = p.value("--time").value_or("");
+  if (auto c = p.value("--cpus-per-task")) o.cpus_per_task = positive_option("--cpus-per-task", *c);
+  if (auto l = p.value("--array-limit"))
+    o.array_limit = positive_option("--array-limit", *l, 1000000);
+  if (auto m = p.value("--max-array-size"))
+    o.max_array_size = positive_option("--max-array-size", *m, 4000001);
   if (p.values.count("--sbatch-arg")) o.extra = p.values.at("--sbatch-arg");
-  o.mem = value(p, "--mem").value_or("");
-  o.account = value(p, "--account").value_or("");
-  o.qos = value(p, "--qos").value_or("");
-  o.prep_time = value(p, "--prep-time").value_or("");
-  o.prep_mem = value(p, "--prep-mem").value_or("");
-  if (auto c = value(p, "--prep-cpus-per-task"))
-    o.prep_cpus_per_task = positive("--prep-cpus-per-task", *c);
-  if (auto s = value(p, "--signal-before"))
-    o.signal_before = positive("--signal-before", *s, 65535);
-  if (auto r = value(p, "--max-requeues")) o.max_requeues = requeue_count(*r);
+  o.mem = p.value("--mem").value_or("");
+  o.account = p.value("--account").value_or("");
+  o.qos = p.value("--qos").value_or("");
+  o.prep_time = p.value("--prep-time").value_or("");
+  o.prep_mem = p.value("--prep-mem").value_or("");
+  if (auto c = p.value("--prep-cpus-per-task"))
+    o.prep_cpus_per_task = positive_option("--prep-cpus-per-task", *c);
+  if (auto s = p.value("--signal-before"))
+    o.signal_before = positive_option("--signal-before", *s, 65535);
+  if (auto r = p.value("--max-requeues")) o.max_requeues = requeue_count(*r);
   sweep::check_slurm_options(o);
   o.dry_run = p.flags.count("--dry-run") > 0;
   o.executable = executable();
@@ -254,7 +203,7 @@ int submit(const std::vector<std::string>& args) {
 
 // One point in this process, output appended to its run.log.
 int job(const std::vector<std::string>& args) {
-  const Parsed p = parse("job", args, {"--threads", "--max-requeues"}, {});
+  const ParsedOptions p = parse("job", args, {"--threads", "--max-requeues"}, {});
   const auto w = words("job", p, 2, "a workspace directory and a job id");
   const auto ws = sweep::Workspace::open(w[0]);
   const std::string& id = w[1];
@@ -281,9 +230,9 @@ int job(const std::vector<std::string>& args) {
     return sweep::kJobBusyExitCode;
   }
   std::vector<std::string> run_args = ws.run_arguments(id);
-  if (auto threads = value(p, "--threads")) {
+  if (auto threads = p.value("--threads")) {
     run_args.push_back("--threads");
-    run_args.push_back(std::to_string(positive("--threads", *threads)));
+    run_args.push_back(std::to_string(positive_option("--threads", *threads)));
   }
   // Under Slurm the output goes to the task's slurm-%A_%a.out as well as to run.log.
   std::optional<TeeOutput> tee;
@@ -323,8 +272,8 @@ int job(const std::vector<std::string>& args) {
   const std::string result = record.finish(code, stop_requested() != 0);
   if (id == sweep::kPrepId && result == "failed" && std::getenv("SLURM_JOB_ID"))
     sweep::cancel_after_failed_prep(ws, std::getenv("SLURM_JOB_ID"), std::cout);
-  if (result == "interrupted" && value(p, "--max-requeues"))
-    sweep::requeue_stopped_point(ws, id, requeue_count(*value(p, "--max-requeues")), std::cout);
+  if (result == "interrupted" && p.value("--max-requeues"))
+    sweep::requeue_stopped_point(ws, id, requeue_count(*p.value("--max-requeues")), std::cout);
   return result == "done" ? 0 : 1;
 }
 
@@ -340,14 +289,15 @@ int run_sweep_command(const std::vector<std::string>& args) {
   }
   const std::string& verb = args[0];
   const std::vector<std::string> rest(args.begin() + 1, args.end());
-  if (std::find(rest.begin(), rest.end(), "--help") != rest.end()) {
+  if (std::find(rest.begin(), rest.end(), "--help") != rest.end() ||
+      std::find(rest.begin(), rest.end(), "-h") != rest.end()) {
     std::cout << sweep_help_text();
     return 0;
   }
   if (verb == "init") return init(rest);
   if (verb == "run") return run(rest);
   if (verb == "status") {
-    const Parsed p = parse("status", rest, {}, {});
+    const ParsedOptions p = parse("status", rest, {}, {});
     return sweep::print_status(
         sweep::Workspace::open(words("status", p, 1, "a workspace directory")[0]), std::cout);
   }

@@ -194,6 +194,8 @@ struct RecordValue {
   RecordValue(const Vec3& x) : v(x) {}
   RecordValue(Record x);
   RecordValue(std::vector<Record> x) : v(std::move(x)) {}
+  RecordValue(const ParamValue& x)
+      : v(std::visit([](const auto& y) -> decltype(v) { return y; }, x)) {}
 };
 struct RecordEntry {
   std::string key;
@@ -205,6 +207,9 @@ inline RecordValue::RecordValue(Record x) : v(std::move(x)) {}
 int push_record(lua_State* L, const Record& record);
 // The same for a list of tables.
 int push_records(lua_State* L, const std::vector<Record>& records);
+// The same inside a protected_call block (they allocate; a Lua error there is caught).
+void push_record_table(lua_State* S, const Record& record) noexcept;
+void push_record_value(lua_State* S, const RecordValue& value) noexcept;
 
 // The bound T of key `key` of kw (nullptr when absent and not required): "run: key 'progress'
 // must be a Progress, got number", "Simulation: missing required key 'system' (a System)";

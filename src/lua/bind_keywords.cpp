@@ -25,49 +25,43 @@ namespace invasim::lua {
 
 namespace {
 
-// Checks given[key] against k (via kw, which marks the key known).
+bool is_plain(const std::string& t) {
+  return t == "number" || t == "integer" || t == "string" || t == "boolean";
+}
+
+// Whether a value of Lua type `type` (named `name`: "string", "Ramp") is of declared type t.
+bool of_type(int type, const std::string& name, const std::string& t) {
+  if (t == "number" || t == "integer") return type == LUA_TNUMBER;
+  return name == t || (t == "function" && type == LUA_TFUNCTION) ||
+         (t == "table" && type == LUA_TTABLE) || (t == "userdata" && type == LUA_TUSERDATA);
+}
+
+// Checks given[key] against k (via kw, which marks the key known): a value of a plain type as
+// the engine's keys are checked (Kwargs::declared), any other by its type.
 void check_value(Kwargs& kw, const Declaration& k) {
-  lua_State* L = kw.state();
-  const std::string& key = k.name;
-  if (!kw.has(key)) {
+  const auto as_plain = [&kw, &k](const std::string& t) {
+    Declaration one = k;
+    one.types = {t};
+    kw.declared(one, k.required);
+  };
+  const bool one_plain = k.types.size() == 1 && is_plain(k.types[0]);
+  const int type = kw.push(k.name);
+  const std::string got = type_name_at(kw.state(), -1);
+  lua_pop(kw.state(), 1);
+  if (type == LUA_TNIL) {
     if (!k.required) return;
-    if (k.types.size() == 1 && k.types[0] == "number") {
-      kw.number(key, k.range.value_or(Range{}));  // the engine's "missing required key" message
-      return;
-    }
-    const std::string what = k.types.empty() ? "any value" : expected_text(k.types);
-    kw.push(key);  // nil
-    lua_pop(L, 1);
-    fail_input(kw.owner(), ": missing required key '", key, "' (", what, ")");
+    if (one_plain) return as_plain(k.types[0]);  // the engine's "missing required key"
+    fail_input(kw.owner(), ": missing required key '", k.name, "' (",
+               k.types.empty() ? "any value" : expected_text(k.types), ")");
   }
   if (k.types.empty()) return;
-  const int type = kw.push(key);
-  const std::string got = type_name_at(L, -1);
-  const bool is_number = type == LUA_TNUMBER;
-  lua_pop(L, 1);
-  for (const auto& t : k.types) {
-    if (t == "number" && is_number) {
-      kw.maybe_number(key, k.range.value_or(Range{}));
+  for (const auto& t : k.types)
+    if (of_type(type, got, t)) {
+      if (is_plain(t)) as_plain(t);
       return;
     }
-    if (t == "integer" && is_number) {
-      kw.maybe_integer<long long>(key, k.range.value_or(Range{}));
-      return;
-    }
-    if (t == "string" && type == LUA_TSTRING) {
-      if (!k.choices.empty()) kw.choice(key, k.choices);
-      return;
-    }
-    if ((t == "boolean" && type == LUA_TBOOLEAN) || (t == "function" && type == LUA_TFUNCTION) ||
-        (t == "table" && type == LUA_TTABLE) || (t == "userdata" && type == LUA_TUSERDATA) ||
-        t == got)
-      return;
-  }
-  if (k.types.size() == 1 && k.types[0] == "integer") {
-    kw.maybe_integer<long long>(key, k.range.value_or(Range{}));  // the engine's message
-    return;
-  }
-  fail_input(kw.owner(), ": key '", key, "' must be ", expected_text(k.types), ", got ", got);
+  if (one_plain) return as_plain(k.types[0]);  // the engine's "must be ..., got ..."
+  fail_input(kw.owner(), ": key '", k.name, "' must be ", expected_text(k.types), ", got ", got);
 }
 
 // "file:line: " of the function `level` levels above the running C function, or "".

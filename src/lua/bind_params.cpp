@@ -19,6 +19,7 @@
 
 #include "core/names.hpp"
 #include "core/params.hpp"
+#include "lua/adapters.hpp"
 #include "lua/binding.hpp"
 #include "lua/context.hpp"
 #include "lua/declaration.hpp"
@@ -122,12 +123,10 @@ int l_params(lua_State* L) {
   context.params = params;
   if (context.options.list_params) throw StopScript();
 
-  return push_results(L, 1, [&params](lua_State* S) noexcept {
-    lua_createtable(S, 0, static_cast<int>(params.size()));
-    for (const auto& p : params) {
-      push_param_value(S, p.value);
-      lua_setfield(S, -2, p.name.c_str());
-    }
+  Record values;
+  for (const auto& p : params) values.push_back({p.name, p.value});
+  return push_results(L, 1, [&values](lua_State* S) noexcept {
+    push_record_table(S, values);
     push_proxy(S);
     return 1;
   });

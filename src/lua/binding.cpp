@@ -30,11 +30,6 @@ void push_value(lua_State* L, const std::string& v) {
   });
 }
 
-namespace {
-
-// Pushes one record value (inside a protected_call block).
-void push_record_value(lua_State* S, const RecordValue& value) noexcept;
-
 void push_record_table(lua_State* S, const Record& record) noexcept {
   lua_createtable(S, 0, static_cast<int>(record.size()));
   for (const RecordEntry& e : record) {
@@ -71,8 +66,6 @@ void push_record_value(lua_State* S, const RecordValue& value) noexcept {
       },
       value.v);
 }
-
-}  // namespace
 
 int push_record(lua_State* L, const Record& record) {
   return push_results(L, 1, [&record](lua_State* S) noexcept {

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/names.hpp"
+#include "lua/adapters.hpp"
 #include "lua/binding.hpp"
 
 namespace invasim::lua {
@@ -68,19 +69,6 @@ std::string allowed_text(const Declaration& f) {
 
 }  // namespace
 
-void push_param_value(lua_State* S, const ParamValue& value) noexcept {
-  if (const auto* d = std::get_if<double>(&value))
-    lua_pushnumber(S, *d);
-  else if (const auto* i = std::get_if<long long>(&value))
-    lua_pushinteger(S, *i);
-  else if (const auto* b = std::get_if<bool>(&value))
-    lua_pushboolean(S, *b);
-  else {
-    const std::string& s = std::get<std::string>(value);
-    lua_pushlstring(S, s.data(), s.size());
-  }
-}
-
 namespace fields_detail {
 
 std::string describe(const std::vector<std::pair<std::string, ParamValue>>& values) {
@@ -93,117 +81,61 @@ std::string describe(const std::vector<std::pair<std::string, ParamValue>>& valu
 }
 
 void push_values(lua_State* L, const std::vector<std::pair<std::string, ParamValue>>& values) {
-  protected_call(L, 0, 1, [&values](lua_State* S) noexcept {
-    lua_createtable(S, 0, static_cast<int>(values.size()));
-    for (const auto& [name, value] : values) {
-      push_param_value(S, value);
-      lua_setfield(S, -2, name.c_str());
-    }
-    return 1;
-  });
+  Record record;
+  for (const auto& [name, value] : values) record.push_back({name, value});
+  push_record(L, record);
 }
 
 }  // namespace fields_detail
 
 namespace {
 
-// The texts of the fields list, computed before any Lua call: each key's type ("number or
-// Ramp") and allowed range in interval notation ("" for none).
-struct ListTexts {
-  std::vector<std::string> types, ranges;
-};
-ListTexts list_texts(const std::vector<Declaration>& infos) {
-  ListTexts out;
+// The `invasim.X.fields` list: {name =, type =, default =, range =, choices =, unit =, help =,
+// required =, state =} per key.
+RecordValue field_records(const std::vector<Declaration>& infos) {
+  std::vector<Record> out;
   for (const auto& f : infos) {
-    out.types.push_back(f.type_text());
-    out.ranges.push_back(f.range ? f.range->notation() : "");
+    Record r{{"name", f.name}, {"type", f.type_text()},  {"unit", f.unit},
+             {"help", f.help}, {"required", f.required}, {"state", f.state}};
+    if (f.default_value) r.push_back({"default", *f.default_value});
+    if (f.range) r.push_back({"range", f.range->notation()});
+    if (!f.choices.empty()) r.push_back({"choices", f.choices});
+    out.push_back(std::move(r));
   }
   return out;
 }
 
-// Pushes the fields list (inside a protected call).
-void push_field_list_raw(lua_State* S, const std::vector<Declaration>& infos,
-                         const ListTexts& texts) noexcept {
-  lua_createtable(S, static_cast<int>(infos.size()), 0);
-  for (std::size_t k = 0; k < infos.size(); ++k) {
-    const Declaration& f = infos[k];
-    lua_createtable(S, 0, 8);
-    lua_pushstring(S, f.name.c_str());
-    lua_setfield(S, -2, "name");
-    lua_pushstring(S, texts.types[k].c_str());
-    lua_setfield(S, -2, "type");
-    if (f.default_value) {
-      push_param_value(S, *f.default_value);
-      lua_setfield(S, -2, "default");
-    }
-    if (!texts.ranges[k].empty()) {
-      lua_pushstring(S, texts.ranges[k].c_str());
-      lua_setfield(S, -2, "range");
-    }
-    if (!f.choices.empty()) {
-      push_list(S, f.choices.size(),
-                [&](std::size_t c) { lua_pushstring(S, f.choices[c].c_str()); });
-      lua_setfield(S, -2, "choices");
-    }
-    lua_pushstring(S, f.unit.c_str());
-    lua_setfield(S, -2, "unit");
-    lua_pushstring(S, f.help.c_str());
-    lua_setfield(S, -2, "help");
-    lua_pushboolean(S, f.required);
-    lua_setfield(S, -2, "required");
-    lua_pushboolean(S, f.state);
-    lua_setfield(S, -2, "state");
-    lua_rawseti(S, -2, static_cast<lua_Integer>(k + 1));
-  }
+// The defaults of the keys that have a plain one: {name = default}.
+Record default_record(const std::vector<Declaration>& infos) {
+  Record out;
+  for (const auto& f : infos)
+    if (f.default_value) out.push_back({f.name, *f.default_value});
+  return out;
 }
 
-// Pushes the read-only defaults table named `name` (inside a protected call).
-void push_defaults_raw(lua_State* S, const std::vector<Declaration>& infos,
-                       const std::string& name) noexcept {
-  lua_createtable(S, 0, static_cast<int>(infos.size()));
-  for (const auto& f : infos) {
-    if (!f.default_value) continue;
-    push_param_value(S, *f.default_value);
-    lua_setfield(S, -2, f.name.c_str());
-  }
-  make_read_only(S, name.c_str());
-}
-
-// Pushes {defaults =, fields =} (inside a protected call).
-void push_key_table_raw(lua_State* S, const std::vector<Declaration>& infos, const ListTexts& texts,
+// Pushes {defaults =, fields =}, the defaults a read-only table named `defaults_name` (inside a
+// protected call).
+void push_key_table_raw(lua_State* S, const Record& defaults, const RecordValue& fields,
                         const std::string& defaults_name) noexcept {
   lua_createtable(S, 0, 2);
-  push_defaults_raw(S, infos, defaults_name);
+  push_record_table(S, defaults);
+  make_read_only(S, defaults_name.c_str());
   lua_setfield(S, -2, "defaults");
-  push_field_list_raw(S, infos, texts);
+  push_record_value(S, fields);
   lua_setfield(S, -2, "fields");
 }
 
 }  // namespace
 
-void push_field_list(lua_State* L, const std::vector<Declaration>& infos) {
-  const ListTexts texts = list_texts(infos);
-  protected_call(L, 0, 1, [&infos, &texts](lua_State* S) noexcept {
-    push_field_list_raw(S, infos, texts);
-    return 1;
-  });
-}
-
-void push_defaults(lua_State* L, const std::vector<Declaration>& infos, const std::string& name) {
-  protected_call(L, 0, 1, [&infos, &name](lua_State* S) noexcept {
-    push_defaults_raw(S, infos, name);
-    return 1;
-  });
-}
-
 void set_constructor(lua_State* L, const char* name, lua_CFunction constructor,
                      const std::vector<Declaration>& infos) {
   registry()[name] = infos;
   const std::string defaults_name = cat("invasim.", name, ".defaults");
-  const ListTexts texts = list_texts(infos);
+  const Record defaults = default_record(infos);
+  const RecordValue fields = field_records(infos);
   lua_pushvalue(L, -1);  // the module table, argument 1 of the block
   protected_call(L, 1, 0, [&](lua_State* S) noexcept {
-    push_key_table_raw(S, infos, texts, defaults_name);
+    push_key_table_raw(S, defaults, fields, defaults_name);
     lua_createtable(S, 0, 1);
     lua_pushcfunction(S, constructor);
     lua_pushcclosure(S, &call_constructor, 1);
@@ -218,11 +150,12 @@ void set_method_keys(lua_State* L, const char* type, const char* method,
                      const std::vector<Declaration>& infos) {
   registry()[cat(type, ":", method)] = infos;
   const std::string defaults_name = cat("invasim.", type, ".", method, ".defaults");
-  const ListTexts texts = list_texts(infos);
+  const Record defaults = default_record(infos);
+  const RecordValue fields = field_records(infos);
   lua_pushvalue(L, -1);  // the module table, argument 1 of the block
   protected_call(L, 1, 0, [&](lua_State* S) noexcept {
     lua_getfield(S, 1, type);
-    push_key_table_raw(S, infos, texts, defaults_name);
+    push_key_table_raw(S, defaults, fields, defaults_name);
     lua_setfield(S, -2, method);
     return 0;
   });

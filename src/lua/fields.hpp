@@ -52,10 +52,6 @@ struct Field {
   std::function<std::optional<ParamValue>(const P&)> value;
 };
 
-// Pushes a ParamValue as a number, integer, boolean or string (inside a protected_call block:
-// strings allocate).
-void push_param_value(lua_State* L, const ParamValue& value) noexcept;
-
 // Non-template halves of FieldTable (fields.cpp).
 namespace fields_detail {
 // "alpha=0.2, beta=0" for the state fields (numbers as `cat` prints them).
@@ -136,70 +132,60 @@ inline Range shown_range(Range range, bool allow_infinity) {
   return range;
 }
 
+// A field held in a member of P: its read checks the Lua value against the declaration
+// (Kwargs::declared) and hands it to store(member, value); its value is load(member).
+template <typename P, typename Access, typename Store, typename Load>
+Field<P> member_field(Declaration d, Access access, std::optional<IntegerBounds> bounds,
+                      Store store, Load load) {
+  Field<P> f;
+  f.info = std::move(d);
+  f.read = [info = f.info, access, bounds, store](Kwargs& kw, P& p, bool required) {
+    if (auto v = kw.declared(info, required, bounds)) store(std::invoke(access, p), std::move(*v));
+  };
+  f.value = [access, load](const P& p) -> std::optional<ParamValue> {
+    return load(std::invoke(access, const_cast<P&>(p)));
+  };
+  return f;
+}
+
+// Stores and loads a member that holds its value as it is (double, bool, std::string).
+template <typename T>
+constexpr auto kStoreAs = [](T& slot, ParamValue v) { slot = std::get<T>(std::move(v)); };
+constexpr auto kLoad = [](const auto& slot) -> std::optional<ParamValue> { return slot; };
+
 // A finite number in `range` (with allow_infinity, also +inf: tau_p = math.huge).
 template <typename P, typename Access>
 Field<P> number(std::string name, Access access, Range range, std::string unit, std::string help,
                 bool allow_infinity = false) {
-  Field<P> f;
-  f.info = field_declaration(name, {"number"}, shown_range(range, allow_infinity), std::move(unit),
-                             std::move(help));
-  f.read = [name, access, range, allow_infinity](Kwargs& kw, P& p, bool required) {
-    double& slot = std::invoke(access, p);
-    if (allow_infinity && kw.is_infinity(name)) {
-      slot = std::numeric_limits<double>::infinity();
-      return;
-    }
-    slot = required ? kw.number(name, range) : kw.number(name, slot, range);
-  };
-  f.value = [access](const P& p) -> std::optional<ParamValue> {
-    return std::invoke(access, const_cast<P&>(p));
-  };
-  return f;
+  return member_field<P>(field_declaration(name, {"number"}, shown_range(range, allow_infinity),
+                                           std::move(unit), std::move(help)),
+                         access, std::nullopt, kStoreAs<double>, kLoad);
 }
 
-// An integer stored as the C++ type of the member (int, std::size_t, std::uint64_t, ...).
+// An integer stored as the C++ type of the member (int, std::size_t, std::uint64_t, ...): the
+// value is checked against range and that type's integers before it is converted.
 template <typename P, typename Access>
 Field<P> integer(std::string name, Access access, Range range, std::string unit, std::string help) {
   using T = FieldRef<P, Access>;
-  Field<P> f;
-  f.info = field_declaration(name, {"integer"}, shown_range(range, false), std::move(unit),
-                             std::move(help));
-  f.read = [name, access, range](Kwargs& kw, P& p, bool required) {
-    T& slot = std::invoke(access, p);
-    slot = required ? kw.integer<T>(name, range) : kw.integer<T>(name, slot, range);
-  };
-  f.value = [access](const P& p) -> std::optional<ParamValue> {
-    return static_cast<long long>(std::invoke(access, const_cast<P&>(p)));
-  };
-  return f;
+  return member_field<P>(
+      field_declaration(name, {"integer"}, shown_range(range, false), std::move(unit),
+                        std::move(help)),
+      access, IntegerBounds::of<T>(range),
+      [](T& slot, ParamValue v) { slot = static_cast<T>(std::get<long long>(v)); },
+      [](const T& slot) -> std::optional<ParamValue> { return static_cast<long long>(slot); });
 }
 
 template <typename P, typename Access>
 Field<P> boolean(std::string name, Access access, std::string help) {
-  Field<P> f;
-  f.info = field_declaration(name, {"boolean"}, std::nullopt, "", std::move(help));
-  f.read = [name, access](Kwargs& kw, P& p, bool required) {
-    bool& slot = std::invoke(access, p);
-    slot = required ? kw.boolean(name) : kw.boolean(name, slot);
-  };
-  f.value = [access](const P& p) -> std::optional<ParamValue> {
-    return std::invoke(access, const_cast<P&>(p));
-  };
-  return f;
+  return member_field<P>(field_declaration(name, {"boolean"}, std::nullopt, "", std::move(help)),
+                         access, std::nullopt, kStoreAs<bool>, kLoad);
 }
 
 template <typename P, typename Access>
 Field<P> string(std::string name, Access access, std::string unit, std::string help) {
-  Field<P> f;
-  f.info = field_declaration(name, {"string"}, std::nullopt, std::move(unit), std::move(help));
-  f.read = [name, access](Kwargs& kw, P& p, bool required) {
-    std::string& slot = std::invoke(access, p);
-    slot = required ? kw.string(name) : kw.string(name, slot);
-  };
-  f.value = [access](const P& p) -> std::optional<ParamValue> {
-    return std::invoke(access, const_cast<P&>(p));
-  };
-  return f;
+  return member_field<P>(
+      field_declaration(name, {"string"}, std::nullopt, std::move(unit), std::move(help)), access,
+      std::nullopt, kStoreAs<std::string>, kLoad);
 }
 
 // A string from a fixed set, stored as the enum value each name maps to.
@@ -207,27 +193,20 @@ template <typename P, typename Access>
 Field<P> choice(std::string name, Access access,
                 std::vector<std::pair<std::string, FieldRef<P, Access>>> names, std::string help) {
   using E = FieldRef<P, Access>;
-  Field<P> f;
   std::vector<std::string> choices;
   for (const auto& [text, e] : names) choices.push_back(text);
-  f.info = field_declaration(name, {"string"}, std::nullopt, "", std::move(help), choices);
-  f.read = [name, access, names, choices](Kwargs& kw, P& p, bool required) {
-    E& slot = std::invoke(access, p);
-    std::optional<std::string> fallback;
-    if (!required)
-      for (const auto& [text, e] : names)
-        if (e == slot) fallback = text;
-    const std::string text = kw.choice(name, choices, fallback);
-    for (const auto& [t, e] : names)
-      if (t == text) slot = e;
-  };
-  f.value = [access, names](const P& p) -> std::optional<ParamValue> {
-    const E& slot = std::invoke(access, const_cast<P&>(p));
-    for (const auto& [text, e] : names)
-      if (e == slot) return text;
-    return std::nullopt;
-  };
-  return f;
+  return member_field<P>(
+      field_declaration(name, {"string"}, std::nullopt, "", std::move(help), choices), access,
+      std::nullopt,
+      [names](E& slot, ParamValue v) {
+        for (const auto& [text, e] : names)
+          if (text == std::get<std::string>(v)) slot = e;
+      },
+      [names](const E& slot) -> std::optional<ParamValue> {
+        for (const auto& [text, e] : names)
+          if (e == slot) return text;
+        return std::nullopt;
+      });
 }
 
 // A field that must be given to the constructor (it has no default).
@@ -243,11 +222,6 @@ Field<P> option(Field<P> f) {
   f.info.state = false;
   return f;
 }
-
-// Pushes the `invasim.X.fields` list ({{name =, type =, default =, range =, choices =, unit =,
-// help =, required =}, ...}) and the read-only `invasim.X.defaults` table.
-void push_field_list(lua_State* L, const std::vector<Declaration>& infos);
-void push_defaults(lua_State* L, const std::vector<Declaration>& infos, const std::string& name);
 
 // Sets field `name` of the table on top of the stack to a callable table: calling it calls
 // `constructor` with the call's arguments; `.defaults` and `.fields` describe its keys.

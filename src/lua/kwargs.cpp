@@ -56,18 +56,14 @@ void Kwargs::type_error(std::string_view key, const char* expected) const {
   fail_input(owner_, ": key '", key, "' must be ", expected, ", got ", got(L_, -1));
 }
 
-void Kwargs::check_range(std::string_view key, double value, const Range& range) const {
-  if (!range.contains(value))
-    fail_input(owner_, ": key '", key, "' = ", format_number(value), " is out of range (must be ",
-               range.describe(), ")");
-}
-
 // Value on top of the stack -> finite number in range; pops it.
 double Kwargs::to_number(std::string_view key, Range range) {
   if (lua_type(L_, -1) != LUA_TNUMBER) type_error(key, "a number");
   const double value = lua_tonumber(L_, -1);
   if (!std::isfinite(value)) type_error(key, "a finite number");
-  check_range(key, value, range);
+  if (!range.contains(value))
+    fail_input(owner_, ": key '", key, "' = ", format_number(value), " is out of range (must be ",
+               range.describe(), ")");
   lua_pop(L_, 1);
   return value;
 }
@@ -164,26 +160,77 @@ void Kwargs::missing(std::string_view key, const char* expected) const {
   fail_input(owner_, ": missing required key '", key, "' (", expected, ")");
 }
 
-double Kwargs::number(std::string_view key, Range range) {
-  if (fetch(key) == LUA_TNIL) missing(key, "a number");
-  return to_number(key, range);
+bool Kwargs::to_boolean(std::string_view key) {
+  if (lua_type(L_, -1) != LUA_TBOOLEAN) type_error(key, "a boolean (true or false)");
+  const bool value = lua_toboolean(L_, -1);
+  lua_pop(L_, 1);
+  return value;
 }
 
-long long Kwargs::required_integer(std::string_view key, const IntegerBounds& bounds) {
-  if (fetch(key) == LUA_TNIL) missing(key, ("an integer " + bounds.describe()).c_str());
-  return to_integer(key, bounds);
+std::string Kwargs::to_string(std::string_view key) {
+  if (lua_type(L_, -1) != LUA_TSTRING) type_error(key, "a string");
+  std::size_t size = 0;
+  const char* data = lua_tolstring(L_, -1, &size);
+  std::string value(data, size);
+  lua_pop(L_, 1);
+  return value;
+}
+
+Declaration plain_declaration(std::string_view key, const char* type, Range range,
+                              std::vector<std::string> choices) {
+  Declaration d;
+  d.name = key;
+  d.types = {type};
+  if (std::isinf(range.hi) && range.hi > 0) range.hi_open = true;  // finite numbers only
+  d.range = range;
+  d.choices = std::move(choices);
+  return d;
+}
+
+std::optional<ParamValue> Kwargs::declared(const Declaration& d, bool required,
+                                           std::optional<IntegerBounds> bounds) {
+  const std::string& key = d.name;
+  const std::string& type = d.types.at(0);
+  const Range range = d.range.value_or(Range{});
+  if (type == "integer" && !bounds) bounds = IntegerBounds::of<long long>(range);
+  if (fetch_present(key) == LUA_TNIL) {
+    if (!required) return std::nullopt;
+    std::string expected = type == "number" ? "a number" : "true or false";
+    if (type == "integer") {
+      const std::string allowed = bounds->describe();
+      expected = allowed == "any integer" ? "an integer" : "an integer " + allowed;
+    } else if (type == "string") {
+      expected = d.choices.empty() ? "a string" : "one of: " + join_names(d.choices);
+    }
+    missing(key, expected.c_str());
+  }
+  if (type == "number") {
+    if (lua_type(L_, -1) == LUA_TNUMBER && lua_tonumber(L_, -1) == HUGE_VAL &&
+        range.contains(HUGE_VAL)) {
+      lua_pop(L_, 1);
+      return HUGE_VAL;
+    }
+    return to_number(key, range);
+  }
+  if (type == "integer") return to_integer(key, *bounds);
+  if (type == "boolean") return to_boolean(key);
+  std::string value = to_string(key);
+  if (!d.choices.empty() && std::find(d.choices.begin(), d.choices.end(), value) == d.choices.end())
+    fail_input(owner_, ": key '", key, "' must be one of: ", join_names(d.choices), "; got '",
+               value, "'", did_you_mean(value, d.choices));
+  return value;
+}
+
+double Kwargs::number(std::string_view key, Range range) {
+  return std::get<double>(*declared(plain_declaration(key, "number", range), true));
 }
 
 bool Kwargs::boolean(std::string_view key) {
-  const auto value = maybe_boolean(key);
-  if (!value) missing(key, "true or false");
-  return *value;
+  return std::get<bool>(*declared(plain_declaration(key, "boolean"), true));
 }
 
 std::string Kwargs::string(std::string_view key) {
-  auto value = maybe_string(key);
-  if (!value) missing(key, "a string");
-  return std::move(*value);
+  return std::get<std::string>(*declared(plain_declaration(key, "string"), true));
 }
 
 double Kwargs::number(std::string_view key, double fallback, Range range) {
@@ -199,48 +246,35 @@ std::string Kwargs::string(std::string_view key, const std::string& fallback) {
 }
 
 std::optional<double> Kwargs::maybe_number(std::string_view key, Range range) {
-  if (fetch_present(key) == LUA_TNIL) return std::nullopt;
-  return to_number(key, range);
+  const auto value = declared(plain_declaration(key, "number", range), false);
+  if (!value) return std::nullopt;
+  return std::get<double>(*value);
 }
 
-std::optional<long long> Kwargs::optional_integer(std::string_view key,
-                                                  const IntegerBounds& bounds) {
-  if (fetch_present(key) == LUA_TNIL) return std::nullopt;
-  return to_integer(key, bounds);
+std::optional<long long> Kwargs::integer_value(std::string_view key, Range range,
+                                               const IntegerBounds& bounds, bool required) {
+  const auto value = declared(plain_declaration(key, "integer", range), required, bounds);
+  if (!value) return std::nullopt;
+  return std::get<long long>(*value);
 }
 
 std::optional<bool> Kwargs::maybe_boolean(std::string_view key) {
-  const int type = fetch_present(key);
-  if (type == LUA_TNIL) return std::nullopt;
-  if (type != LUA_TBOOLEAN) type_error(key, "a boolean (true or false)");
-  const bool value = lua_toboolean(L_, -1);
-  lua_pop(L_, 1);
-  return value;
+  const auto value = declared(plain_declaration(key, "boolean"), false);
+  if (!value) return std::nullopt;
+  return std::get<bool>(*value);
 }
 
 std::optional<std::string> Kwargs::maybe_string(std::string_view key) {
-  const int type = fetch_present(key);
-  if (type == LUA_TNIL) return std::nullopt;
-  if (type != LUA_TSTRING) type_error(key, "a string");
-  std::size_t size = 0;
-  const char* data = lua_tolstring(L_, -1, &size);
-  std::string value(data, size);
-  lua_pop(L_, 1);
-  return value;
+  auto value = declared(plain_declaration(key, "string"), false);
+  if (!value) return std::nullopt;
+  return std::get<std::string>(std::move(*value));
 }
 
 std::string Kwargs::choice(std::string_view key, const std::vector<std::string>& choices,
                            std::optional<std::string> fallback) {
-  auto value = maybe_string(key);
-  if (!value) {
-    if (!fallback)
-      fail_input(owner_, ": missing required key '", key, "' (one of: ", join_names(choices), ")");
-    return *fallback;
-  }
-  if (std::find(choices.begin(), choices.end(), *value) == choices.end())
-    fail_input(owner_, ": key '", key, "' must be one of: ", join_names(choices), "; got '", *value,
-               "'", did_you_mean(*value, choices));
-  return std::move(*value);
+  auto value = declared(plain_declaration(key, "string", {}, choices), !fallback);
+  if (!value) return std::move(*fallback);
+  return std::get<std::string>(std::move(*value));
 }
 
 std::optional<std::vector<double>> Kwargs::maybe_number_list(std::string_view key, std::size_t size,
@@ -309,12 +343,6 @@ bool Kwargs::has(std::string_view key) {
   const bool present = fetch(key) != LUA_TNIL;
   lua_pop(L_, 1);
   return present;
-}
-
-bool Kwargs::is_infinity(std::string_view key) {
-  const bool infinite = fetch(key) == LUA_TNUMBER && lua_tonumber(L_, -1) == HUGE_VAL;
-  lua_pop(L_, 1);
-  return infinite;
 }
 
 void Kwargs::finish() const {

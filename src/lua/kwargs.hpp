@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/range.hpp"
+#include "lua/declaration.hpp"
 
 struct lua_State;
 
@@ -54,11 +55,25 @@ enum class IntegerCheck { kOk, kNotNumber, kNotIntegral, kOutOfRange };
 IntegerCheck check_integer(lua_State* L, int index, const IntegerBounds& bounds, long long& value,
                            std::string& got);
 
+// The declaration of a key of one plain type ("number", "integer", "boolean", "string") with
+// allowed values `range` (numbers: finite values only, unless `range` is closed at +inf) or
+// `choices` (strings): what the typed getters of Kwargs check.
+Declaration plain_declaration(std::string_view key, const char* type, Range range = {},
+                              std::vector<std::string> choices = {});
+
 class Kwargs {
  public:
   // Reads the table at `index`; `owner` names what is being built ("System"). Throws if the
   // value there is not a table.
   Kwargs(lua_State* L, int index, std::string owner);
+
+  // The one check of a key against its declaration (one plain type): nullopt when absent and
+  // not `required`; else the value, checked against the type, the range (a number range
+  // closed at +inf, "[0, inf]", also takes math.huge) and the choices. `bounds`: the integers
+  // the C++ type that stores an integer key can hold (default: a long long's). Every typed
+  // getter below, FieldTable's keys (lua/fields.hpp) and invasim.keywords check through it.
+  std::optional<ParamValue> declared(const Declaration& d, bool required,
+                                     std::optional<IntegerBounds> bounds = std::nullopt);
 
   // Required keys: absent (or nil) is an error.
   double number(std::string_view key, Range range = {});
@@ -78,7 +93,7 @@ class Kwargs {
   // that 2^32 + 5 is refused instead of becoming 5 in an int.
   template <typename T>
   T integer(std::string_view key, Range range) {
-    return static_cast<T>(required_integer(key, IntegerBounds::of<T>(range)));
+    return static_cast<T>(*integer_value(key, range, IntegerBounds::of<T>(range), true));
   }
   template <typename T>
   T integer(std::string_view key, T fallback, Range range) {
@@ -87,7 +102,7 @@ class Kwargs {
   }
   template <typename T>
   std::optional<T> maybe_integer(std::string_view key, Range range) {
-    const auto value = optional_integer(key, IntegerBounds::of<T>(range));
+    const auto value = integer_value(key, range, IntegerBounds::of<T>(range), false);
     if (!value) return std::nullopt;
     return static_cast<T>(*value);
   }
@@ -119,10 +134,6 @@ class Kwargs {
   // Whether `key` is present (non-nil); also marks it known.
   bool has(std::string_view key);
 
-  // Whether `key` holds +inf (math.huge); also marks it known. For keys where infinity has a
-  // meaning (tau_p: frozen orientations) although numbers must otherwise be finite.
-  bool is_infinity(std::string_view key);
-
   // Throws if the table holds any key no getter asked about, or a positional value:
   // "System: unknown key 'bxo' (did you mean 'box'?); valid keys: box, periodic, seed".
   void finish() const;
@@ -139,11 +150,13 @@ class Kwargs {
   [[noreturn]] void type_error(std::string_view key, const char* expected) const;
   // Throws "missing required key", naming a misspelt key of the table if there is one.
   [[noreturn]] void missing(std::string_view key, const char* expected) const;
+  // The value on top of the stack as the type named; pops it.
   double to_number(std::string_view key, Range range);
   long long to_integer(std::string_view key, const IntegerBounds& bounds);
-  long long required_integer(std::string_view key, const IntegerBounds& bounds);
-  std::optional<long long> optional_integer(std::string_view key, const IntegerBounds& bounds);
-  void check_range(std::string_view key, double value, const Range& range) const;
+  bool to_boolean(std::string_view key);
+  std::string to_string(std::string_view key);
+  std::optional<long long> integer_value(std::string_view key, Range range,
+                                         const IntegerBounds& bounds, bool required);
 
   lua_State* L_;
   int index_;

@@ -132,4 +132,22 @@ ok, err = pcall(iv.keywords, "t", { d = 5 }, { d = { list } })
 assert(not ok and err:find("t: key 'd' must be a table, got number", 1, true), err)
 checks = checks + 3
 
+-- Every plain value is checked by the engine's one checker (Kwargs::declared): a range closed
+-- at inf takes math.huge, an open one refuses it; a required key names what it wants.
+local function kw_error(pattern, given, decl)
+  local ok, err = pcall(iv.keywords, "t", given, { x = decl })
+  assert(not ok and err:find(pattern, 1, true), "expected '" .. pattern .. "', got " .. tostring(err))
+  checks = checks + 1
+end
+assert(iv.keywords("t", { x = math.huge }, { x = { 1.0, range = "[0, inf]" } }).x == math.huge)
+checks = checks + 1
+kw_error("t: key 'x' must be a finite number, got inf", { x = math.huge }, { 1.0, range = "[0, inf)" })
+kw_error("t: key 'x' must be a finite number, got -inf", { x = -math.huge }, { 1.0, range = "[0, inf]" })
+kw_error("t: missing required key 'x' (true or false)", {}, { type = "boolean", required = true })
+kw_error("t: missing required key 'x' (an integer >= 1)", {}, { type = "integer", required = true, range = "[1, inf)" })
+kw_error("t: missing required key 'x' (one of: a, b)", {}, { type = "string", required = true, choices = { "a", "b" } })
+kw_error("t: key 'x' must be a boolean (true or false), got 5", { x = 5 }, { type = "boolean", required = true })
+kw_error("t: key 'x' must be one of: a, b; got 'c'", { x = "c" }, { "a", choices = { "a", "b" } })
+kw_error("t: key 'x' must be a number or an invasim.ramp{}, got string", { x = "1" }, { 1.0, type = "number|Ramp" })
+
 print(string.format("keywords: all %d checks passed", checks))

@@ -28,7 +28,7 @@ expect_error("cells: key 'n' = %-1 is out of range", init, { N_a = 0, N_c = -1, 
 
 local tissue = init{ N_a = 1, N_c = 20, L0 = 30.0 }
 expect_error("compress: unknown key 'to_ph' %(did you mean 'to_phi'%?%)", require("lib.compress"), tissue, { to_ph = 0.5 })
-expect_error("compress: key 'cohesion' must be a boolean, got string", require("lib.compress"), tissue, { cohesion = "off" })
+expect_error("compress: key 'cohesion' must be a boolean %(true or false%), got string", require("lib.compress"), tissue, { cohesion = "off" })
 expect_error("compress: unknown key 'beta'", require("lib.compress"), tissue, { beta = 0 })
 expect_error("compress: key 'from' must be a string, got boolean", require("lib.compress"), tissue, { from = true })
 expect_error("^stages_errors.lua:%d+: production: key 'snapshot_every' must be an integer >= 0, got %-1",
