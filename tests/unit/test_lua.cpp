@@ -12,6 +12,7 @@
 #include "core/progress.hpp"
 #include "lua/binding.hpp"
 #include "lua/declaration.hpp"
+#include "lua/fields.hpp"
 #include "lua/kwargs.hpp"
 #include "lua/lua_state.hpp"
 
@@ -727,4 +728,83 @@ TEST_CASE("LuaState reports missing files, syntax errors and odd error values", 
     CHECK(std::string(e.what()) == "tb.lua:1: deep");
     CHECK(e.traceback().find("tb.lua:2") != std::string::npos);
   }
+}
+
+namespace {
+
+enum class Mode { kSlow, kFast };
+
+// A parameter struct with one member of each kind a FieldTable field stores.
+struct Knobs {
+  double rate = 0.5;
+  double tau = 1.0;
+  std::uint8_t level = 3;
+  bool on = true;
+  std::string label = "x";
+  Mode mode = Mode::kSlow;
+};
+
+const FieldTable<Knobs>& knobs_table() {
+  static const FieldTable<Knobs> table(
+      "Knobs", {number<Knobs>("rate", &Knobs::rate, Range::positive(), "1", "a rate"),
+                number<Knobs>("tau", &Knobs::tau, Range::positive(), "tau", "a time", true),
+                integer<Knobs>("level", &Knobs::level, Range::non_negative(), "1", "a level"),
+                boolean<Knobs>("on", &Knobs::on, "a switch"),
+                string<Knobs>("label", &Knobs::label, "", "a name"),
+                choice<Knobs>("mode", &Knobs::mode, {{"slow", Mode::kSlow}, {"fast", Mode::kFast}},
+                              "a mode")});
+  return table;
+}
+
+// Knobs read from the Lua table `expression`, or the error's text.
+std::string read_knobs(lua_State* L, const std::string& expression, Knobs* out = nullptr) {
+  eval(L, expression);
+  try {
+    Kwargs kw(L, -1, "Knobs");
+    const Knobs k = knobs_table().make(kw);
+    if (out) *out = k;
+  } catch (const InputError& e) {
+    lua_settop(L, 0);
+    return e.what();
+  }
+  lua_settop(L, 0);
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("FieldTable fields check each value through Kwargs::declared", "[lua][fields]") {
+  LuaState state;
+  lua_State* L = state.get();
+  Knobs k;
+  REQUIRE(read_knobs(L,
+                     "{rate = 2, tau = math.huge, level = 255, on = false, label = 'y', "
+                     "mode = 'fast'}",
+                     &k) == "");
+  CHECK(k.rate == 2.0);
+  CHECK(k.tau == std::numeric_limits<double>::infinity());
+  CHECK(k.level == 255);
+  CHECK_FALSE(k.on);
+  CHECK(k.label == "y");
+  CHECK(k.mode == Mode::kFast);
+  REQUIRE(read_knobs(L, "{}", &k) == "");  // the struct's own defaults
+  CHECK((k.rate == 0.5 && k.tau == 1.0 && k.level == 3 && k.on && k.label == "x" &&
+         k.mode == Mode::kSlow));
+  // math.huge only where the field allows it; the member's type bounds the integers.
+  CHECK(read_knobs(L, "{rate = math.huge}") ==
+        "Knobs: key 'rate' must be a finite number, got inf");
+  CHECK(read_knobs(L, "{level = 256}") ==
+        "Knobs: key 'level' = 256 is out of range (must be in [0, 255])");
+  CHECK(read_knobs(L, "{on = 1}") == "Knobs: key 'on' must be a boolean (true or false), got 1");
+  CHECK(read_knobs(L, "{mode = 'fats'}") ==
+        "Knobs: key 'mode' must be one of: fast, slow; got 'fats' (did you mean 'fast'?)");
+  // The listing shows tau's closed end at inf and rate's open one.
+  const auto& fields = knobs_table().fields();
+  CHECK(fields[0].info.range->notation() == "(0, inf)");
+  CHECK(fields[1].info.range->notation() == "(0, inf]");
+  // params() reads the values back, the enum as its name.
+  const auto values = knobs_table().values(Knobs{});
+  REQUIRE(values.size() == 6);
+  CHECK(std::get<long long>(values[2].second) == 3);
+  CHECK(std::get<std::string>(values[5].second) == "slow");
 }
