@@ -560,6 +560,16 @@ check(rows["fig4b_An_at_0.3"]["verdict"] == v.RUNNING
       and "normalised over the range of paper_fig5_cohesive, and 1 of its 3 runs have no row yet"
       in rows["fig4b_An_at_0.3"]["why"], rows["fig4b_An_at_0.3"])
 check(rows["fig4b_inset_starts"]["provisional"] == v.AGREES, rows["fig4b_inset_starts"])
+# A figure whose runs cannot make a statement yet (Fig. 3's trend needs two temperatures with
+# rows; one runs, the other waits): each statement is still listed, running, no data so far.
+synthetic.write_workspace(os.path.join(work, "root3", "paper_fig3_passive_slices"), [
+    ({"kT": 8.125e-07, "seed": 1, "steps": 8000}, "running", level(500.0)[:40], 1000.0, 0.00125),
+    ({"kT": 8.125e-04, "seed": 1, "steps": 8000}, "pending", [], 1000.0, 1.25)])
+rec3 = paper_scale.record("fig3", os.path.join(work, "root3"), os.path.join(work, "paper"), None)
+check(sorted(r["id"] for r in rec3["rows"]) == sorted(paper_scale.STATEMENTS["fig3"])
+      and all(r["verdict"] == v.RUNNING and r["provisional"] == v.NO_DATA
+              and "not computable yet from the 1 of 2 runs" in r["why"] for r in rec3["rows"]),
+      rec3["rows"])
 # A figure whose workspace does not exist yet: its rows are pending.
 rec3 = paper_scale.record("fig3", os.path.join(work, "root"), os.path.join(work, "paper"), None)
 check(rec3["missing"] == ["paper_fig3_passive_slices"]

@@ -145,6 +145,16 @@ def _pending_rows(name, why):
             for sid in STATEMENTS[name]]
 
 
+def _every_statement(name, rows, usable, progresses):
+    """The figure's rows with one for every statement: a statement its figure function could not
+    make from the runs with rows so far (Fig. 3's trend needs two temperatures) has no data."""
+    have = {r["id"] for r in rows}
+    why = "not computable yet from the %d of %d runs of %s with rows" % (
+        len(usable[0]), len(progresses[0]), PREFIX + SWEEPS[name][0])
+    return rows + [verdict.row(sid, "n/a", verdict.NO_DATA, why)
+                   for sid in STATEMENTS[name] if sid not in have]
+
+
 def _keep(rows, name):
     return [r for r in rows if r["id"] in STATEMENTS[name]]
 
@@ -300,7 +310,8 @@ def record(name, root, out, invasim):
     except (workspace.InputError, ValueError, ZeroDivisionError) as e:
         rows, images, numbers, extremes = [
             verdict.row(sid, "n/a", verdict.NO_DATA, str(e)) for sid in STATEMENTS[name]], [], {}, None
-    rows = _without_partial_range(name, rows, progresses, usable)
+    rows = _without_partial_range(name, _every_statement(name, rows, usable, progresses), progresses,
+                                  usable)
     rec["rows"] = _finalise(rows, flat, used)
     rec["numbers"] = numbers
     rec["images"] = images + panels.draw(usable[0], extremes, out, "%s_runs.png" % name, {
