@@ -3,29 +3,15 @@
 
 #include "core/names.hpp"
 #include "core/progress.hpp"
+#include "lua/adapters.hpp"
 #include "lua/engine_types.hpp"
 
 namespace invasim::lua {
 
 std::shared_ptr<Group> kw_group(Kwargs& kw, std::string_view key, bool required) {
-  lua_State* L = kw.state();
-  const int type = kw.push(key);
-  if (type == LUA_TNIL) {
-    lua_pop(L, 1);
-    if (required)
-      fail_input(kw.owner(), ": missing required key '", key,
-                 "' (a Group, from sys:group(name) or sys:place{...})");
-    return nullptr;
-  }
-  auto* slot = test<Group>(L, -1);
-  if (slot == nullptr)
-    fail_input(kw.owner(), ": key '", key,
-               "' must be a Group (from sys:group(name) or sys:place{...}), got ",
-               type_name_at(L, -1));
-  if (!*slot) fail_input(kw.owner(), ": key '", key, "': Group object is no longer valid");
-  std::shared_ptr<Group> group = *slot;
-  lua_pop(L, 1);
-  require_current(*group, kw.owner() + ": key '" + std::string(key) + "'");
+  auto group =
+      kw_object<Group>(kw, key, required, "a Group from sys:group(name) or sys:place{...}");
+  if (group) require_current(*group, kw.owner() + ": key '" + std::string(key) + "'");
   return group;
 }
 

@@ -121,8 +121,9 @@ local active = iv.Active{ group = cancer, gamma = 0.2, f0 = 0.05, tau_p = 25, kT
 check(damped:kind() == "Damped" and langevin:params().kT == 1e-3 and active:params().tau_p == 25)
 check(active:group():size() == cancer:size())
 expect_error("Langevin: missing required key 'kT' %(a number%)", iv.Langevin, { group = cancer })
-expect_error("Damped: missing required key 'group' %(a Group", iv.Damped, {})
-expect_error("Damped: key 'group' must be a Group %(from sys:group%(name%) or sys:place{...}%), got table",
+expect_error("Damped: missing required key 'group' %(a Group from sys:group%(name%) or sys:place{...}%)",
+             iv.Damped, {})
+expect_error("Damped: key 'group' must be a Group from sys:group%(name%) or sys:place{...}, got table",
              iv.Damped, { group = {1, 2} })
 expect_error("Active: key 'tau_p' = %-1 is out of range %(must be >= 0%)", iv.Active,
              { group = cancer, f0 = 1, tau_p = -1 })
