@@ -120,11 +120,13 @@ std::string default_out_dir(const lua::RunOptions& options) {
 Command parse_render(const std::vector<std::string>& args) {
   Command command = of_kind(Command::Kind::kRender);
   RenderOptions& render = command.render;
-  for (const auto& arg : args)
-    if (arg == "--out" || arg.rfind("--out=", 0) == 0)
-      throw UsageError("invasim render writes one file: give it with -o FILE.svg, not --out");
-  const ParsedOptions p =
-      parse_options(args, {{"--slice", "--output", "--size"}, {}, {}, "", "render"});
+  const ParsedOptions p = parse_options(
+      args, {{"--slice", "--output", "--size"},
+             {},
+             {},
+             "",
+             "render",
+             {{"--out", "invasim render writes one file: give it with -o FILE.svg, not --out"}}});
   if (p.help || p.version) return of_kind(p.help ? Command::Kind::kHelp : Command::Kind::kVersion);
   const std::vector<std::string>& positional = p.positional;
   const auto slice = p.value("--slice"), output = p.value("--output"), size = p.value("--size");

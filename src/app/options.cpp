@@ -60,6 +60,7 @@ ParsedOptions parse_options(const std::vector<std::string>& args, const OptionSp
       p.flags.insert(name);
       continue;
     }
+    if (const auto it = spec.refused.find(name); it != spec.refused.end()) usage(it->second);
     if (!contains(spec.with_value, name)) {
       const std::string all = listing(spec);
       usage("unknown option '" + name + "' (" +

@@ -20,6 +20,9 @@ struct OptionSpec {
   std::vector<std::string> repeatable;  // options that may be given more than once (--set)
   std::string prefix;                   // before every message: "invasim sweep run: "
   std::string who = "it";               // "unknown option ... (<who> takes ...)"
+  // Options the command does not take but a user may try, with the message that says what to
+  // write instead (render's --out: "give it with -o FILE.svg").
+  std::map<std::string, std::string> refused = {};
 };
 
 struct ParsedOptions {

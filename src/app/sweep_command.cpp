@@ -113,7 +113,7 @@ int init(const std::vector<std::string>& args) {
       parse("init", args, {"--workspace", "--set", "--take", "--max-points"}, {"--tiny"});
   const auto spec_path = words("init", p, 1, "SPEC.lua")[0];
   sweep::SpecOverrides overrides;
-  overrides.tiny = p.flags.count("--tiny") > 0;
+  overrides.tiny = p.flag("--tiny");
   if (p.values.count("--set"))
     for (const auto& s : p.values.at("--set")) overrides.set.push_back(parse_override(s));
   if (auto take = p.value("--take")) overrides.take = positive_option("--take", *take, 1000000);
@@ -174,7 +174,7 @@ int submit(const std::vector<std::string>& args) {
              "--prep-cpus-per-task", "--signal-before", "--max-requeues"},
             {"--slurm", "--dry-run"});
   const auto ws = sweep::Workspace::open(words("submit", p, 1, "a workspace directory")[0]);
-  if (!p.flags.count("--slurm"))
+  if (!p.flag("--slurm"))
     throw UsageError("invasim sweep submit: say which batch system: --slurm (the only one so far)");
   sweep::SlurmOptions o;
   o.partition = p.value("--partition").value_or("");
@@ -196,7 +196,7 @@ int submit(const std::vector<std::string>& args) {
     o.signal_before = positive_option("--signal-before", *s, 65535);
   if (auto r = p.value("--max-requeues")) o.max_requeues = requeue_count(*r);
   sweep::check_slurm_options(o);
-  o.dry_run = p.flags.count("--dry-run") > 0;
+  o.dry_run = p.flag("--dry-run");
   o.executable = executable();
   return sweep::submit_slurm(ws, o, std::cout);
 }

@@ -11,6 +11,7 @@
 // of type "function", "table", "userdata", "any", a bound type name ("Ramp", "Group") or
 // alternatives joined by '|' ("number|Ramp"). `range` applies to numbers and integers,
 // `choices` to strings, and a plain default must lie inside them.
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -50,6 +51,28 @@ struct Declaration {
   // The type as listings and messages show it: "number", "number or Ramp", "list of 3 numbers".
   std::string type_text() const;
 };
+
+// A declaration from its parts (an engine field's, a typed getter's): types, range, unit, help,
+// choices.
+inline Declaration field_declaration(std::string name, std::vector<std::string> types,
+                                     std::optional<Range> range, std::string unit, std::string help,
+                                     std::vector<std::string> choices = {}) {
+  Declaration d;
+  d.name = std::move(name);
+  d.types = std::move(types);
+  d.range = std::move(range);
+  d.choices = std::move(choices);
+  d.unit = std::move(unit);
+  d.help = std::move(help);
+  return d;
+}
+
+// A number range as declarations state it: a key that takes finite values only has an open
+// upper end at inf ("[0, inf)"), one that also takes math.huge a closed one ("[0, inf]").
+inline Range shown_range(Range range, bool allow_infinity) {
+  if (std::isinf(range.hi) && range.hi > 0) range.hi_open = !allow_infinity;
+  return range;
+}
 
 // Reads the declaration of `name` at `index`. `owner` prefixes every message ("params:
 // parameter 'dt'"). A default that is not plain (a table) stays in the entry: entry[1].

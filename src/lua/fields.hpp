@@ -28,20 +28,6 @@
 
 namespace invasim::lua {
 
-// An engine field's declaration (lua/declaration.hpp): type, range, choices, unit, help.
-inline Declaration field_declaration(std::string name, std::vector<std::string> types,
-                                     std::optional<Range> range, std::string unit, std::string help,
-                                     std::vector<std::string> choices = {}) {
-  Declaration d;
-  d.name = std::move(name);
-  d.types = std::move(types);
-  d.range = std::move(range);
-  d.choices = std::move(choices);
-  d.unit = std::move(unit);
-  d.help = std::move(help);
-  return d;
-}
-
 // One key of P: its facts, how to read it from a keyword table into a P, and its value in a P.
 template <typename P>
 struct Field {
@@ -124,13 +110,6 @@ class FieldTable {
 // The member (or nested value) a field reads and writes: a member pointer or a lambda P& -> T&.
 template <typename P, typename Access>
 using FieldRef = std::remove_reference_t<std::invoke_result_t<Access, P&>>;
-
-// The allowed values as the listings show them: a field that takes finite values only has an
-// open upper end at inf ("[0, inf)"), one that also takes math.huge a closed one ("[0, inf]").
-inline Range shown_range(Range range, bool allow_infinity) {
-  if (std::isinf(range.hi) && range.hi > 0) range.hi_open = !allow_infinity;
-  return range;
-}
 
 // A field held in a member of P: its read checks the Lua value against the declaration
 // (Kwargs::declared) and hands it to store(member, value); its value is load(member).

@@ -23,6 +23,13 @@ std::string got(lua_State* L, int index) {
   return type_name_at(L, index);
 }
 
+// The declaration a typed getter checks: one plain type, finite numbers only.
+Declaration plain_declaration(std::string_view key, const char* type, Range range = {},
+                              std::vector<std::string> choices = {}) {
+  return field_declaration(std::string(key), {type}, shown_range(range, false), "", "",
+                           std::move(choices));
+}
+
 }  // namespace
 
 Kwargs::Kwargs(lua_State* L, int index, std::string owner)
@@ -78,9 +85,8 @@ long long Kwargs::to_integer(std::string_view key, const IntegerBounds& bounds) 
       break;
     case IntegerCheck::kNotNumber:
     case IntegerCheck::kNotIntegral: {
-      const std::string allowed = bounds.describe();
       fail_input(owner_, ": key '", key, "' must be an integer, got ", text,
-                 allowed == "any integer" ? "" : " (allowed: " + allowed + ")");
+                 bounds.any() ? "" : " (allowed: " + bounds.describe() + ")");
     }
     case IntegerCheck::kOutOfRange:
       fail_input(owner_, ": key '", key, "' = ", text, " is out of range (must be ",
@@ -176,17 +182,6 @@ std::string Kwargs::to_string(std::string_view key) {
   return value;
 }
 
-Declaration plain_declaration(std::string_view key, const char* type, Range range,
-                              std::vector<std::string> choices) {
-  Declaration d;
-  d.name = key;
-  d.types = {type};
-  if (std::isinf(range.hi) && range.hi > 0) range.hi_open = true;  // finite numbers only
-  d.range = range;
-  d.choices = std::move(choices);
-  return d;
-}
-
 std::optional<ParamValue> Kwargs::declared(const Declaration& d, bool required,
                                            std::optional<IntegerBounds> bounds) {
   const std::string& key = d.name;
@@ -197,8 +192,7 @@ std::optional<ParamValue> Kwargs::declared(const Declaration& d, bool required,
     if (!required) return std::nullopt;
     std::string expected = type == "number" ? "a number" : "true or false";
     if (type == "integer") {
-      const std::string allowed = bounds->describe();
-      expected = allowed == "any integer" ? "an integer" : "an integer " + allowed;
+      expected = bounds->any() ? "an integer" : "an integer " + bounds->describe();
     } else if (type == "string") {
       expected = d.choices.empty() ? "a string" : "one of: " + join_names(d.choices);
     }

@@ -44,6 +44,11 @@ struct IntegerBounds {
     return of(range, integer_type_min<T>(), integer_type_max<T>());
   }
   bool contains(long long x) const { return x >= lo && x <= hi; }
+  // Whether every long long is in: no bound to state in messages.
+  bool any() const {
+    return lo == std::numeric_limits<long long>::min() &&
+           hi == std::numeric_limits<long long>::max();
+  }
   // ">= 0", "in [0, 2147483647]" (a side at the long long limit is left out).
   std::string describe() const;
 };
@@ -54,12 +59,6 @@ struct IntegerBounds {
 enum class IntegerCheck { kOk, kNotNumber, kNotIntegral, kOutOfRange };
 IntegerCheck check_integer(lua_State* L, int index, const IntegerBounds& bounds, long long& value,
                            std::string& got);
-
-// The declaration of a key of one plain type ("number", "integer", "boolean", "string") with
-// allowed values `range` (numbers: finite values only, unless `range` is closed at +inf) or
-// `choices` (strings): what the typed getters of Kwargs check.
-Declaration plain_declaration(std::string_view key, const char* type, Range range = {},
-                              std::vector<std::string> choices = {});
 
 class Kwargs {
  public:
