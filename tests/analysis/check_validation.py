@@ -314,10 +314,10 @@ check(rows6["fig6_dense_deviates"]["verdict"] == v.AGREES, rows6["fig6_dense_dev
 # Fig. 4b's A_n at 0.3 rests on the two end-of-run state points bracketing 2T_c/P = 0.3:
 # one of them drifting makes the row "not steady"; all flat, it gets a number's verdict. The
 # temperature is the measured kT_c_paper/P.
-def tissue_job(path, f0, x, a_t, rising, sp=None):
+def tissue_job(path, f0, x, a_t, rising, sp=None, ys=None):
     os.makedirs(path, exist_ok=True)
     P = 1.3e-3
-    ys = [a_t + ((2.0 * i) if rising else (1 if i % 2 else -1)) for i in range(40)]
+    ys = ys or [a_t + ((2.0 * i) if rising else (1 if i % 2 else -1)) for i in range(40)]
     with open(os.path.join(path, "series.csv"), "w") as f:
         f.write("step,time [tau],A_t [sigma^2],A_t_max [sigma^2],kT_c_paper [eps_c]\n")
         f.writelines("%d,%d,%r,1000.0,%r\n" % (i, i, y, x * P) for i, y in enumerate(ys))
@@ -358,6 +358,26 @@ table_t, _ = figures_tissue.an_over_time([done_job, run_job], ["f0"], figures_ti
                                          (10.0, 30.0), figures_tissue.production_fraction)
 check(sorted(p["key"][0] for p in table_t[10.0]) == [0.001, 0.002], table_t[10.0])
 check([p["key"][0] for p in table_t[30.0]] == [0.001], table_t[30.0])
+
+# Fig. 4a's midpoint moving left when the first curve is below 1/2 everywhere (as at the
+# paper's scale at t = 1e4): its midpoint lies above the hottest point, 2T_c/P = 1, and the
+# move is at least log10(1 / the end's midpoint). Rows 0-19 at the first level, 20-39 at the
+# second: A_n = 0, 0.025, 0.25 in the first quarter, 0, 0.75, 1 at the end.
+check(points.crossing_bound([0.1, 0.3, 1.0], [0.0, 0.025, 0.25], [0.01] * 3) == ("above", 1.0))
+check(points.crossing_bound([0.1, 0.3], [0.6, 0.9], [0.01] * 2) == ("below", 0.1))
+check(points.crossing_bound([0.1, 0.3], [0.0, 0.49], [0.01] * 2)[0] is None)  # too close to say
+check(points.crossing_bound([0.1, 0.3], [0.0, 0.9], [0.01] * 2)[0] is None)  # it crosses
+shutil.rmtree(work, ignore_errors=True)
+def two_levels(a1, a2):
+    return [(a1 if i < 20 else a2) + (1 if i % 2 else -1) for i in range(40)]
+jobs4a = [tissue_job(os.path.join(work, "a%d" % k), 0.0, x, 0.0, False, {"kT": x * 6.5e-4},
+                     two_levels(a1, a2))
+          for k, (x, a1, a2) in enumerate([(0.1, 100.0, 100.0), (0.3, 120.0, 700.0),
+                                           (1.0, 300.0, 900.0)])]
+rows4a = {r["id"]: r for r in figures_tissue.fig4a(jobs4a, work, None)["rows"]}
+check(rows4a["fig4a_moves_left"]["verdict"] == v.AGREES, rows4a["fig4a_moves_left"])
+check("above 1 (A_n < 1/2 at every temperature run) (t = 25%)" in rows4a["fig4a_moves_left"]["ours"]
+      and "at least" in rows4a["fig4a_moves_left"]["why"], rows4a["fig4a_moves_left"])
 
 # Fig. 8: lambda compared at the same phi_a. lambda = 1 has a higher A_n than lambda = 0 at
 # both shared phi_a, but an extra dense point at A_n = 0 lowers its scan mean: pointwise, the
@@ -630,6 +650,16 @@ check("![fig4b](records/paper/fig4b_runs.png)" in part, part)
 check(document_paper.change(v.AGREES, {"verdict": v.DISAGREES}) == "yes: agrees -> disagrees")
 check(document_paper.change(v.AGREES, {"verdict": v.AGREES}) == "no")
 check(document_paper.change(v.AGREES, {"verdict": v.PENDING}) == "not yet: pending")
+# ... and the sentence under the table sorts the statements by that column.
+check("In short, the paper's scale does not settle 7: `fig3_invasion_grows` (not yet: pending)"
+      in part and ", `fig4b_An_at_0.3` (not yet: running (provisionally disagrees -> agrees))"
+      in part, part)
+summary = document_paper.change_summary([
+    ("`a`", "", "", "", "", "yes: agrees -> disagrees"), ("`b`", "", "", "", "", "no"),
+    ("`c`", "", "", "", "", "no"), ("`d`", "", "", "", "", "cannot say: no data at the paper's scale")])
+check(summary == "In short, the paper's scale changes the verdict of 1: `a` (agrees -> disagrees); "
+      "it leaves the verdict of 2: `b`, `c`; it does not settle 1: `d` (cannot say: no data at "
+      "the paper's scale).", summary)
 # The Method states the criterion once.
 check(text.count("|m4 - m3| <= 2 sqrt(e3^2 + e4^2)") == 1, text)
 print("check_validation: all checks passed")

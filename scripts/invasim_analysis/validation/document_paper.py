@@ -77,6 +77,22 @@ def side_by_side(recs, reduced):
     return out
 
 
+def change_summary(rows):
+    """One sentence from the table's last column: which statements the paper's scale changes,
+    which it leaves as they were, and which it cannot yet settle (running, pending, no data)."""
+    groups = {"yes": [], "no": [], "open": []}
+    for stmt, _, _, _, _, what in rows:
+        kind = "yes" if what.startswith("yes") else "no" if what == "no" else "open"
+        groups[kind].append("%s (%s)" % (stmt, what[5:]) if kind == "yes" else
+                            stmt if kind == "no" else "%s (%s)" % (stmt, what))
+    parts = []
+    for kind, lead in (("yes", "changes the verdict of"), ("no", "leaves the verdict of"),
+                       ("open", "does not settle")):
+        if groups[kind]:
+            parts.append("%s %d: %s" % (lead, len(groups[kind]), ", ".join(groups[kind])))
+    return "In short, the paper's scale %s." % "; it ".join(parts) if parts else ""
+
+
 def _runs_table(rec):
     lines = ["| run | state | steady state (m4 - m3 against 2 x its error) |", "|---|---|---|"]
     for p in rec.get("runs", []):
@@ -147,7 +163,7 @@ def section(paper_dir, reduced, fig_base, page_base):
         L += ["| statement | reduced scale | verdict | paper's scale | verdict | does the "
               "paper's scale change the verdict? |", "|---|---|---|---|---|---|"]
         L += ["| %s |" % " | ".join(_cell(v) for v in r) for r in rows]
-        L.append("")
+        L += ["", change_summary(rows), ""]
     else:
         L += ["No paper-scale record in `%s/`." % rel, ""]
     for name in SWEEPS:

@@ -205,21 +205,31 @@ def fig4a(jobs, out, invasim, *relaxation_sets, times=None):
             for f, pts in table.items()}
     errs = {f: points.crossing_log_error([p["x"] for p in pts], [p["A_n"] for p in pts],
                                        [p["A_n_error"] for p in pts]) for f, pts in table.items()}
+    bounds = {f: points.crossing_bound([p["x"] for p in pts], [p["A_n"] for p in pts],
+                                       [p["A_n_error"] for p in pts]) for f, pts in table.items()}
     first, last = fractions[0], fractions[-1]
-    moves = mids[first] > mids[last] if verdict.finite(mids[first], mids[last]) else None
-    shift = math.log10(mids[first] / mids[last]) if moves is not None else math.nan
-    shift_err = math.hypot(errs[first], errs[last])
+    # A curve wholly below 1/2 at the first time (or above it at the last) bounds its
+    # midpoint by the scanned range's edge: the shift is then at least the one to that edge.
+    start = mids[first] if verdict.finite(mids[first]) else (
+        bounds[first][1] if bounds[first][0] == "above" else math.nan)
+    end = mids[last] if verdict.finite(mids[last]) else (
+        bounds[last][1] if bounds[last][0] == "below" else math.nan)
+    moves = start > end if verdict.finite(start, end) else None
+    shift = math.log10(start / end) if moves is not None else math.nan
+    shift_err = math.hypot(*(e if verdict.finite(e) else 0.0 for e in (errs[first], errs[last])))
     end_err = (mids[last] * math.log(10) * errs[last] if verdict.finite(mids[last], errs[last])
                else math.nan)
     rows = [
         verdict.row("fig4a_moves_left",
                     "midpoint (A_n = 1/2) at 2T_c/P = %s" % ", ".join(
-                        "%s (%s)" % (verdict.fmt(mids[f]), ("t = %s" % fmt_time(f)) if times else
+                        "%s (%s)" % (midpoint_text(mids[f], bounds[f]),
+                                     ("t = %s" % fmt_time(f)) if times else
                                      "t = %.0f%%" % (100 * f)) for f in fractions),
                     verdict.trend_verdict(shift, shift_err),
-                    "log10 of the midpoint's ratio, %s over the end: %s (> 2 errors; "
+                    "log10 of the midpoint's ratio, %s over the end: %s%s (> 2 errors; "
                     "the error from the A_n errors and the slope at the crossing)"
                     % ("t = %s" % fmt_time(first) if times else "first quarter",
+                       "at least " if not verdict.finite(mids[first], mids[last]) else "",
                        verdict.fmt(shift, shift_err))),
         verdict.row("fig4a_Tg", "midpoint at the end%s: %s" % (
                         " (t = %s)" % fmt_time(last) if times else "",
@@ -239,6 +249,14 @@ def fig4a(jobs, out, invasim, *relaxation_sets, times=None):
             "numbers": {"midpoints": {str(f): m for f, m in mids.items()},
                         "normalisation": extremes, "points": table},
             "steadiness": steady.steadiness_summary(jobs)}
+
+
+def midpoint_text(mid, bound):
+    """A midpoint, or the bound crossing_bound gives where the curve does not cross 1/2."""
+    if verdict.finite(mid) or bound[0] is None:
+        return verdict.fmt(mid)
+    return "%s %s (A_n %s 1/2 at every temperature run)" % (
+        bound[0], verdict.fmt(bound[1]), "<" if bound[0] == "above" else ">")
 
 
 def tc_equals_ta_row(sid, jobs, keys):

@@ -33,6 +33,23 @@ def crossing(x, y, level=0.5):
     return math.nan
 
 
+def crossing_bound(x, y, err, level=0.5):
+    """Where crossing(x, y) is nan because the curve lies wholly on one side of `level`, the
+    side and the edge of the scanned range it bounds: ("above", max x) when every y is below
+    level by more than 2 errors (the crossing lies above the hottest point), ("below", min x)
+    when every y is above it; (None, nan) otherwise (a crossing, or points too close to level
+    to say)."""
+    x, y, err = (np.asarray(v, float) for v in (x, y, err))
+    if len(x) == 0 or not np.isnan(crossing(x, y, level)):
+        return None, math.nan
+    err = np.where(np.isfinite(err), err, 0.0)
+    if np.all(y + 2 * err < level):
+        return "above", float(np.max(x))
+    if np.all(y - 2 * err >= level):
+        return "below", float(np.min(x))
+    return None, math.nan
+
+
 def crossing_log_error(x, y, err, level=0.5):
     """The error of log10 of crossing(x, y): the larger A_n error of the two bracketing points
     over the slope dA_n/dlog10 x between them (nan without a crossing or errors)."""
