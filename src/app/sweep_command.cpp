@@ -31,6 +31,8 @@ namespace invasim::app {
 
 namespace fs = std::filesystem;
 
+namespace {
+
 std::string sweep_help_text() {
   return R"(invasim sweep: parameter sweeps of a protocol (docs/sweeps.md)
 
@@ -65,8 +67,6 @@ Usage:
         run one point (ID: a job id, or prep) in this process, as the Slurm tasks do
 )";
 }
-
-namespace {
 
 // The options of sweep subcommand `verb` (app/options.hpp).
 ParsedOptions parse(const std::string& verb, const std::vector<std::string>& args,
@@ -235,8 +235,9 @@ int job(const std::vector<std::string>& args) {
     run_args.push_back(std::to_string(positive_option("--threads", *threads)));
   }
   // Under Slurm the output goes to the task's slurm-%A_%a.out as well as to run.log.
+  const char* const slurm_job = std::getenv("SLURM_JOB_ID");
   std::optional<TeeOutput> tee;
-  if (std::getenv("SLURM_JOB_ID")) {
+  if (slurm_job) {
     std::cout << "sweep job: " << id << ": output also in " << (dir / "run.log").string() << '\n'
               << std::flush;
     tee.emplace((dir / "run.log").string());
@@ -250,7 +251,7 @@ int job(const std::vector<std::string>& args) {
       ::close(log);
     }
   }
-  std::cout << "== " << sweep::utc_now() << " invasim sweep job:";
+  std::cout << "== " << utc_now() << " invasim sweep job:";
   for (const auto& a : run_args) std::cout << ' ' << a;
   std::cout << std::endl;
   sweep::JobRecord record(dir, ::getpid());
@@ -260,8 +261,8 @@ int job(const std::vector<std::string>& args) {
     if (command.threads) omp_set_num_threads(*command.threads);
     // A stopped point continues with the sweep's command, not with `invasim run --resume`.
     command.options.continue_command =
-        std::string(std::getenv("SLURM_JOB_ID") ? "invasim sweep submit " : "invasim sweep run ") +
-        ws.root().string() + (std::getenv("SLURM_JOB_ID") ? " --slurm" : "");
+        std::string(slurm_job ? "invasim sweep submit " : "invasim sweep run ") +
+        ws.root().string() + (slurm_job ? " --slurm" : "");
     lua::LuaState state(command.options);
     state.run_file(command.options.script_path);
   } catch (const std::exception& e) {
@@ -270,8 +271,8 @@ int job(const std::vector<std::string>& args) {
   }
   std::cout << std::flush;
   const std::string result = record.finish(code, stop_requested() != 0);
-  if (id == sweep::kPrepId && result == "failed" && std::getenv("SLURM_JOB_ID"))
-    sweep::cancel_after_failed_prep(ws, std::getenv("SLURM_JOB_ID"), std::cout);
+  if (id == sweep::kPrepId && result == "failed" && slurm_job)
+    sweep::cancel_after_failed_prep(ws, slurm_job, std::cout);
   if (result == "interrupted" && p.value("--max-requeues"))
     sweep::requeue_stopped_point(ws, id, requeue_count(*p.value("--max-requeues")), std::cout);
   return result == "done" ? 0 : 1;

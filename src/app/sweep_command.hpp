@@ -17,6 +17,4 @@ namespace invasim::app {
 // command line and InputError on a bad spec or workspace.
 int run_sweep_command(const std::vector<std::string>& args);
 
-std::string sweep_help_text();
-
 }  // namespace invasim::app

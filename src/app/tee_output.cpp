@@ -8,23 +8,9 @@
 #include <iostream>
 
 #include "core/errors.hpp"
+#include "io/atomic_file.hpp"
 
 namespace invasim::app {
-
-namespace {
-
-// Writes all of [data, data + size) to fd (retrying short writes); gives up on an error.
-void write_all(int fd, const char* data, ssize_t size) {
-  while (size > 0) {
-    const ssize_t n = ::write(fd, data, static_cast<std::size_t>(size));
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return;
-    data += n;
-    size -= n;
-  }
-}
-
-}  // namespace
 
 TeeOutput::TeeOutput(const std::string& log_path) {
   log_ = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
@@ -46,8 +32,8 @@ TeeOutput::TeeOutput(const std::string& log_path) {
       const ssize_t n = ::read(pipe_read_, buffer, sizeof buffer);
       if (n < 0 && errno == EINTR) continue;
       if (n <= 0) break;
-      write_all(log_, buffer, n);
-      write_all(saved_out_, buffer, n);
+      write_all(log_, {buffer, std::size_t(n)});  // a write error loses only the copy
+      write_all(saved_out_, {buffer, std::size_t(n)});
     }
   });
 }

@@ -35,8 +35,6 @@ std::string hex32(std::uint32_t v) {
 
 constexpr std::uint8_t kLastType = std::uint8_t(SectionType::kVec3iArray);
 
-}  // namespace
-
 const char* section_type_name(SectionType type) {
   static constexpr const char* kNames[] = {"bytes",      "f64",        "u64",       "i64",
                                            "string",     "f64 array",  "i32 array", "u64 array",
@@ -44,6 +42,8 @@ const char* section_type_name(SectionType type) {
   const auto k = static_cast<std::uint8_t>(type);
   return k <= kLastType ? kNames[k] : "unknown";
 }
+
+}  // namespace
 
 // ---------------------------------------------------------------------------------------------
 // Writer

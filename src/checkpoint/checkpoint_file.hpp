@@ -45,7 +45,6 @@ enum class SectionType : std::uint8_t {
   kVec3Array = 8,   // x y z doubles per element
   kVec3iArray = 9,  // x y z int32 per element
 };
-const char* section_type_name(SectionType type);
 
 // Collects sections in memory, then serialises them in insertion order.
 class CheckpointWriter {

@@ -40,7 +40,19 @@ class FileDescriptor {
   int fd_;
 };
 
-// Writes all bytes, retrying short writes and EINTR; returns false with errno set on error.
+// Flushes a directory entry change (the rename) to disk. Some file systems refuse fsync on a
+// directory (EINVAL); the rename itself has already happened, so that is not an error.
+void sync_directory(const std::filesystem::path& dir, const std::filesystem::path& target) {
+  const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  FileDescriptor guard(fd);
+  if (::fsync(fd) != 0 && errno != EINVAL && errno != EROFS)
+    fail_io("cannot write ", quoted(target),
+            ": fsync of its directory failed: ", std::strerror(errno));
+}
+
+}  // namespace
+
 bool write_all(int fd, std::string_view bytes) {
   const char* p = bytes.data();
   std::size_t left = bytes.size();
@@ -55,19 +67,6 @@ bool write_all(int fd, std::string_view bytes) {
   }
   return true;
 }
-
-// Flushes a directory entry change (the rename) to disk. Some file systems refuse fsync on a
-// directory (EINVAL); the rename itself has already happened, so that is not an error.
-void sync_directory(const std::filesystem::path& dir, const std::filesystem::path& target) {
-  const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd < 0) return;
-  FileDescriptor guard(fd);
-  if (::fsync(fd) != 0 && errno != EINVAL && errno != EROFS)
-    fail_io("cannot write ", quoted(target),
-            ": fsync of its directory failed: ", std::strerror(errno));
-}
-
-}  // namespace
 
 std::filesystem::path atomic_temp_path(const std::filesystem::path& path) {
   return std::filesystem::path(path.string() + kTemporaryMark + std::to_string(::getpid()));

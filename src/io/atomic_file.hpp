@@ -35,6 +35,10 @@ std::vector<std::filesystem::path> remove_atomic_temporaries(const std::filesyst
 // directory if it cannot be created or if the path exists and is not a directory.
 void ensure_directory(const std::filesystem::path& dir);
 
+// Writes all of `bytes` to the open file `fd`, retrying short writes and EINTR; returns false
+// with errno set on an error.
+bool write_all(int fd, std::string_view bytes);
+
 // Reads a whole file into a string. Throws IoError naming the file if it cannot be read or is
 // not a regular file (a FIFO, directory or device: io/regular_file.hpp), without blocking.
 std::string read_file(const std::filesystem::path& path);

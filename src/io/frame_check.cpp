@@ -9,18 +9,6 @@ namespace invasim {
 
 namespace {
 
-std::string vec_text(const Vec3& v) {
-  std::string t = "(";
-  for (int a = 0; a < 3; ++a) text::append(t += a ? ", " : "", v[a]);
-  return t + ")";
-}
-
-std::string num_text(double v) {
-  std::string t;
-  text::append(t, v);
-  return t;
-}
-
 // Whether a picture can place and draw a point of this position and radius.
 bool drawable(const Vec3& pos, double radius) {
   return pos.allFinite() && std::isfinite(radius) && radius >= 0.0;
@@ -30,10 +18,10 @@ bool drawable(const Vec3& pos, double radius) {
 void check_point(const std::string& origin, const std::string& what, const Vec3& pos,
                  double radius) {
   if (!pos.allFinite())
-    fail_io(origin, ": ", what, ": position ", vec_text(pos),
+    fail_io(origin, ": ", what, ": position ", text::vec_text(pos),
             " is not finite (a picture cannot place it)");
   if (!std::isfinite(radius) || radius < 0.0)
-    fail_io(origin, ": ", what, ": radius ", num_text(radius),
+    fail_io(origin, ": ", what, ": radius ", text::str(radius),
             radius < 0.0 ? " is negative" : " is not finite", " (a picture cannot draw it)");
 }
 

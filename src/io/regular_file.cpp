@@ -11,6 +11,10 @@
 
 namespace invasim {
 
+namespace {
+
+// What kind of non-regular file `mode` (st_mode) describes: "a directory", "a FIFO (named
+// pipe)", "a character device", ...; "" for a regular file.
 std::string non_regular_kind(unsigned mode) {
   if (S_ISREG(mode)) return "";
   if (S_ISDIR(mode)) return "a directory";
@@ -20,8 +24,6 @@ std::string non_regular_kind(unsigned mode) {
   if (S_ISSOCK(mode)) return "a socket";
   return "not a regular file";
 }
-
-namespace {
 
 [[noreturn]] void refuse(const std::filesystem::path& path, std::string_view what,
                          const std::string& kind) {

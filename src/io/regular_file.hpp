@@ -10,10 +10,6 @@
 
 namespace invasim {
 
-// What kind of non-regular file `mode` (st_mode) describes: "a directory", "a FIFO (named
-// pipe)", "a character device", ...; "" for a regular file.
-std::string non_regular_kind(unsigned mode);
-
 // Throws IoError "cannot read <what> '<path>': it is a FIFO (named pipe), not a regular file
 // ..." (or strerror(errno) if it cannot be stat'ed) unless `path` (symlinks followed) is a
 // regular file. `what` ("protocol", "checkpoint", ...) may be empty. Never opens the path, so

@@ -22,7 +22,6 @@ RenderCounts count_shapes(const Slice& slice) {
   c.discs = int(slice.discs.size());
   c.vertex_discs = int(slice.vertex_discs.size());
   for (const SlicePolygon& p : slice.polygons) ++(p.closed ? c.polygons : c.open_chains);
-  for (const BodyOutline& b : body_outlines(slice)) c.outlines += int(b.loops.size());
   return c;
 }
 
@@ -253,11 +252,7 @@ namespace {
 void check_same_frame(const Frame& a, const std::filesystem::path& a_file, const Frame& b,
                       const std::filesystem::path& file) {
   auto box_text = [](const Box& box) {
-    std::string t = "lo (";
-    for (int k = 0; k < 3; ++k) text::append(t += k ? ", " : "", box.lo()[k]);
-    t += ") hi (";
-    for (int k = 0; k < 3; ++k) text::append(t += k ? ", " : "", box.hi()[k]);
-    return t + ")";
+    return "lo " + text::vec_text(box.lo()) + " hi " + text::vec_text(box.hi());
   };
   if (a.step != b.step)
     fail_io(quoted(file), ": its step ", b.step, " differs from step ", a.step, " of ",

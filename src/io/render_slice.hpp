@@ -21,7 +21,6 @@ struct RenderCounts {
   int polygons = 0;
   int open_chains = 0;
   int vertex_discs = 0;  // sections of adipocyte vertex spheres
-  int outlines = 0;      // closed loops of the adipocytes' envelope outlines
 };
 RenderCounts count_shapes(const Slice& slice);
 

@@ -30,14 +30,7 @@ std::mutex& held_locks_mutex() {
 
 // "pid 123 on host h, started 2026-01-02T03:04:05Z": what the lock file records.
 std::string holder_text() {
-  char host[256] = "unknown";
-  if (::gethostname(host, sizeof host - 1) != 0) std::strcpy(host, "unknown");
-  host[sizeof host - 1] = '\0';
-  char when[32] = "unknown";
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  if (::gmtime_r(&now, &utc)) std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", &utc);
-  return "pid " + std::to_string(::getpid()) + " on host " + host + ", started " + when;
+  return "pid " + std::to_string(::getpid()) + " on host " + host_name() + ", started " + utc_now();
 }
 
 // The holder recorded in an open lock file (its first line), or a note that it recorded none.
@@ -49,13 +42,10 @@ std::string read_holder(int fd) {
   return text.empty() ? "a process that has not recorded itself yet" : text;
 }
 
-}  // namespace
-
+// The lock file of a run directory: DIR/.lock.
 std::filesystem::path run_lock_path(const std::filesystem::path& dir) {
   return dir / ".lock";
 }
-
-namespace {
 
 // The key of a directory in held_locks.
 std::string lock_key(const std::filesystem::path& dir) {
@@ -107,6 +97,21 @@ void record_run_lock_holder(const std::filesystem::path& dir) {
     fail_io("cannot write the run directory's lock file ", quoted(run_lock_path(dir)), ": ",
             std::strerror(err));
   }
+}
+
+std::string utc_now() {
+  char when[32] = "unknown";
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  if (::gmtime_r(&now, &utc)) std::strftime(when, sizeof when, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return when;
+}
+
+std::string host_name() {
+  char host[256] = "unknown";
+  if (::gethostname(host, sizeof host - 1) != 0) std::strcpy(host, "unknown");
+  host[sizeof host - 1] = '\0';
+  return host;
 }
 
 }  // namespace invasim

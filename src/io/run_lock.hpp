@@ -12,9 +12,6 @@
 
 namespace invasim {
 
-// The lock file of a run directory: DIR/.lock.
-std::filesystem::path run_lock_path(const std::filesystem::path& dir);
-
 // Takes the lock of `dir` (which must exist) for the rest of this process's life; taking it
 // again in the same process succeeds. Returns nullopt on success, or the holder recorded in
 // the lock file ("pid 123 on host h, started 2026-01-02T03:04:05Z") if another process holds
@@ -26,5 +23,10 @@ std::optional<std::string> lock_run_directory(const std::filesystem::path& dir);
 // Records this process (pid, host, start time) in the lock file of `dir`, whose lock it must
 // hold (lock_run_directory). Throws IoError if it cannot be written.
 void record_run_lock_holder(const std::filesystem::path& dir);
+
+// Now as an ISO 8601 UTC time stamp ("2026-01-02T03:04:05Z"), and this machine's host name
+// ("unknown" if it has none): what lock files and job documents record of their holder.
+std::string utc_now();
+std::string host_name();
 
 }  // namespace invasim

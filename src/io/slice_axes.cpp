@@ -78,8 +78,8 @@ std::string axis_title(const Box& box, int axis) {
   return t;
 }
 
-}  // namespace
-
+// Tick positions: multiples of a round step (1, 2 or 5 times a power of ten) in [lo, hi],
+// about 4 to 10 of them.
 std::vector<double> axis_ticks(double lo, double hi) {
   std::vector<double> ticks;
   const double span = hi - lo;
@@ -92,6 +92,8 @@ std::vector<double> axis_ticks(double lo, double hi) {
     ticks.push_back(k * step);
   return ticks;
 }
+
+}  // namespace
 
 SliceCanvas slice_canvas(const Slice& s, double size_px, const std::vector<LegendEntry>& legend) {
   const Box& box = s.box;

@@ -38,10 +38,6 @@ struct LegendEntry {
 // The canvas of a slice whose longer box side spans `size_px` pixels, with room for `legend`.
 SliceCanvas slice_canvas(const Slice& s, double size_px, const std::vector<LegendEntry>& legend);
 
-// Tick positions: multiples of a round step (1, 2 or 5 times a power of ten) in [lo, hi],
-// about 4 to 10 of them.
-std::vector<double> axis_ticks(double lo, double hi);
-
 // SVG text: caption ("z = 10.05 sigma, step 500, t = 25 tau"), axes with tick marks and
 // labels in sigma, the axis titles (the wall normal named), and the legend.
 std::string slice_caption(const Slice& s);

@@ -43,6 +43,20 @@ inline std::string str(double v) {
   return s;
 }
 
+// Appends " x y z" (the rows of the XYZ and VTK formats); v is any 3-vector.
+template <typename V>
+void append_xyz(std::string& out, const V& v) {
+  for (int a = 0; a < 3; ++a) append(out += ' ', double(v[a]));
+}
+
+// "(x, y, z)", for messages.
+template <typename V>
+std::string vec_text(const V& v) {
+  std::string t = "(";
+  for (int a = 0; a < 3; ++a) append(t += a ? ", " : "", double(v[a]));
+  return t + ")";
+}
+
 // Parses a whole token as a number; nullopt if it is not exactly one number.
 template <typename T>
 std::optional<T> parse(std::string_view token) {

@@ -43,11 +43,7 @@ void close_array(std::string& out, const char* indent) {
 
 // One line of an array of 3-vectors: the indent, then " x y z".
 void vec3_line(std::string& out, const char* indent, const Vec3& x) {
-  out += indent;
-  for (int a = 0; a < 3; ++a) {
-    out += ' ';
-    text::append(out, x[a]);
-  }
+  text::append_xyz(out += indent, x);
   out += '\n';
 }
 

@@ -11,13 +11,6 @@ namespace invasim {
 
 namespace {
 
-void append_vec(std::string& out, const Vec3& v) {
-  for (int a = 0; a < 3; ++a) {
-    out += ' ';
-    text::append(out, v[a]);
-  }
-}
-
 // Reads lines one at a time from a text, counting them for error messages.
 class LineReader {
  public:
@@ -163,11 +156,11 @@ std::string xyz_frame_text(const Frame& frame) {
   out += '\n';
   for (std::size_t i = 0; i < c.size(); ++i) {
     out += 'C';
-    append_vec(out, c.pos[i]);
+    text::append_xyz(out, c.pos[i]);
     out += ' ';
     text::append(out, c.radius[i]);
-    append_vec(out, c.vel[i]);
-    append_vec(out, c.orient[i]);
+    text::append_xyz(out, c.vel[i]);
+    text::append_xyz(out, c.orient[i]);
     if (!c.id.empty()) {
       out += ' ';
       text::append(out, c.id[i]);

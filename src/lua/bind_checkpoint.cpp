@@ -46,10 +46,15 @@ CheckpointParts read_checkpoint_parts(Kwargs& kw, bool need_system) {
   return p;
 }
 
+namespace {
+
+// The engine objects of the parts (checkpoint/protocol_checkpoint.hpp).
 ProtocolObjects engine_objects(const CheckpointParts& p) {
   return {&p.sim->system, p.dyn ? &p.dyn->dynamics : nullptr,
           p.tethers ? p.tethers->force.get() : nullptr, p.correlator.get()};
 }
+
+}  // namespace
 
 void write_checkpoint_parts(CheckpointWriter& w, const CheckpointParts& p, std::string_view extra,
                             const std::optional<std::string>& run_id,

@@ -19,11 +19,16 @@
 
 namespace invasim::lua {
 
+namespace {
+
+// The keys of invasim.Fire{}.
 const FieldTable<FireParams>& fire_table() {
   static const FieldTable<FireParams> table(
       "Fire", fire_fields<FireParams>([](FireParams& p) -> FireParams& { return p; }));
   return table;
 }
+
+}  // namespace
 
 std::string LuaType<Fire>::describe(const Fire& f) {
   return fire_table().describe(f.params());

@@ -25,9 +25,6 @@ struct CheckpointParts {
 // tethers and correlator of kw.
 CheckpointParts read_checkpoint_parts(Kwargs& kw, bool need_system = true);
 
-// The engine objects of the parts (checkpoint/protocol_checkpoint.hpp).
-ProtocolObjects engine_objects(const CheckpointParts& p);
-
 // Writes the parts' sections, the protocol's `extra` string and the run's identity.
 void write_checkpoint_parts(CheckpointWriter& w, const CheckpointParts& p, std::string_view extra,
                             const std::optional<std::string>& run_id,

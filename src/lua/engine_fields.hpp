@@ -62,9 +62,6 @@ std::vector<Field<P>> fire_fields(Access fire) {
   };
 }
 
-// The keys of invasim.Fire{} (bind_fire.cpp), also read by sys:compress and sys:rescale.
-const FieldTable<FireParams>& fire_table();
-
 namespace detail {
 template <auto Table, auto Make>
 int construct_from_fields(lua_State* L) {

@@ -64,13 +64,4 @@ void CheckpointOperation::apply(Simulation& sim) {
   if (written_) written_(sim.system().step);
 }
 
-FunctionOperation::FunctionOperation(std::string name, Fn fn)
-    : name_(std::move(name)), fn_(std::move(fn)) {
-  if (!fn_) throw InputError(name_ + ": no function given");
-}
-
-void FunctionOperation::apply(Simulation& sim) {
-  if (!fn_(sim)) sim.request_stop();
-}
-
 }  // namespace invasim

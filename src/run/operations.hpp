@@ -107,17 +107,4 @@ class ProliferationOperation : public EveryOperation<Proliferation> {
   std::uint64_t births_ = 0, deaths_ = 0;
 };
 
-// Calls a function (an observer); returning false ends the run at this step boundary.
-class FunctionOperation : public Operation {
- public:
-  using Fn = std::function<bool(Simulation&)>;
-  FunctionOperation(std::string name, Fn fn);
-  std::string name() const override { return name_; }
-  void apply(Simulation& sim) override;
-
- private:
-  std::string name_;
-  Fn fn_;
-};
-
 }  // namespace invasim

@@ -25,14 +25,6 @@ void Simulation::add(std::shared_ptr<Operation> operation, Trigger trigger) {
   operations_.push_back({std::move(operation), std::move(trigger)});
 }
 
-bool Simulation::remove(const Operation* operation) {
-  const auto it = std::find_if(operations_.begin(), operations_.end(),
-                               [&](const Scheduled& s) { return s.operation.get() == operation; });
-  if (it == operations_.end()) return false;
-  operations_.erase(it);
-  return true;
-}
-
 void Simulation::set_max_chunk(std::uint64_t steps) {
   if (steps == 0) throw InputError("Simulation: max_chunk = 0; it must be >= 1 step");
   max_chunk_ = steps;

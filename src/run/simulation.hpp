@@ -50,8 +50,6 @@ class Simulation {
   };
   // Appends an operation; operations due at the same step run in the order added.
   void add(std::shared_ptr<Operation> operation, Trigger trigger);
-  // Removes an operation (false if it is not scheduled).
-  bool remove(const Operation* operation);
   const std::vector<Scheduled>& operations() const { return operations_; }
 
   using ProgressFn = std::function<void(std::uint64_t done, double time)>;

@@ -1,32 +1,10 @@
 #include "sweep/job_record.hpp"
 
-#include <unistd.h>
-
 #include <cstdlib>
-#include <ctime>
 
 #include "invasim_version.hpp"
 
 namespace invasim::sweep {
-
-std::string utc_now() {
-  const std::time_t now = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&now, &tm);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return text;
-}
-
-namespace {
-
-std::string host_name() {
-  char name[256] = {};
-  ::gethostname(name, sizeof name - 1);
-  return name;
-}
-
-}  // namespace
 
 JobRecord::JobRecord(const fs::path& job_dir, int pid, std::chrono::duration<double> heartbeat)
     : dir_(job_dir), start_(std::chrono::steady_clock::now()) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <thread>
 
+#include "io/run_lock.hpp"
 #include "sweep/workspace.hpp"
 
 namespace invasim::sweep {
@@ -30,7 +31,6 @@ class JobRecord {
   // Records the end: exit code, and status done (0), interrupted (stopped by a signal) or
   // failed, the attempt's time added to wall_seconds; returns the status.
   std::string finish(int exit_code, bool stopped);
-  const fs::path& dir() const { return dir_; }
   fs::path log_path() const { return dir_ / "run.log"; }
 
  private:
@@ -58,8 +58,5 @@ inline constexpr int kJobBusyExitCode = 75;
 // This process's Slurm job: "ARRAYJOB_TASK" (SLURM_ARRAY_JOB_ID, SLURM_ARRAY_TASK_ID), else
 // SLURM_JOB_ID, else "" (not under Slurm).
 std::string current_slurm_job_id();
-
-// Now as an ISO 8601 UTC time stamp.
-std::string utc_now();
 
 }  // namespace invasim::sweep

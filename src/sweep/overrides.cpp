@@ -27,8 +27,8 @@ void set_fixed(SweepSpec& spec, const std::string& name, const Json& value) {
   if (spec.has_prep && !spec.prep_own.contains(name)) spec.prep_set[name] = value;
 }
 
-}  // namespace
-
+// The state-point value of `text` for the declared parameter `p` (an integer-looking number
+// of a number parameter stays an integer, as in a Lua spec); InputError naming `where`.
 Json override_value(const Param& p, const std::string& text, const std::string& where) {
   ParamValue parsed;
   try {
@@ -47,6 +47,8 @@ Json override_value(const Param& p, const std::string& text, const std::string& 
   }
   return std::visit([](const auto& v) { return Json(v); }, parsed);
 }
+
+}  // namespace
 
 void apply_spec_overrides(SweepSpec& spec, const SpecOverrides& o) {
   std::optional<int> take = o.take;

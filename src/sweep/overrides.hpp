@@ -26,8 +26,4 @@ struct SpecOverrides {
 // Applies `o` to `spec` (in place): tiny first, then --set, then --take.
 void apply_spec_overrides(SweepSpec& spec, const SpecOverrides& o);
 
-// The state-point value of `text` for the declared parameter `p` (an integer-looking number
-// of a number parameter stays an integer, as in a Lua spec); InputError naming `where`.
-Json override_value(const Param& p, const std::string& text, const std::string& where);
-
 }  // namespace invasim::sweep

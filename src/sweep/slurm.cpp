@@ -58,12 +58,8 @@ std::string sbatch(const fs::path& script, const std::string& dependency) {
     text_of_command << " --dependency=afterok:" << dependency << " --kill-on-invalid-dep=yes";
   text_of_command << ' ' << quoted(script.string()) << " 2>&1";
   const std::string command = text_of_command.str();
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (!pipe) fail_input("sweep submit: cannot run sbatch");
-  std::string text;
-  char buffer[512];
-  while (std::fgets(buffer, sizeof buffer, pipe)) text += buffer;
-  const int status = ::pclose(pipe);
+  auto [status, text] = run_command(command);
+  if (status == -1) fail_input("sweep submit: cannot run sbatch");
   while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
   if (status != 0) fail_input("sweep submit: ", command, " failed: ", text);
   const std::string id = text.substr(0, text.find(';'));  // "123" or "123;cluster"
@@ -75,14 +71,10 @@ std::string sbatch(const fs::path& script, const std::string& dependency) {
 // The cluster's MaxArraySize (`scontrol show config`): array indices run 0..MaxArraySize-1,
 // so an array holds at most that many tasks; 1001, Slurm's default, when it cannot be read.
 int cluster_max_array_size() {
-  FILE* pipe = ::popen("scontrol show config 2>/dev/null", "r");
+  std::istringstream lines(run_command("scontrol show config 2>/dev/null").text);
   int size = 0;
-  if (pipe) {
-    char line[512];
-    while (std::fgets(line, sizeof line, pipe))
-      if (std::sscanf(line, " MaxArraySize = %d", &size) == 1) break;
-    ::pclose(pipe);
-  }
+  for (std::string line; std::getline(lines, line);)
+    if (std::sscanf(line.c_str(), " MaxArraySize = %d", &size) == 1) break;
   return size > 0 ? size : 1001;
 }
 
@@ -167,11 +159,8 @@ int submit_slurm(const Workspace& ws, const SlurmOptions& o, std::ostream& out) 
   } else if (prep_status == "queued" || prep_status == "running") {
     prep_job = read_document(ws.job_dir(kPrepId)).value("slurm_job_id", "");
   }
-  Json log = Json::array();
-  if (fs::exists(slurm_dir / "submissions.json")) {
-    std::ifstream in(slurm_dir / "submissions.json");
-    log = Json::parse(in);
-  }
+  Json log = fs::exists(slurm_dir / "submissions.json") ? read_json(slurm_dir / "submissions.json")
+                                                        : Json::array();
   for (std::size_t j = 0; j < arrays.size(); ++j) {
     const std::string array_job = sbatch(scripts[j], prep_job);
     for (std::size_t i = 0; i < arrays[j].size(); ++i)
@@ -192,8 +181,7 @@ int submit_slurm(const Workspace& ws, const SlurmOptions& o, std::ostream& out) 
 int cancel_after_failed_prep(const Workspace& ws, const std::string& prep_job, std::ostream& out) {
   const fs::path log_path = ws.root() / "slurm" / "submissions.json";
   if (prep_job.empty() || !fs::exists(log_path)) return 0;
-  std::ifstream in(log_path);
-  const Json log = Json::parse(in);
+  const Json log = read_json(log_path);
   const std::string note = "the shared preparation failed (Slurm job " + prep_job + ", log " +
                            (ws.job_dir(kPrepId) / "run.log").string() + ")";
   int returned = 0;

@@ -2,25 +2,27 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <sstream>
 #include <vector>
 
 namespace invasim::sweep {
 
+CommandOutput run_command(const std::string& command) {
+  CommandOutput out;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) return out;
+  char buffer[512];
+  while (std::fgets(buffer, sizeof buffer, pipe)) out.text += buffer;
+  out.status = ::pclose(pipe);
+  return out;
+}
+
 std::map<std::string, std::string> slurm_queue() {
   std::map<std::string, std::string> queue;
   if (std::system("command -v squeue >/dev/null 2>&1") != 0) return queue;
-  FILE* pipe = ::popen("squeue -h -r -o '%i %T' 2>/dev/null", "r");
-  if (!pipe) return queue;
-  char line[512];
-  while (std::fgets(line, sizeof line, pipe)) {
-    std::string text(line);
-    const auto space = text.find(' ');
-    if (space == std::string::npos) continue;
-    std::string state = text.substr(space + 1);
-    while (!state.empty() && (state.back() == '\n' || state.back() == ' ')) state.pop_back();
-    queue[text.substr(0, space)] = state;
-  }
-  ::pclose(pipe);
+  std::istringstream lines(run_command("squeue -h -r -o '%i %T' 2>/dev/null").text);
+  for (std::string line, id, state; std::getline(lines, line);)
+    if (std::istringstream(line) >> id >> state) queue[id] = state;
   return queue;
 }
 

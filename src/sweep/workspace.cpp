@@ -6,23 +6,11 @@
 
 #include <algorithm>
 #include <fstream>
-#include <sstream>
 
 #include "core/errors.hpp"
 #include "io/regular_file.hpp"
 
 namespace invasim::sweep {
-
-Json read_json(const fs::path& path) {
-  require_regular_file(path, "sweep configuration");  // a FIFO would block the reader
-  std::ifstream in(path);
-  if (!in) fail_input("cannot read ", path.string());
-  try {
-    return Json::parse(in);
-  } catch (const Json::exception& e) {
-    fail_input(path.string(), ": not valid JSON (", e.what(), ")");
-  }
-}
 
 void write_file(const fs::path& path, const std::string& text) {
   const fs::path tmp = path.string() + ".tmp";
@@ -46,15 +34,6 @@ void write_document(const fs::path& job_dir, const Json& document) {
 
 JobLock::~JobLock() {
   if (fd_ >= 0) ::close(fd_);
-}
-
-JobLock& JobLock::operator=(JobLock&& other) noexcept {
-  if (this != &other) {
-    if (fd_ >= 0) ::close(fd_);
-    fd_ = other.fd_;
-    other.fd_ = -1;
-  }
-  return *this;
 }
 
 std::optional<JobLock> JobLock::try_acquire(const fs::path& job_dir) {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "io/json.hpp"
 #include "sweep/python_json.hpp"
 #include "sweep/spec.hpp"
 
@@ -23,9 +24,6 @@ namespace fs = std::filesystem;
 inline const std::string kPrepId = "prep";
 // The workspace's configuration file, WS/invasim_sweep.json.
 inline const char* const kConfig = "invasim_sweep.json";
-
-// A JSON file's contents; InputError naming the file if it cannot be read or parsed.
-Json read_json(const fs::path& path);
 
 class Workspace {
  public:
@@ -66,13 +64,10 @@ void write_file(const fs::path& path, const std::string& text);
 // processes inherit it. Not copyable.
 class JobLock {
  public:
-  JobLock() = default;
   ~JobLock();
   JobLock(JobLock&& other) noexcept : fd_(other.fd_) { other.fd_ = -1; }
-  JobLock& operator=(JobLock&& other) noexcept;
   // Takes the lock if nobody holds it.
   static std::optional<JobLock> try_acquire(const fs::path& job_dir);
-  int fd() const { return fd_; }
 
  private:
   explicit JobLock(int fd) : fd_(fd) {}

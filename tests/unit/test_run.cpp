@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <csignal>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,21 @@
 using namespace invasim;
 
 namespace {
+
+// Calls a function (an observer, as a Lua callback is); returning false ends the run.
+class FunctionOperation : public Operation {
+ public:
+  FunctionOperation(std::string name, std::function<bool(Simulation&)> fn)
+      : name_(std::move(name)), fn_(std::move(fn)) {}
+  std::string name() const override { return name_; }
+  void apply(Simulation& sim) override {
+    if (!fn_(sim)) sim.request_stop();
+  }
+
+ private:
+  std::string name_;
+  std::function<bool(Simulation&)> fn_;
+};
 
 // A small damped system of spheres in a fully periodic box, ready to run.
 struct Fixture {
