@@ -7,7 +7,7 @@
 //                                                          -- it was written outside a run)
 //   invasim.interrupted()   -> "SIGINT" / "SIGTERM" once a stop was requested, else nil
 //   invasim.decode_state(text [, origin]) -> the plain Lua data of a checkpoint's `extra`
-//                                            (io/lua_data.hpp: parsed as data, never run)
+//                                            (checkpoint/lua_data.hpp: parsed as data, never run)
 // save writes the System (every site array, bit for bit), the Dynamics (time step, method
 // parameters and ramp anchors, the pressure wall), the tethers, a correlator's accumulators
 // and a string of the protocol's own (`extra`), atomically. load restores them into objects
@@ -19,10 +19,10 @@
 
 #include <optional>
 
+#include "checkpoint/lua_data.hpp"
 #include "checkpoint/protocol_checkpoint.hpp"
 #include "core/names.hpp"
 #include "core/stop_request.hpp"
-#include "io/lua_data.hpp"
 #include "lua/checkpoint_parts.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"

@@ -9,10 +9,10 @@
 
 #include "../io/io_test_support.hpp"
 #include "checkpoint/checkpoint_file.hpp"
+#include "checkpoint/lua_data.hpp"
 #include "checkpoint/state_checkpoint.hpp"
 #include "io/atomic_file.hpp"
 #include "io/crc32.hpp"
-#include "io/lua_data.hpp"
 #include "io/regular_file.hpp"
 #include "io/vtk_format.hpp"
 

@@ -1,4 +1,4 @@
-#include "io/lua_data.hpp"
+#include "checkpoint/lua_data.hpp"
 
 #include <algorithm>
 #include <cmath>
