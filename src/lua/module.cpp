@@ -7,6 +7,7 @@
 
 #include "core/fnv1a.hpp"
 #include "invasim_version.hpp"
+#include "lua/adapters.hpp"
 #include "lua/binding.hpp"
 #include "lua/context.hpp"
 
@@ -17,63 +18,31 @@ namespace invasim::lua {
 #include "lua_bindings.inc"
 #undef INVASIM_LUA_PART
 
-namespace {
-
-// invasim.threads(): the number of OpenMP threads a parallel loop will use.
-int l_threads(lua_State* L) {
-  lua_pushinteger(L, omp_get_max_threads());
-  return 1;
-}
-
-// invasim.clock(): wall-clock seconds from a steady clock (for timing stages; os.clock is
-// CPU time summed over threads).
-int l_clock(lua_State* L) {
-  const auto now = std::chrono::steady_clock::now().time_since_epoch();
-  lua_pushnumber(L, std::chrono::duration<double>(now).count());
-  return 1;
-}
-
-// invasim.hash(text): FNV-1a 64 of the bytes, as 16 hex digits (a run's identity).
-int l_hash(lua_State* L) {
-  std::size_t size = 0;
-  const char* text = luaL_checklstring(L, 1, &size);
-  const std::string hex = fnv1a64_hex(std::string_view(text, size));
-  lua_pushlstring(L, hex.data(), hex.size());
-  return 1;
-}
-
-}  // namespace
-
 int open_invasim(lua_State* L) {
-  const ScriptContext& context = script_context(L);
-  lua_newtable(L);
-  lua_pushstring(L, kInvasimVersion);
-  lua_setfield(L, -2, "version");
-  lua_pushstring(L, kInvasimGitRevision[0] ? kInvasimGitRevision : "unknown");
-  lua_setfield(L, -2, "git_revision");
-  lua_pushstring(L, context.options.out_dir.c_str());
-  lua_setfield(L, -2, "out_dir");
-  if (!context.options.from_dir.empty()) {  // invasim.from: a run whose tissue to start from
-    lua_pushstring(L, context.options.from_dir.c_str());
-    lua_setfield(L, -2, "from");
-  }
-  if (context.options.resume) {  // invasim.resume: the run directory to continue, else nil
-    lua_pushstring(L, context.options.out_dir.c_str());
-    lua_setfield(L, -2, "resume");
-  }
-  if (!context.options.continue_command.empty()) {
-    lua_pushstring(L, context.options.continue_command.c_str());
-    lua_setfield(L, -2, "continue_command");
-  }
-  lua_pushboolean(L, context.options.overwrite);  // --overwrite: replace the run in out_dir
-  lua_setfield(L, -2, "overwrite");
-  lua_pushstring(L, context.options.script_path.c_str());
-  lua_setfield(L, -2, "script");
-  add_functions(L, {
-                       {"threads", &l_threads},
-                       {"clock", &l_clock},
-                       {"hash", &l_hash},
-                   });
+  {
+    const RunOptions& o = script_context(L).options;
+    Record fields{{"version", kInvasimVersion},
+                  {"git_revision", kInvasimGitRevision[0] ? kInvasimGitRevision : "unknown"},
+                  {"out_dir", o.out_dir},
+                  {"overwrite", o.overwrite},  // --overwrite: replace the run in out_dir
+                  {"script", o.script_path}};
+    if (!o.from_dir.empty()) fields.push_back({"from", o.from_dir});  // the tissue's run
+    if (o.resume) fields.push_back({"resume", o.out_dir});  // the run directory to continue
+    if (!o.continue_command.empty()) fields.push_back({"continue_command", o.continue_command});
+    push_record(L, fields);
+  }  // no C++ object is left in this frame: the bindings below may raise Lua errors
+  add_functions(L,
+                {// invasim.threads(): the number of OpenMP threads a parallel loop will use.
+                 method<"threads", [] { return omp_get_max_threads(); }>(),
+                 // invasim.clock(): wall-clock seconds from a steady clock (for timing stages;
+                 // os.clock is CPU time summed over threads).
+                 method<"clock",
+                        [] {
+                          const auto now = std::chrono::steady_clock::now().time_since_epoch();
+                          return std::chrono::duration<double>(now).count();
+                        }>(),
+                 // invasim.hash(text): FNV-1a 64 of the bytes, as 16 hex digits (a run's identity).
+                 method<"hash", [](std::string text) { return fnv1a64_hex(text); }>()});
 #define INVASIM_LUA_PART(part) open_##part(L);
 #include "lua_bindings.inc"
 #undef INVASIM_LUA_PART
