@@ -9,7 +9,6 @@
 #include <limits>
 
 #include "core/names.hpp"
-#include "core/progress.hpp"
 #include "lua/adapters.hpp"
 #include "lua/engine_fields.hpp"
 #include "lua/engine_types.hpp"
@@ -199,15 +198,7 @@ int l_run(lua_State* L) {
   if (callback)
     run.add(std::make_shared<LuaFunctionOperation>(L, callback, sim, d, "callback"),
             Trigger::every(static_cast<std::uint64_t>(*every)));
-  if (progress)
-    run.set_progress([progress](std::uint64_t done, double time) {
-      progress->update(static_cast<long long>(done), time);
-    });
-  prepare_dynamics(*d, sim, "run");
-  const RunResult result =
-      engine_call("run", [&] { return run.run(static_cast<std::uint64_t>(n)); });
-  sim->changed();
-  d->record.ran_on(sim);
+  const RunResult result = run_steps(run, sim, *d, n, progress);
   lua_pushinteger(L, static_cast<lua_Integer>(result.steps));  // the caller checks
   return 1;                                                    // invasim.interrupted()
 }

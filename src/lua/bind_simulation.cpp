@@ -16,7 +16,6 @@
 #include "core/stop_request.hpp"
 
 #include "core/names.hpp"
-#include "core/progress.hpp"
 #include "lua/checkpoint_parts.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
@@ -215,25 +214,15 @@ int l_run(lua_State* L) {
     progress = kw_object<Progress>(kw, "progress");
     kw.finish();
   }
-  s->run.set_progress(
-      progress ? invasim::Simulation::ProgressFn([progress](std::uint64_t done, double time) {
-        progress->update(static_cast<long long>(done), time);
-      })
-               : invasim::Simulation::ProgressFn());
   for (const auto& op : s->lua_ops) op->set_thread(L);
-  prepare_dynamics(*s->dyn, s->system, "run");
   RunResult result;
   try {
-    result = engine_call("run", [&] { return s->run.run(static_cast<std::uint64_t>(n)); });
+    result = run_steps(s->run, s->system, *s->dyn, n, progress);
   } catch (...) {
     for (const auto& op : s->lua_ops) op->set_thread(nullptr);
-    s->run.set_progress({});
     throw;
   }
   for (const auto& op : s->lua_ops) op->set_thread(nullptr);
-  s->run.set_progress({});
-  s->system->changed();
-  s->dyn->record.ran_on(s->system);
   lua_pushinteger(L, static_cast<lua_Integer>(result.steps));
   if (result.stop_signal)
     lua_pushstring(L, stop_signal_name(result.stop_signal));

@@ -19,6 +19,12 @@ namespace invasim::lua {
 invasim::Simulation engine_simulation(const std::shared_ptr<SystemHandle>& system,
                                       const std::shared_ptr<DynamicsHandle>& d);
 
+// Runs n steps of `run` (made by engine_simulation from `system` and `d`), the one path of
+// dyn:run and sim:run: `progress` (may be null) hears of every chunk; the Dynamics is prepared
+// first, and afterwards the System is marked changed and the Dynamics as having run on it.
+RunResult run_steps(invasim::Simulation& run, const std::shared_ptr<SystemHandle>& system,
+                    DynamicsHandle& d, long long n, const std::shared_ptr<Progress>& progress);
+
 // Calls a Lua function fn(step, time); a return value of false ends the run at this step.
 // When the function changed the System (its revision moved), the Dynamics re-prepares before
 // the next step. The function is kept in the registry until the operation is destroyed.
