@@ -10,7 +10,8 @@
 #     empty directory becomes the workspace;
 #  4. an init SIGKILLed midway (test hook INVASIM_TEST_KILL_SWEEP_INIT_AFTER) leaves no
 #     workspace, only its temporary sibling, which the next init removes; a grown init killed
-#     midway leaves the workspace listing its old points, and the next init completes it.
+#     midway leaves the workspace listing its old points, and the next init completes it;
+#  5. a damaged invasim_sweep.json is refused naming the file, line and column.
 # Usage: sweep_workspace.sh INVASIM SPEC_DIR WORK_DIR
 set -euo pipefail
 invasim=$1 specs=$2 work=$3
@@ -79,4 +80,13 @@ cmp -s config.before ws/invasim_sweep.json || fail "a killed grown init changed 
 grep -q "2 new points, 4 kept" grown.log || fail "the grown init after the kill" grown.log
 [ "$(listed ws)" -eq 6 ] && [ "$(ls ws/workspace | wc -l)" -eq 6 ] || fail "not 6 points after the grown init"
 ! ls -d ws/.init.* > /dev/null 2>&1 || fail "the stale staging directory was not removed"
+# 5. A damaged configuration is named with the place of the damage.
+cp ws/invasim_sweep.json config.good
+echo '{"points": [' > ws/invasim_sweep.json
+rc=0
+"$invasim" sweep status ws > damaged.log 2>&1 || rc=$?
+[ "$rc" -eq 1 ] || fail "sweep status of a damaged workspace exited $rc, expected 1" damaged.log
+grep -q "'ws/invasim_sweep.json': malformed JSON: parse error at line 2, column 1" damaged.log ||
+  fail "a damaged invasim_sweep.json is not named with its line and column" damaged.log
+cp config.good ws/invasim_sweep.json
 echo "sweep_workspace: counted, refused and atomic"
