@@ -24,10 +24,8 @@ std::string got(lua_State* L, int index) {
 }
 
 // The declaration a typed getter checks: one plain type, finite numbers only.
-Declaration plain_declaration(std::string_view key, const char* type, Range range = {},
-                              std::vector<std::string> choices = {}) {
-  return field_declaration(std::string(key), {type}, shown_range(range, false), "", "",
-                           std::move(choices));
+Declaration plain_declaration(std::string_view key, const char* type, Range range = {}) {
+  return field_declaration(std::string(key), {type}, shown_range(range, false), "", "");
 }
 
 }  // namespace
@@ -261,13 +259,6 @@ std::optional<bool> Kwargs::maybe_boolean(std::string_view key) {
 std::optional<std::string> Kwargs::maybe_string(std::string_view key) {
   auto value = declared(plain_declaration(key, "string"), false);
   if (!value) return std::nullopt;
-  return std::get<std::string>(std::move(*value));
-}
-
-std::string Kwargs::choice(std::string_view key, const std::vector<std::string>& choices,
-                           std::optional<std::string> fallback) {
-  auto value = declared(plain_declaration(key, "string", {}, choices), !fallback);
-  if (!value) return std::move(*fallback);
   return std::get<std::string>(std::move(*value));
 }
 

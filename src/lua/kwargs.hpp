@@ -108,10 +108,6 @@ class Kwargs {
   std::optional<bool> maybe_boolean(std::string_view key);
   std::optional<std::string> maybe_string(std::string_view key);
 
-  // A string from a fixed set; the error lists the choices.
-  std::string choice(std::string_view key, const std::vector<std::string>& choices,
-                     std::optional<std::string> fallback = std::nullopt);
-
   // A list of exactly `size` numbers ({70, 70, 70}); nullopt when absent and not required.
   std::optional<std::vector<double>> maybe_number_list(std::string_view key, std::size_t size,
                                                        Range range = {});

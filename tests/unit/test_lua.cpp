@@ -137,7 +137,9 @@ TEST_CASE("Kwargs reads typed keys with defaults", "[lua][kwargs]") {
   CHECK(kw.number("dt", Range::positive()) == 0.5);
   CHECK(kw.string("name") == "x");
   CHECK(kw.boolean("on"));
-  CHECK(kw.choice("mode", {"fast", "slow"}) == "fast");
+  CHECK(std::get<std::string>(*kw.declared(
+            field_declaration("mode", {"string"}, std::nullopt, "", "", {"fast", "slow"}), true)) ==
+        "fast");
   CHECK(kw.number("absent", 3.0) == 3.0);
   CHECK(kw.integer<int>("absent_int", 4, Range{}) == 4);
   CHECK_FALSE(kw.maybe_string("nothing"));
@@ -216,9 +218,11 @@ TEST_CASE("Kwargs errors name the owner, the key and the valid keys", "[lua][kwa
   SECTION("choice") {
     eval(L, "{mode = 'fsat'}");
     Kwargs kw(L, -1, "Dynamics");
-    CHECK_THROWS_WITH(kw.choice("mode", {"fast", "slow"}),
-                      "Dynamics: key 'mode' must be one of: fast, slow; got 'fsat' (did you "
-                      "mean 'fast'?)");
+    CHECK_THROWS_WITH(
+        kw.declared(field_declaration("mode", {"string"}, std::nullopt, "", "", {"fast", "slow"}),
+                    true),
+        "Dynamics: key 'mode' must be one of: fast, slow; got 'fsat' (did you "
+        "mean 'fast'?)");
   }
   SECTION("nested table") {
     eval(L, "{cohesion = {beta = 0.1, alfa = 0.2}}");
