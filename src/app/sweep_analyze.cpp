@@ -9,7 +9,6 @@
 #include <map>
 #include <set>
 #include <sstream>
-#include <variant>
 
 #include "app/cli.hpp"
 #include "core/errors.hpp"
@@ -45,8 +44,7 @@ std::string python() {
 
 // "K=V" text of a declared parameter's default (floats as Python's repr: they round-trip).
 std::string default_text(const Param& p) {
-  return p.name + "=" +
-         sweep::set_text(std::visit([](const auto& v) { return sweep::Json(v); }, p.default_value));
+  return p.name + "=" + sweep::set_text(sweep::to_json(p.default_value));
 }
 
 // Runs argv, returns its exit status (128 + signal if it was killed).

@@ -45,7 +45,7 @@ Json override_value(const Param& p, const std::string& text, const std::string& 
       return Json(static_cast<std::int64_t>(d));
     return Json(d);
   }
-  return std::visit([](const auto& v) { return Json(v); }, parsed);
+  return to_json(parsed);
 }
 
 }  // namespace

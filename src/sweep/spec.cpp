@@ -47,11 +47,11 @@ std::string set_text(const Json& value) {
   return value.dump();
 }
 
-namespace {
-
 Json to_json(const ParamValue& value) {
   return std::visit([](const auto& v) { return Json(v); }, value);
 }
+
+namespace {
 
 // The spec file's lines, to tell the line of a key (a Lua table does not keep it).
 class SourceLines {

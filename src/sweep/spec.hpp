@@ -59,4 +59,7 @@ std::vector<Param> protocol_params(const std::string& protocol);
 // A state-point value as `--set key=VALUE` text for the protocol (floats round-trip).
 std::string set_text(const Json& value);
 
+// A parameter's value as a state-point value (an integer stays an integer).
+Json to_json(const ParamValue& value);
+
 }  // namespace invasim::sweep
