@@ -1,15 +1,12 @@
 #include "app/options.hpp"
 
-#include <algorithm>
 #include <charconv>
+
+#include "core/names.hpp"
 
 namespace invasim::app {
 
 namespace {
-
-bool contains(const std::vector<std::string>& list, const std::string& item) {
-  return std::find(list.begin(), list.end(), item) != list.end();
-}
 
 // As the user writes it: -o for --output.
 std::string shown(const std::string& name) {

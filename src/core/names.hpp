@@ -17,6 +17,13 @@ std::string cat(const Parts&... parts) {
   return out.str();
 }
 
+// Whether `item` is one of `names`.
+inline bool contains(const std::vector<std::string>& names, std::string_view item) {
+  for (const auto& n : names)
+    if (n == item) return true;
+  return false;
+}
+
 // Sorted, de-duplicated, comma-separated: {"seed", "box"} -> "box, seed".
 std::string join_names(std::vector<std::string> names);
 

@@ -2,7 +2,6 @@
 
 #include <lua.hpp>
 
-#include <algorithm>
 #include <cmath>
 
 #include "core/errors.hpp"
@@ -17,10 +16,6 @@ namespace {
 const std::vector<std::string> kPlainTypes = {"number", "integer", "string", "boolean"};
 const std::vector<std::string> kKeywordTypes = {"number",   "integer", "string",   "boolean",
                                                 "function", "table",   "userdata", "any"};
-
-bool contains(const std::vector<std::string>& list, const std::string& item) {
-  return std::find(list.begin(), list.end(), item) != list.end();
-}
 
 // Whether t is a keyword type: a plain one or a bound type's name (metatable "invasim.<t>").
 bool known_type(lua_State* L, const std::string& t) {
