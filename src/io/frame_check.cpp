@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/range.hpp"
 #include "io/io_error.hpp"
 #include "io/text_format.hpp"
 
@@ -21,7 +22,7 @@ void check_point(const std::string& origin, const std::string& what, const Vec3&
     fail_io(origin, ": ", what, ": position ", text::vec_text(pos),
             " is not finite (a picture cannot place it)");
   if (!std::isfinite(radius) || radius < 0.0)
-    fail_io(origin, ": ", what, ": radius ", text::str(radius),
+    fail_io(origin, ": ", what, ": radius ", format_number(radius),
             radius < 0.0 ? " is negative" : " is not finite", " (a picture cannot draw it)");
 }
 

@@ -37,12 +37,6 @@ inline void append_fixed(std::string& out, double v, int decimals) {
   out.append(buf, std::size_t(r.ptr - buf));
 }
 
-inline std::string str(double v) {
-  std::string s;
-  append(s, v);
-  return s;
-}
-
 // Appends " x y z" (the rows of the XYZ and VTK formats); v is any 3-vector.
 template <typename V>
 void append_xyz(std::string& out, const V& v) {

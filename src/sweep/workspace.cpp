@@ -8,7 +8,6 @@
 #include <fstream>
 
 #include "core/errors.hpp"
-#include "io/regular_file.hpp"
 
 namespace invasim::sweep {
 

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "checkpoint/state_checkpoint.hpp"
+#include "core/range.hpp"
 #include "integrate/dynamics.hpp"
 #include "io/atomic_file.hpp"
 #include "io/render_slice.hpp"
@@ -43,7 +44,7 @@ int main(int argc, char** argv) {
       for (Vec3& v : sys.sites().vel) v *= -1.0;  // frames differ
       writer.write(sys);
       steps += (frame ? " " : "") + std::to_string(sys.step);
-      times += (frame ? " " : "") + text::str(sys.time);
+      times += (frame ? " " : "") + format_number(sys.time);
     }
     fact("steps", steps);
     fact("times", times);
@@ -52,10 +53,10 @@ int main(int argc, char** argv) {
     fact("vertices_per_body", "42");
     fact("faces_per_body", "80");
     const Box& box = sys.box();
-    fact("box_lo",
-         text::str(box.lo()[0]) + " " + text::str(box.lo()[1]) + " " + text::str(box.lo()[2]));
-    fact("box_hi",
-         text::str(box.hi()[0]) + " " + text::str(box.hi()[1]) + " " + text::str(box.hi()[2]));
+    fact("box_lo", format_number(box.lo()[0]) + " " + format_number(box.lo()[1]) + " " +
+                       format_number(box.lo()[2]));
+    fact("box_hi", format_number(box.hi()[0]) + " " + format_number(box.hi()[1]) + " " +
+                       format_number(box.hi()[2]));
 
     TetherForce tethers(0.7);
     iotest::sample_tethers(sys, tethers);

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "../io/io_test_support.hpp"
+#include "core/range.hpp"
 #include "io/atomic_file.hpp"
 #include "io/io_error.hpp"
 #include "io/snapshot_writer.hpp"
@@ -156,7 +157,7 @@ TEST_CASE("extended XYZ: the documented header and an exact round trip") {
     CHECK(r[2] < 10.0);
   }
   for (std::size_t i = 0; i < f.cells.size(); ++i)
-    CHECK(text.find("\nC " + text::str(f.cells.pos[i][0]) + " ") != std::string::npos);
+    CHECK(text.find("\nC " + format_number(f.cells.pos[i][0]) + " ") != std::string::npos);
 }
 
 TEST_CASE("XYZ reader: frames of a trajectory and clear errors") {

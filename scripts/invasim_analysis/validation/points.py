@@ -34,13 +34,13 @@ def crossing(x, y, level=0.5):
 
 
 def crossing_bound(x, y, err, level=0.5):
-    """Where crossing(x, y) is nan because the curve lies wholly on one side of `level`, the
-    side and the edge of the scanned range it bounds: ("above", max x) when every y is below
-    level by more than 2 errors (the crossing lies above the hottest point), ("below", min x)
-    when every y is above it; (None, nan) otherwise (a crossing, or points too close to level
-    to say)."""
+    """Where the curve lies wholly on one side of `level` (so crossing(x, y) is nan), the side
+    and the edge of the scanned range it bounds: ("above", max x) when every y is below level
+    by more than 2 errors (the crossing lies above the hottest point), ("below", min x) when
+    every y is above it; (None, nan) otherwise (a crossing, or points too close to level to
+    say)."""
     x, y, err = (np.asarray(v, float) for v in (x, y, err))
-    if len(x) == 0 or not np.isnan(crossing(x, y, level)):
+    if len(x) == 0:
         return None, math.nan
     err = np.where(np.isfinite(err), err, 0.0)
     if np.all(y + 2 * err < level):
