@@ -78,7 +78,7 @@ bool is_identity(const std::vector<int>& order) {
 }  // namespace
 
 TEST_CASE(
-    "engine order: sorted by kind, a permutation; after a run the sites are in the user's "
+    "engine order: sorted by kind, a permutation, after a run the sites are in the user's "
     "order") {
   const System initial = start();
   auto t = make_tissue(start());

@@ -363,7 +363,7 @@ TEST_CASE(
 // Contact forces
 
 TEST_CASE(
-    "contact energy and forces equal the all-pairs model sums; same-adipocyte vertices "
+    "contact energy and forces equal the all-pairs model sums, same-adipocyte vertices "
     "excluded") {
   for (double skin : {0.0, 0.3}) {
     CAPTURE(skin);
@@ -403,7 +403,7 @@ TEST_CASE(
 
 TEST_CASE(
     "contact kernel: class table for few diameters (looked up by permutes up to 16 class pairs, "
-    "by loads beyond), direct fallback for many; all equal the all-pairs sums, and forces do not "
+    "by loads beyond), direct fallback for many, all equal the all-pairs sums, and forces do not "
     "depend on the skin, bit for bit") {
   // 0: the bidisperse cells (3 classes with the vertices); 5 and 20 distinct cancer-cell
   // diameters: 6 classes (36 class pairs, more than a permute holds), and more classes than
@@ -1009,7 +1009,7 @@ double plain_shape_energy(const MeshBody& body, const Vec3* x, double eps_v, dou
 }
 }  // namespace
 
-TEST_CASE("shape kernel: equals the plain face-by-face sum; corner lists in face order") {
+TEST_CASE("shape kernel: equals the plain face-by-face sum, corner lists in face order") {
   const MeshShape shape = icosphere(1);
   const MeshTopology& topo = *shape.topology;
   // Every (face, corner) once, grouped by vertex, faces increasing within a vertex.

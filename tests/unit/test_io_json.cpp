@@ -85,7 +85,7 @@ TEST_CASE("json_dump: sorted keys, objects one entry per line, arrays on one lin
   CHECK_THROWS_WITH(json_dump(Json(1), -1), Contains("indent = -1 must be >= 0"));
 }
 
-TEST_CASE("parse_json reads back what json_dump wrote; malformed JSON names the file") {
+TEST_CASE("parse_json reads back what json_dump wrote, malformed JSON names the file") {
   const Json back = parse_json(kSampleText, "sample");
   std::string same = kSampleText;  // all but -0, which reads back as the integer 0
   same.replace(same.find("-0,"), 3, "0,");

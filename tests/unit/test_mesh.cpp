@@ -53,7 +53,7 @@ TEST_CASE("icosphere(1) volume and area equal the sum over its exact faces") {
 }
 
 TEST_CASE(
-    "shape parameter of the icosphere is 1.0240583...; invariant under translation and scale") {
+    "shape parameter of the icosphere is 1.0240583..., invariant under translation and scale") {
   const MeshShape s = icosphere(1);
   std::vector<Vec3> x = s.vertices;
   auto A = [&]() {

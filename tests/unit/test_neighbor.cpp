@@ -176,7 +176,7 @@ TEST_CASE("Verlet list equals the brute-force pair set with walls in x, periodic
 }
 
 TEST_CASE(
-    "Verlet list: moves below skin/2 keep the list valid without a rebuild; larger moves rebuild") {
+    "Verlet list: moves below skin/2 keep the list valid without a rebuild, larger moves rebuild") {
   const double skin = 0.3;
   for (bool walls : {false, true}) {
     DYNAMIC_SECTION("walls in x: " << walls) {

@@ -375,7 +375,7 @@ TEST_CASE("drift: a site that leaves the box is wrapped wherever it falls in a r
 
 TEST_CASE(
     "ContactForce: its own region and the force field's team region give the same bits, with "
-    "list rebuilds, at 1 and 2 threads; a compute without hooks is one region") {
+    "list rebuilds, at 1 and 2 threads, a compute without hooks is one region") {
   ThreadGuard guard;
   // Two copies of the mixed system moved alike: on one the contacts are evaluated by
   // ContactForce::add_forces (a region of its own, as outside a time step), on the other by
@@ -488,7 +488,7 @@ class ThreadsSeen : public Force {
 
 }  // namespace
 
-TEST_CASE("Dynamics: a light step runs on the calling thread alone; the thread count is restored") {
+TEST_CASE("Dynamics: a light step runs on the calling thread alone, the thread count is restored") {
   ThreadGuard guard;
   omp_set_num_threads(2);
   System sys = test::free_particles(20, 1.0, 3);

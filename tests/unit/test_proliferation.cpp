@@ -169,7 +169,7 @@ void set_cell(System& sys, int site, int id, int t) {
 
 }  // namespace
 
-TEST_CASE("proliferation: a correlator's dead cells leave it; pairs average over the living") {
+TEST_CASE("proliferation: a correlator's dead cells leave it, pairs average over the living") {
   const int n = 6, lags = 4, samples = 7, death = 3;  // cells 1 and 4 die before sample 3
   System sys(Box(Vec3::Zero(), Vec3(100.0, 100.0, 100.0), {false, true, true}), 1);
   for (int i = 0; i < n; ++i) sys.add_sphere(Vec3(20.0, 10.0 + i, 30.0), 1.0);
