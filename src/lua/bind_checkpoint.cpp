@@ -91,14 +91,7 @@ int l_load(lua_State* L) {
   std::string extra;
   engine_call("load_checkpoint", [&] {
     extra = read_protocol_checkpoint(CheckpointReader::read(path), path, engine_objects(p), seed);
-    SystemHandle& sim = *p.sim;
-    for (const auto& term : sim.forces.terms()) term->invalidate_caches();
-    sim.changed();
-    if (p.dyn) {
-      prepare_dynamics(*p.dyn, p.sim, "load_checkpoint");  // links the pressure wall
-      p.dyn->dynamics.mark_prepared();
-      p.dyn->record.ran_on(p.sim);
-    }
+    restored_from_checkpoint(p.sim, p.dyn.get());
   });
   return push_results(L, 1, [&extra](lua_State* S) noexcept {
     lua_pushlstring(S, extra.data(), extra.size());

@@ -10,7 +10,7 @@
 //   with stopped = true and fire_state = {dt, alpha, n_positive, steps, wall_velocity}, the
 //   minimiser's state (or at a step boundary, without fire_state); continue_from = such a
 //   report continues it on the same tissue, bit for bit; contacts changes the System's
-//   Contacts parameters for this call only: TemporaryContacts)
+//   Contacts parameters for this call only: run/wiring.hpp's TemporaryContacts)
 //   invasim.rescale(sys, {phi_a =, ftol =, dt =, dt_max =, max_steps =}) -> FIRE result
 // ftol, dt, dt_max and max_steps set the FIRE minimisation after each box change.
 #include <lua.hpp>
@@ -19,7 +19,6 @@
 #include "core/stop_request.hpp"
 #include "lua/engine_fields.hpp"
 #include "lua/module.hpp"
-#include "lua/temporary_contacts.hpp"
 #include "setup/compression.hpp"
 #include "setup/test_hooks.hpp"
 
@@ -97,7 +96,8 @@ int l_compress(lua_State* L) {
   } else {
     lua_pop(L, 1);
   }
-  const TemporaryContacts contacts(kw, *sim, "compress");  // undone on every exit path
+  std::optional<TemporaryContacts> contacts;  // undone on every exit path
+  temporary_contacts(kw, *sim, contacts);
   kw.finish();
   CompressionCallback on_step = [&](const CompressionReport& r) {
     if (progress) progress->update(static_cast<long long>(r.steps));

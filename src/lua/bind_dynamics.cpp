@@ -12,8 +12,8 @@
 #include "lua/adapters.hpp"
 #include "lua/engine_fields.hpp"
 #include "lua/engine_types.hpp"
+#include "lua/function_operation.hpp"
 #include "lua/module.hpp"
-#include "lua/run_glue.hpp"
 
 namespace invasim::lua {
 
@@ -23,38 +23,6 @@ std::string LuaType<DynamicsHandle>::describe(const DynamicsHandle& d) {
   if (d.methods.empty()) text += " none";
   if (auto w = d.dynamics.pressure_wall()) text += cat(", pressure wall P=", w->pressure);
   return text + ")";
-}
-
-PressureWall* prepare_dynamics(DynamicsHandle& d, const std::shared_ptr<SystemHandle>& sim,
-                               const std::string& what) {
-  for (const auto& m : d.methods) require_same_system(*m->group, *sim, what + ": " + m->kind);
-  PressureWall* wall = d.dynamics.pressure_wall().get();
-  if (wall) {
-    std::shared_ptr<Walls> walls = d.walls;
-    if (walls) {
-      if (walls->owner.lock() != sim)
-        fail_input(what,
-                   ": the pressure wall's Walls are not a force of this System; add them "
-                   "with sys:add(walls)");
-    } else {
-      for (const auto& h : sim->handles)
-        if (auto* w = std::get_if<std::shared_ptr<Walls>>(&h)) {
-          if (walls)
-            fail_input(what,
-                       ": the System has several Walls; name the pressure wall's with "
-                       "dyn:pressure_wall{walls = w, ...}");
-          walls = *w;
-        }
-      if (!walls)
-        fail_input(what,
-                   ": the pressure wall needs a Walls force in the System (sys:add(iv.Walls{}))");
-    }
-    if (!walls->left)
-      fail_input(what, ": the pressure wall moves the left wall, but its Walls have left = false");
-    wall->walls = walls->force;
-  }
-  d.record.check(d.dynamics, sim);
-  return wall;
 }
 
 namespace {
@@ -193,12 +161,12 @@ int l_run(lua_State* L) {
     kw.finish();
     if (callback && !every) fail_input("run: a callback needs key 'every' (call it every N steps)");
   }
-  invasim::Simulation run = engine_simulation(sim, d);
+  invasim::Simulation run = make_simulation(sim, d);
   if (every) run.set_max_chunk(static_cast<std::uint64_t>(*every));
   if (callback)
     run.add(std::make_shared<LuaFunctionOperation>(L, callback, sim, d, "callback"),
             Trigger::every(static_cast<std::uint64_t>(*every)));
-  const RunResult result = run_steps(run, sim, *d, n, progress);
+  const RunResult result = engine_call("run", [&] { return run_steps(run, sim, *d, n, progress); });
   lua_pushinteger(L, static_cast<lua_Integer>(result.steps));  // the caller checks
   return 1;                                                    // invasim.interrupted()
 }

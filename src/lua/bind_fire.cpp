@@ -14,7 +14,6 @@
 #include "lua/adapters.hpp"
 #include "lua/engine_fields.hpp"
 #include "lua/module.hpp"
-#include "lua/temporary_contacts.hpp"
 #include "setup/test_hooks.hpp"
 
 namespace invasim::lua {
@@ -74,7 +73,7 @@ int l_minimize(lua_State* L) {
     } else {
       lua_pop(L, 1);
     }
-    contacts.emplace(*kw, *sim, "minimize");
+    temporary_contacts(*kw, *sim, contacts);
     kw->finish();
   }
   sim->changed();

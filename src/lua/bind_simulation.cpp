@@ -18,8 +18,8 @@
 #include "core/names.hpp"
 #include "lua/checkpoint_parts.hpp"
 #include "lua/engine_types.hpp"
+#include "lua/function_operation.hpp"
 #include "lua/module.hpp"
-#include "lua/run_glue.hpp"
 #include "run/operations.hpp"
 
 namespace invasim::lua {
@@ -28,7 +28,7 @@ namespace invasim::lua {
 // which Lua thread runs them).
 struct SimulationHandle {
   SimulationHandle(std::shared_ptr<SystemHandle> s, std::shared_ptr<DynamicsHandle> d)
-      : system(std::move(s)), dyn(std::move(d)), run(engine_simulation(system, dyn)) {}
+      : system(std::move(s)), dyn(std::move(d)), run(make_simulation(system, dyn)) {}
   std::shared_ptr<SystemHandle> system;
   std::shared_ptr<DynamicsHandle> dyn;
   invasim::Simulation run;
@@ -217,7 +217,7 @@ int l_run(lua_State* L) {
   for (const auto& op : s->lua_ops) op->set_thread(L);
   RunResult result;
   try {
-    result = run_steps(s->run, s->system, *s->dyn, n, progress);
+    result = engine_call("run", [&] { return run_steps(s->run, s->system, *s->dyn, n, progress); });
   } catch (...) {
     for (const auto& op : s->lua_ops) op->set_thread(nullptr);
     throw;

@@ -304,24 +304,14 @@ int l_set_mass(lua_State* L) {
 // sys:add(force): appends a force term (Contacts, Walls, Shape, Tethers); returns it.
 int l_add(lua_State* L) {
   auto& sim = check_shared<SystemHandle>(L, 1);
-  auto attach = [&](auto& handle, const char* name) {
-    if (auto other = handle->owner.lock()) {
-      if (other == sim) fail_input("add: this ", name, " is already in the System");
-      fail_input("add: this ", name, " is already in another System");
-    }
-    handle->owner = sim;
-    sim->forces.add(handle->force);
-    sim->handles.emplace_back(handle);
-    sim->changed();
-  };
   if (is<Contacts>(L, 2))
-    attach(check_shared<Contacts>(L, 2), "Contacts");
+    attach_force(sim, check_shared<Contacts>(L, 2), "Contacts");
   else if (is<Walls>(L, 2))
-    attach(check_shared<Walls>(L, 2), "Walls");
+    attach_force(sim, check_shared<Walls>(L, 2), "Walls");
   else if (is<Shape>(L, 2))
-    attach(check_shared<Shape>(L, 2), "Shape");
+    attach_force(sim, check_shared<Shape>(L, 2), "Shape");
   else if (is<Tethers>(L, 2))
-    attach(check_shared<Tethers>(L, 2), "Tethers");
+    attach_force(sim, check_shared<Tethers>(L, 2), "Tethers");
   else
     throw InputError(bad_argument(L, 2, "force (Contacts, Walls, Shape or Tethers)"));
   lua_settop(L, 2);

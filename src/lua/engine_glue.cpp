@@ -15,26 +15,14 @@ std::shared_ptr<Group> kw_group(Kwargs& kw, std::string_view key, bool required)
   return group;
 }
 
-SystemHandle& owner_of(const std::weak_ptr<SystemHandle>& owner, const std::string& what,
-                       const std::string& hint) {
-  if (auto sim = owner.lock()) return *sim;
-  if (!owner.owner_before(std::weak_ptr<SystemHandle>{}) &&
-      !std::weak_ptr<SystemHandle>{}.owner_before(owner))
-    fail_input(what, ": not in a System; ", hint);
-  fail_input(what, ": its System no longer exists");
-}
-
-void require_same_system(const Group& group, const SystemHandle& sim, const std::string& what) {
-  if (group.owner.lock().get() != &sim)
-    fail_input(what, ": group '", group.name, "' belongs to another System");
-}
-
-void require_current(const Group& group, const std::string& what) {
-  const auto sim = group.owner.lock();
-  if (sim && sim->system.site_epoch() != group.epoch)
-    fail_input(what, ": group '", group.name,
-               "' was made before cells divided or died, and its site indices name other cells "
-               "now; make it again (sys:group{...})");
+void temporary_contacts(Kwargs& kw, SystemHandle& sim, std::optional<TemporaryContacts>& out) {
+  std::optional<Kwargs> keys = kw.maybe_table("contacts");
+  if (!keys) return;
+  std::shared_ptr<ContactForce> force = only_contacts(sim, kw.owner() + ": key 'contacts'");
+  ContactParams changed = force->params();
+  read_contact_params(*keys, changed);
+  keys->finish();
+  engine_call(kw.owner(), [&] { out.emplace(sim, std::move(force), changed); });
 }
 
 void push_vec3(lua_State* L, const Vec3& v) noexcept {

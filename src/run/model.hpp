@@ -3,7 +3,7 @@
 // outside a run of a Dynamics (the state, the forces, their parameters) bumps the revision;
 // a Dynamics re-prepares (re-evaluates the forces and the drive) before its next step when the
 // Model, or its revision, is not the one of its last run (RunRecord). The Lua System object is
-// a Model (lua/engine_types.hpp).
+// a Model (run/objects.hpp).
 #include <cstdint>
 #include <memory>
 

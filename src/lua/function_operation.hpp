@@ -1,29 +1,16 @@
 #pragma once
-// The Lua side of the run layer (run/simulation.hpp): the engine Simulation of a System
-// userdata and a Dynamics, and the operation that calls a Lua function (an observer written in
-// Lua; the engine knows no Lua).
+// The run layer's operation that calls a Lua function (an observer written in Lua, a
+// checkpoint's `extra` and `written`; the engine knows no Lua): run/operation.hpp.
 #include <lua.hpp>
 
 #include <memory>
 #include <string>
 
-#include "io/snapshot_writer.hpp"
 #include "lua/engine_types.hpp"
 #include "run/operation.hpp"
 #include "run/simulation.hpp"
 
 namespace invasim::lua {
-
-// An engine Simulation stepping `system`'s System and ForceField with `d`'s Dynamics; its
-// pointers share ownership of the two Lua objects (aliasing shared_ptrs).
-invasim::Simulation engine_simulation(const std::shared_ptr<SystemHandle>& system,
-                                      const std::shared_ptr<DynamicsHandle>& d);
-
-// Runs n steps of `run` (made by engine_simulation from `system` and `d`), the one path of
-// dyn:run and sim:run: `progress` (may be null) hears of every chunk; the Dynamics is prepared
-// first, and afterwards the System is marked changed and the Dynamics as having run on it.
-RunResult run_steps(invasim::Simulation& run, const std::shared_ptr<SystemHandle>& system,
-                    DynamicsHandle& d, long long n, const std::shared_ptr<Progress>& progress);
 
 // Calls a Lua function fn(step, time); a return value of false ends the run at this step.
 // When the function changed the System (its revision moved), the Dynamics re-prepares before

@@ -1,35 +1,6 @@
-#include "lua/run_glue.hpp"
-
-#include "core/progress.hpp"
+#include "lua/function_operation.hpp"
 
 namespace invasim::lua {
-
-invasim::Simulation engine_simulation(const std::shared_ptr<SystemHandle>& system,
-                                      const std::shared_ptr<DynamicsHandle>& d) {
-  return invasim::Simulation(std::shared_ptr<System>(system, &system->system),
-                             std::shared_ptr<ForceField>(system, &system->forces),
-                             std::shared_ptr<Dynamics>(d, &d->dynamics));
-}
-
-RunResult run_steps(invasim::Simulation& run, const std::shared_ptr<SystemHandle>& system,
-                    DynamicsHandle& d, long long n, const std::shared_ptr<Progress>& progress) {
-  if (progress)
-    run.set_progress([progress](std::uint64_t done, double time) {
-      progress->update(static_cast<long long>(done), time);
-    });
-  prepare_dynamics(d, system, "run");
-  RunResult result;
-  try {
-    result = engine_call("run", [&] { return run.run(static_cast<std::uint64_t>(n)); });
-  } catch (...) {
-    run.set_progress({});
-    throw;
-  }
-  run.set_progress({});
-  system->changed();
-  d.record.ran_on(system);
-  return result;
-}
 
 LuaFunctionOperation::LuaFunctionOperation(lua_State* L, int index,
                                            std::shared_ptr<SystemHandle> system,
