@@ -5,9 +5,9 @@
 // Ownership: a SystemHandle is the Model (the engine System, its ForceField, the revision:
 // run/model.hpp) plus the handles of the forces added to it. Forces, groups and methods
 // remember the SystemHandle they belong to through a weak_ptr, so a force cannot be added to
-// two systems and a method cannot move a group of another system; nothing holds a
-// SystemHandle strongly except its owner (the Lua System object), so collection order never
-// matters. The rules that tie them together before a run are run/wiring.hpp.
+// two systems, a method cannot move a group of another system, and no handle keeps its System
+// alive or forms a cycle with it (only what runs it holds it strongly: the Lua System object,
+// a Simulation, a checkpoint writer). The rules that tie them together are run/wiring.hpp.
 #include <cstdint>
 #include <memory>
 #include <string>

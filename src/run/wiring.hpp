@@ -3,8 +3,8 @@
 // used: a group and a method act on their own System only; a force joins one System; before
 // a Dynamics steps or minimises a System, its pressure wall is connected to the System's
 // Walls and it re-prepares if the System changed since its last run (run/model.hpp's
-// RunRecord); a run goes through one function (run_steps) whatever started it. Every message
-// starts with `what`, the call that asked ("run", "minimize", "sample").
+// RunRecord); a run goes through one function (run_steps) whatever started it. A function that
+// takes `what` starts its messages with it: the call that asked ("run", "minimize", "sample").
 #include <memory>
 #include <string>
 #include <string_view>

@@ -1,14 +1,17 @@
 // The run layer's object model and its rules (run/objects.hpp, run/wiring.hpp), with no Lua:
 // a force joins one System, groups and methods act on their own System, the pressure wall
 // finds its Walls, a Dynamics re-prepares only after a change, run_steps is the one run
-// path, and a temporary contact change is undone on every exit.
+// path, a restored checkpoint continues without re-preparing, and a temporary contact change
+// is undone on every exit.
 #include <catch2/catch.hpp>
 
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "core/errors.hpp"
+#include "core/progress.hpp"
 #include "run/wiring.hpp"
 #include "test_support.hpp"
 
@@ -117,12 +120,49 @@ TEST_CASE("run_steps: the one run path, a Dynamics re-prepares only after a chan
     CHECK(one->system.sites().force[i] == two->system.sites().force[i]);
   }
   // run_steps marks the System changed and the Dynamics as having run on it at that revision.
-  CHECK(d1->dynamics.prepared());
+  const auto revision = one->revision;
+  run_steps(run1, one, *d1, 1, nullptr);
+  CHECK(one->revision == revision + 1);
   d1->record.check(d1->dynamics, one);
   CHECK(d1->dynamics.prepared());  // unchanged since: no re-preparation
   one->changed();
   d1->record.check(d1->dynamics, one);
   CHECK_FALSE(d1->dynamics.prepared());
+}
+
+TEST_CASE("run_steps: progress hears of every chunk, and only of the run it was given to",
+          "[run]") {
+  auto sim = small_system();
+  auto d = damped(group_of(sim));
+  Simulation run = make_simulation(sim, d);
+  std::ostringstream out;
+  auto progress = std::make_shared<Progress>(ProgressOptions{}, out, false, [] { return 0.0; });
+  run_steps(run, sim, *d, 250, progress);  // chunks of at most 100 steps
+  CHECK(progress->step() == 250);
+  // A run whose preparation fails leaves no progress behind for the next one.
+  d->dynamics.set_pressure_wall(std::make_shared<PressureWall>());  // no Walls in the System
+  CHECK_THROWS_WITH(run_steps(run, sim, *d, 10, progress), Contains("run: the pressure wall"));
+  d->dynamics.set_pressure_wall(nullptr);
+  run_steps(run, sim, *d, 10, nullptr);
+  CHECK(sim->system.step == 260);
+  CHECK(progress->step() == 250);
+}
+
+TEST_CASE("restored_from_checkpoint: the Dynamics continues without re-preparing", "[run]") {
+  auto sim = small_system();
+  attach_force(sim, std::make_shared<Walls>(std::make_shared<WallForce>(), true, true), "Walls");
+  auto d = damped(group_of(sim));
+  auto wall = std::make_shared<PressureWall>();
+  d->dynamics.set_pressure_wall(wall);
+  const auto revision = sim->revision;
+  restored_from_checkpoint(sim, d.get());
+  CHECK(sim->revision == revision + 1);
+  CHECK(d->dynamics.prepared());
+  CHECK(wall->walls != nullptr);  // linked to the System's Walls
+  d->record.check(d->dynamics, sim);
+  CHECK(d->dynamics.prepared());           // recorded as having run on this revision
+  restored_from_checkpoint(sim, nullptr);  // the System alone
+  CHECK(sim->revision == revision + 2);
 }
 
 TEST_CASE("TemporaryContacts: applied for its lifetime, undone on every exit", "[run]") {
@@ -134,13 +174,16 @@ TEST_CASE("TemporaryContacts: applied for its lifetime, undone on every exit", "
   force->set_params(cohesive);
   ContactParams off = cohesive;
   off.beta = 0.0;
+  const auto applied = sim->revision;
   try {
     const TemporaryContacts guard(*sim, force, off);
     CHECK(force->params().beta == 0.0);
+    CHECK(sim->revision == applied + 1);  // a Dynamics re-prepares with the changed contacts
     throw std::runtime_error("an engine error");
   } catch (const std::runtime_error&) {
   }
   CHECK(force->params().beta == 0.1);
+  CHECK(sim->revision == applied + 2);  // ... and again with its own
   ContactParams invalid = cohesive;
   invalid.beta = 0.5;  // beta must stay below alpha: refused, nothing changed
   const auto revision = sim->revision;
