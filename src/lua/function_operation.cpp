@@ -24,14 +24,19 @@ LuaFunctionOperation::~LuaFunctionOperation() {
   luaL_unref(main_, LUA_REGISTRYINDEX, ref_);  // writes existing registry slots only
 }
 
-void LuaFunctionOperation::apply(invasim::Simulation& sim) {
+lua_State* LuaFunctionOperation::call(invasim::Simulation& sim) {
   lua_State* L = current_;
   if (!lua_checkstack(L, 4)) throw LuaApiError("Lua stack overflow");
-  const std::uint64_t before = system_->revision;
   lua_rawgeti(L, LUA_REGISTRYINDEX, ref_);
   lua_pushinteger(L, static_cast<lua_Integer>(sim.system().step));
   lua_pushnumber(L, sim.system().time);
   call_lua(L, 2, 1);
+  return L;
+}
+
+void LuaFunctionOperation::apply(invasim::Simulation& sim) {
+  const std::uint64_t before = system_->revision;
+  lua_State* L = call(sim);
   const bool stop = lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1);
   lua_pop(L, 1);
   if (system_->revision != before) {  // the function changed the System or its forces
@@ -43,12 +48,7 @@ void LuaFunctionOperation::apply(invasim::Simulation& sim) {
 }
 
 std::string LuaFunctionOperation::call_for_string(invasim::Simulation& sim) {
-  lua_State* L = current_;
-  if (!lua_checkstack(L, 4)) throw LuaApiError("Lua stack overflow");
-  lua_rawgeti(L, LUA_REGISTRYINDEX, ref_);
-  lua_pushinteger(L, static_cast<lua_Integer>(sim.system().step));
-  lua_pushnumber(L, sim.system().time);
-  call_lua(L, 2, 1);
+  lua_State* L = call(sim);
   if (lua_type(L, -1) != LUA_TSTRING) {
     const std::string got = luaL_typename(L, -1);
     lua_pop(L, 1);

@@ -32,6 +32,9 @@ class LuaFunctionOperation : public Operation {
   void set_thread(lua_State* L) { current_ = L ? L : main_; }
 
  private:
+  // Calls fn(step, time) on the current thread, leaving its one result on the stack top.
+  lua_State* call(invasim::Simulation& sim);
+
   lua_State* main_;
   lua_State* current_;
   int ref_ = LUA_NOREF;
