@@ -200,7 +200,7 @@ Command parse_command_line(const std::vector<std::string>& args) {
     throw UsageError("--from needs a run directory");
   if (const auto threads = p.value("--threads")) command.threads = parse_threads(*threads);
   const std::vector<std::string>& positional = p.positional;
-  if (positional.empty()) throw UsageError("missing command (run, params, keys or render)");
+  if (positional.empty()) throw UsageError("missing command (run, params, keys, render or sweep)");
   const std::string& verb = positional[0];
   if (verb == "run")
     command.kind = Command::Kind::kRun;
@@ -209,7 +209,8 @@ Command parse_command_line(const std::vector<std::string>& args) {
   else if (verb == "help")
     return of_kind(Command::Kind::kHelp);
   else
-    throw UsageError("unknown command '" + verb + "' (expected run, params, keys or render)");
+    throw UsageError("unknown command '" + verb +
+                     "' (expected run, params, keys, render or sweep)");
   if (resume) {
     if (command.kind != Command::Kind::kRun) throw UsageError("--resume goes with invasim run");
     if (positional.size() > 1)

@@ -109,7 +109,12 @@ int main(int argc, char** argv) {
         return invasim::app::run_render(command.render, std::cout);
     }
   } catch (const invasim::app::UsageError& e) {
-    std::cerr << "invasim: " << e.what() << " (see invasim --help)\n";
+    // "invasim sweep run: ..." names the program already; the hint names the help that lists
+    // the command's options.
+    const std::string what = e.what();
+    const bool sweep = argc > 1 && std::string(argv[1]) == "sweep";
+    std::cerr << (what.rfind("invasim ", 0) == 0 ? "" : "invasim: ") << what << " (see invasim "
+              << (sweep ? "sweep " : "") << "--help)\n";
     return 2;
   } catch (const invasim::lua::ScriptError& e) {
     invasim::app::report_run_end(e, std::cerr);

@@ -55,15 +55,19 @@ Usage:
         one row per point: state point, summary means and errors, tau_d, tau_r
         (default: standard output)
   invasim sweep submit WS --slurm [--partition P] [--time T] [--cpus-per-task C]
-                        [--array-limit L] [--max-array-size M] [--sbatch-arg ARG]...
-                        [--dry-run]
+                        [--mem M] [--account A] [--qos Q] [--array-limit L]
+                        [--max-array-size M] [--prep-time T] [--prep-mem M]
+                        [--prep-cpus-per-task C] [--signal-before S] [--max-requeues N]
+                        [--sbatch-arg ARG]... [--dry-run]
         run the points that are not done as Slurm job arrays of at most M tasks (default:
-        the cluster's MaxArraySize), after the shared preparation, if any
+        the cluster's MaxArraySize), after the shared preparation, if any (--prep-*: its
+        resources, default the points'); a point gets SIGTERM S seconds before its time
+        limit (default 300), checkpoints and requeues itself up to N times (default 3)
   invasim sweep analyze WS [-o DIR] [--group K1,K2] [--temperature kT|T_c|kT_c_paper] ...
         collect into WS/results.csv and fit the master curve (scripts/master_curve.py;
         its options pass through, see --help there): fit tables and figures in DIR
         (default WS/analysis); P, beta, gamma default to the protocol's values
-  invasim sweep job WS ID [--threads T]
+  invasim sweep job WS ID [--threads T] [--max-requeues N]
         run one point (ID: a job id, or prep) in this process, as the Slurm tasks do
 )";
 }

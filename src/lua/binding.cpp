@@ -220,18 +220,19 @@ namespace detail {
 
 std::string wrong_type_message(lua_State* L, int index, const char* expected) {
   std::string message = bad_argument(L, index, expected);
+  bool method = false;
+  const std::string function = running_function(L, method);
   if (lua_type(L, index) == LUA_TUSERDATA) {
     // A bound object of another type, or a userdata dressed in our metatable: name the
     // position plainly (the method-call hints of bad_argument would mislead).
-    bool method = false;
-    const std::string function = running_function(L, method);
     const std::string what = type_name_at(L, index);
     if (method && index == 1)
       return "bad self for '" + function + "' (" + expected + " expected, got " + what + ")";
     return "bad argument #" + std::to_string(method ? index - 1 : index) + " to '" + function +
            "' (" + expected + " expected, got " + what + ")";
   }
-  if (index == 1 && message.back() == ')')  // most likely obj.method(...) for obj:method(...)
+  // Most likely obj.method(...) for obj:method(...); a "bad self" already says to use ':'.
+  if (index == 1 && !method && message.back() == ')')
     message.insert(message.size() - 1, "; for a method call write obj:method(...)");
   return message;
 }

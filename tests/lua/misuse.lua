@@ -33,7 +33,9 @@ local progress = iv.Progress{ total = 10, live = false, every_seconds = 1e9 }
 expect_error("bad argument #1 to 'update' %(Progress expected, got number; for a method call",
              function() progress.update(5) end)
 local impostor = { update = progress.update }
-expect_error("bad self for 'update' %(Progress expected, got table", function() impostor:update(1) end)
+-- One hint, not two: a "bad self" says to call with ':' and adds no "for a method call" hint.
+expect_error("bad self for 'update' %(Progress expected, got table; call methods with ':', as in "
+             .. "obj:update%(%.%.%.%)%)$", function() impostor:update(1) end)
 expect_error("bad argument #1 to 'update' %(integer expected, got no value%)", function() progress:update() end)
 expect_error("bad argument #1 to 'update' %(integer expected, got string%)", function() progress:update("x") end)
 expect_error("bad argument #2 to 'update' %(number expected, got table%)", function() progress:update(1, {}) end)
