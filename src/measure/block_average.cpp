@@ -1,7 +1,6 @@
 #include "measure/block_average.hpp"
 
 #include <cmath>
-#include <cstdio>
 
 #include "core/errors.hpp"
 
@@ -76,35 +75,6 @@ BlockAverage block_average_tail(std::span<const double> x, double fraction,
     fail_input("block average: fraction = ", fraction, " must be in (0, 1]");
   const std::size_t keep = std::size_t(std::floor(fraction * double(x.size())));
   return block_average(x.subspan(x.size() - keep), options);
-}
-
-std::vector<SummaryRow> summarize_tail(const std::vector<std::string>& names,
-                                       const std::vector<std::vector<double>>& columns,
-                                       double fraction, const BlockingOptions& options) {
-  if (names.size() != columns.size())
-    fail_input("summary: ", names.size(), " names but ", columns.size(), " columns");
-  std::vector<SummaryRow> rows;
-  for (std::size_t c = 0; c < names.size(); ++c)
-    rows.push_back({names[c], block_average_tail(columns[c], fraction, options)});
-  return rows;
-}
-
-std::string format_summary(const std::vector<SummaryRow>& rows) {
-  std::size_t width = 6;
-  for (const SummaryRow& r : rows) width = std::max(width, r.name.size());
-  std::string out;
-  char line[256];
-  std::snprintf(line, sizeof line, "%-*s %16s %12s %10s %8s %8s %8s\n", int(width), "column",
-                "mean", "error", "samples", "block", "blocks", "plateau");
-  out += line;
-  for (const SummaryRow& r : rows) {
-    const BlockAverage& s = r.stats;
-    std::snprintf(line, sizeof line, "%-*s %16.9g %12.4g %10zu %8zu %8zu %8s\n", int(width),
-                  r.name.c_str(), s.mean, s.error, s.n, s.block_size, s.n_blocks,
-                  s.plateau ? "yes" : "no");
-    out += line;
-  }
-  return out;
 }
 
 }  // namespace invasim

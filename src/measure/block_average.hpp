@@ -11,7 +11,6 @@
 #include <cstddef>
 #include <limits>
 #include <span>
-#include <string>
 #include <vector>
 
 namespace invasim {
@@ -49,18 +48,5 @@ BlockAverage block_average(std::span<const double> x, const BlockingOptions& opt
 // part of a run, after the transient).
 BlockAverage block_average_tail(std::span<const double> x, double fraction,
                                 const BlockingOptions& options = {});
-
-// One row of an end-of-run summary.
-struct SummaryRow {
-  std::string name;
-  BlockAverage stats;
-};
-// Time averages with blocking errors of named, equally sampled series (e.g. thermo columns)
-// over their last `fraction`. names and columns have equal sizes.
-std::vector<SummaryRow> summarize_tail(const std::vector<std::string>& names,
-                                       const std::vector<std::vector<double>>& columns,
-                                       double fraction, const BlockingOptions& options = {});
-// Plain-text table: name, mean, error, block size, number of blocks, plateau (yes / no).
-std::string format_summary(const std::vector<SummaryRow>& rows);
 
 }  // namespace invasim

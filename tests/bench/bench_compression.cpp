@@ -4,7 +4,7 @@
 // between the force terms and the minimiser's own loops (each force term is timed through a
 // wrapper). CPU time (user + system of this process) is reported besides wall time because
 // the machine may be shared.
-//   bench_compression [system=paper|reduced|large] [threads=1] [verbose=0] [key=value...]
+//   bench_compression [system=paper|reduced|large] [threads=1] [verbose=0|1] [key=value...]
 // where key is a FIRE parameter (dt, dt_max, alpha0, f_alpha, f_inc, f_dec, n_delay) to try
 // instead of the engine's default, for both the compression and the final FIRE.
 #include <omp.h>

@@ -143,7 +143,7 @@ TEST_CASE("a series too short for its correlation time has no plateau", "[blocki
   CHECK(b.n_blocks == 16);  // the last level with min_blocks blocks
 }
 
-TEST_CASE("tail averages and the end-of-run summary", "[blocking]") {
+TEST_CASE("tail averages", "[blocking]") {
   std::vector<double> x(1000);
   for (std::size_t i = 0; i < x.size(); ++i) x[i] = i < 500 ? 100.0 : double(i % 7);
   const BlockAverage tail = block_average_tail(x, 0.5);
@@ -155,17 +155,4 @@ TEST_CASE("tail averages and the end-of-run summary", "[blocking]") {
   CHECK(block_average_tail(x, 1.0).n == 1000);
   CHECK_THROWS_AS(block_average_tail(x, 0.0), InputError);
   CHECK_THROWS_AS(block_average_tail(x, 1.5), InputError);
-
-  const std::vector<double> y(1000, 2.0);
-  const auto rows = summarize_tail({"x", "const"}, {x, y}, 0.5);
-  REQUIRE(rows.size() == 2);
-  CHECK(rows[0].name == "x");
-  CHECK(rows[0].stats.mean == direct.mean);
-  CHECK(rows[1].stats.mean == 2.0);
-  CHECK(rows[1].stats.error == 0.0);
-  const std::string text = format_summary(rows);
-  std::printf("%s", text.c_str());
-  CHECK(text.find("const") != std::string::npos);
-  CHECK(text.find("plateau") != std::string::npos);
-  CHECK_THROWS_AS(summarize_tail({"x"}, {x, y}, 0.5), InputError);
 }
