@@ -29,7 +29,7 @@
 -- measured, and near jamming each 3 % step costs 1e4-1e5 FIRE iterations at ftol = 1e-4.
 -- FIRE's largest time step `dt_max` defaults to 0.15 sqrt(1e3 / eps_v) (at most 0.15) when
 -- the tissue has adipocytes, below the stability limit of their volume mode (see
--- default_dt_max); without adipocytes, the engine's default.
+-- lib.fire_step); without adipocytes, the engine's default.
 --
 --   require("lib.compress")(tissue, { to_phi = 0.72, out = out, from = invasim.from })
 local iv = require("invasim")
@@ -40,7 +40,7 @@ local spec = {
   to_phi = 0.72, step = iv.compress.defaults.step, ftol = 1e-3, final_ftol = 1e-6,
   cohesion = false,           -- keep the cancer cells' cohesion (beta) and adhesion (beta_cv) on while compressing
   max_steps = iv.Fire.defaults.max_steps,  -- FIRE iterations per minimisation
-  dt_max = { type = "number", range = "(0, inf)" },  -- FIRE's largest time step (default: default_dt_max)
+  dt_max = { type = "number", range = "(0, inf)" },  -- FIRE's largest time step (default: lib.fire_step)
   progress = true,
   out = { type = "string" },         -- the run directory: compressed.ckpt (for --from) and, on
                               -- SIGINT/SIGTERM, compressing.ckpt (for --resume)
@@ -48,30 +48,7 @@ local spec = {
 }
 
 local resume = require("lib.resume")
-
--- FIRE's largest time step for this tissue. The adipocytes' volume term (eps_v) gives each mesh
--- a stiff breathing mode: at eps_v = 1e3 and unit vertex mass semi-implicit Euler becomes
--- unstable in it between dt = 0.2 and 0.25. With the engine's dt_max = 0.5, FIRE grew dt into
--- that instability, reset, and grew it again, over and over: the reduced system took 114160
--- iterations, the paper's 484720 (375000 of them in the final FIRE); with 0.15, 22840 and
--- 45944 (docs/performance.md, "Compression"). The mode's frequency grows as
--- sqrt(eps_v), so the step shrinks as 1/sqrt(eps_v); it never exceeds 0.15 (softer meshes leave the contacts'
--- own limit, not measured beyond that). Without adipocytes (or eps_v = 0): the engine's.
--- A mesh of radius r has its mode's stiffness per vertex ~ eps_v (dV/dx)^2 / V^2 ~ eps_v / r^2:
--- with adipocytes of many sizes (init's diameter_spread) the smallest sets the step, which
--- scales with its radius relative to the median body's, (V_min / V_median)^(1/3).
-local function default_dt_max(tissue)
-  local eps_v = tissue.shape and tissue.shape:params().eps_v or 0
-  if tissue.sys:n_adipocytes() == 0 or eps_v <= 0 then return iv.Fire.defaults.dt_max end
-  local dt = 0.15 * math.sqrt(math.min(1.0, 1e3 / eps_v))
-  if tissue.params and (tissue.params.diameter_spread or 0) > 0 then
-    local v = {}
-    for _, a in ipairs(tissue.sys:adipocytes()) do v[#v + 1] = a.ref_volume end
-    table.sort(v)
-    dt = dt * math.min(1.0, (v[1] / v[(#v + 1) // 2]) ^ (1 / 3))
-  end
-  return dt
-end
+local fire_step = require("lib.fire_step")
 
 -- Saves the (partly) compressed tissue and `state` to o.checkpoint on a stop signal and stops
 -- the run with a message saying how to continue it.
@@ -117,7 +94,7 @@ local function compress(tissue, o)
   local during = (not o.cohesion and tissue.contacts) and { contacts = { beta = 0.0, beta_cv = 0.0 } } or nil
   local now = tissue.contacts and tissue.contacts:params() or { beta = 0.0, beta_cv = 0.0 }
   local beta, beta_cv = during and 0.0 or now.beta, during and 0.0 or now.beta_cv
-  local dt_max = o.dt_max or default_dt_max(tissue)
+  local dt_max = o.dt_max or fire_step.dt_max(tissue)
   log.say("compress", "to phi = %g in steps of %g, FIRE to %g (final %g, dt_max %g), cohesion beta = %g%s during compression",
           o.to_phi, o.step, o.ftol, o.final_ftol, dt_max, beta,
           beta_cv > 0 and string.format(", adhesion beta_cv = %g", beta_cv) or "")

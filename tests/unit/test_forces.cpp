@@ -752,6 +752,39 @@ TEST_CASE("tethers: zero energy at insertion, model energy with minimum image af
   }
 }
 
+// The paper's heterogeneity (docs/model.md, protocol step 5): tethers whose midpoint (minimum
+// image, wrapped into the box) lies in the lower half in z are shortened to (1 - lambda) R,
+// the others lengthened to (1 + lambda) R. Which half gets which is checked, not only |l/R - 1|.
+TEST_CASE("tether heterogeneity: lower half in z shortened by lambda, upper half lengthened") {
+  System sys = tether_system(52);
+  TetherForce tf(2.5);
+  tf.connect_by_mean_degree(sys, 6.0);
+  const double lambda = 0.3;
+  tf.apply_heterogeneity(sys, lambda);
+  const Box& box = sys.box();
+  const auto c = TetherForce::body_centres(sys);
+  int lower = 0, upper = 0, across = 0;
+  for (const Tether& t : tf.tethers()) {
+    // The nearest image of a's centre seen from b (walls in x, periodic y and z).
+    Vec3 d = c[t.a] - c[t.b];
+    for (int k = -2; k <= 2; ++k)
+      for (int l = -2; l <= 2; ++l) {
+        const Vec3 e = c[t.a] - c[t.b] + Vec3(0.0, k * box.length(1), l * box.length(2));
+        if (e.norm() < d.norm()) d = e;
+      }
+    across += std::abs(d.z() - (c[t.a] - c[t.b]).z()) > 1.0;
+    double z = std::fmod(c[t.b].z() + 0.5 * d.z() - box.lo()[2], box.length(2));
+    if (z < 0.0) z += box.length(2);
+    const bool below = z < 0.5 * box.length(2);
+    ++(below ? lower : upper);
+    CAPTURE(t.a, t.b, z);
+    CHECK(t.rest_length == Approx((below ? 1.0 - lambda : 1.0 + lambda) * d.norm()).epsilon(1e-12));
+  }
+  CHECK(lower >= 5);
+  CHECK(upper >= 5);
+  CHECK(across >= 3);  // midpoints of tethers across the periodic z boundary are wrapped
+}
+
 TEST_CASE("tether forces are minus the gradient of the tether energy (finite differences)") {
   System sys = tether_system(51);
   auto tf = make_tethers(sys, 2.5);
