@@ -38,7 +38,7 @@ function M.declarations()
     f0 = declare.engine("Active", "f0", 0.002, "0: passive cells; 0.002 with the default background: 2 k_B T_c/(P sigma^3) ~ 0.3, the paper's Fig. 4b point"),
     tau_p = declare.engine("Active", "tau_p", 25.0),
     kT = { 0.0, range = "[0, inf)", unit = "eps_c", help = "background temperature of the cells and the langevin vertices (passive cells: their bath; active cells: only with background_factor = 0)" },
-    background_factor = { 6.0, range = "[0, inf)", help = "active cells (f0 > 0): background temperature = this x the activity's free-particle temperature (f0/gamma)^2 tau_p/(3 (tau_p + m/gamma)) (docs/model.md, Vertex bath); 0: the background is kT" },
+    background_factor = { 6.0, range = "[0, inf)", help = "active cells (f0 > 0): background temperature = this x the activity's free-particle temperature (f0/gamma)^2 tau/(3 (tau + m/gamma)), tau the persistence as the time step holds it (docs/model.md, Vertex bath); 0: the background is kT" },
     gamma = declare.engine("Active", "gamma", nil, "of the cancer cells"),
     vertex_bath = { "langevin", choices = { "langevin", "damped" }, help = "bath of the adipocyte vertices and the piston: langevin (FDT noise at kT) or damped (no noise)" },
     vertex_gamma = declare.engine("Langevin", "gamma", nil, "of the adipocyte vertices"),
@@ -133,7 +133,7 @@ function M.validate(p)
   -- Active cells take their background temperature from background_factor unless it is 0.
   if p.f0 > 0 and p.background_factor > 0 and p.gamma == 0 then
     error(string.format("background_factor = %g needs gamma > 0 (the free-particle active " ..
-                        "temperature (f0/gamma)^2 tau_p/(3 (tau_p + m/gamma)) is infinite at gamma = 0): " ..
+                        "temperature (f0/gamma)^2 tau/(3 (tau + m/gamma)) is infinite at gamma = 0): " ..
                         "--set background_factor=0 or a gamma > 0", p.background_factor), 0)
   end
   if p.f0 > 0 and p.background_factor > 0 and p.kT > 0 then
