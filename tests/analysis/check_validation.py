@@ -201,6 +201,15 @@ check(s["steady"] is False and abs(s["drift"] - 20.0) < 1e-12, s)   # 10 rows x 
 # rise, std/sqrt(10) = sqrt(165/9/10)), combined: sqrt(2) x that.
 e_quarter = math.sqrt(sum((2 * i - 9.0) ** 2 for i in range(10)) / 10 / 9)
 check(abs(s["e3"] - e_quarter) < 1e-9 and abs(s["error"] - math.sqrt(2) * e_quarter) < 1e-9, s)
+# The criterion's factor: quarters of 10 alternating values (block error sqrt(10/10/9) each,
+# combined sqrt(2) x that) whose means differ by 1.9 combined errors are steady, by 2.1 not.
+e_alt = math.sqrt(2) * math.sqrt(10 / 10 / 9)
+for ratio, want in ((1.9, True), (2.1, False)):
+    step = fake_job(os.path.join(work, "step_%g" % ratio),
+                    [600.0 + (1 if i % 2 else -1) + (ratio * e_alt if i >= 10 else 0.0)
+                     for i in range(20)], 1.0)
+    s = steady.steadiness(step)
+    check(s["steady"] is want and abs(s["drift"] / s["error"] - ratio) < 1e-9, (ratio, s))
 summary = steady.steadiness_summary([flat, rising])
 check(summary["steady"] == 1 and summary["jobs"] == 2
       and abs(summary["max_drift_over_error"] - 20.0 / (math.sqrt(2) * e_quarter)) < 1e-9, summary)
