@@ -13,13 +13,16 @@ from scipy.optimize import OptimizeWarning, curve_fit
 from ..errors import InputError
 
 
-def sigmoid(x, a, b):
-    """The paper's Eq. (fitA): A_n as a function of x = k_B T/(P sigma^3)."""
-    return 0.5 * (np.tanh(b * np.log10(np.asarray(x, float) / a)) + 1.0)
-
-
-def _sigmoid_log(log_x, log_a, b):
+def sigmoid_log(log_x, log_a, b):
+    """The paper's Eq. (fitA) in log10 x and log10 a: the one form that fit_sigmoid, the joint
+    fit with plateaus (plateaus.py) and the figures (sigmoid) use."""
     return 0.5 * (np.tanh(b * (log_x - log_a)) + 1.0)
+
+
+def sigmoid(x, a, b):
+    """The paper's Eq. (fitA): A_n as a function of x = k_B T/(P sigma^3) (the fitted function,
+    as the figures draw it)."""
+    return sigmoid_log(np.log10(np.asarray(x, float)), np.log10(a), b)
 
 
 def _start(log_x, y):
@@ -49,7 +52,7 @@ def fit_sigmoid(x, y, sigma, name):
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", OptimizeWarning)
-            p, cov = curve_fit(_sigmoid_log, log_x, y, p0=p0, sigma=sigma, absolute_sigma=True,
+            p, cov = curve_fit(sigmoid_log, log_x, y, p0=p0, sigma=sigma, absolute_sigma=True,
                                maxfev=20000)
     except (RuntimeError, ValueError) as e:
         raise InputError("curve %s: the sigmoid fit did not converge (%s)" % (name, e))
@@ -59,7 +62,7 @@ def fit_sigmoid(x, y, sigma, name):
     else:
         err = np.array([math.inf] * 2)
         note = "the errors of a and b could not be estimated (the data do not constrain them)"
-    chi2 = float(np.sum(((y - _sigmoid_log(log_x, *p)) / sigma) ** 2))
+    chi2 = float(np.sum(((y - sigmoid_log(log_x, *p)) / sigma) ** 2))
     dof = len(x) - 2
     scale = max(1.0, math.sqrt(chi2 / dof)) if dof > 0 else 1.0
     err = err * scale

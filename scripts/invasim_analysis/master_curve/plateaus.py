@@ -29,7 +29,7 @@ def _joint_model(layout):
 
     def model(_, lo, hi, *ab):
         ab = np.asarray(ab).reshape(-1, 2)
-        return lo + (hi - lo) * 0.5 * (np.tanh(ab[k, 1] * (log_x - ab[k, 0])) + 1.0)
+        return lo + (hi - lo) * fits.sigmoid_log(log_x, ab[k, 0], ab[k, 1])
 
     return model
 
