@@ -105,7 +105,7 @@ def collapse_figure(path, curves):
     if not np.isfinite(lo):  # no curve is a fit: the reference curve alone, around E_c = 1
         lo, hi = 0.01, 100.0
     xs = np.logspace(np.log10(lo) - 0.2, np.log10(hi) + 0.2, 200)
-    ax.plot(xs, 0.5 * (np.tanh(np.log10(xs)) + 1.0), color="k", lw=1.2,
+    ax.plot(xs, sigmoid(xs, 1.0, 1.0), color="k", lw=1.2,  # the collapse: a = b = 1
             label=r"$(\tanh[\log_{10} E_c^b] + 1)/2$")
     ax.set_xscale("log")
     ax.set_xlabel(r"$E_c^b$, $E_c = k_B T/(a P \sigma^3)$ ($a$, $b$ fitted per curve) " + NONE)

@@ -163,7 +163,7 @@ def _plot_curves(axes, curves, fitted, replaced):
     axes[0].set_ylabel(label("A_n", ""))
     axes[0].set_title("(a) $A_n$, fits (Eq. (15)) as lines", fontsize=9)
     e = np.logspace(-2, 2, 100)
-    axes[1].plot(e, 0.5 * (np.tanh(np.log10(e)) + 1), "k-", lw=1)
+    axes[1].plot(e, fits.sigmoid(e, 1.0, 1.0), "k-", lw=1)  # the collapse: a = b = 1
     axes[1].set_xscale("log")
     axes[1].set_xlabel(r"$E_c^b = (x/a)^b$, $x = 2k_BT_c/(P\sigma^3)$ (dimensionless)", fontsize=8)
     axes[1].set_ylabel(label("A_n", ""))
