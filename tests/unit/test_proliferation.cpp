@@ -58,6 +58,37 @@ TEST_CASE("proliferation: a division keeps momentum, size, mass and orientation"
   for (int i = 0; i < 2; ++i) CHECK((s.pos[i][1] >= 0.0 && s.pos[i][1] < 20.0));
 }
 
+// The division axis is uniform on the sphere: the daughter (new site) sits at + the axis and
+// the parent at -, so an axis drawn from one hemisphere would move every tracked parent the
+// same way. 3375 divisions: the mean axis within 4 standard errors of 0 (1/sqrt(3N) each
+// component), <a_k^2> within 4 standard errors of 1/3 (variance 4/45 per draw).
+TEST_CASE("proliferation: division axes are isotropic, daughter and parent on either side") {
+  System sys(Box(Vec3::Zero(), Vec3(60.0, 60.0, 60.0), {false, true, true}), 11);
+  for (int i = 0; i < 15; ++i)
+    for (int j = 0; j < 15; ++j)
+      for (int k = 0; k < 15; ++k)
+        sys.add_sphere(Vec3(6.0 + 3.4 * i, 2.0 + 3.9 * j, 2.0 + 3.9 * k), 1.0, 1.0,
+                       Vec3(1.0, 0.0, 0.0));
+  sys.step = 3;
+  ProliferationParams p;
+  p.division_rate = 1e9;  // every cell divides
+  p.inhibition_contacts = 0;
+  const SiteChange change = Proliferation(p).apply(sys, 1.0);
+  const int n = 15 * 15 * 15;
+  REQUIRE(int(change.born.size()) == n);
+  Vec3 mean = Vec3::Zero(), square = Vec3::Zero();
+  for (const auto& [daughter, parent] : change.born) {
+    const Vec3 axis = (sys.unwrapped(daughter) - sys.unwrapped(parent)).normalized();
+    mean += axis / n;
+    square += axis.cwiseProduct(axis) / n;
+  }
+  for (int a = 0; a < 3; ++a) {
+    CAPTURE(a, mean[a], square[a]);
+    CHECK(std::abs(mean[a]) < 4.0 / std::sqrt(3.0 * n));
+    CHECK(std::abs(square[a] - 1.0 / 3.0) < 4.0 * std::sqrt(4.0 / 45.0 / n));
+  }
+}
+
 TEST_CASE("proliferation: dead cells leave, later sites and adipocyte blocks are renumbered") {
   System sys(slab(), 3);
   for (int i = 0; i < 6; ++i) sys.add_sphere(Vec3(2.0 + 2.0 * i, 5.0, 5.0), 1.0);
