@@ -64,6 +64,14 @@ local summary = table.concat(lines(out .. "/summary.json"), "\n")
 assert(summary:find('"A_t": {') and summary:find('"wall_clock_seconds"'), "summary.json")
 assert(summary:find('"T_c_over_T_a": {') and summary:find('"kT_c_paper": {') and
        summary:find('"kT_c_paper_over_P": '), "summary.json: T_c/T_a and the paper's kT_c")
+-- The derived numbers from the averages: k_B T_c/(P sigma^3), the paper's 2 T_c/P, T_c/T_a.
+local s = iv.read_json(out .. "/summary.json")
+local T_c, T_a, d = s.averages.T_c.mean, s.averages.T_a.mean, s.derived
+assert(T_c > 0 and T_a > 0, "summary.json: T_c, T_a")
+assert(math.abs(d.kT_over_P - T_c / p.P) <= 1e-12 * d.kT_over_P, "derived.kT_over_P")
+assert(math.abs(d.kT_c_paper_over_P - 2 * T_c / p.P) <= 1e-12 * d.kT_c_paper_over_P,
+       "derived.kT_c_paper_over_P = 2 T_c/P")
+assert(math.abs(d.T_c_over_T_a - T_c / T_a) <= 1e-12 * d.T_c_over_T_a, "derived.T_c_over_T_a")
 -- The slices' median A_2D (robust to sliver profiles) next to the mean, and the profile count.
 local median = tonumber(summary:match('"shape_2d_median": ([%d%.eE+-]+)'))
 local profiles = tonumber(summary:match('"shape_2d_profiles": (%d+)'))
