@@ -86,8 +86,9 @@ int run(const Command& command) {
 int main(int argc, char** argv) {
   invasim::use_passive_wait_policy_by_default(argv);
   bool traceback = false;
+  const bool sweep = argc > 1 && std::string(argv[1]) == "sweep";
   try {
-    if (argc > 1 && std::string(argv[1]) == "sweep")
+    if (sweep)
       return invasim::app::run_sweep_command(std::vector<std::string>(argv + 2, argv + argc));
     const Command command =
         invasim::app::parse_command_line(std::vector<std::string>(argv + 1, argv + argc));
@@ -112,7 +113,6 @@ int main(int argc, char** argv) {
     // "invasim sweep run: ..." names the program already; the hint names the help that lists
     // the command's options.
     const std::string what = e.what();
-    const bool sweep = argc > 1 && std::string(argv[1]) == "sweep";
     std::cerr << (what.rfind("invasim ", 0) == 0 ? "" : "invasim: ") << what << " (see invasim "
               << (sweep ? "sweep " : "") << "--help)\n";
     return 2;

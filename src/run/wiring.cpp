@@ -5,6 +5,24 @@
 
 namespace invasim {
 
+namespace {
+
+// The System's one force of handle type H; `several` and `none` end the two refusals.
+template <typename H>
+std::shared_ptr<H> the_one(const SystemHandle& sim, std::string_view what, const char* several,
+                           const char* none) {
+  std::shared_ptr<H> found;
+  for (const ForceHandle& h : sim.handles)
+    if (const auto* x = std::get_if<std::shared_ptr<H>>(&h)) {
+      if (found) fail_input(what, several);
+      found = *x;
+    }
+  if (!found) fail_input(what, none);
+  return found;
+}
+
+}  // namespace
+
 SystemHandle& owner_of(const std::weak_ptr<SystemHandle>& owner, const std::string& what,
                        const std::string& hint) {
   if (auto sim = owner.lock()) return *sim;
@@ -39,17 +57,11 @@ PressureWall* prepare_dynamics(DynamicsHandle& d, const std::shared_ptr<SystemHa
                    ": the pressure wall's Walls are not a force of this System; add them "
                    "with sys:add(walls)");
     } else {
-      for (const auto& h : sim->handles)
-        if (auto* w = std::get_if<std::shared_ptr<Walls>>(&h)) {
-          if (walls)
-            fail_input(what,
-                       ": the System has several Walls; name the pressure wall's with "
-                       "dyn:pressure_wall{walls = w, ...}");
-          walls = *w;
-        }
-      if (!walls)
-        fail_input(what,
-                   ": the pressure wall needs a Walls force in the System (sys:add(iv.Walls{}))");
+      walls = the_one<Walls>(*sim, what,
+                             ": the System has several Walls; name the pressure wall's with "
+                             "dyn:pressure_wall{walls = w, ...}",
+                             ": the pressure wall needs a Walls force in the System "
+                             "(sys:add(iv.Walls{}))");
     }
     if (!walls->left)
       fail_input(what, ": the pressure wall moves the left wall, but its Walls have left = false");
@@ -97,20 +109,12 @@ void restored_from_checkpoint(const std::shared_ptr<SystemHandle>& sim, Dynamics
 }
 
 std::shared_ptr<ContactForce> only_contacts(const SystemHandle& sim, std::string_view what) {
-  std::shared_ptr<ContactForce> found;
-  for (const ForceHandle& h : sim.handles) {
-    if (const auto* c = std::get_if<std::shared_ptr<Contacts>>(&h)) {
-      if (found)
-        fail_input(what,
-                   ": the System has several Contacts forces; change their parameters with "
-                   "c:set{} instead");
-      found = (*c)->force;
-    }
-  }
-  if (!found)
-    fail_input(what,
-               ": the System has no Contacts force (add one with sys:add(invasim.Contacts{...}))");
-  return found;
+  return the_one<Contacts>(sim, what,
+                           ": the System has several Contacts forces; change their parameters "
+                           "with c:set{} instead",
+                           ": the System has no Contacts force (add one with "
+                           "sys:add(invasim.Contacts{...}))")
+      ->force;
 }
 
 TemporaryContacts::TemporaryContacts(SystemHandle& sim, std::shared_ptr<ContactForce> force,

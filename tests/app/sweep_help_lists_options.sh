@@ -19,7 +19,7 @@ for verb in init run status collect submit job; do
   [ -n "$takes" ] || { echo "sweep $verb: no option list in: $message"; exit 1; }
   [ "$takes" = none ] && continue
   for option in $(printf '%s\n' "$takes" | tr ',' ' ' | sed 's/ and / /g'); do
-    if ! printf '%s\n' "$block" | grep -q -- "\[$option\b\|\[$option\]\|\[$option \|^ *invasim sweep $verb .*$option"; then
+    if ! printf '%s\n' "$block" | grep -q -- "\[$option\b\|^ *invasim sweep $verb .*$option"; then
       echo "sweep $verb accepts $option, but its block of sweep --help does not list it:"
       printf '%s\n' "$block"
       exit 1

@@ -107,12 +107,19 @@ std::vector<Vec3> brute_contact_forces(const System& sys, const ContactParams& p
 }
 
 // Minimum-image distance by search over the neighbouring images in y and z.
-double image_distance(const Box& box, const Vec3& a, const Vec3& b) {
-  double best = 1e300;
+// a - b to the nearest image of a (walls in x, periodic y and z), by search over images.
+Vec3 nearest_image(const Box& box, const Vec3& a, const Vec3& b) {
+  Vec3 best = a - b;
   for (int k = -2; k <= 2; ++k)
-    for (int l = -2; l <= 2; ++l)
-      best = std::min(best, (a - b + Vec3(0.0, k * box.length(1), l * box.length(2))).norm());
+    for (int l = -2; l <= 2; ++l) {
+      const Vec3 d = a - b + Vec3(0.0, k * box.length(1), l * box.length(2));
+      if (d.norm() < best.norm()) best = d;
+    }
   return best;
+}
+
+double image_distance(const Box& box, const Vec3& a, const Vec3& b) {
+  return nearest_image(box, a, b).norm();
 }
 
 struct FdCheck {
@@ -765,13 +772,7 @@ TEST_CASE("tether heterogeneity: lower half in z shortened by lambda, upper half
   const auto c = TetherForce::body_centres(sys);
   int lower = 0, upper = 0, across = 0;
   for (const Tether& t : tf.tethers()) {
-    // The nearest image of a's centre seen from b (walls in x, periodic y and z).
-    Vec3 d = c[t.a] - c[t.b];
-    for (int k = -2; k <= 2; ++k)
-      for (int l = -2; l <= 2; ++l) {
-        const Vec3 e = c[t.a] - c[t.b] + Vec3(0.0, k * box.length(1), l * box.length(2));
-        if (e.norm() < d.norm()) d = e;
-      }
+    const Vec3 d = nearest_image(box, c[t.a], c[t.b]);
     across += std::abs(d.z() - (c[t.a] - c[t.b]).z()) > 1.0;
     double z = std::fmod(c[t.b].z() + 0.5 * d.z() - box.lo()[2], box.length(2));
     if (z < 0.0) z += box.length(2);
