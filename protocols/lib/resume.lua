@@ -27,7 +27,6 @@ local run_dir = nil   -- this run's directory, set with the identity
 
 -- This run's identity (lib.run_identity.of) and directory, set by lib.run_dir.
 function M.set_identity(id, dir) identity, run_dir = id, dir end
-function M.identity() return identity end
 function M.run_dir() return run_dir end
 
 -- The command that continues this run after a stop: the sweep's own command when the run is

@@ -86,7 +86,6 @@ class CheckpointReader {
   // Validates bytes; `origin` names their source in messages (e.g. a quoted path).
   static CheckpointReader parse(std::string bytes, std::string origin);
 
-  const std::string& origin() const { return origin_; }
   std::uint32_t version() const { return version_; }
   bool has(const std::string& name) const { return index_.count(name) != 0; }
   // Section names in file order.

@@ -65,11 +65,6 @@ std::uint64_t limit_and_source(const char*& source) {
 
 }  // namespace
 
-std::uint64_t memory_limit_bytes() {
-  const char* source = nullptr;
-  return limit_and_source(source);
-}
-
 std::string_view format_bytes(double bytes, char (&buffer)[32]) {
   const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
   int u = 0;

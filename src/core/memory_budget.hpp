@@ -10,14 +10,12 @@
 
 namespace invasim {
 
-// The memory this process may still allocate, in bytes: MemAvailable of /proc/meminfo,
-// lowered to the cgroup's memory.max - memory.current when that is set; the environment
-// variable INVASIM_MEMORY_LIMIT (bytes) overrides both (tests use it). Falls back to the
-// physical memory (sysconf) when /proc is unreadable.
-std::uint64_t memory_limit_bytes();
-
 // Throws InputError "<owner>: <parameter> = <value> needs about <X> of memory (<per_item>
-// bytes each); the limit is <Y> (<source>)" if count * bytes_each > memory_limit_bytes().
+// bytes each); the limit is <Y> (<source>)" if count * bytes_each exceeds the memory this
+// process may still allocate: MemAvailable of /proc/meminfo, lowered to the cgroup's
+// memory.max - memory.current when that is set; the environment variable
+// INVASIM_MEMORY_LIMIT (bytes) overrides both (tests use it). Falls back to the physical
+// memory (sysconf) when /proc is unreadable.
 void check_memory(std::string_view owner, std::string_view parameter, double count,
                   double bytes_each);
 

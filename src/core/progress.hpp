@@ -51,7 +51,6 @@ class Progress {
   long long step() const { return step_; }
   long long total() const { return options_.total; }
   bool finished() const { return finished_; }
-  bool live() const { return live_; }
 
  private:
   void print(const std::string& text);

@@ -49,7 +49,6 @@ class SnapshotWriter {
   void forget_after(std::uint64_t step);
 
   const std::filesystem::path& directory() const { return dir_; }
-  const SnapshotOptions& options() const { return options_; }
   // Frame file name for a kind ("cells", "spheres", "adipocytes") and step.
   static std::string frame_file_name(const std::string& kind, std::uint64_t step,
                                      const std::string& extension);

@@ -60,7 +60,6 @@ class FieldTable {
   }
 
   const std::string& type() const { return type_; }
-  const P& defaults() const { return defaults_; }
   const std::vector<Field<P>>& fields() const { return fields_; }
   std::vector<Declaration> infos() const {
     std::vector<Declaration> out;

@@ -135,7 +135,6 @@ class Kwargs {
 
   const std::string& owner() const { return owner_; }
   lua_State* state() const { return L_; }
-  int index() const { return index_; }
 
  private:
   // Pushes the value of key (raw get) and records the key; returns its Lua type.

@@ -49,7 +49,6 @@ class CheckpointOperation : public Operation {
   CheckpointOperation(std::filesystem::path path, ComposeFn compose, WrittenFn written = {});
   std::string name() const override { return "checkpoint writer"; }
   void apply(Simulation& sim) override;
-  const std::filesystem::path& path() const { return path_; }
 
  private:
   std::filesystem::path path_;

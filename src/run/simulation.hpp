@@ -4,7 +4,7 @@
 // Dynamics that steps them, and an ordered list of operations, each with a Trigger.
 //
 // run(n) advances the System by n steps. It steps the Dynamics in chunks that end at the next
-// step where some operation is due (at most max_chunk() steps, never past the end), and at
+// step where some operation is due (at most set_max_chunk() steps, never past the end), and at
 // each chunk's end, in this fixed order:
 //   1. every operation whose trigger is due at this step (every N / at steps; at the last step
 //      of the run also the at_end ones), in the order they were added, each at most once;
@@ -60,7 +60,6 @@ class Simulation {
   void set_stop_check(StopCheckFn check) { stop_check_ = std::move(check); }
   // Longest chunk between two stop checks / progress updates (default 100 steps).
   void set_max_chunk(std::uint64_t steps);
-  std::uint64_t max_chunk() const { return max_chunk_; }
 
   // Advances the System by n steps (see the header comment for the order of events).
   RunResult run(std::uint64_t n);

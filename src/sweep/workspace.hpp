@@ -34,7 +34,6 @@ class Workspace {
   const std::string& protocol() const { return protocol_; }
   const std::vector<std::string>& ids() const { return ids_; }  // the state points, in order
   bool has_prep() const { return has_prep_; }
-  const Json& prep_set() const { return prep_set_; }
 
   // WS/workspace/<id>, or WS/prep for kPrepId.
   fs::path job_dir(const std::string& id) const;

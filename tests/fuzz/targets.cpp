@@ -327,11 +327,6 @@ Target keywords_target() {
 
 }  // namespace
 
-const std::vector<std::string>& target_names() {
-  static const std::vector<std::string> names = {"checkpoint", "vtk", "set", "keywords"};
-  return names;
-}
-
 Target make_target(const std::string& name) {
   if (name == "checkpoint") return checkpoint_target();
   if (name == "vtk") return vtk_target();

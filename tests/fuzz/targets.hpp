@@ -26,6 +26,5 @@ struct Target {
 
 // The target called `name` (checkpoint, vtk, set, keywords); throws std::invalid_argument.
 Target make_target(const std::string& name);
-const std::vector<std::string>& target_names();
 
 }  // namespace invasim::fuzz
