@@ -618,6 +618,8 @@ std::uint64_t Dynamics::run_team(System& sys, ForceField& ff, std::uint64_t max_
     team_barrier();
     if (!go_on) break;
   }
+  parallel_steps_ += done;
+  count_team_steps(done);
   if (error) std::rethrow_exception(error);
   return done;
 }

@@ -148,6 +148,8 @@ class Dynamics {
   // Parallel regions opened by run() for runs of team steps (each holds consecutive steps that
   // use all threads; for tests and benchmarks).
   std::uint64_t team_regions() const { return team_regions_; }
+  // Steps run inside those regions (with more than one thread), since construction.
+  std::uint64_t parallel_steps() const { return parallel_steps_; }
 
  private:
   void apply_ramps(std::uint64_t step);
@@ -177,6 +179,7 @@ class Dynamics {
   std::vector<MethodParams> next_params_;  // each method's parameters for the step being made
   std::uint64_t next_step_ = 0;            // the number of the step being made
   std::uint64_t team_regions_ = 0;
+  std::uint64_t parallel_steps_ = 0;
   // The methods' groups and the sites in no method (their forces are zeroed next to the drift)
   // as storage slots, for the layout slots_layout_ of slots_n_ sites.
   void sync_slots(const System& sys);

@@ -10,6 +10,8 @@
 #include <chrono>
 #include <cstdint>
 
+#include "integrate/test_hooks.hpp"
+
 namespace invasim {
 
 class StepThreads {
@@ -33,7 +35,6 @@ class StepThreads {
   static constexpr std::uint64_t kMinHold = 8, kMaxHold = 512;
 
   void set_mode(Mode mode);
-  Mode mode() const { return mode_; }
   // Threads for the next step: 1 or omp_get_max_threads().
   int begin_step();
   // The step begun last took `seconds` of wall time.
@@ -46,7 +47,7 @@ class StepThreads {
   enum class Phase { kSerialWindow, kTeamWindow, kHold };
   void start_measuring();
   void choose(bool team);
-  Mode mode_ = Mode::kAuto;
+  Mode mode_ = team_steps_forced() ? Mode::kAll : Mode::kAuto;
   int max_threads_ = 0;
   bool team_now_ = false;  // the thread count of the step begun last
   Phase phase_ = Phase::kSerialWindow;

@@ -175,26 +175,30 @@ int l_run(lua_State* L) {
 
 void open_dynamics(lua_State* L) {
   define_type<DynamicsHandle>(
-      L, {INVASIM_LUA_FN(add), INVASIM_LUA_FN(pressure_wall), INVASIM_LUA_FN(wall_state),
-          getter<DynamicsHandle, [](const DynamicsHandle& d) { return d.dynamics.dt(); }>("dt"),
-          method<"set_dt",
-                 [](DynamicsHandle& d, double dt) {
-                   d.dynamics.set_dt(dt);
-                   d.dynamics.invalidate();
-                 }>(),
-          // steps between two choices of the engine order (Dynamics::sort_every)
-          method<"set_sort_every",
-                 [](DynamicsHandle& d, std::uint64_t n) { d.dynamics.set_sort_every(n); }>(),
-          INVASIM_LUA_FN(set_pressure),
-          // the temperature of the piston's bath (>= 0; 0: no noise)
-          method<"set_wall_kT",
-                 [](DynamicsHandle& d, double kT) {
-                   const auto wall = require_pressure_wall(d, "set_wall_kT");
-                   if (!(kT >= 0.0)) fail_input("kT = ", kT, " must be >= 0");
-                   wall->kT = kT;
-                   d.dynamics.invalidate();
-                 }>(),
-          INVASIM_LUA_FN(methods), INVASIM_LUA_FN(run)});
+      L,
+      {INVASIM_LUA_FN(add), INVASIM_LUA_FN(pressure_wall), INVASIM_LUA_FN(wall_state),
+       getter<DynamicsHandle, [](const DynamicsHandle& d) { return d.dynamics.dt(); }>("dt"),
+       // steps run in a parallel team with more than one thread (the rest ran on one)
+       getter<DynamicsHandle, [](const DynamicsHandle& d) { return d.dynamics.parallel_steps(); }>(
+           "parallel_steps"),
+       method<"set_dt",
+              [](DynamicsHandle& d, double dt) {
+                d.dynamics.set_dt(dt);
+                d.dynamics.invalidate();
+              }>(),
+       // steps between two choices of the engine order (Dynamics::sort_every)
+       method<"set_sort_every",
+              [](DynamicsHandle& d, std::uint64_t n) { d.dynamics.set_sort_every(n); }>(),
+       INVASIM_LUA_FN(set_pressure),
+       // the temperature of the piston's bath (>= 0; 0: no noise)
+       method<"set_wall_kT",
+              [](DynamicsHandle& d, double kT) {
+                const auto wall = require_pressure_wall(d, "set_wall_kT");
+                if (!(kT >= 0.0)) fail_input("kT = ", kT, " must be >= 0");
+                wall->kT = kT;
+                d.dynamics.invalidate();
+              }>(),
+       INVASIM_LUA_FN(methods), INVASIM_LUA_FN(run)});
   set_constructor(L, "Dynamics", &lua_wrap<&l_new>, dynamics_fields().infos());
   set_method_keys(L, "Dynamics", "pressure_wall", pressure_wall_fields().infos());
 }

@@ -231,16 +231,27 @@ int l_temperature(lua_State* L) {
   return 1;
 }
 
-// sys:positions([group]) -> {{x, y, z}, ...}: the sites' positions (wrapped into the box on
-// the periodic axes), in the group's order.
-int l_positions(lua_State* L) {
+// sys:positions / velocities / orientations([group]) -> {{x, y, z}, ...}: one per-site vector
+// of the group's sites, in the group's order.
+int push_site_vectors(lua_State* L, std::vector<Vec3> Sites::*field, const char* what) {
   const SystemHandle& sim = check<SystemHandle>(L, 1);
-  const std::vector<int> sites = group_arg(L, 2, sim, "positions");
-  const auto& pos = sim.system.sites().pos;
-  return push_results(L, 1, [&sites, &pos](lua_State* S) noexcept {
-    push_list(S, sites.size(), [&](std::size_t k) { push_vec3(S, pos[sites[k]]); });
+  const std::vector<int> sites = group_arg(L, 2, sim, what);
+  const std::vector<Vec3>& v = sim.system.sites().*field;
+  return push_results(L, 1, [&sites, &v](lua_State* S) noexcept {
+    push_list(S, sites.size(), [&](std::size_t k) { push_vec3(S, v[sites[k]]); });
     return 1;
   });
+}
+// Positions are wrapped into the box on the periodic axes.
+int l_positions(lua_State* L) {
+  return push_site_vectors(L, &Sites::pos, "positions");
+}
+int l_velocities(lua_State* L) {
+  return push_site_vectors(L, &Sites::vel, "velocities");
+}
+// The unit self-propulsion directions n_i (of active cells; other sites keep theirs unused).
+int l_orientations(lua_State* L) {
+  return push_site_vectors(L, &Sites::orient, "orientations");
 }
 
 // sys:adipocytes() -> {{volume =, ref_volume =, ref_volume_initial =, area =,
@@ -357,6 +368,8 @@ const luaL_Reg kMethods[] = {
     INVASIM_LUA_FN(set_velocities),
     INVASIM_LUA_FN(set_mass),
     INVASIM_LUA_FN(positions),
+    INVASIM_LUA_FN(velocities),
+    INVASIM_LUA_FN(orientations),
     INVASIM_LUA_FN(adipocytes),
     INVASIM_LUA_FN(add),
     INVASIM_LUA_FN(forces),

@@ -5,6 +5,7 @@
 # a protocol parameter, an analysis step or the generator breaks.
 # Usage: validation_tiny.sh INVASIM REPO WORKDIR
 set -euo pipefail
+unset PYTHONOPTIMIZE  # the Python heredocs below check with assert
 invasim=$1 repo=$2 work=$3
 rm -rf "$work" && mkdir -p "$work"
 cd "$work"
@@ -43,11 +44,14 @@ problems = []
 jobs = workspace.load(os.path.join(ws, "fig3_passive_slices"))
 want = sorted(j.mean("kT_c_paper")[0] / float(j.sp["P"]) for j in jobs)
 got = sorted(e[0] for e in json.load(open(os.path.join(figs, "fig3.json")))["numbers"]["end_points"])
-if not all(abs(a - b) <= 1e-9 * abs(b) for a, b in zip(got, want)):
+if len(got) != len(want) or not want or not all(abs(a - b) <= 1e-9 * abs(b) for a, b in zip(got, want)):
     problems.append("fig3 end points at %r, measured %r" % (got, want))
 jobs = workspace.load(os.path.join(ws, "fig4a_passive"))
 by_kT = {j.sp["kT"]: j for j in jobs}
-for f, pts in json.load(open(os.path.join(figs, "fig4a.json")))["numbers"]["points"].items():
+points = json.load(open(os.path.join(figs, "fig4a.json")))["numbers"]["points"]
+if not points or not all(points.values()):
+    problems.append("fig4a has no points at some time: %r" % points)
+for f, pts in points.items():
     for p in pts:
         j = by_kT[p["key"][0]]
         m = steady.window_mean(j, "kT_c_paper", float(f)) / float(j.sp["P"])

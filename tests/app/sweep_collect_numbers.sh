@@ -45,6 +45,8 @@ def expect(row, column, value):
     if text != repr(value):
         problems.append("%s: %s = %r, expected %r" % (row[0][:8], column, text, repr(value)))
 taus = set()
+if [r[0] for r in rows[1:]].count(done_id) != 1:
+    problems.append("the done point %s is not one row of %s" % (done_id, table))
 for row in rows[1:]:
     sp = json.load(open(os.path.join(ws, "workspace", row[0], "signac_statepoint.json")))
     for key, value in sp.items():

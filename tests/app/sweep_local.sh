@@ -17,6 +17,7 @@
 #  7. analyze runs the master-curve script on the collected table (defaults of P, beta, gamma).
 # Usage: sweep_local.sh INVASIM SPEC_DIR WORK_DIR PYTHON3
 set -euo pipefail
+unset PYTHONOPTIMIZE  # the Python heredocs below check with assert
 invasim=$1 specs=$2 work=$3 python=$4
 source "$(dirname "$0")/../lua/wait_for.sh"
 rm -rf "$work" && mkdir -p "$work" && cd "$work"

@@ -3,6 +3,7 @@
 # they make (state points read back), and that the preparation keeps its own prep.set values.
 # Usage: sweep_overrides.sh INVASIM SPECS_DIR WORKDIR PYTHON3
 set -euo pipefail
+unset PYTHONOPTIMIZE  # the Python heredocs below check with assert
 invasim=$1 specs=$2 work=$3 py=$4
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 fail() { echo "FAIL: $*" >&2; exit 1; }

@@ -3,7 +3,9 @@
 -- pressure wall with a pressure ramp, a correlator) runs 2N steps straight; the same
 -- preparation run N steps, saved, then a freshly built copy loads the checkpoint and runs N
 -- more: every position, velocity, orientation, the wall and the correlator sums agree
--- exactly, also across changes of the sites' engine order. Run with 1 and 2 threads by CTest.
+-- exactly, also across changes of the sites' engine order. Run with 1 and 2 threads by CTest,
+-- with INVASIM_TEST_TEAM_STEPS=1 (src/integrate/test_hooks.hpp): at 2 threads the 1046 sites
+-- then step in the parallel team, and the test requires that they did.
 package.path = "../../protocols/?.lua;" .. package.path
 local iv = require("invasim")
 local p = iv.params{ steps = 400, seed = 3 }
@@ -11,7 +13,8 @@ local path = iv.out_dir .. "/state.ckpt"
 iv.make_dirs(iv.out_dir)
 
 local function build()
-  local t = require("lib.init"){ N_a = 3, N_c = 80, L0 = 30.0, seed = p.seed, beta = 1e-2 }
+  local t = require("lib.init"){ N_a = 3, N_c = 920, L0 = 30.0, seed = p.seed, beta = 1e-2 }
+  assert(t.sys:n_sites() >= 1024, "too few sites for the parallel team: " .. t.sys:n_sites())
   require("lib.compress")(t, { to_phi = 0.5, progress = false })
   require("lib.tether")(t, { K = 0.04, mean_degree = 2 })
   require("lib.heterogeneity")(t, { lambda = 0.3 })
@@ -24,8 +27,12 @@ local function build()
   return t
 end
 
+local team = os.getenv("INVASIM_TEST_TEAM_STEPS") == "1" and iv.threads() > 1
 local function run(t, n)
+  local before = t.dyn:parallel_steps()
   t.dyn:run(t.sys, n, { every = 10, callback = function() t.correlator:sample(t.sys) end })
+  assert(not team or t.dyn:parallel_steps() >= before + n - 1,
+         string.format("only %d of %d steps ran in the parallel team", t.dyn:parallel_steps() - before, n))
 end
 
 local function fingerprint(t)

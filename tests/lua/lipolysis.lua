@@ -2,8 +2,10 @@
 -- paper"). Touched adipocytes shrink by rate x v_0(initial) x N dt every N steps, keep their
 -- reference shape parameter, stop at the floor; untouched ones keep v_0. A run saved after N
 -- steps and continued from its checkpoint equals the straight run bit for bit (reference
--- volumes included); the fingerprint file lets CTest compare 1 and 2 threads. Bad keys are
--- refused, naming them.
+-- volumes included); the fingerprint file lets CTest compare 1 and 2 threads (1046 sites: at 2
+-- threads with INVASIM_TEST_TEAM_STEPS=1, src/integrate/test_hooks.hpp, set by CTest, the
+-- steps run in the parallel team, and the test requires that they did). Bad keys are refused,
+-- naming them.
 package.path = "../../protocols/?.lua;" .. package.path
 local iv = require("invasim")
 local p = iv.params{ steps = 300, seed = 5 }
@@ -17,7 +19,8 @@ local function fails(pattern, fn, ...)
 end
 
 local function build()
-  local t = require("lib.init"){ N_a = 3, N_c = 80, L0 = 30.0, seed = p.seed, beta = 1e-2 }
+  local t = require("lib.init"){ N_a = 3, N_c = 920, L0 = 30.0, seed = p.seed, beta = 1e-2 }
+  check(t.sys:n_sites() >= 1024, "enough sites for the parallel team: " .. t.sys:n_sites())
   require("lib.compress")(t, { to_phi = 0.55, progress = false })
   require("lib.quench")(t, { P = 1.3e-3, f0 = 0.02, tau_p = 5.0, kT = 1e-4, steps = 100, progress = false })
   t.dyn:set_sort_every(64)
@@ -26,10 +29,14 @@ end
 local lip = iv.Lipolysis{ rate = 2e-3, floor = 0.8 }
 local every = 10
 
+local team = os.getenv("INVASIM_TEST_TEAM_STEPS") == "1" and iv.threads() > 1
 local function run(t, n)
   local sim = iv.Simulation{ system = t.sys, dynamics = t.dyn }
   sim:lipolysis(lip, { every = every })
+  local before = t.dyn:parallel_steps()
   sim:run(n)
+  check(not team or t.dyn:parallel_steps() >= before + n - 1,
+        string.format("%d of %d steps in the parallel team", t.dyn:parallel_steps() - before, n))
 end
 
 local function volumes(t)

@@ -4,10 +4,10 @@
 --   p = 1 - exp(-division_rate every dt): the measured N within 4 standard deviations of the
 --   branching process (variance N0 g (g - 1), g = (1 + p)^m); ln(N/N0)/t is division_rate to
 --   the same accuracy. Cells that only die decay as N0 (1 - q)^m = N0 exp(-death_rate t).
--- - Contact inhibition: a packed cluster whose cells all touch at least `inhibition_contacts`
---   sites does not grow, an isolated cell does.
--- - A division keeps the momentum (two halves of the parent's), the size class and the
---   orientation; the daughters are separation x d apart. Daughters join their parent's method.
+-- - Contact inhibition: when every cell is sure to divide, the cells touching at least
+--   `inhibition_contacts` others do not, the others do.
+-- - A division gives each daughter half the parent's velocity and its orientation; the
+--   daughters are separation x d apart. Daughters join their parent's method.
 -- - A group made before a division or a death is refused afterwards, naming it.
 -- - A run saved mid-growth and continued from its checkpoint equals the straight run bit for
 --   bit; the fingerprint file lets CTest compare 1 and 2 threads. Snapshot frames hold the
@@ -71,54 +71,82 @@ do
                          n, n0, n0 * s, sd, rate))
 end
 
--- One division: momentum, size, orientation, separation; the daughter joins the method.
+-- One division: each daughter has half the parent's velocity (the momentum is shared in
+-- halves) and its orientation, the two sit separation x d apart, and the daughter joins the
+-- parent's method. The parent's state at the division is the same run's without
+-- proliferation (no noise: the step is deterministic). (Sizes: test_proliferation.)
 do
-  local sys = iv.System{ box = {20, 20, 20}, periodic = {false, true, true}, seed = 3 }
-  sys:place{ cells = { n = 1, diameters = {1.4}, x = {9, 11} } }
-  local dyn = iv.Dynamics{ dt = 0.05 }
-  local method = iv.Active{ group = sys:group("cancer"), gamma = 1.0, f0 = 0.0, tau_p = 1e9 }
-  dyn:add(method)
-  sys:set_velocities{ group = sys:group("cancer"), kT = 1e-2 }
-  local v0 = sys:positions()  -- (positions only used for the separation below)
-  local sim = iv.Simulation{ system = sys, dynamics = dyn }
-  local old = sys:group("cancer")
-  sim:proliferation(iv.Proliferation{ division_rate = 1e6, separation = 0.25 }, { every = 1 })
-  sim:run(1)
-  check(n_cells(sys) >= 2, "the cell divided")
+  local function one_cell(divide)
+    local sys = iv.System{ box = {20, 20, 20}, periodic = {false, true, true}, seed = 3 }
+    sys:place{ cells = { n = 1, diameters = {1.4}, x = {9, 11} } }
+    local dyn = iv.Dynamics{ dt = 0.05 }
+    dyn:add(iv.Active{ group = sys:group("cancer"), gamma = 1.0, f0 = 0.0, tau_p = 1e9 })
+    sys:set_velocities{ group = sys:group("cancer"), kT = 1e-2 }
+    local old = sys:group("cancer")
+    local sim = iv.Simulation{ system = sys, dynamics = dyn }
+    if divide then
+      sim:proliferation(iv.Proliferation{ division_rate = 1e6, separation = 0.25 }, { every = 1 })
+    end
+    sim:run(1)
+    return sys, dyn, old
+  end
+  local parent = one_cell(false)
+  local sys, dyn, old = one_cell(true)
+  check(n_cells(sys) == 2, "the cell divided once: " .. n_cells(sys) .. " cells")
+  local v0, n0 = parent:velocities()[1], parent:orientations()[1]
+  check(v0[1] ~= 0 and v0[2] ~= 0 and v0[3] ~= 0, "the parent moves")
+  local r, v, n = sys:positions(), sys:velocities(), sys:orientations()
+  for k = 1, 2 do
+    for a = 1, 3 do
+      check(v[k][a] == 0.5 * v0[a], string.format("daughter %d: velocity %g, half of %g", k, v[k][a], v0[a]))
+      check(n[k][a] == n0[a], string.format("daughter %d: orientation %g, the parent's %g", k, n[k][a], n0[a]))
+    end
+  end
+  local d = math.sqrt((r[1][1] - r[2][1]) ^ 2 + (r[1][2] - r[2][2]) ^ 2 + (r[1][3] - r[2][3]) ^ 2)
+  check(math.abs(d - 0.25 * 1.4) < 1e-12, string.format("daughters %.15g apart, separation x d = 0.35", d))
+  check(dyn:methods()[1]:group():size() == 2, "the daughter joined the parent's method")
   fails("group 'cancer' was made before cells divided or died", sys.set_velocities, sys, { group = old, kT = 1 })
   fails("group 'cancer' was made before cells divided or died", sys.positions, sys, old)
-  check(v0 ~= nil, "positions")
 end
 
--- Contact inhibition: a cluster of touching cells does not grow; without inhibition it does.
+-- Contact inhibition: with a division certain at the next application (division_rate x dt
+-- = 1e4), a cell touching at least `inhibition_contacts` others does not divide and every
+-- other cell does; without inhibition every cell divides.
 local function cluster(inhibition)
   local sys = iv.System{ box = {30, 30, 30}, periodic = {false, true, true}, seed = 5 }
   sys:place{ cells = { n = 60, diameters = {1.0}, x = {12, 16} } }
   sys:add(iv.Walls{ eps = 1 })
   sys:add(iv.Contacts{ alpha = 0.2, beta = 0 })
-  iv.compress(sys, { to_phi = 0.012, step = 0.05, ftol = 1e-3, max_steps = 100 })
-  local prolif = iv.Proliferation{ division_rate = 1.0, inhibition_contacts = inhibition }
+  iv.compress(sys, { to_phi = 0.2, step = 0.05, ftol = 1e-3, max_steps = 100 })
+  local prolif = iv.Proliferation{ division_rate = 1e6, inhibition_contacts = inhibition }
   local contacts = prolif:contacts(sys)
   check(#contacts == 60, "one contact count per cell")
-  return sys, prolif, contacts
-end
-do
-  local sys, prolif = cluster(1)
   local dyn = iv.Dynamics{ dt = 0.01 }
   dyn:add(iv.Damped{ group = sys:group("cancer"), gamma = 1.0 })
-  local contacts = prolif:contacts(sys)
-  local touching = 0
-  for _, c in ipairs(contacts) do if c >= 1 then touching = touching + 1 end end
   local sim = iv.Simulation{ system = sys, dynamics = dyn }
   sim:proliferation(prolif, { every = 1 })
   sim:run(1)
-  -- With division_rate dt = 0.01 only; the point: no touching cell divided.
-  check(n_cells(sys) <= 60 + (60 - touching), "inhibited cells do not divide")
+  return n_cells(sys), contacts
+end
+do
+  local n, contacts = cluster(1)
+  local touching = 0
+  for _, c in ipairs(contacts) do if c >= 1 then touching = touching + 1 end end
+  check(touching >= 2 and touching <= 58, touching .. " of 60 cells touch: both kinds needed")
+  check(n == 60 + (60 - touching),
+        string.format("inhibition: %d cells from 60, %d touching: expected %d", n, touching, 120 - touching))
+  check(cluster(0) == 120, "without inhibition every cell divides")
+  io.write(string.format("proliferation: inhibition: %d of 60 cells touch; %d cells after one application\n",
+                         touching, n))
 end
 
--- Restart mid-growth: the straight run equals the run continued from its checkpoint.
+-- Restart mid-growth: the straight run equals the run continued from its checkpoint. 1100
+-- cells: at 2 threads with INVASIM_TEST_TEAM_STEPS=1 (src/integrate/test_hooks.hpp, set by
+-- CTest) the steps run in the parallel team, and the test requires that they did.
+local n_grow = 1100
+local team = os.getenv("INVASIM_TEST_TEAM_STEPS") == "1" and iv.threads() > 1
 local function growing(seed)
-  local sys, dyn = free_cells(300, seed, true)
+  local sys, dyn = free_cells(n_grow, seed, true)
   local sim = iv.Simulation{ system = sys, dynamics = dyn }
   sim:proliferation(iv.Proliferation{ division_rate = 0.02, death_rate = 0.01 }, { every = 5 })
   return sys, dyn, sim
@@ -139,7 +167,10 @@ local b_sys, b_dyn, b_sim = growing(p.seed)
 iv.load_checkpoint(path, { system = b_sys, dynamics = b_dyn })
 b_sim:run(200)
 a_sim:run(200)
-check(n_cells(straight_sys) ~= 300, "the tissue changed: " .. n_cells(straight_sys))
+-- (A run's first step, and the first after each division or death, evaluate the forces first
+-- and are not team steps; the others are.)
+check(not team or b_dyn:parallel_steps() >= 100, "steps in the parallel team: " .. b_dyn:parallel_steps())
+check(n_cells(straight_sys) ~= n_grow, "the tissue changed: " .. n_cells(straight_sys))
 check(fingerprint(a_sys) == fingerprint(straight_sys), "saving does not change the run")
 check(fingerprint(b_sys) == fingerprint(straight_sys), "restored mid-growth = straight run")
 -- Snapshots of a changing number of cells: each frame file states its own count (OVITO and
@@ -161,18 +192,18 @@ do
           "the id column is declared: " .. header)
     return n, ids
   end
-  local n200, ids200 = frame(200)
+  local n200 = frame(200)
   local n400, ids400 = frame(400)
   check(n400 == n_cells(sys) and n200 ~= n400, string.format("frame counts %d, %d, cells %d", n200, n400, n_cells(sys)))
-  -- Ids are unique, the initial cells keep theirs (0..299 in order among themselves), and the
+  -- Ids are unique, the initial cells keep theirs (0..n_grow - 1 in order among themselves), and the
   -- daughters get new ones (above every earlier id): a cell can be followed across deaths.
   local seen, born, last_initial = {}, 0, -1
   for _, id in ipairs(ids400) do
     check(not seen[id], "id " .. id .. " once")
     seen[id] = true
-    if id >= 300 then born = born + 1 else check(id > last_initial, "initial cells in order"); last_initial = id end
+    if id >= n_grow then born = born + 1 else check(id > last_initial, "initial cells in order"); last_initial = id end
   end
-  check(born > 0 and n400 - born < 300, string.format("%d daughters with new ids, %d initial cells left", born, n400 - born))
+  check(born > 0 and n400 - born < n_grow, string.format("%d daughters with new ids, %d initial cells left", born, n400 - born))
 end
 iv.write_file(iv.out_dir .. "/fingerprint.txt", fingerprint(straight_sys) .. "\n")
 print(string.format("proliferation: all %d checks passed; %d cells after 400 steps; identical after 200 + 200 steps",

@@ -217,6 +217,7 @@ TEST_CASE("an escape is caught at the same step with 1 and 2 threads") {
     System sys = test::mixed_system(3, 300, 7.0, 0.4, 21);
     ForceField ff = test::standard_forces();
     Dynamics dyn(0.05);
+    dyn.step_threads().set_mode(StepThreads::Mode::kAll);  // at 2 threads: every step in the team
     auto active = Method::active(sys.sites_of_kind(SiteKind::kCancer), 5.0, 2.0, 10.0, 1e-3);
     active->randomize_orientations(sys);
     dyn.add(active);
@@ -228,6 +229,7 @@ TEST_CASE("an escape is caught at the same step with 1 and 2 threads") {
       message[threads - 1] = e.what();
     }
     step[threads - 1] = sys.step;
+    CHECK(dyn.parallel_steps() == (threads > 1 ? sys.step - 1 : 0u));  // all but the first
     INFO(threads << " threads: " << message[threads - 1] << " (step " << sys.step << ")");
     REQUIRE_THAT(message[threads - 1], Contains("(cancer cell) has left the box through the"));
   }

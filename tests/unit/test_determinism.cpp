@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/deterministic_sum.hpp"
+#include "core/parallel.hpp"
 #include "core/rng.hpp"
 #include "integrate/dynamics.hpp"
 #include "test_support.hpp"
@@ -60,16 +61,19 @@ struct Snapshot {
   std::vector<Vec3i> image;
   double wall_lo = 0, wall_v = 0;
   std::uint64_t builds = 0;
+  std::uint64_t parallel_steps = 0;  // steps run in the parallel team
 };
 
-// The mixed system of the brief: 8 adipocytes (damped vertices), 300 active cancer cells with
+// The mixed system of the brief: 8 adipocytes (damped vertices), 700 active cancer cells with
 // thermal noise, cohesive contacts, walls, shape, tethers (mean degree 4 plus heterogeneity)
 // and a pressure-controlled left wall with its own bath (noise at kT = 1e-3); `steps` steps
-// from scratch with `threads` threads.
+// from scratch with `threads` threads, every step in the parallel team when threads > 1 (1036
+// sites: at least core/parallel.hpp's kParallelTeamItems).
 Snapshot run_mixed(int threads, std::uint64_t dyn_seed, int steps) {
   omp_set_num_threads(threads);
   REQUIRE(threads_in_region() == threads);
-  System sys = reseeded(test::mixed_system(2, 300, 7.0, 0.2, 77), dyn_seed);
+  System sys = reseeded(test::mixed_system(2, 700, 7.0, 0.2, 77), dyn_seed);
+  REQUIRE(sys.n_sites() >= kParallelTeamItems);
   ForceField ff;
   ContactParams cp;
   cp.beta = 1e-2;
@@ -83,6 +87,7 @@ Snapshot run_mixed(int threads, std::uint64_t dyn_seed, int steps) {
   tethers->connect_by_mean_degree(sys, 4.0);
   tethers->apply_heterogeneity(sys, 0.3);
   Dynamics dyn(0.05);
+  dyn.step_threads().set_mode(StepThreads::Mode::kAll);
   auto active = Method::active(sys.sites_of_kind(SiteKind::kCancer), 0.2, 0.1, 2.0, 1e-2);
   active->randomize_orientations(sys);
   dyn.add(active);
@@ -100,6 +105,7 @@ Snapshot run_mixed(int threads, std::uint64_t dyn_seed, int steps) {
                sys.box().lo()[0],
                wall->velocity,
                contacts->neighbor_list().builds()};
+  out.parallel_steps = dyn.parallel_steps();
   for (const Vec3& r : out.pos) REQUIRE(r.allFinite());
   return out;
 }
@@ -125,6 +131,10 @@ TEST_CASE(
   // The run did something: the list rebuilt, the wall moved, the cells were driven.
   CHECK(one.builds > 10);
   CHECK(one.wall_lo != 0.0);
+  // The 2-thread run took the parallel team in every step after the first (which evaluates the
+  // initial forces), the 1-thread one never.
+  CHECK(two.parallel_steps == std::uint64_t(steps) - 1);
+  CHECK(one.parallel_steps == 0);
   CHECK(n_different(one, two) == 0);
   CHECK(one.wall_lo == two.wall_lo);
   CHECK(one.wall_v == two.wall_v);

@@ -757,9 +757,10 @@ TEST_CASE("a free piston with noise at kT reaches M <v_w^2> = kT (fluctuation-di
 }
 
 TEST_CASE("piston noise: set by kT, zero at kT = 0, the same with 1 and 2 threads", "[barostat]") {
+  // 1100 spheres: at 2 threads every step runs in the parallel team (kParallelTeamItems).
   auto run = [](double kT, int threads) {
     omp_set_num_threads(threads);
-    System sys = test::random_spheres(200, 0.3, true, 0xB0A7ull);
+    System sys = test::random_spheres(1100, 0.3, true, 0xB0A7ull);
     auto walls = std::make_shared<WallForce>();
     ForceField ff;
     ff.add(std::make_shared<ContactForce>(ContactParams{}));
@@ -769,9 +770,12 @@ TEST_CASE("piston noise: set by kT, zero at kT = 0, the same with 1 and 2 thread
     wall->kT = kT;
     wall->walls = walls;
     Dynamics dyn(kDt);
+    dyn.step_threads().set_mode(StepThreads::Mode::kAll);
     dyn.add(Method::langevin(all_sites(sys), kGamma, 1e-3));
     dyn.set_pressure_wall(wall);
     dyn.run(sys, ff, 400);
+    // (The first step, which also evaluates the initial forces, runs outside the team.)
+    CHECK(dyn.parallel_steps() == (threads > 1 ? 399u : 0u));
     return std::pair{sys.box().lo()[0], wall->velocity};
   };
   const int saved = omp_get_max_threads();

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "checkpoint/state_checkpoint.hpp"
+#include "core/parallel.hpp"
 #include "integrate/dynamics.hpp"
 #include "integrate/engine_order.hpp"
 #include "integrate/fire.hpp"
@@ -48,10 +49,12 @@ std::unique_ptr<Tissue> make_tissue(System sys, bool restored = false) {
 }
 
 // A dense tissue (cells at packing fraction 0.6 beside 8 adipocytes, relaxed): many sites with
-// three contacts or more, whose force sums depend on the order of their terms.
+// three contacts or more, whose force sums depend on the order of their terms; 1036 sites, so
+// that a step at 2 threads runs in the parallel team (core/parallel.hpp, kParallelTeamItems).
 System start() {
   static const System relaxed = [] {
-    System sys = test::slab_system(2, 2, 300, 5.2, 0.6, 11);
+    System sys = test::slab_system(2, 2, 700, 5.2, 0.6, 11);
+    REQUIRE(sys.n_sites() >= kParallelTeamItems);
     ForceField ff = test::standard_forces(1e-2);
     FireParams fp;
     fp.ftol = 1e-3;
@@ -168,15 +171,21 @@ TEST_CASE(
     "continues bit for bit") {
   ThreadGuard guard;
   omp_set_num_threads(2);
-  auto straight = make_tissue(start());
+  // Every step in the parallel team (the restored order must hold for its sums too).
+  auto team = [](std::unique_ptr<Tissue> t) {
+    t->dyn.step_threads().set_mode(StepThreads::Mode::kAll);
+    return t;
+  };
+  auto straight = team(make_tissue(start()));
   straight->dyn.run(straight->sys, straight->ff, 45);
+  CHECK(straight->dyn.parallel_steps() == 44);  // (the first step evaluates the forces first)
 
-  auto first = make_tissue(start());
+  auto first = team(make_tissue(start()));
   first->dyn.run(first->sys, first->ff, 21);  // the order of step 16 in use
   CheckpointWriter w;
   write_system(w, first->sys);
   const CheckpointReader r = CheckpointReader::parse(w.bytes(), "'test'");
-  auto second = make_tissue(read_system(r), true);
+  auto second = team(make_tissue(read_system(r), true));
   REQUIRE(second->sys.engine_order() == first->sys.engine_order());
   // The order chosen now would differ: the restored one is what keeps the sums' order.
   REQUIRE(spatial_order(second->sys) != second->sys.engine_order());
@@ -185,6 +194,7 @@ TEST_CASE(
   first->dyn.run(first->sys, first->ff, 24);
   CHECK(identical(first->sys, straight->sys));
   CHECK(identical(second->sys, straight->sys));
+  CHECK(second->dyn.parallel_steps() == 24);
 }
 
 TEST_CASE("engine order: 1 and 2 threads give the same bits across changes of the order") {
@@ -197,6 +207,9 @@ TEST_CASE("engine order: 1 and 2 threads give the same bits across changes of th
   two->dyn.step_threads().set_mode(StepThreads::Mode::kAll);
   two->dyn.run(two->sys, two->ff, 45);
   CHECK(two->dyn.step_threads().team_steps() == 45);
+  // All but the first (which evaluates the initial forces) in the team, not only chosen for it.
+  CHECK(two->dyn.parallel_steps() == 44);
+  CHECK(one->dyn.parallel_steps() == 0);
   CHECK(identical(one->sys, two->sys));
 }
 
