@@ -582,6 +582,7 @@ std::uint64_t Dynamics::run_team(System& sys, ForceField& ff, std::uint64_t max_
   // follows it. Two flags, not one: the leader takes its next decision right after that
   // barrier, possibly before a slower thread has read the previous one.
   bool prepared = true, go_on = true;
+  int team_size = 1;  // the threads OpenMP gave the region (fewer than asked under a limit)
   Clock::time_point start;
   ++team_regions_;
 #pragma omp parallel num_threads(threads)
@@ -589,6 +590,7 @@ std::uint64_t Dynamics::run_team(System& sys, ForceField& ff, std::uint64_t max_
     // A step's serial parts run on the leader while the others wait at the team barrier;
     // they may throw, so the leader ends the loop for all and the error leaves the region.
     if (team_leader()) {
+      team_size = omp_get_num_threads();
       try {
         start = Clock::now();
         begin_step_serial(sys);
@@ -618,8 +620,7 @@ std::uint64_t Dynamics::run_team(System& sys, ForceField& ff, std::uint64_t max_
     team_barrier();
     if (!go_on) break;
   }
-  parallel_steps_ += done;
-  count_team_steps(done);
+  if (team_size > 1) parallel_steps_ += done;
   if (error) std::rethrow_exception(error);
   return done;
 }

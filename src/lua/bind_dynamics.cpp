@@ -178,7 +178,7 @@ void open_dynamics(lua_State* L) {
       L,
       {INVASIM_LUA_FN(add), INVASIM_LUA_FN(pressure_wall), INVASIM_LUA_FN(wall_state),
        getter<DynamicsHandle, [](const DynamicsHandle& d) { return d.dynamics.dt(); }>("dt"),
-       // steps run in a parallel team with more than one thread (the rest ran on one)
+       // steps run in the parallel team by more than one thread (Dynamics::parallel_steps)
        getter<DynamicsHandle, [](const DynamicsHandle& d) { return d.dynamics.parallel_steps(); }>(
            "parallel_steps"),
        method<"set_dt",

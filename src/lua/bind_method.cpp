@@ -160,23 +160,13 @@ int l_set(lua_State* L) {
   return 0;
 }
 
-// m:group(): the sites the method moves now. After cells divided or died (the System's site
-// epoch moved on) that is a new Group of the method's current sites, daughters included, under
-// the name of the group it was made with.
-std::shared_ptr<Group> current_group(const MethodHandle& m) {
-  const std::shared_ptr<SystemHandle> owner = m.group->owner.lock();
-  if (!owner || owner->system.site_epoch() == m.group->epoch) return m.group;
-  return std::make_shared<Group>(
-      Group{m.group->name, m.method->group(), m.group->owner, owner->system.site_epoch()});
-}
-
 }  // namespace
 
 void open_method(lua_State* L) {
   define_type<MethodHandle>(
       L, {INVASIM_LUA_FN(set),
           getter<MethodHandle, [](const MethodHandle& m) { return m.kind; }>("kind"),
-          getter<MethodHandle, &current_group>("group"),
+          getter<MethodHandle, [](const MethodHandle& m) { return m.group; }>("group"),
           params_method<MethodHandle, &active_fields, &keys_of>("params")});
   set_constructor(L, "Damped", &lua_wrap<&l_damped>, damped_fields().infos());
   set_constructor(L, "Langevin", &lua_wrap<&l_langevin>, langevin_fields().infos());

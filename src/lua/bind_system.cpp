@@ -249,7 +249,8 @@ int l_positions(lua_State* L) {
 int l_velocities(lua_State* L) {
   return push_site_vectors(L, &Sites::vel, "velocities");
 }
-// The unit self-propulsion directions n_i (of active cells; other sites keep theirs unused).
+// The self-propulsion directions n_i: unit vectors for the sites an Active method moves, (0, 0, 0)
+// for sites never made active.
 int l_orientations(lua_State* L) {
   return push_site_vectors(L, &Sites::orient, "orientations");
 }

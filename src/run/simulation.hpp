@@ -4,8 +4,8 @@
 // Dynamics that steps them, and an ordered list of operations, each with a Trigger.
 //
 // run(n) advances the System by n steps. It steps the Dynamics in chunks that end at the next
-// step where some operation is due (at most set_max_chunk() steps, never past the end), and at
-// each chunk's end, in this fixed order:
+// step where some operation is due (at most set_max_chunk()'s length, 100 steps by default,
+// never past the end), and at each chunk's end, in this fixed order:
 //   1. every operation whose trigger is due at this step (every N / at steps; at the last step
 //      of the run also the at_end ones), in the order they were added, each at most once;
 //   2. the progress callback (steps done, simulated time);

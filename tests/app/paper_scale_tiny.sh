@@ -1,7 +1,7 @@
 #!/bin/bash
 # The paper-scale sweep files (protocols/sweeps/paper_scale/) at their CI size: each must
-# initialise at its full size (at least one point; where its header promises "N points", N is
-# what `sweep init` makes) and run its `tiny = {...}` points to the end, so that no file rots before the
+# initialise at its full size (the "N points" its header promises are what `sweep init`
+# makes) and run its `tiny = {...}` points to the end, so that no file rots before the
 # cluster or the long campaign uses it. Then the paper-scale analysis (`scripts/validation.py
 # paper`, docs/validation.md "At the paper's scale") reads the tiny workspaces under the
 # campaign's names (ROOT/paper_<file>): a record per figure with its rows and the A_n(t)
@@ -25,10 +25,10 @@ for spec in "$repo"/protocols/sweeps/paper_scale/*.lua; do
     || { cat "ws_$name.log"; fail "sweep run $name"; }
   "$invasim" sweep status "ws_$name" | grep -q "failed: 0" || fail "$name: failed points"
   points=$(ls "full_$name/workspace" | wc -l)
-  [ "$points" -ge 1 ] || fail "$name: no points at full size"
   promised=$(sed -n '/^--/!q; s/.*[^0-9]\([0-9][0-9]*\) points.*/\1/p' "$spec" | head -1)
-  [ -z "$promised" ] || [ "$promised" = "$points" ] || fail "$name: the header promises $promised points, sweep init made $points"
-  echo "ok: $name ($points points at full size${promised:+, as its header says})"
+  [ -n "$promised" ] || fail "$spec: its header does not say how many points it has (\"N points\")"
+  [ "$promised" = "$points" ] || fail "$name: the header promises $promised points, sweep init made $points"
+  echo "ok: $name ($points points at full size, as its header says)"
   n=$((n + 1))
 done
 [ "$n" -ge 6 ] || fail "only $n paper-scale sweep files"

@@ -73,7 +73,8 @@ end
 
 -- One division: each daughter has half the parent's velocity (the momentum is shared in
 -- halves) and its orientation, the two sit separation x d apart, and the daughter joins the
--- parent's method. The parent's state at the division is the same run's without
+-- parent's method (the next step damps both alike; a site outside every method would keep its
+-- velocity: no force acts). The parent's state at the division is the same run's without
 -- proliferation (no noise: the step is deterministic). (Sizes: test_proliferation.)
 do
   local function one_cell(divide)
@@ -88,10 +89,10 @@ do
       sim:proliferation(iv.Proliferation{ division_rate = 1e6, separation = 0.25 }, { every = 1 })
     end
     sim:run(1)
-    return sys, dyn, old
+    return sys, dyn, old, sim
   end
   local parent = one_cell(false)
-  local sys, dyn, old = one_cell(true)
+  local sys, dyn, old, sim = one_cell(true)
   check(n_cells(sys) == 2, "the cell divided once: " .. n_cells(sys) .. " cells")
   local v0, n0 = parent:velocities()[1], parent:orientations()[1]
   check(v0[1] ~= 0 and v0[2] ~= 0 and v0[3] ~= 0, "the parent moves")
@@ -102,9 +103,16 @@ do
       check(n[k][a] == n0[a], string.format("daughter %d: orientation %g, the parent's %g", k, n[k][a], n0[a]))
     end
   end
-  local d = math.sqrt((r[1][1] - r[2][1]) ^ 2 + (r[1][2] - r[2][2]) ^ 2 + (r[1][3] - r[2][3]) ^ 2)
-  check(math.abs(d - 0.25 * 1.4) < 1e-12, string.format("daughters %.15g apart, separation x d = 0.35", d))
-  check(dyn:methods()[1]:group():size() == 2, "the daughter joined the parent's method")
+  local d2 = (r[1][1] - r[2][1]) ^ 2  -- x: walls; y, z: periodic with L = 20 (minimum image)
+  for a = 2, 3 do d2 = d2 + (((r[1][a] - r[2][a]) + 10) % 20 - 10) ^ 2 end
+  check(math.abs(math.sqrt(d2) - 0.25 * 1.4) < 1e-12,
+        string.format("daughters %.15g apart, separation x d = 0.35", math.sqrt(d2)))
+  sim:run(1)
+  local after = sys:velocities()
+  for a = 1, 3 do
+    check(after[1][a] == after[2][a] and after[2][a] ~= v[2][a], "both daughters damped by the parent's method")
+  end
+  check(dyn:methods()[1]:kind() == "Active", "one method")
   fails("group 'cancer' was made before cells divided or died", sys.set_velocities, sys, { group = old, kT = 1 })
   fails("group 'cancer' was made before cells divided or died", sys.positions, sys, old)
 end
@@ -112,21 +120,26 @@ end
 -- Contact inhibition: with a division certain at the next application (division_rate x dt
 -- = 1e4), a cell touching at least `inhibition_contacts` others does not divide and every
 -- other cell does; without inhibition every cell divides.
+-- The cells' contacts are counted where the application counts them, after the step: on a
+-- twin run one step without proliferation (no noise: the same step).
 local function cluster(inhibition)
-  local sys = iv.System{ box = {30, 30, 30}, periodic = {false, true, true}, seed = 5 }
-  sys:place{ cells = { n = 60, diameters = {1.0}, x = {12, 16} } }
-  sys:add(iv.Walls{ eps = 1 })
-  sys:add(iv.Contacts{ alpha = 0.2, beta = 0 })
-  iv.compress(sys, { to_phi = 0.2, step = 0.05, ftol = 1e-3, max_steps = 100 })
+  local function packed(prolif)
+    local sys = iv.System{ box = {30, 30, 30}, periodic = {false, true, true}, seed = 5 }
+    sys:place{ cells = { n = 60, diameters = {1.0}, x = {12, 16} } }
+    sys:add(iv.Walls{ eps = 1 })
+    sys:add(iv.Contacts{ alpha = 0.2, beta = 0 })
+    iv.compress(sys, { to_phi = 0.2, step = 0.05, ftol = 1e-3, max_steps = 100 })
+    local dyn = iv.Dynamics{ dt = 0.01 }
+    dyn:add(iv.Damped{ group = sys:group("cancer"), gamma = 1.0 })
+    local sim = iv.Simulation{ system = sys, dynamics = dyn }
+    if prolif then sim:proliferation(prolif, { every = 1 }) end
+    sim:run(1)
+    return sys
+  end
   local prolif = iv.Proliferation{ division_rate = 1e6, inhibition_contacts = inhibition }
-  local contacts = prolif:contacts(sys)
+  local contacts = prolif:contacts(packed(nil))
   check(#contacts == 60, "one contact count per cell")
-  local dyn = iv.Dynamics{ dt = 0.01 }
-  dyn:add(iv.Damped{ group = sys:group("cancer"), gamma = 1.0 })
-  local sim = iv.Simulation{ system = sys, dynamics = dyn }
-  sim:proliferation(prolif, { every = 1 })
-  sim:run(1)
-  return n_cells(sys), contacts
+  return n_cells(packed(prolif)), contacts
 end
 do
   local n, contacts = cluster(1)
@@ -141,10 +154,11 @@ do
 end
 
 -- Restart mid-growth: the straight run equals the run continued from its checkpoint. 1100
--- cells: at 2 threads with INVASIM_TEST_TEAM_STEPS=1 (src/integrate/test_hooks.hpp, set by
--- CTest) the steps run in the parallel team, and the test requires that they did.
+-- cells: at 2 threads, with INVASIM_TEST_TEAM_STEPS=1 (src/integrate/test_hooks.hpp, set by
+-- CTest and required here), every step runs in the parallel team, and the test checks that.
 local n_grow = 1100
-local team = os.getenv("INVASIM_TEST_TEAM_STEPS") == "1" and iv.threads() > 1
+local team = iv.threads() > 1
+check(not team or os.getenv("INVASIM_TEST_TEAM_STEPS") == "1", "more than one thread needs INVASIM_TEST_TEAM_STEPS=1")
 local function growing(seed)
   local sys, dyn = free_cells(n_grow, seed, true)
   local sim = iv.Simulation{ system = sys, dynamics = dyn }
@@ -167,9 +181,9 @@ local b_sys, b_dyn, b_sim = growing(p.seed)
 iv.load_checkpoint(path, { system = b_sys, dynamics = b_dyn })
 b_sim:run(200)
 a_sim:run(200)
--- (A run's first step, and the first after each division or death, evaluate the forces first
--- and are not team steps; the others are.)
-check(not team or b_dyn:parallel_steps() >= 100, "steps in the parallel team: " .. b_dyn:parallel_steps())
+-- (The checkpoint restores the forces and a division or death evaluates them at once: no step
+-- of the continued run has to evaluate them first, outside the team.)
+check(b_dyn:parallel_steps() == (team and 200 or 0), "steps in the parallel team: " .. b_dyn:parallel_steps())
 check(n_cells(straight_sys) ~= n_grow, "the tissue changed: " .. n_cells(straight_sys))
 check(fingerprint(a_sys) == fingerprint(straight_sys), "saving does not change the run")
 check(fingerprint(b_sys) == fingerprint(straight_sys), "restored mid-growth = straight run")

@@ -229,8 +229,8 @@ TEST_CASE("an escape is caught at the same step with 1 and 2 threads") {
       message[threads - 1] = e.what();
     }
     step[threads - 1] = sys.step;
-    CHECK(dyn.parallel_steps() == (threads > 1 ? sys.step - 1 : 0u));  // all but the first
     INFO(threads << " threads: " << message[threads - 1] << " (step " << sys.step << ")");
+    CHECK(dyn.parallel_steps() == (threads > 1 ? sys.step - 1 : 0u));  // all but the first
     REQUIRE_THAT(message[threads - 1], Contains("(cancer cell) has left the box through the"));
   }
   CHECK(step[0] == step[1]);

@@ -64,7 +64,7 @@ struct Snapshot {
   std::uint64_t parallel_steps = 0;  // steps run in the parallel team
 };
 
-// The mixed system of the brief: 8 adipocytes (damped vertices), 700 active cancer cells with
+// The mixed system: 8 adipocytes (damped vertices), 700 active cancer cells with
 // thermal noise, cohesive contacts, walls, shape, tethers (mean degree 4 plus heterogeneity)
 // and a pressure-controlled left wall with its own bath (noise at kT = 1e-3); `steps` steps
 // from scratch with `threads` threads, every step in the parallel team when threads > 1 (1036

@@ -1,7 +1,7 @@
 -- The paper's Fig. 3 at the paper's scale: passive repulsive cells, 28 adipocytes and 1500
 -- cells (system = paper), the figure's five temperatures 2 k_B T/(P sigma^3) = 1.25e-3,
 -- 7.89e-2, 0.125, 0.198, 1.25 (bath kT = that x P / 2), to t = 5e5 (1e7 steps): A_t(t),
--- A_t^min/A_t^max at the paper's size, and slices of the last snapshot.
+-- A_t^min/A_t^max at the paper's size, and slices of the last snapshot: 5 points.
 --   invasim sweep init protocols/sweeps/paper_scale/fig3_passive_slices.lua --workspace out/paper_fig3
 --   invasim sweep run out/paper_fig3 --jobs 1 --threads 2                (this machine)
 --   invasim sweep submit out/paper_fig3 --slurm --cpus-per-task 2 --time 04:00:00

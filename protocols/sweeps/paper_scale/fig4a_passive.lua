@@ -2,7 +2,8 @@
 -- adipocytes and 1500 cells (system = paper), eight temperatures across the transition,
 -- 2 k_B T/(P sigma^3) = 0.01 to 1 in the paper's convention (bath kT = that x P / 2), to
 -- t = 5e5 (1e7 steps), A_t every 1e4 steps, so that A_n at t = 1e4, 1e5 and 5e5 (the curve
--- moving left in time, and T_g) come from one run per temperature; one compressed tissue.
+-- moving left in time, and T_g) come from one run per temperature (8 points); one compressed
+-- tissue.
 --   invasim sweep init protocols/sweeps/paper_scale/fig4a_passive.lua --workspace out/paper_fig4a_passive
 --   invasim sweep run out/paper_fig4a_passive --jobs 1 --threads 2      (this machine)
 --   invasim sweep submit out/paper_fig4a_passive --slurm --cpus-per-task 2 --time 04:00:00

@@ -2,7 +2,8 @@
 -- (system = paper), beta = 1e-2, tau_p = 25, f0 = 0.0019 (chosen for 2 k_B T_c/(P sigma^3)
 -- ~ 0.3 from the reduced system's calibration, where the paper reads a steady A_n ~ 0.55; at
 -- this size it measured 0.233: fig4b_starts_hot.lua runs the paper's 0.3), from the de-mixed
--- and the mixed start, two seeds each, to t = 5e5 (1e7 steps of dt = 0.05, the paper's length).
+-- and the mixed start, two seeds each (4 points), to t = 5e5 (1e7 steps of dt = 0.05, the
+-- paper's length).
 -- `start` changes the placement, so every point compresses its own tissue.
 --   invasim sweep init protocols/sweeps/paper_scale/fig4b_starts.lua --workspace out/paper_fig4b_starts
 --   invasim sweep run out/paper_fig4b_starts --jobs 1 --threads 2         (this machine)

@@ -1,7 +1,8 @@
 -- The paper's Fig. 4b inset at the paper's scale, at the paper's temperature: as
 -- fig4b_starts.lua, with f0 = 0.00216. fig4b_starts' f0 = 0.0019 measured 2 k_B T_c/(P sigma^3)
 -- = 0.233 at this size (about 6.45e4 f0^2), below the paper's ~0.3; this f0 gives ~0.3 by the
--- same factor. De-mixed and mixed start, two seeds each, to t = 5e5 (1e7 steps of dt = 0.05).
+-- same factor. De-mixed and mixed start, two seeds each (4 points), to t = 5e5 (1e7 steps of
+-- dt = 0.05).
 --   invasim sweep init protocols/sweeps/paper_scale/fig4b_starts_hot.lua --workspace out/paper_fig4b_starts_hot
 --   invasim sweep run out/paper_fig4b_starts_hot --jobs 1 --threads 2         (this machine)
 --   invasim sweep submit out/paper_fig4b_starts_hot --slurm --cpus-per-task 2 --time 04:00:00

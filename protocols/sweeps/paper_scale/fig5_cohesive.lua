@@ -1,7 +1,7 @@
 -- The beta = 1e-2, tau_p = 25 curve of the paper's Fig. 5 at the paper's scale: 28 adipocytes
 -- and 1500 cells (system = paper), seven f0 spanning 2 k_B T_c/(P sigma^3) ~ 0.03 to 3 with
 -- the default background (about 7.5e4 f0^2; docs/model.md "Vertex bath"), to t = 5e5
--- (1e7 steps), one compressed tissue.
+-- (1e7 steps), one compressed tissue: 7 points.
 --   invasim sweep init protocols/sweeps/paper_scale/fig5_cohesive.lua --workspace out/paper_fig5_cohesive
 --   invasim sweep run out/paper_fig5_cohesive --jobs 1 --threads 2       (this machine)
 --   invasim sweep submit out/paper_fig5_cohesive --slurm --cpus-per-task 2 --time 04:00:00
