@@ -627,6 +627,8 @@ std::uint64_t Dynamics::run_team(System& sys, ForceField& ff, std::uint64_t max_
 
 void Dynamics::run(System& sys, ForceField& ff, std::uint64_t n_steps) {
   const EngineLayoutScope layout(sys);
+  // The initial forces first (as step() would), so that the first step can run in the team too.
+  if (n_steps > 0 && !prepared_) prepare(sys, ff);
   std::uint64_t k = 0;
   while (k < n_steps) {
     // Consecutive team steps share one parallel region (docs/performance.md "Team steps and the

@@ -148,9 +148,8 @@ class Dynamics {
   // Parallel regions opened by run() for runs of team steps (each holds consecutive steps that
   // use all threads; for tests and benchmarks).
   std::uint64_t team_regions() const { return team_regions_; }
-  // Steps run inside those regions by more than one thread, since construction. Steps run by
-  // step() are not counted (a run's first, which evaluates the forces first, and the first
-  // after invalidate()), though their force loops may use the threads.
+  // Steps run inside those regions by more than one thread, since construction (steps run by
+  // step() alone are not counted, though their force loops may use the threads).
   std::uint64_t parallel_steps() const { return parallel_steps_; }
 
  private:

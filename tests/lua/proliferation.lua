@@ -181,8 +181,6 @@ local b_sys, b_dyn, b_sim = growing(p.seed)
 iv.load_checkpoint(path, { system = b_sys, dynamics = b_dyn })
 b_sim:run(200)
 a_sim:run(200)
--- (The checkpoint restores the forces and a division or death evaluates them at once: no step
--- of the continued run has to evaluate them first, outside the team.)
 check(b_dyn:parallel_steps() == (team and 200 or 0), "steps in the parallel team: " .. b_dyn:parallel_steps())
 check(n_cells(straight_sys) ~= n_grow, "the tissue changed: " .. n_cells(straight_sys))
 check(fingerprint(a_sys) == fingerprint(straight_sys), "saving does not change the run")

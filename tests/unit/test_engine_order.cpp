@@ -178,7 +178,7 @@ TEST_CASE(
   };
   auto straight = team(make_tissue(start()));
   straight->dyn.run(straight->sys, straight->ff, 45);
-  CHECK(straight->dyn.parallel_steps() == 44);  // (the first step evaluates the forces first)
+  CHECK(straight->dyn.parallel_steps() == 45);
 
   auto first = team(make_tissue(start()));
   first->dyn.run(first->sys, first->ff, 21);  // the order of step 16 in use
@@ -207,8 +207,7 @@ TEST_CASE("engine order: 1 and 2 threads give the same bits across changes of th
   two->dyn.step_threads().set_mode(StepThreads::Mode::kAll);
   two->dyn.run(two->sys, two->ff, 45);
   CHECK(two->dyn.step_threads().team_steps() == 45);
-  // All but the first (which evaluates the initial forces) in the team, not only chosen for it.
-  CHECK(two->dyn.parallel_steps() == 44);
+  CHECK(two->dyn.parallel_steps() == 45);  // run in the team, not only chosen for it
   CHECK(one->dyn.parallel_steps() == 0);
   CHECK(identical(one->sys, two->sys));
 }
