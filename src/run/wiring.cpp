@@ -39,10 +39,18 @@ void require_same_system(const Group& group, const SystemHandle& sim, const std:
 
 void require_current(const Group& group, const std::string& what) {
   const auto sim = group.owner.lock();
-  if (sim && sim->system.site_epoch() != group.epoch)
+  if (!sim) return;
+  if (sim->system.site_epoch() != group.epoch)
     fail_input(what, ": group '", group.name,
                "' was made before cells divided or died, and its site indices name other cells "
                "now; make it again (sys:group{...})");
+  // The same epoch with fewer sites: a checkpoint of another System was loaded since.
+  const std::size_t n = sim->system.n_sites();
+  for (int i : group.sites)
+    if (i < 0 || std::size_t(i) >= n)
+      fail_input(what, ": group '", group.name, "' names site ", i + 1, " but the System has ", n,
+                 " sites now (a checkpoint of other sites was loaded since it was made); make it "
+                 "again (sys:group{...})");
 }
 
 PressureWall* prepare_dynamics(DynamicsHandle& d, const std::shared_ptr<SystemHandle>& sim,

@@ -24,7 +24,8 @@ SystemHandle& owner_of(const std::weak_ptr<SystemHandle>& owner, const std::stri
 // Throws unless `group` belongs to `sim`: "<what>: group 'cancer' belongs to another System".
 void require_same_system(const Group& group, const SystemHandle& sim, const std::string& what);
 // Throws when cells were born or died since `group` was made (its indices name other cells
-// now), "<what>: group 'cancer' was made before cells divided or died; make it again".
+// now), "<what>: group 'cancer' was made before cells divided or died; make it again", or when
+// it names a site the System no longer has (a checkpoint of fewer sites loaded since).
 void require_current(const Group& group, const std::string& what);
 
 // Adds the force of `handle` to `sim` (sys:add); `name` ("Contacts") names it in the error

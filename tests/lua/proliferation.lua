@@ -117,6 +117,29 @@ do
   fails("group 'cancer' was made before cells divided or died", sys.positions, sys, old)
 end
 
+-- A group naming sites the System no longer has is refused, also at an unchanged epoch: a
+-- checkpoint of fewer cells, divided as often, loaded since the group was made.
+do
+  local function divided(n)
+    local sys = iv.System{ box = {20, 20, 20}, periodic = {false, true, true}, seed = 3 }
+    sys:place{ cells = { n = n, diameters = {1.0}, x = {5, 15} } }
+    local dyn = iv.Dynamics{ dt = 0.05 }
+    dyn:add(iv.Damped{ group = sys:group("cancer"), gamma = 1.0 })
+    local sim = iv.Simulation{ system = sys, dynamics = dyn }
+    sim:proliferation(iv.Proliferation{ division_rate = 1e6 }, { every = 1 })
+    sim:run(1)
+    return sys
+  end
+  local small, big = divided(2), divided(5)
+  check(n_cells(small) == 4 and n_cells(big) == 10, "one division each")
+  local g = big:group("cancer")
+  local path = iv.out_dir .. "/small.ckpt"
+  iv.save_checkpoint(path, { system = small })
+  iv.load_checkpoint(path, { system = big })
+  fails("positions: group 'cancer' names site 5 but the System has 4 sites now", big.positions, big, g)
+  fails("temperature: group 'cancer' names site 5 but the System has 4 sites now", big.temperature, big, g)
+end
+
 -- Contact inhibition: with a division certain at the next application (division_rate x dt
 -- = 1e4), a cell touching at least `inhibition_contacts` others does not divide and every
 -- other cell does; without inhibition every cell divides.
