@@ -1,7 +1,9 @@
 -- Test: the production stage's observers write the run directory: series.csv
 -- (header with units, one row per `every` steps, A_t within [0, A_t^max]), correlations.csv
 -- (C_vv(0) = F_s(0) = 1), shapes.csv, summary.json, params.json, log.txt and snapshots;
--- series.csv and the summary report T_c/T_a and kT_c_paper (= 2 T_c, the paper's convention).
+-- series.csv and the summary report T_c/T_a and kT_c_paper (= 2 T_c, the paper's convention);
+-- the summary averages the last half of the rows; P_left and P_right are the walls' reactions
+-- over the wall area at each sample.
 package.path = "../../protocols/?.lua;" .. package.path
 local iv = require("invasim")
 local parameters = require("lib.parameters")
@@ -16,10 +18,24 @@ stage.compress(tissue, { to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.
 stage.quench(tissue, { P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p, gamma = p.gamma,
                        vertex_bath = p.vertex_bath, vertex_gamma = p.vertex_gamma, dt = p.dt,
                        steps = p.quench_steps })
+-- Each sample's wall pressures against the walls' reactions over the wall area at that moment.
+local pressures_checked = 0
+local function check_pressures(row, t)
+  local left, right = t.walls:reaction()
+  local box = t.sys:box()
+  local area = box.lengths[2] * box.lengths[3]
+  for name, force in pairs{ P_left = left, P_right = right } do
+    local want = math.abs(force) / area
+    assert(want > 0 and math.abs(row[name] - want) <= 1e-12 * want,
+           string.format("%s %.10g, reaction / area %.10g", name, row[name], want))
+  end
+  pressures_checked = pressures_checked + 1
+end
 local result = stage.production(tissue, { steps = p.steps, every = p.every,
                                           correlate_every = p.correlate_every,
                                           snapshot_every = p.snapshot_every,
-                                          checkpoint_every = p.checkpoint_every, out = out })
+                                          checkpoint_every = p.checkpoint_every, out = out,
+                                          on_sample = check_pressures })
 require("lib.report").final(tissue, p, result, 0, out)
 
 local function lines(path)
@@ -72,6 +88,20 @@ assert(math.abs(d.kT_over_P - T_c / p.P) <= 1e-12 * d.kT_over_P, "derived.kT_ove
 assert(math.abs(d.kT_c_paper_over_P - 2 * T_c / p.P) <= 1e-12 * d.kT_c_paper_over_P,
        "derived.kT_c_paper_over_P = 2 T_c/P")
 assert(math.abs(d.T_c_over_T_a - T_c / T_a) <= 1e-12 * d.T_c_over_T_a, "derived.T_c_over_T_a")
+-- The averages are over the last half of the rows (floor(n/2): the window of
+-- scripts/invasim_analysis/steady.py too), as series.csv holds them (%.10g).
+local rows = {}
+for i = 2, #series do rows[#rows + 1] = split(series[i]) end
+local half = #rows // 2
+for _, name in ipairs{ "A_t", "T_c", "P_right", "L_x" } do
+  local sum = 0
+  for i = #rows - half + 1, #rows do sum = sum + tonumber(rows[i][col[name]]) end
+  local a = s.averages[name]
+  assert(a.samples == half and math.abs(a.mean - sum / half) <= 1e-9 * math.abs(a.mean),
+         string.format("summary %s: mean %.10g over %d samples, series' last %d rows %.10g", name,
+                       a.mean, a.samples, half, sum / half))
+end
+assert(pressures_checked == expected_rows, "wall pressures checked at " .. pressures_checked .. " samples")
 -- The slices' median A_2D (robust to sliver profiles) next to the mean, and the profile count.
 local median = tonumber(summary:match('"shape_2d_median": ([%d%.eE+-]+)'))
 local profiles = tonumber(summary:match('"shape_2d_profiles": (%d+)'))
