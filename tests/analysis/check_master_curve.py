@@ -124,6 +124,20 @@ def case_synthetic(script, scratch):
           % (s["c1"], s["c1_error"], truth["c1"], p1, s["c2"], s["c2_error"], truth["c2"], p2))
     check(s["c1_error"] < 0.1 * s["c1"] and s["c2_error"] < 0.5 * s["c2"],
           "c1, c2 errors are not absurdly large")
+    # Exact data: the fits give back the parameters that made them (c2 is a tenth of its
+    # error bar above, which the pulls cannot see; noise-free data can).
+    from invasim_analysis.master_curve import fits
+    q = np.array([0.0, 0.0, 7.7, 7.7, 77.0, 77.0])
+    r = np.array([1.0, 5.0, 1.0, 5.0, 1.0, 5.0])
+    a = 0.06 * (1.0 + 0.1 * q) * r
+    exact = fits.fit_scale(a, 1e-9 * a, q, r, np.zeros_like(r))
+    check(abs(exact["c1"] / 0.06 - 1) < 1e-6 and abs(exact["c2"] / 0.1 - 1) < 1e-6,
+          "exact a = c1 (1 + c2 q) r: c1 = %.8g (0.06), c2 = %.8g (0.1)" % (exact["c1"], exact["c2"]))
+    x = np.logspace(-2, 0, 9)
+    exact = fits.fit_sigmoid(x, 0.5 * (np.tanh(2.5 * np.log10(x / 0.1)) + 1.0), np.full(9, 1e-6), "exact")
+    check(abs(exact["a"] / 0.1 - 1) < 1e-6 and abs(exact["b"] / 2.5 - 1) < 1e-6,
+          "exact A_n = (tanh(b log10(x/a)) + 1)/2: a = %.8g (0.1), b = %.8g (2.5)"
+          % (exact["a"], exact["b"]))
     rows = read_csv(os.path.join(out, "fits.csv"))
     check(len(rows) == 6 and abs(float(rows[0]["a"]) - curves[0]["a"]) < 1e-12 * curves[0]["a"]
           and "beta" in rows[0] and "tau_p" in rows[0], "fits.csv has the same fits")
