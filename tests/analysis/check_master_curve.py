@@ -133,6 +133,10 @@ def case_synthetic(script, scratch):
     exact = fits.fit_scale(a, 1e-9 * a, q, r, np.zeros_like(r))
     check(abs(exact["c1"] / 0.06 - 1) < 1e-6 and abs(exact["c2"] / 0.1 - 1) < 1e-6,
           "exact a = c1 (1 + c2 q) r: c1 = %.8g (0.06), c2 = %.8g (0.1)" % (exact["c1"], exact["c2"]))
+    # The effective variance: a 5 % error of r = tau_g/tau_d becomes 5 % of the model's a.
+    exact = fits.fit_scale(a, 1e-9 * a, q, r, np.full(6, 0.05))
+    check(np.allclose(exact["sigma"], np.hypot(1e-9 * a, 0.05 * a), rtol=1e-6),
+          "sigmas %r, expected 5 %% of a" % exact["sigma"])
     x = np.logspace(-2, 0, 9)
     exact = fits.fit_sigmoid(x, 0.5 * (np.tanh(2.5 * np.log10(x / 0.1)) + 1.0), np.full(9, 1e-6), "exact")
     check(abs(exact["a"] / 0.1 - 1) < 1e-6 and abs(exact["b"] / 2.5 - 1) < 1e-6,
