@@ -58,6 +58,15 @@ check(v.log_verdict(0.2, 0.0, 0.03, 3.0, trend_holds=True) == v.TREND)
 check(v.range_verdict([(1.0, 0.1), (2.4, 0.0)], 0.5, 2.5) == v.AGREES)
 check(v.range_verdict([(1.0, 0.1), (3.4, 0.1)], 0.5, 2.5) == v.TREND)
 check(v.range_verdict([(13.0, 0.1)], 1.0, 1.2) == v.DISAGREES)
+# The factor 2 of "2 errors" on each side of its edge (1.5 or 3 errors would flip one of each).
+check(v.value_verdict(0.70, 0.02, 0.55, 0.1) == v.DISAGREES)        # 0.15 > 0.1 + 0.04
+check(v.value_verdict(0.70, 0.026, 0.55, 0.1) == v.AGREES)          # 0.15 <= 0.1 + 0.052
+check(v.trend_verdict(0.18, 0.1) == v.TREND)                        # 0.18 <= 0.2
+check(v.trend_verdict(0.21, 0.1) == v.AGREES)
+check(v.log_verdict(0.1, 0.004, 0.03, 3.0) == v.DISAGREES)          # 0.523 > 0.477 + 0.035
+check(v.log_verdict(0.1, 0.006, 0.03, 3.0) == v.AGREES)             # 0.523 <= 0.477 + 0.052
+check(v.range_verdict([(1.05, 0.02)], 0.0, 1.0) == v.DISAGREES)     # 1.05 > 1 + 0.04
+check(v.range_verdict([(1.03, 0.02)], 0.0, 1.0) == v.AGREES)
 # The glass temperature from tau_r (validation/relaxation.py): exact fits, then the verdict.
 from invasim_analysis.validation import relaxation  # noqa: E402
 xs = np.array([0.05, 0.07, 0.1, 0.14, 0.2])
