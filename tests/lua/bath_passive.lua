@@ -2,8 +2,9 @@
 -- vertices equilibrate: T_c/T_a = 1 within 2 % on the reduced system (8 adipocytes, 400
 -- cells) at k_B T = 0.3 P sigma^3 (the paper: "for the passive model, T_c and T_a
 -- equilibrate"). The mean of T_c/T_a over the production has a block-averaging error well
--- below 2 % (asserted < 0.5 %). With --set vertex_bath=damped --set vertex_gamma=0.2 (the
--- protocols' earlier default bath) it fails: T_c/T_a is about 20.
+-- below 2 % (asserted < 0.5 %); the piston's bath is the vertices'. With --set
+-- vertex_bath=damped --set vertex_gamma=0.2 (the protocols' earlier default bath) it fails:
+-- T_c/T_a is about 20.
 package.path = "../../protocols/?.lua;" .. package.path
 local iv = require("invasim")
 local decl = require("lib.parameters").declarations()
@@ -20,6 +21,10 @@ require("lib.quench")(tissue, { P = 1.3e-3, kT = p.kT, f0 = 0.0, vertex_bath = p
                                 vertex_gamma = p.vertex_gamma, vertex_mass = p.vertex_mass,
                                 vertex_kT = p.vertex_kT, steps = p.quench_steps,
                                 progress = false })
+-- The piston shares the vertices' bath: noise at kT with langevin vertices, none with damped.
+local piston_kT = tissue.dyn:wall_state().kT
+assert(piston_kT == (p.vertex_bath == "langevin" and p.kT or 0),
+       string.format("FAILED: the piston's kT = %g with %s vertices at kT = %g", piston_kT, p.vertex_bath, p.kT))
 local result = require("lib.production")(tissue, {
   steps = p.steps, every = p.every, average_fraction = 1.0, interface = false,
   correlate_every = 0, slices_per_body = 0, progress = false,

@@ -3,7 +3,8 @@
 -- (C_vv(0) = F_s(0) = 1), shapes.csv, summary.json, params.json, log.txt and snapshots;
 -- series.csv and the summary report T_c/T_a and kT_c_paper (= 2 T_c, the paper's convention);
 -- the summary averages the last half of the rows; P_left and P_right are the walls' reactions
--- over the wall area at each sample.
+-- over the wall area at each sample; the piston shares the langevin vertices' bath (CTest runs
+-- it at kT = 1e-4).
 package.path = "../../protocols/?.lua;" .. package.path
 local iv = require("invasim")
 local parameters = require("lib.parameters")
@@ -18,6 +19,9 @@ stage.compress(tissue, { to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.
 stage.quench(tissue, { P = p.P, kT = p.kT, f0 = p.f0, tau_p = p.tau_p, gamma = p.gamma,
                        vertex_bath = p.vertex_bath, vertex_gamma = p.vertex_gamma, dt = p.dt,
                        steps = p.quench_steps })
+-- The piston shares the vertices' bath (langevin vertices: noise at the cells' kT).
+assert(p.vertex_bath == "langevin" and p.kT > 0 and tissue.dyn:wall_state().kT == p.kT,
+       string.format("the piston's kT = %g, the bath's %g", tissue.dyn:wall_state().kT, p.kT))
 -- Each sample's wall pressures against the walls' reactions over the wall area at that moment.
 local pressures_checked = 0
 local function check_pressures(row, t)
