@@ -20,7 +20,7 @@ return function(tissue, opts)
   local d_c = tethers:connect{ mean_degree = o.mean_degree }
   tissue.tethers = tethers
   log.say("tether", "%d tethers (K = %g) between %d adipocytes, cutoff d_c = %.4f%s",
-          tethers:count(), o.K, tissue.sys:n_adipocytes(), d_c,
+          tethers:count(), tethers:K(), tissue.sys:n_adipocytes(), d_c,
           require("lib.resume").pending() and " (resuming: the checkpoint's tethers replace these)" or "")
   return d_c
 end
