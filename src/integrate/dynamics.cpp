@@ -586,39 +586,41 @@ std::uint64_t Dynamics::run_team(System& sys, ForceField& ff, std::uint64_t max_
   Clock::time_point start;
   ++team_regions_;
 #pragma omp parallel num_threads(threads)
-  for (;;) {
-    // A step's serial parts run on the leader while the others wait at the team barrier;
-    // they may throw, so the leader ends the loop for all and the error leaves the region.
-    if (team_leader()) {
-      team_size = omp_get_num_threads();
-      try {
-        start = Clock::now();
-        begin_step_serial(sys);
-        ff.prepare_team_step(sys, {});
-      } catch (...) {
-        error = std::current_exception();
-        prepared = false;
+  {
+    if (team_leader()) team_size = omp_get_num_threads();
+    for (;;) {
+      // A step's serial parts run on the leader while the others wait at the team barrier;
+      // they may throw, so the leader ends the loop for all and the error leaves the region.
+      if (team_leader()) {
+        try {
+          start = Clock::now();
+          begin_step_serial(sys);
+          ff.prepare_team_step(sys, {});
+        } catch (...) {
+          error = std::current_exception();
+          prepared = false;
+        }
       }
-    }
-    team_barrier();
-    if (!prepared) break;
-    ff.compute_team(sys, {}, hooks);
-    team_barrier();
-    if (team_leader()) {
-      try {
-        end_step_serial(sys);
-        step_threads_.end_step(std::chrono::duration<double>(Clock::now() - start).count());
-        ++done;
-        if (blowup_guard_.due(sys.step)) check_blowup(sys);
-        // Go on while the measured choice keeps the team (it may measure 1 thread next).
-        go_on = done < max_steps && step_threads_.begin_step() == threads;
-      } catch (...) {
-        error = std::current_exception();
-        go_on = false;
+      team_barrier();
+      if (!prepared) break;
+      ff.compute_team(sys, {}, hooks);
+      team_barrier();
+      if (team_leader()) {
+        try {
+          end_step_serial(sys);
+          step_threads_.end_step(std::chrono::duration<double>(Clock::now() - start).count());
+          ++done;
+          if (blowup_guard_.due(sys.step)) check_blowup(sys);
+          // Go on while the measured choice keeps the team (it may measure 1 thread next).
+          go_on = done < max_steps && step_threads_.begin_step() == threads;
+        } catch (...) {
+          error = std::current_exception();
+          go_on = false;
+        }
       }
+      team_barrier();
+      if (!go_on) break;
     }
-    team_barrier();
-    if (!go_on) break;
   }
   if (team_size > 1) parallel_steps_ += done;
   if (error) std::rethrow_exception(error);

@@ -27,12 +27,11 @@ local function build()
   return t
 end
 
-local team = iv.threads() > 1  -- CTest sets INVASIM_TEST_TEAM_STEPS=1 for more threads
-assert(not team or os.getenv("INVASIM_TEST_TEAM_STEPS") == "1", "more than one thread needs INVASIM_TEST_TEAM_STEPS=1")
+local team_steps = require("team_steps")
 local function run(t, n)
   local before = t.dyn:parallel_steps()
   t.dyn:run(t.sys, n, { every = 10, callback = function() t.correlator:sample(t.sys) end })
-  assert(t.dyn:parallel_steps() == before + (team and n or 0),
+  assert(t.dyn:parallel_steps() == before + team_steps(n),
          string.format("only %d of %d steps ran in the parallel team", t.dyn:parallel_steps() - before, n))
 end
 

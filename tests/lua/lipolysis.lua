@@ -29,14 +29,13 @@ end
 local lip = iv.Lipolysis{ rate = 2e-3, floor = 0.8 }
 local every = 10
 
-local team = iv.threads() > 1  -- CTest sets INVASIM_TEST_TEAM_STEPS=1 for more threads
-check(not team or os.getenv("INVASIM_TEST_TEAM_STEPS") == "1", "more than one thread needs INVASIM_TEST_TEAM_STEPS=1")
+local team_steps = require("team_steps")
 local function run(t, n)
   local sim = iv.Simulation{ system = t.sys, dynamics = t.dyn }
   sim:lipolysis(lip, { every = every })
   local before = t.dyn:parallel_steps()
   sim:run(n)
-  check(t.dyn:parallel_steps() == before + (team and n or 0),
+  check(t.dyn:parallel_steps() == before + team_steps(n),
         string.format("%d of %d steps in the parallel team", t.dyn:parallel_steps() - before, n))
 end
 

@@ -106,7 +106,6 @@ std::vector<Vec3> brute_contact_forces(const System& sys, const ContactParams& p
   return f;
 }
 
-// Minimum-image distance by search over the neighbouring images in y and z.
 // a - b to the nearest image of a (walls in x, periodic y and z), by search over images.
 Vec3 nearest_image(const Box& box, const Vec3& a, const Vec3& b) {
   Vec3 best = a - b;
@@ -118,6 +117,7 @@ Vec3 nearest_image(const Box& box, const Vec3& a, const Vec3& b) {
   return best;
 }
 
+// Minimum-image distance by search over the neighbouring images in y and z.
 double image_distance(const Box& box, const Vec3& a, const Vec3& b) {
   return nearest_image(box, a, b).norm();
 }
