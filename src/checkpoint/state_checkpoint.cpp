@@ -299,17 +299,19 @@ System read_system(const CheckpointReader& in, const std::string& prefix) {
 
 void write_tethers(CheckpointWriter& out, const TetherForce& tethers, const std::string& prefix) {
   const Keys key{prefix};
-  std::vector<int> a, b;
+  std::vector<int> a, b, periods;
   std::vector<double> rest;
   for (const Tether& t : tethers.tethers()) {
     a.push_back(t.a);
     b.push_back(t.b);
     rest.push_back(t.rest_length);
+    periods.insert(periods.end(), t.periods.begin(), t.periods.end());
   }
   out.put_f64(key("stiffness"), tethers.stiffness());
   out.put_i32s(key("a"), a);
   out.put_i32s(key("b"), b);
   out.put_f64s(key("rest_length"), rest);
+  out.put_i32s(key("periods"), periods);
 }
 
 void read_tethers(const CheckpointReader& in, const System& sys, TetherForce& tethers,
@@ -322,9 +324,21 @@ void read_tethers(const CheckpointReader& in, const System& sys, TetherForce& te
   const std::vector<int> b = sized(in, key("b"), in.get_i32s(key("b")), a.size(), "tethers");
   const std::vector<double> rest =
       sized(in, key("rest_length"), in.get_f64s(key("rest_length")), a.size(), "tethers");
+  // A checkpoint written before tethers kept their image has no `periods`: its tethers take
+  // the nearest image as the bodies stand (what they used at every step then).
+  const bool has_periods = in.has(key("periods"));
+  const std::vector<int> periods = has_periods
+                                       ? sized(in, key("periods"), in.get_i32s(key("periods")),
+                                               3 * a.size(), "tether periods (3 per tether)")
+                                       : std::vector<int>();
   try {
     tethers.set_stiffness(in.get_f64(key("stiffness")));
-    for (std::size_t k = 0; k < a.size(); ++k) tethers.add(sys, a[k], b[k], rest[k]);
+    for (std::size_t k = 0; k < a.size(); ++k)
+      if (has_periods)
+        tethers.add(sys, a[k], b[k], rest[k],
+                    Vec3i(periods[3 * k], periods[3 * k + 1], periods[3 * k + 2]));
+      else
+        tethers.add(sys, a[k], b[k], rest[k]);
   } catch (const IoError&) {
     throw;
   } catch (const InputError& e) {

@@ -26,7 +26,7 @@ void write_system(CheckpointWriter& out, const System& sys, const std::string& p
 // (a fresh VerletList / Dynamics rebuilds on first use anyway).
 System read_system(const CheckpointReader& in, const std::string& prefix = "system");
 
-// Tether stiffness and every tether (bodies and rest length), in order.
+// Tether stiffness and every tether (bodies, rest length and image), in order.
 void write_tethers(CheckpointWriter& out, const TetherForce& tethers,
                    const std::string& prefix = "tethers");
 // Restores stiffness and tethers into `tethers`, which must hold no tether yet; the tethers

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "core/errors.hpp"
 #include "core/vec3.hpp"
 
 namespace invasim {
@@ -35,6 +36,27 @@ class Box {
         const double len = hi_[a] - lo_[a];
         d[a] -= len * std::round(d[a] / len);
       }
+    return d;
+  }
+  // The number of box lengths to take off d along each periodic axis to reach its minimum
+  // image (0 on walled axes): minimum_image(d) == minus_periods(d, nearest_periods(d)).
+  // Refuses a separation of kMaxImage box lengths or more, or not finite (no int says it).
+  Vec3i nearest_periods(const Vec3& d) const {
+    Vec3i n = Vec3i::Zero();
+    for (int a = 0; a < 3; ++a)
+      if (periodic_[a]) {
+        const double k = std::round(d[a] / (hi_[a] - lo_[a]));
+        if (!(std::abs(k) < kMaxImage))
+          fail_input("separation ", d[a], " along axis ", a, " is not a countable number of ",
+                     "box lengths");
+        n[a] = static_cast<int>(k);
+      }
+    return n;
+  }
+  // d minus n box lengths along each periodic axis (a fixed image, whatever |d|).
+  Vec3 minus_periods(Vec3 d, const Vec3i& n) const {
+    for (int a = 0; a < 3; ++a)
+      if (periodic_[a]) d[a] -= (hi_[a] - lo_[a]) * double(n[a]);
     return d;
   }
   // Wraps r into the primary cell on periodic axes and counts the crossings in image.

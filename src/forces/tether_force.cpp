@@ -29,14 +29,40 @@ std::vector<Vec3> TetherForce::body_centres(const System& sys) {
   return c;
 }
 
-void TetherForce::add(const System& sys, int a, int b, double rest_length) {
+namespace {
+
+// Refuses a tether between bodies that do not exist, a body and itself, or a negative rest
+// length.
+void check_tether(const System& sys, int a, int b, double rest_length) {
   const int nb = int(sys.bodies().size());
   if (a < 0 || a >= nb || b < 0 || b >= nb)
     fail_input("tether (", a, ", ", b, "): body index outside [0, ", nb, ")");
   if (a == b) fail_input("tether (", a, ", ", b, "): a body cannot be tethered to itself");
   if (!(rest_length >= 0.0))
     fail_input("tether (", a, ", ", b, "): rest length ", rest_length, " must be >= 0");
-  tethers_.push_back({a, b, rest_length});
+}
+
+// The unwrapped vertex centroid of body b.
+Vec3 body_centre(const System& sys, int b) {
+  std::vector<Vec3> x(sys.bodies()[b].n_vertices());
+  sys.body_vertices(b, x.data());
+  return vertex_centroid(int(x.size()), x.data());
+}
+
+}  // namespace
+
+void TetherForce::add(const System& sys, int a, int b, double rest_length) {
+  check_tether(sys, a, b, rest_length);
+  add(sys, a, b, rest_length, sys.box().nearest_periods(body_centre(sys, a) - body_centre(sys, b)));
+}
+
+void TetherForce::add(const System& sys, int a, int b, double rest_length, const Vec3i& periods) {
+  check_tether(sys, a, b, rest_length);
+  for (int axis = 0; axis < 3; ++axis)
+    if (!sys.box().periodic(axis) && periods[axis] != 0)
+      fail_input("tether (", a, ", ", b, "): ", periods[axis], " periods along the walled axis ",
+                 axis);
+  tethers_.push_back({a, b, rest_length, periods});
 }
 
 double TetherForce::connect_by_mean_degree(const System& sys, double mean_degree) {
@@ -46,17 +72,21 @@ double TetherForce::connect_by_mean_degree(const System& sys, double mean_degree
   struct Pair {
     double r;
     int a, b;
+    Vec3i periods;
   };
   std::vector<Pair> pairs;
   for (int a = 0; a < nb; ++a)
-    for (int b = a + 1; b < nb; ++b)
-      pairs.push_back({sys.box().minimum_image(c[a] - c[b]).norm(), a, b});
+    for (int b = a + 1; b < nb; ++b) {
+      const Vec3i n = sys.box().nearest_periods(c[a] - c[b]);
+      pairs.push_back({sys.box().minus_periods(c[a] - c[b], n).norm(), a, b, n});
+    }
   std::sort(pairs.begin(), pairs.end(), [](const Pair& p, const Pair& q) {
     return p.r < q.r || (p.r == q.r && (p.a < q.a || (p.a == q.a && p.b < q.b)));
   });
   const std::size_t m = std::min(pairs.size(), std::size_t(std::llround(0.5 * mean_degree * nb)));
   if (m == 0) fail_input("tethers: need at least two adipocytes to tether");
-  for (std::size_t k = 0; k < m; ++k) add(sys, pairs[k].a, pairs[k].b, pairs[k].r);
+  for (std::size_t k = 0; k < m; ++k)
+    add(sys, pairs[k].a, pairs[k].b, pairs[k].r, pairs[k].periods);
   return m < pairs.size() ? 0.5 * (pairs[m - 1].r + pairs[m].r) : pairs[m - 1].r;
 }
 
@@ -66,7 +96,7 @@ void TetherForce::apply_heterogeneity(const System& sys, double lambda) {
   const Box& box = sys.box();
   const double z_mid = box.lo()[2] + 0.5 * box.length(2);
   for (Tether& t : tethers_) {
-    const Vec3 d = box.minimum_image(c[t.a] - c[t.b]);
+    const Vec3 d = separation(box, c, t);
     Vec3 mid = c[t.b] + 0.5 * d;
     Vec3i img = Vec3i::Zero();
     box.wrap(mid, img);
@@ -75,7 +105,7 @@ void TetherForce::apply_heterogeneity(const System& sys, double lambda) {
 }
 
 Vec3 TetherForce::tether_force(const Box& box, const Tether& t, double* stretch) const {
-  const Vec3 d = box.minimum_image(centres_[t.a] - centres_[t.b]);
+  const Vec3 d = separation(box, centres_, t);
   const double r = d.norm();
   *stretch = r - t.rest_length;
   return r > 0.0 ? Vec3(-stiffness_ * *stretch / r * d) : Vec3(Vec3::Zero());
@@ -134,7 +164,7 @@ ForceResult TetherForce::add_forces_team(System& sys, const ForceFlags& flags) {
   for (const Tether& t : tethers_) {  // few tethers: a serial, fixed-order loop
     double stretch;
     const Vec3 f = tether_force(sys.box(), t, &stretch);
-    const Vec3 d = sys.box().minimum_image(centres_[t.a] - centres_[t.b]);
+    const Vec3 d = separation(sys.box(), centres_, t);
     out.energy += 0.5 * stiffness_ * stretch * stretch;
     out.virial += d.cwiseProduct(f);
   }

@@ -1,7 +1,10 @@
 #pragma once
 // ECM tethers (docs/model.md, "Forces" and protocol step 4): linear springs between adipocyte
-// centres of mass, U = K/2 (R_ij - l_ij0)^2 (sigma = 1), minimum image in y and z. The force on a
-// centre is shared equally by the body's vertices.
+// centres of mass, U = K/2 (R_ij - l_ij0)^2 (sigma = 1). A tether joins body a to the periodic
+// image of body b that was nearest when it was made (the minimum image then) and keeps that
+// image for its whole life: re-choosing the nearest image at every step would flip the
+// spring's force when a component of R_ij passes half the box, as it does in small boxes where
+// l_ij0 approaches L/2. The force on a centre is shared equally by the body's vertices.
 #include "forces/force.hpp"
 
 namespace invasim {
@@ -9,6 +12,9 @@ namespace invasim {
 struct Tether {
   int a, b;            // body indices
   double rest_length;  // l_ij0
+  // Box lengths taken off the unwrapped centre difference R_a - R_b along y and z (0 along
+  // x): R_ij = Box::minus_periods(R_a - R_b, periods), the image chosen when the tether was made.
+  Vec3i periods = Vec3i::Zero();
 };
 
 class TetherForce : public TeamForce {
@@ -23,8 +29,11 @@ class TetherForce : public TeamForce {
   const std::vector<Tether>& tethers() const { return tethers_; }
   // Removes every tether (before restoring them from a checkpoint).
   void clear() { tethers_.clear(); }
-  // Adds one tether; rest length must be >= 0, bodies distinct and valid.
+  // Adds one tether to the nearest image of b as the bodies stand now; rest length must be
+  // >= 0, bodies distinct and valid.
   void add(const System& sys, int a, int b, double rest_length);
+  // The same with the image given (a checkpoint restores it as it was).
+  void add(const System& sys, int a, int b, double rest_length, const Vec3i& periods);
   // Tethers every pair of bodies whose centres are closer than a cutoff d_c chosen so that
   // the mean number of tethers per body is `mean_degree` (the M = mean_degree N_a / 2
   // shortest pairs; d_c is midway between the M-th and (M+1)-th distances); rest lengths are
@@ -35,6 +44,10 @@ class TetherForce : public TeamForce {
   void apply_heterogeneity(const System& sys, double lambda);
   // Current centre of each body (unwrapped vertex centroid).
   static std::vector<Vec3> body_centres(const System& sys);
+  // The tether's vector R_a - R_b (through its image) from the centres of body_centres.
+  static Vec3 separation(const Box& box, const std::vector<Vec3>& centres, const Tether& t) {
+    return box.minus_periods(centres[t.a] - centres[t.b], t.periods);
+  }
 
  private:
   // Force on body a's centre from tether t (minus it on body b's), and its stretch.

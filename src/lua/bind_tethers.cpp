@@ -86,8 +86,8 @@ int l_heterogeneity(lua_State* L) {
 }
 
 // t:list() -> {{i =, j =, rest_length =, length =}, ...} in tether order: the two adipocytes
-// (1-based, as in sys:adipocytes()), l_ij0 and the current centre separation R_ij (minimum
-// image) in the System the tethers act on.
+// (1-based, as in sys:adipocytes()), l_ij0 and the current centre separation R_ij (through
+// the tether's own image) in the System the tethers act on.
 int l_list(lua_State* L) {
   const Tethers& t = check<Tethers>(L, 1);
   const SystemHandle& sim = system_of(t, "list");
@@ -100,7 +100,7 @@ int l_list(lua_State* L) {
     rows.push_back({{"i", e.a + 1},
                     {"j", e.b + 1},
                     {"rest_length", e.rest_length},
-                    {"length", box.minimum_image(c[e.a] - c[e.b]).norm()}});
+                    {"length", TetherForce::separation(box, c, e).norm()}});
   return push_records(L, rows);
 }
 

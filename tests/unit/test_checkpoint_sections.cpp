@@ -153,6 +153,7 @@ TEST_CASE("tethers and the System save themselves bit for bit", "[checkpoint]") 
   TetherForce t(0.04);
   t.add(sys, 0, 1, 5.0 / 3.0);
   t.add(sys, 2, 7, 4.25);
+  t.add(sys, 3, 4, 2.0, Vec3i(0, 1, -1));  // not the nearest image: restored as it was
   CheckpointWriter w;
   write_system(w, sys);
   write_tethers(w, t);
@@ -160,8 +161,29 @@ TEST_CASE("tethers and the System save themselves bit for bit", "[checkpoint]") 
   const System back = read_system(r);
   TetherForce t2(0.0);
   read_tethers(r, back, t2);
+  REQUIRE(t2.tethers().size() == 3);
+  CHECK(t2.tethers()[2].periods == Vec3i(0, 1, -1));
   CheckpointWriter again;
   write_system(again, back);
   write_tethers(again, t2);
   CHECK(again.bytes() == w.bytes());
+}
+
+// A checkpoint written before tethers kept their image has no `tethers.periods`: its tethers
+// take the nearest image as the bodies stand; a `periods` of the wrong length is refused.
+TEST_CASE("tethers of a checkpoint without periods take the nearest image", "[checkpoint]") {
+  System sys = test::mixed_system(2, 10, 6.0, 0.2, 5);
+  const Vec3 raw = TetherForce::body_centres(sys)[0] - TetherForce::body_centres(sys)[7];
+  CheckpointWriter w;
+  w.put_f64("tethers.stiffness", 0.04);
+  w.put_i32s("tethers.a", {0});
+  w.put_i32s("tethers.b", {7});
+  w.put_f64s("tethers.rest_length", {4.0});
+  TetherForce t(0.0);
+  read_tethers(parse(w), sys, t);
+  REQUIRE(t.tethers().size() == 1);
+  CHECK(t.tethers()[0].periods == sys.box().nearest_periods(raw));
+  w.put_i32s("tethers.periods", {0, 1});
+  TetherForce t2(0.0);
+  CHECK_THROWS_WITH(read_tethers(parse(w), sys, t2), Contains("tether periods (3 per tether)"));
 }

@@ -809,6 +809,41 @@ TEST_CASE("tether forces are minus the gradient of the tether energy (finite dif
   report("FD tether", r.rel_err);
 }
 
+// A tether joins the image of its partner it was made with (docs/model.md, "Forces"): when a
+// component of R_ij passes L/2 it does not jump to the other image, whose pull would have the
+// opposite sign. Two bodies 5.5 apart in y (L = 12), l0 = 1.3 x 5.5 = 7.15 > L/2, then 6.5
+// apart: the spring still pushes them apart along its own image.
+TEST_CASE("a tether keeps its image when a component of R_ij passes half the box") {
+  System sys(Box(Vec3::Zero(), Vec3(12.0, 12.0, 12.0), {false, true, true}), 7);
+  const MeshShape shape = icosphere(1);
+  sys.add_mesh_scaled(shape, Vec3(6.0, 2.0, 6.0), 2.0, 2.0, 1.1);
+  sys.add_mesh_scaled(shape, Vec3(6.0, 7.5, 6.0), 2.0, 2.0, 1.1);
+  sys.wrap_all();
+  const double k = 0.04;
+  auto tf = std::make_shared<TetherForce>(k);
+  const double l0 = 1.3 * 5.5;
+  tf->add(sys, 0, 1, l0);
+  CHECK(tf->tethers()[0].periods == Vec3i::Zero());
+  const MeshBody& moved = sys.bodies()[1];
+  for (int v = 0; v < moved.n_vertices(); ++v)
+    sys.sites().pos[moved.first_site + v] += Vec3(0.0, 1.0, 0.0);
+  sys.wrap_all();
+  const auto c = TetherForce::body_centres(sys);
+  REQUIRE(TetherForce::separation(sys.box(), c, tf->tethers()[0])[1] == Approx(-6.5));
+  ForceField ff = field_of(tf);
+  CHECK(ff.compute(sys, {true, false}).energy ==
+        Approx(0.5 * k * (6.5 - l0) * (6.5 - l0)).epsilon(1e-12));
+  Vec3 on_first = Vec3::Zero();
+  const MeshBody& first = sys.bodies()[0];
+  for (int v = 0; v < first.n_vertices(); ++v) on_first += sys.sites().force[first.first_site + v];
+  // F_a = -K (R - l0) d / R with d = R_a - R_b = (0, -6.5, 0): -0.026 along y (apart).
+  CHECK(on_first[1] == Approx(-k * (l0 - 6.5)).epsilon(1e-10));
+  CHECK(std::abs(on_first[0]) + std::abs(on_first[2]) < 1e-12);
+  const FdCheck r = fd_check(sys, ff);
+  CHECK(r.max_force > 1e-4);
+  CHECK(r.rel_err < 1e-6);
+}
+
 // ---------------------------------------------------------------------------------------
 // Virial
 
