@@ -141,6 +141,45 @@ function M.validate(p)
                         "temperature: --set background_factor=0 to give kT yourself, or leave kT " ..
                         "at 0 (docs/model.md, Vertex bath)", p.kT, p.background_factor), 0)
   end
+  if iv.from then M.check_from(p, iv.from) end
+end
+
+-- The parameters whose effect is in the compressed tissue itself (the adipocytes' shapes and
+-- sizes, the placement, the packing and how it was reached), besides the size.
+local tissue_keys = { "A_0", "adipocyte_spread", "start", "phi", "cohesive_compression",
+                      "compress_ftol", "final_ftol" }
+
+-- A run started --from DIR takes DIR's compressed tissue in place of its own: refuses, before
+-- any work, a run whose own tissue would differ (a parameter of tissue_keys, or the initial
+-- box), naming the parameter, instead of running the source's tissue under this run's value.
+-- The seed may differ (it drives the dynamics from there on); DIR without params.json (a
+-- script's own run directory) is not checked.
+function M.check_from(p, from)
+  local path = from .. "/params.json"
+  if not iv.exists(path) then return end
+  local source = iv.read_json(path).parameters or {}
+  local function show(v) return type(v) == "number" and string.format("%g", v) or tostring(v) end
+  local function refuse(key, theirs, ours)
+    error(string.format("--from %s: its tissue was made with %s = %s, this run's is %s = %s; " ..
+                        "the compressed tissue is the source's: --set %s=%s, or run without --from",
+                        from, key, show(theirs), key, show(ours), key, show(theirs)), 0)
+  end
+  for _, key in ipairs(tissue_keys) do
+    if source[key] ~= nil and p[key] ~= nil and source[key] ~= p[key] then
+      refuse(key, source[key], p[key])
+    end
+  end
+  -- The numbers of adipocytes and cells are compared by the checkpoint's loading (sites and
+  -- bodies); the initial box, which compression scales, only here.
+  if source.system and presets[source.system] and source.L0 then
+    local theirs, ours = select(3, M.size(source)), select(3, M.size(p))
+    if theirs ~= ours then
+      error(string.format("--from %s: its tissue started from L0 = %s (system %s), this run's " ..
+                          "would start from L0 = %s (system %s): give the source's L0, or run " ..
+                          "without --from", from, show(theirs), source.system, show(ours),
+                          p.system), 0)
+    end
+  end
 end
 
 return M

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Test: `invasim run --from RUN_DIR` starts from the compressed tissue that RUN_DIR
-# saved (no compression of its own), with its own seed and parameters.
+# saved (no compression of its own), with its own seed and the parameters that act after the
+# compression; a run whose own tissue would differ (A_0, start, L0) is refused before any work.
 set -euo pipefail
 invasim=$1
 work=$2
@@ -25,4 +26,19 @@ grep -q "missing/checkpoint/compressed.ckpt" "$work/third.log" || { echo "FAILED
   { echo "FAILED: a tissue of another size was accepted"; exit 1; }
 grep -q "holds 228 sites and 4 adipocytes, this System 229 sites" "$work/fourth.log" ||
   { echo "FAILED: size message"; cat "$work/fourth.log"; exit 1; }
+# A run whose own tissue would differ is refused before any work, naming the parameter (the
+# seed and P above may differ: they act after the compression).
+! "$invasim" "${args[@]}" --set A_0=1.3 --from "$work/first" --out "$work/fifth" > "$work/fifth.log" 2>&1 ||
+  { echo "FAILED: another A_0 was accepted"; exit 1; }
+grep -q "its tissue was made with A_0 = 1.1, this run's is A_0 = 1.3" "$work/fifth.log" ||
+  { echo "FAILED: A_0 message"; cat "$work/fifth.log"; exit 1; }
+[ ! -e "$work/fifth" ] || { echo "FAILED: the refused run made its directory"; exit 1; }
+! "$invasim" "${args[@]}" --set start=mixed --from "$work/first" --out "$work/sixth" > "$work/sixth.log" 2>&1 ||
+  { echo "FAILED: another start was accepted"; exit 1; }
+grep -q "start = demixed, this run's is start = mixed" "$work/sixth.log" ||
+  { echo "FAILED: start message"; cat "$work/sixth.log"; exit 1; }
+! "$invasim" run ../../protocols/invasion.lua --set N_a=4 --set N_c=60 --set L0=30.0 --from "$work/first" --out "$work/seventh" > "$work/seventh.log" 2>&1 ||
+  { echo "FAILED: another L0 was accepted"; exit 1; }
+grep -q "started from L0 = 32 (system reduced), this run's would start from L0 = 30" "$work/seventh.log" ||
+  { echo "FAILED: L0 message"; cat "$work/seventh.log"; exit 1; }
 echo "from_run: the second run started from the first run's compressed tissue (L_f = $first_box)"
