@@ -140,8 +140,7 @@ local function production(tissue, opts)
     log.say(o.label, "resumed at step %d (t = %g) from %s; %d steps to go", sys:step(), sys:time(),
             checkpoint, end_step - sys:step())
   end
-  local file = o.out and series_file.open(o.out .. "/series.csv", columns, units) or nil
-  if file then for _, row in ipairs(rows) do file:write(row) end end
+  local file = o.out and series_file.open(o.out .. "/series.csv", columns, units, rows) or nil
   local sim = iv.Simulation{ system = sys, dynamics = dyn }
   -- Proliferation and lipolysis first: at a step where they are due, the samples and the
   -- checkpoint see their result.

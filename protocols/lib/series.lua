@@ -1,6 +1,7 @@
 -- The run's time series as CSV (series.csv): a header row of `name [unit]` entries, then one
 -- row per sample, appended and flushed as the run goes, so that a killed run keeps every
 -- sample written so far. A failed write or flush (a full disk) is an error naming the file.
+local iv = require("invasim")
 local files = require("lib.files")
 
 local M = {}
@@ -12,26 +13,36 @@ local function put(file, path, ...)
   if not ok then error(string.format("series: cannot write %s: %s", path, tostring(err)), 0) end
 end
 
--- Opens `path` for the given columns (names) with units (name -> unit, optional).
-function M.open(path, columns, units)
-  local file, err = io.open(path, "w")
-  if not file then error("series: cannot write " .. path .. ": " .. tostring(err), 2) end
-  local header = {}
+-- One row's CSV line (without the newline).
+local function line(columns, row)
+  local fields = {}
+  for i, c in ipairs(columns) do
+    local v = row[c]
+    fields[i] = v == nil and "" or (math.type(v) == "integer" and tostring(v) or string.format("%.10g", v))
+  end
+  return table.concat(fields, ",")
+end
+
+-- Opens `path` for the given columns (names) with units (name -> unit, optional), holding the
+-- header and the rows already sampled (`rows`, optional: a resumed run's), then appends. The
+-- file is replaced atomically (temp file + rename), so that a run killed while it resumes
+-- leaves the previous series.csv whole, never a truncated one.
+function M.open(path, columns, units, rows)
+  local text = {}
   for i, c in ipairs(columns) do
     local unit = units and units[c]
-    header[i] = (unit and unit ~= "1") and (c .. " [" .. unit .. "]") or c
+    text[i] = (unit and unit ~= "1") and (c .. " [" .. unit .. "]") or c
   end
-  put(file, path, table.concat(header, ","), "\n")
+  text = { table.concat(text, ",") }
+  for _, row in ipairs(rows or {}) do text[#text + 1] = line(columns, row) end
+  iv.write_file(path, table.concat(text, "\n") .. "\n")
+  local file, err = io.open(path, "a")
+  if not file then error("series: cannot write " .. path .. ": " .. tostring(err), 2) end
   return setmetatable({ file = file, columns = columns, path = path }, M)
 end
 
 function M:write(row)
-  local fields = {}
-  for i, c in ipairs(self.columns) do
-    local v = row[c]
-    fields[i] = v == nil and "" or (math.type(v) == "integer" and tostring(v) or string.format("%.10g", v))
-  end
-  put(self.file, self.path, table.concat(fields, ","), "\n")
+  put(self.file, self.path, line(self.columns, row), "\n")
 end
 
 function M:close()
