@@ -15,14 +15,17 @@ local run_identity = require("lib.run_identity")
 
 local M = {}
 
--- The "# key=value" records of DIR/resume.txt (run_id, protocol_hash, from_checkpoint).
+-- The "# key=value" records of DIR/resume.txt (run_id, protocol_hash, from_checkpoint), and
+-- its "# module NAME=HASH" records as t.modules (NAME -> HASH).
 function M.records(dir)
-  local t = {}
+  local t = { modules = {} }
   local f = io.open(dir .. "/resume.txt", "r")
   if not f then return t end
   for line in f:lines() do
     local key, value = line:match("^# ([%w_]+)=(.*)$")
     if key then t[key] = value end
+    local name, hash = line:match("^# module ([^=]+)=(%x+)$")
+    if name then t.modules[name] = hash end
   end
   f:close()
   return t
@@ -106,6 +109,19 @@ function M.verify_sources(dir, identity, records)
            "now): the resumed run would follow other stages than the ones that wrote its files " ..
            "and checkpoint; restore the script (e.g. from version control), %s", iv.script,
            records.protocol_hash, resume_txt, protocol_hash, ANEW)
+  end
+  local names = {}
+  for name in pairs(records.modules or {}) do names[#names + 1] = name end
+  table.sort(names)
+  for _, name in ipairs(names) do
+    local path = package.searchpath(name, package.path)
+    local now = path and iv.hash_file(path) or nil
+    if now ~= records.modules[name] then
+      refuse(dir, "the module %s (%s) changed since this run started (content hash %s recorded " ..
+             "in %s, %s now): the resumed run would write its series and checkpoints with other " ..
+             "code than the part already written; restore it (e.g. from version control), %s",
+             name, path or "not found", records.modules[name], resume_txt, now or "missing", ANEW)
+    end
   end
 end
 

@@ -147,6 +147,9 @@ function M.open(p, dir)
     invasim_version = iv.version, git_revision = iv.git_revision, threads = iv.threads(),
   })
   local lines = { iv.script, "# run_id=" .. identity.id, "# protocol_hash=" .. protocol_hash }
+  for _, m in ipairs(run_identity.module_hashes()) do
+    lines[#lines + 1] = "# module " .. m.name .. "=" .. m.hash
+  end
   if identity.from then
     lines[#lines + 1] = "# from_checkpoint=" .. identity.from_checkpoint
     lines[#lines + 1] = "--from=" .. identity.from

@@ -53,6 +53,20 @@ function M.of(p)
            lines = lines }
 end
 
+-- The Lua modules the protocol has loaded from files (the lib/ stages, observers, ...), as
+-- { {name =, path =, hash = FNV-1a 64 of the file}, ... } sorted by name: resume.txt records
+-- them so that a resume refuses stage code edited since the run started (a series half
+-- written by the old code and half by the new).
+function M.module_hashes()
+  local out = {}
+  for name in pairs(package.loaded) do
+    local path = type(name) == "string" and package.searchpath(name, package.path)
+    if path then out[#out + 1] = { name = name, path = path, hash = iv.hash_file(path) } end
+  end
+  table.sort(out, function(a, b) return a.name < b.name end)
+  return out
+end
+
 -- The compressed tissue of the run directory `from` (what --from starts from).
 function M.source_path(from) return from .. "/checkpoint/compressed.ckpt" end
 

@@ -3,7 +3,8 @@
 # other files must agree with it.
 #  1. params.json with "P": 5 is refused, naming P in both files;
 #  2. resume.txt with another P than its # run_id= line says is refused (params.json names it);
-#  3. a protocol script changed since the start is refused, naming both content hashes;
+#  3. a protocol script changed since the start is refused, naming both content hashes; so is
+#     a module of its lib/ (the observers that write series.csv), naming the module;
 #  4. params.json with another invasim_version continues with a warning on stderr and in log.txt.
 # Usage: resume_trusts.sh INVASIM WORKDIR
 set -euo pipefail
@@ -40,6 +41,11 @@ recorded=$(sed -n 's/^# protocol_hash=//p' "$dir/resume.txt")
 echo "-- an edit after the run started" >> "$work/protocols/invasion.lua"
 refused protocol "the protocol $work/protocols/invasion.lua changed since this run started (content hash $recorded recorded in $dir/resume.txt"
 cp "$here/../../protocols/invasion.lua" "$work/protocols/invasion.lua"
+grep -q "^# module lib.observers=" "$dir/resume.txt" || fail "resume.txt records no lib.observers" "$dir/resume.txt"
+recorded=$(sed -n 's/^# module lib.observers=//p' "$dir/resume.txt")
+echo "-- an edit after the run started" >> "$work/protocols/lib/observers.lua"
+refused module "the module lib.observers ($work/protocols/lib/observers.lua) changed since this run started (content hash $recorded recorded in $dir/resume.txt"
+cp "$here/../../protocols/lib/observers.lua" "$work/protocols/lib/observers.lua"
 
 # 4. Another invasim version: a warning, and the run continues.
 sed -i 's/"invasim_version": "[^"]*"/"invasim_version": "9.9.9"/' "$dir/params.json"
@@ -47,4 +53,4 @@ sed -i 's/"invasim_version": "[^"]*"/"invasim_version": "9.9.9"/' "$dir/params.j
 grep -q "^invasim: warning: this run was started by invasim 9.9.9 (.*) and is continued by invasim " "$work/version.err" ||
   fail "no warning on stderr" "$work/version.err"
 grep -q "^run: warning: this run was started by invasim 9.9.9 " "$dir/log.txt" || fail "no warning in log.txt" "$dir/log.txt"
-echo "resume_trusts passed: edited params.json, resume.txt and protocol refused; another version warned"
+echo "resume_trusts passed: edited params.json, resume.txt, protocol and module refused; another version warned"
