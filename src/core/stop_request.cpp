@@ -10,9 +10,12 @@ namespace {
 volatile std::sig_atomic_t g_stop_signal = 0;
 std::atomic<bool> g_taken{false};  // set by stop_requested(), never by the handler
 
+// A second Ctrl-C (SIGINT) ends the process at once. A repeated SIGTERM only records the stop
+// again: batch systems and the wrappers that forward their signals (a job script, srun) may
+// deliver it twice, and the first one's checkpoint must still be written.
 extern "C" void record_stop(int signal) {
   g_stop_signal = signal;
-  std::signal(signal, SIG_DFL);  // a second Ctrl-C ends the process at once
+  if (signal == SIGINT) std::signal(signal, SIG_DFL);
 }
 
 }  // namespace
