@@ -62,14 +62,22 @@ local function summarise(rows, columns, fraction)
   return summary
 end
 
--- End-of-run shape statistics: 3D shape parameter per adipocyte, slice histogram.
-local function shapes(sys, per_body)
+-- End-of-run shape statistics: 3D shape parameter per adipocyte, slice histogram. A slice the
+-- 2D analysis cannot read (a crumpled mesh whose cross-section has holes without an outer
+-- boundary) leaves the 2D statistics out, with the reason as shape_2d_error and in the log,
+-- instead of losing the run's summary after its whole production.
+local function shapes(sys, per_body, label)
   local s3 = sys:shape_parameters()
   local mean3 = 0
   for _, a in ipairs(s3) do mean3 = mean3 + a / #s3 end
   local result = { shape_3d = s3, shape_3d_mean = mean3 }
   if per_body > 0 and #s3 > 0 then
-    local a2 = sys:slices{ per_body = per_body }
+    local ok, a2 = pcall(sys.slices, sys, { per_body = per_body })
+    if not ok then
+      result.shape_2d_error = tostring(a2)
+      log.say(label, "warning: no 2D shape statistics: %s", result.shape_2d_error)
+      return result
+    end
     local mean2 = 0
     for _, a in ipairs(a2) do mean2 = mean2 + a / #a2 end
     result.shape_2d_mean = mean2
@@ -207,12 +215,13 @@ local function production(tissue, opts)
       require("lib.files").write(o.out .. "/correlations.csv", series_file.columns_text(correlator:result()))
     end
   end
-  local shape = shapes(sys, o.slices_per_body)
+  local shape = shapes(sys, o.slices_per_body, o.label)
   summary.shape_3d_mean = shape.shape_3d_mean
   summary.shape_3d = shape.shape_3d   -- per adipocyte, at the end of the run
   summary.shape_2d_mean = shape.shape_2d_mean
   summary.shape_2d_median = shape.shape_2d_median
   summary.shape_2d_profiles = shape.shape_2d_profiles
+  summary.shape_2d_error = shape.shape_2d_error
   if o.out and shape.shape_2d_histogram then
     local h = shape.shape_2d_histogram
     local lines = { "A2_lo,A2_hi,count,density" }

@@ -43,7 +43,10 @@ function M.final(tissue, p, result, seconds, out, extra)
             optional(s.tau_d, "%.4g"), optional(s.tau_d_standard, "%.4g"), optional(s.tau_r, "%.4g"),
             s.correlation_window)
   end
-  if s.shape_3d_mean then
+  if s.shape_3d_mean and s.shape_2d_error then
+    log.say("summary", "shape parameter: 3D mean %.4f, no 2D slices (%s)", s.shape_3d_mean,
+            s.shape_2d_error)
+  elseif s.shape_3d_mean then
     log.say("summary", "shape parameter: 3D mean %.4f, 2D slices mean %s, median %s (%s profiles)",
             s.shape_3d_mean, optional(s.shape_2d_mean, "%.4f"), optional(s.shape_2d_median, "%.4f"),
             optional(s.shape_2d_profiles, "%d"))
