@@ -128,6 +128,10 @@ function M.open(p, dir)
   files.mkdir(dir .. "/checkpoint")
   local continuing = resume.start(dir)  -- refuses a checkpoint of another run
   if iv.resume then warnings = resume_checks.verify_records(dir, identity, p, records) end
+  if iv.resume and iv.exists(dir .. "/summary.json") then  -- written last, by a finished run
+    log.say("run", "%s holds a finished run (its summary.json is written): nothing to resume", dir)
+    iv.stop()
+  end
   if continuing then
     log.tee(dir .. "/log.txt")
     log.say("run", "resuming the run in %s (run %s) from its checkpoint", dir, identity.id)

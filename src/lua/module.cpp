@@ -42,7 +42,9 @@ int open_invasim(lua_State* L) {
                           return std::chrono::duration<double>(now).count();
                         }>(),
                  // invasim.hash(text): FNV-1a 64 of the bytes, as 16 hex digits (a run's identity).
-                 method<"hash", [](std::string text) { return fnv1a64_hex(text); }>()});
+                 method<"hash", [](std::string text) { return fnv1a64_hex(text); }>(),
+                 // invasim.stop(): ends the script here, without an error (exit status 0).
+                 method<"stop", []() -> void { throw StopScript(); }>()});
 #define INVASIM_LUA_PART(part) open_##part(L);
 #include "lua_bindings.inc"
 #undef INVASIM_LUA_PART

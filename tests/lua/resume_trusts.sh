@@ -5,7 +5,9 @@
 #  2. resume.txt with another P than its # run_id= line says is refused (params.json names it);
 #  3. a protocol script changed since the start is refused, naming both content hashes; so is
 #     a module of its lib/ (the observers that write series.csv), naming the module;
-#  4. params.json with another invasim_version continues with a warning on stderr and in log.txt.
+#  4. a finished run (its summary.json written) is not run again: exit 0, "nothing to resume";
+#  5. params.json with another invasim_version continues with a warning on stderr and in log.txt
+#     (a run without its summary.json, as one killed during its end-of-run analysis).
 # Usage: resume_trusts.sh INVASIM WORKDIR
 set -euo pipefail
 invasim=$1 work=$2
@@ -47,10 +49,19 @@ echo "-- an edit after the run started" >> "$work/protocols/lib/observers.lua"
 refused module "the module lib.observers ($work/protocols/lib/observers.lua) changed since this run started (content hash $recorded recorded in $dir/resume.txt"
 cp "$here/../../protocols/lib/observers.lua" "$work/protocols/lib/observers.lua"
 
-# 4. Another invasim version: a warning, and the run continues.
+# 4. A finished run.
+cp "$dir/series.csv" "$work/series.csv"
+"$invasim" run --resume "$dir" > "$work/finished.log" 2>&1 || fail "--resume of a finished run" "$work/finished.log"
+grep -qF "run: $dir holds a finished run (its summary.json is written): nothing to resume" "$work/finished.log" ||
+  fail "finished: no message" "$work/finished.log"
+grep -q "production" "$work/finished.log" && fail "finished: the run was run again" "$work/finished.log"
+cmp "$work/series.csv" "$dir/series.csv" || fail "finished: series.csv rewritten"
+
+# 5. Another invasim version: a warning, and the run continues.
+rm "$dir/summary.json"
 sed -i 's/"invasim_version": "[^"]*"/"invasim_version": "9.9.9"/' "$dir/params.json"
 "$invasim" run --resume "$dir" > "$work/version.log" 2> "$work/version.err" || fail "--resume with another version" "$work/version.err"
 grep -q "^invasim: warning: this run was started by invasim 9.9.9 (.*) and is continued by invasim " "$work/version.err" ||
   fail "no warning on stderr" "$work/version.err"
 grep -q "^run: warning: this run was started by invasim 9.9.9 " "$dir/log.txt" || fail "no warning in log.txt" "$dir/log.txt"
-echo "resume_trusts passed: edited params.json, resume.txt, protocol and module refused; another version warned"
+echo "resume_trusts passed: edited params.json, resume.txt, protocol and module refused; a finished run kept; another version warned"
