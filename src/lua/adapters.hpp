@@ -220,9 +220,10 @@ std::shared_ptr<T> kw_object(Kwargs& kw, std::string_view key, bool required = f
   lua_State* L = kw.state();
   const int type = kw.push(key);
   std::shared_ptr<T> object;
-  if (type == LUA_TNIL && required)
-    throw InputError(kw.owner() + ": missing required key '" + std::string(key) + "' (" +
-                     (noun ? std::string(noun) : std::string("a ") + LuaType<T>::name) + ")");
+  if (type == LUA_TNIL && required) {
+    lua_pop(L, 1);
+    kw.missing(key, (noun ? std::string(noun) : std::string("a ") + LuaType<T>::name).c_str());
+  }
   if (type != LUA_TNIL) {
     const auto* slot = test<T>(L, -1);
     if (slot == nullptr || !*slot)

@@ -51,8 +51,7 @@ void check_value(Kwargs& kw, const Declaration& k) {
   if (type == LUA_TNIL) {
     if (!k.required) return;
     if (one_plain) return as_plain(k.types[0]);  // the engine's "missing required key"
-    fail_input(kw.owner(), ": missing required key '", k.name, "' (",
-               k.types.empty() ? "any value" : expected_text(k.types), ")");
+    kw.missing(k.name, k.types.empty() ? "any value" : expected_text(k.types).c_str());
   }
   if (k.types.empty()) return;
   for (const auto& t : k.types)

@@ -283,8 +283,7 @@ std::optional<std::vector<double>> Kwargs::maybe_number_list(std::string_view ke
 
 std::vector<double> Kwargs::number_list(std::string_view key, std::size_t size, Range range) {
   auto values = maybe_number_list(key, size, range);
-  if (!values)
-    fail_input(owner_, ": missing required key '", key, "' (a list of ", size, " numbers)");
+  if (!values) missing(key, cat("a list of ", size, " numbers").c_str());
   return std::move(*values);
 }
 

@@ -136,14 +136,16 @@ class Kwargs {
   const std::string& owner() const { return owner_; }
   lua_State* state() const { return L_; }
 
+  // Throws "missing required key 'box' (expected)", naming a misspelt key of the table if there
+  // is one ("; unknown key 'bxo' (did you mean 'box'?)").
+  [[noreturn]] void missing(std::string_view key, const char* expected) const;
+
  private:
   // Pushes the value of key (raw get) and records the key; returns its Lua type.
   int fetch(std::string_view key);
   // The same, but an absent key (nil) leaves nothing on the stack.
   int fetch_present(std::string_view key);
   [[noreturn]] void type_error(std::string_view key, const char* expected) const;
-  // Throws "missing required key", naming a misspelt key of the table if there is one.
-  [[noreturn]] void missing(std::string_view key, const char* expected) const;
   // The value on top of the stack as the type named; pops it.
   double to_number(std::string_view key, Range range);
   long long to_integer(std::string_view key, const IntegerBounds& bounds);

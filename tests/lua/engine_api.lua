@@ -23,6 +23,9 @@ check(sys:n_sites() == 0 and sys:n_adipocytes() == 0 and sys:step() == 0 and sys
 local box = sys:box()
 check(box.lengths[1] == 20 and box.lo[2] == 0 and box.hi[3] == 14 and box.periodic[1] == false)
 expect_error("System: missing required key 'box' %(a list of 3 numbers%)", iv.System, {})
+-- A misspelt required key is named with the one it should be (lists, bound objects, keywords).
+expect_error("System: missing required key 'box' %(a list of 3 numbers%); unknown key 'bxo' " ..
+             "%(did you mean 'box'%?%)", iv.System, { bxo = { 10, 10, 10 } })
 expect_error("System: unknown key 'sed' %(did you mean 'seed'%?%); valid keys: box, periodic, seed",
              iv.System, { box = {1, 1, 1}, sed = 1 })
 expect_error("System: key 'box' must be a list of 3 numbers, got a table of length 2",
@@ -123,6 +126,9 @@ check(active:group():size() == cancer:size())
 expect_error("Langevin: missing required key 'kT' %(a number%)", iv.Langevin, { group = cancer })
 expect_error("Damped: missing required key 'group' %(a Group from sys:group%(name%) or sys:place{...}%)",
              iv.Damped, {})
+expect_error("Active: missing required key 'group' %(a Group from sys:group%(name%) or " ..
+             "sys:place{...}%); unknown key 'grup' %(did you mean 'group'%?%)", iv.Active,
+             { grup = cancer, f0 = 0.05, tau_p = 25 })
 expect_error("Damped: key 'group' must be a Group from sys:group%(name%) or sys:place{...}, got table",
              iv.Damped, { group = {1, 2} })
 expect_error("Active: key 'tau_p' = %-1 is out of range %(must be >= 0%)", iv.Active,
