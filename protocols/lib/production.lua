@@ -30,10 +30,10 @@ local spec = {
   columns = { type = "table" },    -- the series' columns, LAMMPS thermo style: {"step", "A_t", ...}
                                -- (default: every column of the observers switched on)
   correlate_every = { 20, range = "[0, inf)", help = "steps between correlator samples (0: none)" },
-  lags = 250,                -- correlator window: lags * correlate_every steps
-  origin_every = 5,          -- a new time origin every this many correlator samples
+  lags = { 250, range = "[1, inf)" },         -- correlator window: lags * correlate_every steps
+  origin_every = { 5, range = "[1, inf)" },   -- a new time origin every this many correlator samples
   slices_per_body = { 20, type = "number", range = "[0, inf)" },  -- random slices per adipocyte at the end (0: none)
-  average_fraction = 0.5,    -- the summary averages the last half of the samples
+  average_fraction = { 0.5, range = "(0, 1]" },  -- the summary averages the last half of the samples
   out = { type = "string" },        -- directory for series.csv, correlations.csv, shapes.csv
   checkpoint_every = { 0, range = "[0, inf)", help = "steps between checkpoints in out/checkpoint/ (0: only on SIGINT/SIGTERM)" },
   lipolysis = { type = "Lipolysis", help = "adipocytes shrinking where cancer cells touch them (off: nil)" },

@@ -47,6 +47,11 @@ expect_error("^stages_errors.lua:%d+: production: key 'every' = 0 is out of rang
              require("lib.production"), tissue, { every = 0 })
 expect_error("^stages_errors.lua:%d+: production: key 'correlate_every' = %-5 is out of range %(must be >= 0%)",
              require("lib.production"), tissue, { correlate_every = -5 })
+-- Checked before the run, not after it (average_fraction) or when the correlator is made.
+expect_error("^stages_errors.lua:%d+: production: key 'average_fraction' = 2 is out of range %(must be in %(0, 1%]%)",
+             require("lib.production"), tissue, { average_fraction = 2 })
+expect_error("^stages_errors.lua:%d+: production: key 'lags' = 0 is out of range %(must be >= 1%)",
+             require("lib.production"), tissue, { lags = 0 })
 expect_error("^stages_errors.lua:%d+: quench: vertex_bath = 'hot': unknown vertex bath; choose one of: damped, langevin",
              require("lib.quench"), tissue, { vertex_bath = "hot" })
 expect_error("quench: key 'vertex_gamma' must be a number, got string",
