@@ -7,9 +7,9 @@
 
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <optional>
+#include <sstream>
 
 #include "app/cli.hpp"
 #include "app/error_report.hpp"
@@ -163,9 +163,11 @@ int collect(const std::vector<std::string>& args) {
     sweep::collect(ws, std::cout);
     return 0;
   }
-  std::ofstream out(*output);
-  if (!out) fail_input("sweep collect: cannot write ", *output);
-  const int rows = sweep::collect(ws, out);
+  // The whole table first, then one atomic write: an error while collecting (a broken
+  // point) or writing (a full disk) leaves the previous table as it was.
+  std::ostringstream table;
+  const int rows = sweep::collect(ws, table);
+  sweep::write_file(*output, table.str());
   std::cerr << "sweep collect: " << rows << " rows in " << *output << '\n';
   return 0;
 }

@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "io/io_error.hpp"
 #include "sweep/python_json.hpp"
 #include "sweep/window_drift.hpp"
 
@@ -50,13 +51,17 @@ void read_units(const fs::path& series, std::map<std::string, std::string>& unit
   }
 }
 
-Json read_summary(const fs::path& dir) {
-  std::ifstream in(dir / "summary.json");
-  if (!in) return Json();
+// The summary.json of a done point. Missing, malformed or not an object is an error naming
+// the file, as a broken state point or job document is: a done row with empty cells would
+// pass for a point that measured nothing.
+Json read_summary(const std::string& id, const fs::path& dir) {
+  const fs::path path = dir / "summary.json";
   try {
-    return Json::parse(in);
-  } catch (const Json::exception&) {
-    return Json();
+    Json summary = read_json(path);
+    if (!summary.is_object()) fail_io(quoted(path), ": not a JSON object");
+    return summary;
+  } catch (const IoError& e) {
+    fail_io("sweep collect: point ", id, " is done but its summary is unusable: ", e.what());
   }
 }
 
@@ -91,7 +96,7 @@ int collect(const Workspace& ws, std::ostream& out) {
     Row row{id, job_status(dir), ws.statepoint(id), read_document(dir), Json(), {}};
     for (const auto& item : row.statepoint.items()) keys.insert(item.key());
     if (row.status == "done") {
-      row.summary = read_summary(dir);
+      row.summary = read_summary(id, dir);
       read_units(dir / "series.csv", units);
       if (row.summary.contains("averages")) {
         row.drifts = window_drifts(dir / "series.csv", row.summary["averages"]);

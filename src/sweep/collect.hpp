@@ -7,7 +7,8 @@
 //   the first half's, window_drift.hpp), then tau_d [tau], tau_r [tau].
 // Floats as Python's repr (shortest round-trip text, always with a decimal point or an
 // exponent), integers without one, so that 25 and 25.0 stay apart; strings as they are (quoted when
-// they hold a comma or a quote); a job that is not done has its status and empty measurement cells.
+// they hold a comma or a quote); a job that is not done has its status and empty measurement cells,
+// a done job without a readable summary.json is an IoError naming the file.
 // docs/sweeps.md, "results.csv".
 #include <ostream>
 
@@ -15,7 +16,7 @@
 
 namespace invasim::sweep {
 
-// Writes the table; returns the number of rows.
+// Reads every point, then writes the table (nothing on an error); returns the number of rows.
 int collect(const Workspace& ws, std::ostream& out);
 
 }  // namespace invasim::sweep

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <regex>
 #include <sstream>
 
@@ -130,10 +129,9 @@ int submit_slurm(const Workspace& ws, const SlurmOptions& o, std::ostream& out) 
     std::string suffix;  // "" for a single array, else "-<j+1>"
     if (arrays.size() > 1) suffix.append("-").append(std::to_string(j + 1));
     const fs::path points = dir / ("points" + suffix + ".txt");
-    {
-      std::ofstream list(points);
-      for (const auto& id : arrays[j]) list << id << '\n';
-    }
+    std::string list;  // atomic and checked like the scripts: a cut list would drop points
+    for (const auto& id : arrays[j]) list.append(id).append("\n");
+    write_file(points, list);
     std::ostringstream script;
     script << header(o, "invasim-sweep", (dir / "slurm-%A_%a.out").string(), false)
            << "#SBATCH --array=0-" << arrays[j].size() - 1;

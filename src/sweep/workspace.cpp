@@ -5,20 +5,16 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <fstream>
 
 #include "core/errors.hpp"
+#include "io/atomic_file.hpp"
 
 namespace invasim::sweep {
 
+// The output layer's atomic writer: every write checked (a full disk is an error, not an
+// empty file), fsynced, through a temporary file of this process renamed over the target.
 void write_file(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    out << text;
-    if (!out) fail_input("cannot write ", tmp.string());
-  }
-  fs::rename(tmp, path);
+  write_file_atomically(path, text);
 }
 
 Json read_document(const fs::path& job_dir) {
