@@ -33,7 +33,7 @@ local p = iv.params{
   checkpoint_every = declare.keyword(production.keys, "checkpoint_every"),
 }
 
-local function fail(fmt, ...) error(string.format(fmt, ...), 0) end
+local function fail(fmt, ...) error(string.format(fmt, ...), 2) end
 -- Each parameter's own range is checked by iv.params; these are the combinations.
 if p.steps == 0 then fail("--set steps=0: must be > 0 (-1: automatic)") end
 if not (p.f0 > 0) then fail("--set f0=%g: must be > 0 here (active cells)", p.f0) end
@@ -41,7 +41,8 @@ if not (p.gamma > 0) then fail("--set gamma=%g: must be > 0 here (tau_g = m / ga
 if not (p.tau_p > 0 and p.tau_p < math.huge) then
   fail("--set tau_p=%g: must be > 0 and finite here (the free particle's tau_d needs a finite persistence)", p.tau_p)
 end
-require("lib.model_limits").check_dynamics(p)  -- values in range that mean nothing
+local ok, err = pcall(require("lib.model_limits").check_dynamics, p)  -- values in range that mean nothing
+if not ok then error(err, 1) end
 
 -- Times: tau_g, the free particle's tau_d, the correlation window and the run lengths.
 local tau_g = 1.0 / p.gamma

@@ -112,10 +112,8 @@ function M.size(p)
          (p.L0 > 0 and p.L0 or preset.L0)
 end
 
--- Checks the parameters' combinations before anything runs or any file is written (each
--- parameter's own range is checked by iv.params; lib/model_limits.lua refuses the values in
--- range that would make the run meaningless).
-function M.validate(p)
+-- The combinations M.validate checks (it adds the caller's file and line to a refusal).
+local function check_combinations(p)
   local N_a, N_c, L0 = M.size(p)
   -- The contact law's own rules (beta < alpha, beta_cv < alpha_cv), before any work.
   local problem = iv.Contacts.check{ alpha = p.alpha, beta = p.beta, alpha_cv = p.alpha_cv,
@@ -142,6 +140,15 @@ function M.validate(p)
                         "at 0 (docs/model.md, Vertex bath)", p.kT, p.background_factor), 0)
   end
   if iv.from then M.check_from(p, iv.from) end
+end
+
+-- Checks the parameters' combinations before anything runs or any file is written (each
+-- parameter's own range is checked by iv.params; lib/model_limits.lua refuses the values in
+-- range that would make the run meaningless). A refusal names the protocol's line that calls
+-- validate, as iv.params names its own.
+function M.validate(p)
+  local ok, err = pcall(check_combinations, p)
+  if not ok then error(err, 2) end
 end
 
 -- The parameters whose effect is in the compressed tissue itself (the adipocytes' shapes and
