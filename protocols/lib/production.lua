@@ -101,6 +101,14 @@ end
 -- declares protocol parameters from it).
 local function production(tissue, opts)
   local o = iv.keywords(opts and opts.label or "production", opts, spec)
+  if o.snapshot_every > 0 and not o.snapshots then
+    error(string.format("%s: snapshot_every = %d needs snapshots (an invasim.Snapshots)", o.label,
+                        o.snapshot_every), 2)
+  end
+  if o.checkpoint_every > 0 and not o.out then
+    error(string.format("%s: checkpoint_every = %d needs out (a run directory)", o.label,
+                        o.checkpoint_every), 2)
+  end
   if not tissue.dyn then error(o.label .. ": run the quench stage first (it makes the Dynamics)", 2) end
   local sys, dyn = tissue.sys, tissue.dyn
   local active = { observers.thermo(tissue) }

@@ -34,6 +34,14 @@ function M.production(tissue, opts)
   if math.type(every) ~= "integer" or every < 0 then
     error("production: key 'snapshot_every' must be an integer >= 0, got " .. tostring(every), 2)
   end
+  -- Without a run directory there is nowhere to write them: refused, not dropped.
+  for _, key in ipairs({ "snapshot_every", "checkpoint_every" }) do
+    local n = opts[key]
+    if type(n) == "number" and n > 0 and not opts.out then
+      error(string.format("production: %s = %s needs out (a run directory) to write into",
+                          key, tostring(n)), 2)
+    end
+  end
   local own = {}
   for k, v in pairs(opts) do own[k] = v end
   if every > 0 and opts.out then

@@ -47,6 +47,13 @@ expect_error("^stages_errors.lua:%d+: production: key 'every' = 0 is out of rang
              require("lib.production"), tissue, { every = 0 })
 expect_error("^stages_errors.lua:%d+: production: key 'correlate_every' = %-5 is out of range %(must be >= 0%)",
              require("lib.production"), tissue, { correlate_every = -5 })
+-- Files asked for without a place to write them: refused, not dropped.
+expect_error("^stages_errors.lua:%d+: production: snapshot_every = 5 needs out %(a run directory%)",
+             require("lib.stages").production, tissue, { steps = 10, every = 5, snapshot_every = 5 })
+expect_error("^stages_errors.lua:%d+: production: checkpoint_every = 5 needs out %(a run directory%)",
+             require("lib.production"), tissue, { steps = 10, every = 5, checkpoint_every = 5 })
+expect_error("^stages_errors.lua:%d+: production: snapshot_every = 5 needs snapshots",
+             require("lib.production"), tissue, { steps = 10, every = 5, snapshot_every = 5 })
 -- Checked before the run, not after it (average_fraction) or when the correlator is made.
 expect_error("^stages_errors.lua:%d+: production: key 'average_fraction' = 2 is out of range %(must be in %(0, 1%]%)",
              require("lib.production"), tissue, { average_fraction = 2 })
