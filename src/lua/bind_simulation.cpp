@@ -64,6 +64,7 @@ Trigger kw_trigger(Kwargs& kw) {
       fail_input(kw.owner(), ": key 'at' must be a list of steps, got ", type_name_at(L, -1));
     std::vector<std::uint64_t> steps;
     const auto n = lua_rawlen(L, -1);
+    if (n == 0) fail_input(kw.owner(), ": key 'at' lists no step (an operation that never runs)");
     for (lua_Unsigned i = 1; i <= n; ++i) {
       lua_rawgeti(L, -1, static_cast<lua_Integer>(i));
       if (!lua_isinteger(L, -1) || lua_tointeger(L, -1) < 0)

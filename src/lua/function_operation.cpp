@@ -37,7 +37,14 @@ lua_State* LuaFunctionOperation::call(invasim::Simulation& sim) {
 void LuaFunctionOperation::apply(invasim::Simulation& sim) {
   const std::uint64_t before = system_->revision;
   lua_State* L = call(sim);
-  const bool stop = lua_type(L, -1) == LUA_TBOOLEAN && !lua_toboolean(L, -1);
+  const int type = lua_type(L, -1);
+  if (type != LUA_TNIL && type != LUA_TBOOLEAN) {  // 'stop', 0, ...: a mistaken stop, refused
+    const std::string got = type_name_at(L, -1);
+    lua_pop(L, 1);
+    throw InputError(name_ + ": the function returned a " + got +
+                     "; return false to stop the run, nothing or true to go on");
+  }
+  const bool stop = type == LUA_TBOOLEAN && !lua_toboolean(L, -1);
   lua_pop(L, 1);
   if (system_->revision != before) {  // the function changed the System or its forces
     prepare_dynamics(*dynamics_, system_, name_);

@@ -53,6 +53,12 @@ refused(function() sim:observe(function() end, { phase = 1 }) end, "observe: key
 refused(function() sim:observe(function() end, { every = 3, phase = 3 }) end, "phase = 3 must be in %[0, 3%)")
 refused(function() sim:observe(function() end, { every = 0 }) end, "every")
 refused(function() sim:observe(function() end, { at = { 1.5 } }) end, "key 'at%[1%]' must be an integer step >= 0")
+refused(function() sim:observe(function() end, { at = {} }) end, "observe: key 'at' lists no step")
+-- a return that is neither nil nor a boolean is a mistaken stop: an error, not a run that goes on
+local mistaken = iv.Simulation{ system = sys, dynamics = dyn }
+mistaken:observe(function() return "stop" end, { every = 5 })
+refused(function() mistaken:run(100) end,
+        "observer: the function returned a string; return false to stop the run")
 refused(function() sim:observe(function() end, { evry = 3 }) end, "unknown key 'evry'")
 refused(function() iv.Simulation{ system = sys } end,
         "Simulation: missing required key 'dynamics' %(a Dynamics%)")
