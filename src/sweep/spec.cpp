@@ -181,8 +181,11 @@ class SpecReader {
     }
   }
 
-  // The list of values at the top for parameter `name`.
-  std::vector<Json> list(const std::string& key, const std::string& name, int line) const {
+  // The list of values at the top for parameter `name`; with `unique` (a product axis, the
+  // seeds) a value given twice is refused: it would be one point twice, merged without a word
+  // (1 and 1.0 are two values, as they are two points). A zip column may repeat values.
+  std::vector<Json> list(const std::string& key, const std::string& name, int line,
+                         bool unique) const {
     if (!lua_istable(L_, -1))
       fail(line, key, "expected a list of values { v1, v2, ... }; got " + type_at(-1));
     const auto n = static_cast<lua_Integer>(lua_rawlen(L_, -1));
@@ -197,10 +200,14 @@ class SpecReader {
       fail(line, key,
            "expected a list of values { v1, v2, ... } (no name = value entries, no holes)");
     std::vector<Json> values;
+    std::map<std::string, lua_Integer> seen;
     for (lua_Integer i = 1; i <= n; ++i) {
       lua_rawgeti(L_, -1, i);
       values.push_back(value(key + "[" + std::to_string(i) + "]", name, line));
       lua_pop(L_, 1);
+      const auto [at, fresh] = seen.emplace(values.back().dump(), i);
+      if (unique && !fresh)
+        fail(line, key, cat("lists ", at->first, " twice (entries ", at->second, " and ", i, ")"));
     }
     return values;
   }
@@ -213,7 +220,7 @@ class SpecReader {
     for (const auto& name : keys(where, line)) {
       const int at = source_.find(name, line);
       lua_getfield(L_, -1, name.c_str());
-      out.emplace_back(name, list(where + "." + name, name, at));
+      out.emplace_back(name, list(where + "." + name, name, at, where == "product"));
       lua_pop(L_, 1);
     }
     if (out.empty()) fail(line, where, "names no parameter");
@@ -329,7 +336,7 @@ class SpecReader {
              spec_.protocol + " declares no parameter 'seed' to replicate over");
       claim("seed", "seeds", line["seeds"]);
       lua_getfield(L_, -1, "seeds");
-      spec_.product.emplace_back("seed", list("seeds", "seed", line["seeds"]));
+      spec_.product.emplace_back("seed", list("seeds", "seed", line["seeds"], true));
       lua_pop(L_, 1);
     } else if (const Param* seed = find_param(spec_.declared, "seed");
                seed && !owner.count("seed")) {
