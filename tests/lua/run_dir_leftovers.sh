@@ -22,7 +22,9 @@ dir=$work/run
   fail "run" "$work/run.log"
 pvd=$dir/snapshots/spheres.pvd
 # The run ended at step 600 with a checkpoint there; a frame file of step 800 (as a run killed
-# after its last checkpoint leaves) is listed too.
+# after its last checkpoint leaves) is listed too, and the summary is gone (a finished run is
+# not resumed).
+rm "$dir/summary.json"
 cp "$dir/snapshots/spheres_000000600.vtp" "$dir/snapshots/spheres_000000800.vtp"
 sed -i 's|  </Collection>|    <DataSet timestep="40" group="" part="0" file="spheres_000000800.vtp"/>\n    <DataSet timestep="40" group="" part="0" file="spheres.pvd"/>\n    <DataSet timestep="50" group="" part="0" file="/dev/zero"/>\n    <DataSet timestep="60" group="" part="0" file="spheres_000000900.vtp"/>\n  </Collection>|' "$pvd"
 grep -q 'file="/dev/zero"' "$pvd" || fail "the test could not edit spheres.pvd" "$pvd"
