@@ -88,6 +88,11 @@ Simulation make_simulation(const std::shared_ptr<SystemHandle>& system,
 
 RunResult run_steps(Simulation& run, const std::shared_ptr<SystemHandle>& system, DynamicsHandle& d,
                     long long n, const std::shared_ptr<Progress>& progress) {
+  // Steps that move nothing are a forgotten dyn:add, not a run.
+  if (n > 0 && d.dynamics.methods().empty() && !d.dynamics.pressure_wall())
+    fail_input(
+        "run: the Dynamics has no methods, so nothing would move: add one first, e.g. "
+        "dyn:add(iv.Langevin{group = sys:group(\"cancer\"), gamma =, kT =})");
   if (progress)
     run.set_progress([progress](std::uint64_t done, double time) {
       progress->update(static_cast<long long>(done), time);

@@ -56,6 +56,7 @@ Simulation make_simulation(const std::shared_ptr<SystemHandle>& system,
 // Runs n steps of `run` (made by make_simulation from `system` and `d`), the one path of
 // dyn:run and sim:run: `progress` (may be null) hears of every chunk; the Dynamics is prepared
 // first, and afterwards the System is marked changed and the Dynamics as having run on it.
+// Refuses n > 0 steps of a Dynamics with no method and no pressure wall (nothing would move).
 RunResult run_steps(Simulation& run, const std::shared_ptr<SystemHandle>& system, DynamicsHandle& d,
                     long long n, const std::shared_ptr<Progress>& progress);
 

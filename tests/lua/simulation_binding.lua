@@ -54,6 +54,9 @@ refused(function() sim:observe(function() end, { every = 3, phase = 3 }) end, "p
 refused(function() sim:observe(function() end, { every = 0 }) end, "every")
 refused(function() sim:observe(function() end, { at = { 1.5 } }) end, "key 'at%[1%]' must be an integer step >= 0")
 refused(function() sim:observe(function() end, { at = {} }) end, "observe: key 'at' lists no step")
+-- a Dynamics without methods (and no pressure wall) would move nothing: refused, not run
+refused(function() iv.Dynamics{ dt = 0.01 }:run(sys, 10) end,
+        "run: the Dynamics has no methods, so nothing would move")
 -- a return that is neither nil nor a boolean is a mistaken stop: an error, not a run that goes on
 local mistaken = iv.Simulation{ system = sys, dynamics = dyn }
 mistaken:observe(function() return "stop" end, { every = 5 })
