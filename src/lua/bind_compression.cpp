@@ -140,7 +140,15 @@ int l_rescale(lua_State* L) {
 }  // namespace
 
 void open_compression(lua_State* L) {
-  set_constructor(L, "compress", &lua_wrap<&l_compress>, compress_fields().infos());
+  static const std::vector<Declaration> compress_keys = with_options(
+      compress_fields().infos(),
+      {option_key("progress", "Progress", "shows the compression's progress"),
+       option_key("callback", "function", "f(report) after each compression step"),
+       option_key("continue_from", "table",
+                  "the report of a stopped compression: continues it bit for bit"),
+       option_key("contacts", "table",
+                  "Contacts keys for the compression only (given back on every exit)")});
+  set_constructor(L, "compress", &lua_wrap<&l_compress>, compress_keys);
   set_constructor(L, "rescale", &lua_wrap<&l_rescale>, rescale_fields().infos());
 }
 

@@ -56,7 +56,11 @@ void open_progress(lua_State* L) {
                                      p.update(static_cast<long long>(step), time);
                                    }>(),
                             method<"finish", [](Progress& p) { p.finish(); }>()});
-  set_constructor(L, "Progress", &lua_wrap<&l_new>, progress_fields().infos());
+  static const std::vector<Declaration> progress_keys = with_options(
+      progress_fields().infos(),
+      {option_key("live", "boolean",
+                  "redraw one line on the terminal (default: when stderr is a terminal)")});
+  set_constructor(L, "Progress", &lua_wrap<&l_new>, progress_keys);
 }
 
 }  // namespace invasim::lua

@@ -12,6 +12,7 @@
 // alternatives joined by '|' ("number|Ramp"). `range` applies to numbers and integers,
 // `choices` to strings, and a plain default must lie inside them.
 #include <cmath>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <vector>
@@ -65,6 +66,22 @@ inline Declaration field_declaration(std::string name, std::vector<std::string> 
   d.unit = std::move(unit);
   d.help = std::move(help);
   return d;
+}
+
+// A key a binding reads itself (an object, a function, a table), not a field of the object's
+// state: declared for the listings (invasim keys, .fields) with no default.
+inline Declaration option_key(std::string name, std::string type, std::string help) {
+  Declaration d =
+      field_declaration(std::move(name), {std::move(type)}, std::nullopt, "-", std::move(help));
+  d.state = false;
+  return d;
+}
+
+// The declarations of a field table followed by those of the keys its binding reads itself.
+inline std::vector<Declaration> with_options(std::vector<Declaration> fields,
+                                             std::initializer_list<Declaration> options) {
+  fields.insert(fields.end(), options.begin(), options.end());
+  return fields;
 }
 
 // A number range as declarations state it: a key that takes finite values only has an open

@@ -173,7 +173,7 @@ TEST_CASE("every key a constructor reads is declared in its field table", "[lua]
       { iv.Langevin, { group = cells, kT = 0 } },
       { iv.Active, { group = cells, f0 = 0, tau_p = 1, randomize = false } },
       { iv.Dynamics, {} }, { iv.Fire, {} }, { iv.Correlator, { group = cells, interval = 1 } },
-      { iv.Snapshots, { dir = "unused" } }, { iv.Progress, {}, { "live" } },
+      { iv.Snapshots, { dir = "unused" } }, { iv.Progress, {} },
       { iv.System, { box = {1, 1, 1} } }, { iv.ramp, { from = 0, to = 1, steps = 1 } },
     }
     for i, c in ipairs(cases) do
@@ -183,12 +183,12 @@ TEST_CASE("every key a constructor reads is declared in its field table", "[lua]
       assert(got == declared(c[1].fields, c[3]), i .. ": reads " .. got .. "; declares " .. declared(c[1].fields, c[3]))
     end
     local got = read_keys(iv.compress, sys, { to_phi = 0.5, zz = 1 })
-    assert(got == declared(iv.compress.fields, { "callback", "contacts", "continue_from", "progress" }), got)
+    assert(got == declared(iv.compress.fields), got)
     got = read_keys(iv.rescale, sys, { phi_a = 0.5, zz = 1 })
     assert(got == declared(iv.rescale.fields), got)
     local dyn = iv.Dynamics{}
     got = read_keys(dyn.pressure_wall, dyn, { P = 0, zz = 1 })
-    assert(got == declared(iv.Dynamics.pressure_wall.fields, { "walls" }), got)
+    assert(got == declared(iv.Dynamics.pressure_wall.fields), got)
     got = read_keys(tethers.connect, tethers, { zz = 1 })
     assert(got == declared(iv.Tethers.connect.fields), got)
   )lua"));
