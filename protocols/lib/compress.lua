@@ -87,6 +87,9 @@ end
 -- Compresses (or continues a compression stopped by a signal); returns the report.
 local function compress(tissue, o)
   local sys = tissue.sys
+  -- The checkpoint directory before the work, not a failed save after it (an `out` that is
+  -- no run directory yet, or cannot be written, is refused here, naming it).
+  if o.out then iv.make_dirs(o.out .. "/checkpoint") end
   local save = o.out and resume.compressed_path(o.out) or nil
   o.checkpoint = o.out and resume.compressing_path(o.out) or nil
   -- Cohesion and adhesion off: the engine applies this for the compression and the final FIRE

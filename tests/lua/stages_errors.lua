@@ -31,6 +31,9 @@ expect_error("compress: unknown key 'to_ph' %(did you mean 'to_phi'%?%)", requir
 expect_error("compress: key 'cohesion' must be a boolean %(true or false%), got string", require("lib.compress"), tissue, { cohesion = "off" })
 expect_error("compress: unknown key 'beta'", require("lib.compress"), tissue, { beta = 0 })
 expect_error("compress: key 'from' must be a string, got boolean", require("lib.compress"), tissue, { from = true })
+-- An out that cannot hold the checkpoints is refused before the compression, not after it.
+expect_error("make_dirs: cannot create directory '/proc/no_such_run/checkpoint'",
+             require("lib.compress"), tissue, { to_phi = 0.5, out = "/proc/no_such_run" })
 expect_error("^stages_errors.lua:%d+: production: key 'snapshot_every' must be an integer >= 0, got %-1",
              require("lib.stages").production, tissue, { snapshot_every = -1 })
 expect_error("heterogeneity: missing required key 'lambda'", require("lib.heterogeneity"), tissue, {})
