@@ -12,7 +12,8 @@
 --                      (s = 0.9, omega^2 = eps/(m s^2)) gives dt < 1.8, the adipocytes' volume
 --                      mode dt < 0.25 sqrt(1e3 / eps_v) (docs/model.md, "Compression": unstable
 --                      above 0.2-0.25 at eps_v = 1e3), a tether dt < 2 sqrt(21 / K_ecm) (two
---                      adipocytes of 42 unit-mass vertices); and dt >= 1e-9: a smaller step moves a
+--                      adipocytes of 42 unit-mass vertices), the vertices' modes scaled by
+--                      sqrt(vertex_mass) (M.max_dt); and dt >= 1e-9: a smaller step moves a
 --                      body at the model's speeds (~1e-2 sigma/tau) by less than 1e3 rounding
 --                      units of its position, and the temperatures come out as 0/0;
 --   gamma, vertex_gamma  gamma dt / (2 m) <= 0.5 (m = 1): the integrator's half-step
@@ -48,11 +49,24 @@ M.ftol_rounding_units = 10
 
 local function fail(fmt, ...) error(string.format(fmt, ...), 0) end
 
--- The largest stable time step of velocity Verlet in the tissue's stiffest mode.
-function M.max_dt(eps_v)
-  local contact = 2 * 0.9  -- 2 / omega with omega^2 = eps_c / (m s^2), s = 0.9
-  if eps_v <= 0 then return contact end
-  return math.min(contact, 0.25 * math.sqrt(1e3 / eps_v))
+-- The largest stable time step of velocity Verlet in the tissue's stiffest mode, and that
+-- mode: a contact spring between cells (2 / omega with omega^2 = eps_c / (m s^2), s = 0.9,
+-- m = 1), one between a vertex of mass vertex_mass (default 1) and a cell (s = 1.45) or
+-- another vertex (s = 2), or the adipocytes' volume mode (0.25 sqrt(1e3 / eps_v) for unit-mass
+-- vertices); a vertex's modes scale with sqrt(vertex_mass).
+function M.max_dt(eps_v, vertex_mass)
+  local m = vertex_mass or 1
+  local modes = { { 2 * 0.9, "a contact spring between cells of diameter 0.9" },
+                  { 2 * 1.45 * math.sqrt(math.min(m, 1)), "a contact spring between a cell and a vertex" },
+                  { 2 * 2 * math.sqrt(m), "a contact spring between two vertices" } }
+  if eps_v > 0 then
+    modes[#modes + 1] = { 0.25 * math.sqrt(1e3 / eps_v) * math.sqrt(m),
+                          string.format("the adipocytes' volume mode at eps_v = %g", eps_v) }
+  end
+  local limit, mode = math.huge, nil
+  for _, x in ipairs(modes) do if x[1] < limit then limit, mode = x[1], x[2] end end
+  if m ~= 1 and mode ~= modes[1][2] then mode = mode .. string.format(", vertex_mass = %g", m) end
+  return limit, mode
 end
 
 -- The smallest force tolerance a minimisation can reach in a box of side L (see above).
@@ -102,14 +116,12 @@ local function check_time_step(p)
          "less than 1e3 rounding units of its position (the temperatures would be 0/0); dt must " ..
          "be at least %g", dt, M.min_dt)
   end
-  local eps_v = p.eps_v or 0
-  local limit = M.max_dt(eps_v)
-  local mode = limit < 1.8 and string.format("the adipocytes' volume mode at eps_v = %g", eps_v)
-               or "a contact spring between cells of diameter 0.9"
-  -- A tether of stiffness K_ecm between two adipocytes of 42 unit-mass vertices (reduced mass
-  -- 21): omega^2 = K_ecm / 21.
-  if p.K_ecm and p.K_ecm > 0 and 2 * math.sqrt(21 / p.K_ecm) < limit then
-    limit = 2 * math.sqrt(21 / p.K_ecm)
+  local limit, mode = M.max_dt(p.eps_v or 0, p.vertex_mass)
+  -- A tether of stiffness K_ecm between two adipocytes of 42 vertices (reduced mass
+  -- 21 vertex_mass): omega^2 = K_ecm / (21 vertex_mass).
+  local reduced = 21 * (p.vertex_mass or 1)
+  if p.K_ecm and p.K_ecm > 0 and 2 * math.sqrt(reduced / p.K_ecm) < limit then
+    limit = 2 * math.sqrt(reduced / p.K_ecm)
     mode = string.format("a tether at K_ecm = %g", p.K_ecm)
   end
   if dt >= limit then
