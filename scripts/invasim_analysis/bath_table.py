@@ -37,6 +37,8 @@ import subprocess
 import sys
 import tempfile
 
+from . import atomic
+
 P, GAMMA = 1.3e-3, 0.2
 TAU_PS = (25.0, 2500.0, 0.02)
 BETAS = (1e-3, 1e-2)
@@ -204,12 +206,11 @@ def main():
                 row["reading"], row["point"], 2 * row["kT_c_over_P"], row["T_c_over_T_a"],
                 row["T_c_over_T_a_err"]), flush=True)
     os.makedirs(os.path.dirname(a.csv) or ".", exist_ok=True)
-    with open(a.csv + ".tmp", "w", newline="") as f:
+    with atomic.open_text(a.csv) as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         w.writeheader()
         for r in rows:
             w.writerow({k: ("%.6g" % v if isinstance(v, float) else v) for k, v in r.items()})
-    os.replace(a.csv + ".tmp", a.csv)
     text = markdown(rows, all_readings, points, m_v)
     replace_between_markers(a.model, text)
     print("wrote", a.csv, "and the tables of", a.model)
@@ -227,9 +228,7 @@ def replace_between_markers(path, text):
         sys.exit("%s: needs one line '%s' and, after it, one line '%s' around the tables" % (path, BEGIN, END))
     head, rest = page.split(BEGIN, 1)
     _, tail = rest.split(END, 1)
-    with open(path + ".tmp", "w") as f:
-        f.write(head + BEGIN + "\n" + text + "\n" + END + tail)
-    os.replace(path + ".tmp", path)
+    atomic.write_text(path, head + BEGIN + "\n" + text + "\n" + END + tail)
 
 
 def in_window(r):

@@ -25,7 +25,7 @@ import math
 import os
 import sys
 
-from . import csv_header, plot_labels  # plot_labels: the figures' label table
+from . import atomic, csv_header, plot_labels  # plot_labels: the figures' label table
 from .deps import ensure_modules
 
 NO_REEXEC = "INVASIM_PLOT_NO_REEXEC"  # set when re-executed, so it happens at most once
@@ -110,14 +110,8 @@ def axis_label(text, unit):
 
 
 def save(figure, path):
-    """Writes the figure as PNG atomically (temporary file, then rename)."""
-    temporary = path + ".tmp.%d" % os.getpid()
-    try:
-        figure.savefig(temporary, format="png", dpi=120)
-        os.replace(temporary, path)
-    finally:
-        if os.path.exists(temporary):
-            os.remove(temporary)
+    """Writes the figure as PNG atomically (atomic.py)."""
+    atomic.save_figure(figure, path, format="png", dpi=120)
 
 
 def spans_decades(np, arrays):
@@ -200,10 +194,9 @@ def write_labels(out_dir, labels):
     import json
 
     path = os.path.join(out_dir, "labels.json")
-    with open(path + ".tmp", "w") as f:
+    with atomic.open_text(path) as f:
         json.dump(labels, f, indent=1, ensure_ascii=False, sort_keys=True)
         f.write("\n")
-    os.replace(path + ".tmp", path)
 
 
 def main():

@@ -16,7 +16,7 @@ import json
 import math
 import os
 
-from . import steady, workspace
+from . import atomic, steady, workspace
 from .errors import InputError
 from .validation import points as state
 
@@ -93,7 +93,7 @@ def analyse(workspaces, out_dir, beta=None):
            "predicted_onset_ratio": {str(P): r for P, r in predicted.items()},
            "beta": beta, "c2": C2_PAPER}
     os.makedirs(out_dir, exist_ok=True)
-    with open(os.path.join(out_dir, "pressure.json"), "w") as f:
+    with atomic.open_text(os.path.join(out_dir, "pressure.json")) as f:
         json.dump(rec, f, indent=1, sort_keys=True)
     # The figure marks the steady onsets, or the provisional ones when no steady pair brackets.
     shown = (x_half, half) if any(math.isfinite(x) for x in x_half.values()) else (provisional, provisional_half)
@@ -125,7 +125,7 @@ def plot(points, x_half, half, path):
     ax.set_ylabel(r"$A_t/A_t^{max}$")
     ax.legend(fontsize=7, frameon=False)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    atomic.save_figure(fig, path, dpi=110)
     plt.close(fig)
 
 

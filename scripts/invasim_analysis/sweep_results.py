@@ -17,10 +17,9 @@ from the workspace's point of the same id is refused: the sweep file changed.
 """
 
 import os
-import shutil
 import sys
 
-from . import workspace
+from . import atomic, workspace
 
 KEPT_SUFFIXES = (".json", ".csv", ".txt", ".log")
 SKIPPED_NAMES = {"run.lock", ".lock", "resume.txt"}
@@ -57,9 +56,9 @@ def kept_files(job_dir):
 
 
 def copy_atomically(src, dest_dir, name):
-    tmp = os.path.join(dest_dir, "." + name + ".tmp")
-    shutil.copyfile(src, tmp)
-    os.replace(tmp, os.path.join(dest_dir, name))
+    """Copies src to dest_dir/name through a temporary file renamed into place (atomic.py):
+    an interrupted save or restore leaves each file whole, old or new."""
+    atomic.copy_file(src, os.path.join(dest_dir, name))
 
 
 def save(ws, dest):

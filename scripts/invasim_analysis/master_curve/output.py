@@ -7,6 +7,8 @@ import json
 import math
 import os
 
+from .. import atomic
+
 CURVE_COLUMNS = ["curve", "state_points", "jobs", "a", "a_error", "b", "b_error", "log10_a",
                  "log10_a_error", "chi2", "dof", "beta", "P", "tau_g", "tau_d", "tau_d_error",
                  "tau_g_over_tau_d", "error_scale", "not_a_fit", "excluded_from_scale_fit",
@@ -36,13 +38,14 @@ def curve_record(c):
 
 
 def write_tables(out_dir, result, settings):
-    """Writes fits.csv, fits.json, points.csv, rows.csv into out_dir; returns their paths."""
+    """Writes fits.csv, fits.json, points.csv, rows.csv into out_dir (each atomically:
+    atomic.py); returns their paths."""
     curves = result["curves"]
     # Group keys as columns of fits.csv, unless fits.csv has them already (beta, P).
     group_keys = [k for k in (curves[0]["group"] if curves else []) if k not in CURVE_COLUMNS]
     paths = {n: os.path.join(out_dir, n) for n in ("fits.csv", "fits.json", "points.csv",
                                                    "rows.csv")}
-    with open(paths["fits.csv"], "w", newline="") as f:
+    with atomic.open_text(paths["fits.csv"]) as f:
         w = csv.writer(f, lineterminator="\n")
         w.writerow(CURVE_COLUMNS[:1] + group_keys + CURVE_COLUMNS[1:])
         for c in curves:
@@ -57,10 +60,10 @@ def write_tables(out_dir, result, settings):
                             for p in result["plateau_fits"]],
            "curves": [curve_record(c) for c in curves], "scale_fit": scale,
            "not_steady": unsteady}
-    with open(paths["fits.json"], "w") as f:
+    with atomic.open_text(paths["fits.json"]) as f:
         json.dump(doc, f, indent=2, sort_keys=False)
         f.write("\n")
-    with open(paths["points.csv"], "w", newline="") as f:
+    with atomic.open_text(paths["points.csv"]) as f:
         w = csv.writer(f, lineterminator="\n")
         w.writerow(["curve", "x", "x_error", "A_n", "A_n_error", "replicates", "E_c", "jobs"])
         for c in curves:
@@ -68,7 +71,7 @@ def write_tables(out_dir, result, settings):
                 jobs = " ".join(result["rows"][i].get("job_id", "") for i in p["rows"])
                 w.writerow([c["name"], _text(p["x"]), _text(p["x_error"]), _text(p["A_n"]),
                             _text(p["A_n_error"]), p["replicates"], _text(p["x"] / c["a"]), jobs])
-    with open(paths["rows.csv"], "w", newline="") as f:
+    with atomic.open_text(paths["rows.csv"]) as f:
         w = csv.writer(f, lineterminator="\n")
         w.writerow(["job_id", "curve", "x", "rA_t", "A_n", "steady", "not_steady_because"])
         for i, r in enumerate(result["rows"]):

@@ -12,6 +12,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from .. import atomic  # noqa: E402
 from ..plot_labels import state_label, unit_text  # noqa: E402
 
 from .fits import sigmoid  # noqa: E402
@@ -82,7 +83,7 @@ def curves_figure(path, result, x_label):
     ax.set_ylabel(A_N_LABEL)
     ax.legend(fontsize=7, loc="best")
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    atomic.save_figure(fig, path, dpi=120)
     labels = _record(fig)
     plt.close(fig)
     return labels
@@ -112,7 +113,7 @@ def collapse_figure(path, curves):
     ax.set_ylabel(r"$(A_n - L)/(H - L)$, $L$, $H$: fitted plateaus " + NONE)
     ax.legend(fontsize=7, loc="best")
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    atomic.save_figure(fig, path, dpi=120)
     labels = _record(fig)
     plt.close(fig)
     return labels
@@ -151,7 +152,7 @@ def scale_figure(path, curves, scale):
     ax.set_xlabel(r"$\tau_\gamma/\tau_d$ ($\tau_\gamma = m/\gamma$) " + NONE)
     bx.set_xlabel(r"$c_1(1 + c_2\beta\epsilon_c/(P\sigma^3))\,\tau_\gamma/\tau_d$ (fitted) " + NONE)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    atomic.save_figure(fig, path, dpi=120)
     labels = _record(fig)
     plt.close(fig)
     return labels
@@ -169,7 +170,7 @@ def write_figures(out_dir, result, x_label):
         labels["a_vs_tau.png"] = scale_figure(paths["a_vs_tau.png"], result["curves"],
                                               result["scale_fit"])
     paths["figure_labels.json"] = os.path.join(out_dir, "figure_labels.json")
-    with open(paths["figure_labels.json"], "w") as f:
+    with atomic.open_text(paths["figure_labels.json"]) as f:
         json.dump(labels, f, indent=1, ensure_ascii=False, sort_keys=True)
         f.write("\n")
     return paths

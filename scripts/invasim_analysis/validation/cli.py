@@ -38,6 +38,7 @@ import os
 import re
 import sys
 
+from .. import atomic
 from ..deps import ensure_modules
 from ..errors import InputError
 from ..repo_paths import REPO, repo_path
@@ -161,11 +162,9 @@ def paper(root, out, invasim, plan_path, argv):
 
 
 def write_json(path, obj):
-    """JSON written atomically (a temporary file renamed into place)."""
-    tmp = "%s.tmp.%d" % (path, os.getpid())
-    with open(tmp, "w") as f:
+    """JSON written atomically (atomic.py)."""
+    with atomic.open_text(path) as f:
         json.dump(obj, f, indent=1, default=float)
-    os.replace(tmp, path)
 
 
 def main(argv):
@@ -234,7 +233,7 @@ def main(argv):
             print(plan.table(entries))
             if args.out:
                 os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
-                with open(args.out, "w") as fh:
+                with atomic.open_text(args.out) as fh:
                     json.dump(entries, fh, indent=1)
         elif args.verb == "paper":
             paper(args.root, args.out, args.invasim, args.plan, argv)

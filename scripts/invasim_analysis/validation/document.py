@@ -6,6 +6,7 @@ import json
 import os
 
 from . import citations, document_paper
+from .. import atomic
 from . import plan as plan_mod
 from ..errors import InputError
 from .verdict import CRITERIA, DISAGREES, VERDICTS, is_code_check, paper, paper_verdict
@@ -311,8 +312,7 @@ def render(fig_dir, plan_entries, out_path, ci_size=False, done_entries=None, pa
     L += [CONTRADICTIONS, METHOD]
     text = "\n".join(L)
     _check_citations(list(paper().values()) + all_rows, text, out_path)
-    with open(out_path, "w") as f:
-        f.write(text)
+    atomic.write_text(out_path, text)
     return counts
 
 

@@ -8,7 +8,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from .. import plot_labels
+from .. import atomic, plot_labels
 
 # The one temperature axis of every figure: the measured cancer-cell temperature in the
 # paper's convention (its Eq. (14): twice the equipartition T_c), for passive runs too.
@@ -44,11 +44,11 @@ def log_axis(ax, values, axis="x"):
 
 
 def save(fig, out_dir, name, rect=None):
-    """Writes the figure (rect: the part of the figure tight_layout fills, leaving room for a
+    """Writes the figure atomically (rect: the part of the figure tight_layout fills, leaving room for a
     legend outside the axes)."""
     path = os.path.join(out_dir, name)
     fig.tight_layout(rect=rect)
-    fig.savefig(path, dpi=110)
+    atomic.save_figure(fig, path, dpi=110)
     plt.close(fig)
     return name
 
