@@ -2,18 +2,12 @@
 -- logs interleave correctly with the progress lines on stderr).
 -- A failed write to log.txt (a full disk) is an error that stops the run: a log cut
 -- mid-line would not say that it is incomplete.
+local iv = require("invasim")
 local files = require("lib.files")
 
 local M = {}
 local tee_file, tee_path = nil, nil
-
--- Also append every message to `path` (the run's log.txt), flushed line by line.
-function M.tee(path)
-  if tee_file then tee_file:close() end
-  local f, err = io.open(path, "a")
-  if not f then error(string.format("cannot open the run's log %s: %s", path, err), 0) end
-  tee_file, tee_path = f, path
-end
+local at_error_registered = false
 
 -- Appends a line to log.txt; a failed write or flush raises an error naming the file (and
 -- stops the tee, so that reporting that error does not write to it again).
@@ -27,6 +21,18 @@ local function append(line)
     error(string.format("cannot write the run's log %s: %s; the run stops (its log would be " ..
                         "incomplete)", path, err), 0)
   end
+end
+
+-- Also append every message to `path` (the run's log.txt), flushed line by line.
+function M.tee(path)
+  if tee_file then tee_file:close() end
+  local f, err = io.open(path, "a")
+  if not f then error(string.format("cannot open the run's log %s: %s", path, err), 0) end
+  if not at_error_registered then  -- the message that ends the run goes to its log too
+    iv.at_error(function(message) append("end: " .. message .. "\n") end)
+    at_error_registered = true
+  end
+  tee_file, tee_path = f, path
 end
 
 function M.say(stage, fmt, ...)

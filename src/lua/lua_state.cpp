@@ -147,7 +147,31 @@ LuaState::Outcome LuaState::call_loaded(int load_status) {
     message = lua_tostring(L_, -1);  // e.g. out of memory before the handler ran
   }
   lua_settop(L_, 0);
+  run_error_functions(message);
   throw ScriptError(message, traceback);
+}
+
+void LuaState::run_error_functions(const std::string& message) {
+  lua_settop(L_, 0);
+  try {
+    protected_call(L_, 0, 2, [&message](lua_State* S) noexcept {
+      lua_getfield(S, LUA_REGISTRYINDEX, kAtErrorRegistryKey);
+      lua_pushlstring(S, message.data(), message.size());
+      return 2;
+    });
+  } catch (const std::exception&) {  // out of memory: the message is reported all the same
+    lua_settop(L_, 0);
+    return;
+  }
+  const lua_Integer n = lua_istable(L_, 1) ? static_cast<lua_Integer>(lua_rawlen(L_, 1)) : 0;
+  for (lua_Integer i = 1; i <= n; ++i) {
+    lua_rawgeti(L_, 1, i);
+    lua_pushvalue(L_, 2);
+    lua_pcall(L_, 1, 0,
+              0);  // its own error (a full disk, a stop) is dropped: the first is reported
+    lua_settop(L_, 2);
+  }
+  lua_settop(L_, 0);
 }
 
 LuaState::Outcome LuaState::run_file(const std::string& path) {

@@ -28,6 +28,9 @@ class ScriptError : public std::runtime_error {
   std::string traceback_;
 };
 
+// The registry key of the list of functions invasim.at_error registers.
+inline constexpr const char* kAtErrorRegistryKey = "invasim.at_error";
+
 class LuaState {
  public:
   enum class Outcome { kCompleted, kStopped };  // kStopped: a binding raised StopScript
@@ -54,6 +57,9 @@ class LuaState {
 
  private:
   Outcome call_loaded(int load_status);
+  // Calls the functions invasim.at_error registered, in order, with the message of the error
+  // that ends the script (protected; their own errors are dropped).
+  void run_error_functions(const std::string& message);
 
   // The allocator's bookkeeping (lua_Alloc user data).
   struct Memory {

@@ -10,6 +10,7 @@
 #include "lua/adapters.hpp"
 #include "lua/binding.hpp"
 #include "lua/context.hpp"
+#include "lua/lua_state.hpp"
 
 namespace invasim::lua {
 
@@ -17,6 +18,26 @@ namespace invasim::lua {
 #define INVASIM_LUA_PART(part) void open_##part(lua_State* L);
 #include "lua_bindings.inc"
 #undef INVASIM_LUA_PART
+
+namespace {
+
+// invasim.at_error(f): f(message) is called when the script ends with an error (a stop by a
+// signal included), after the stack has unwound and before invasim reports it: lib.log writes
+// the message to the run's log.txt. Functions run in the order registered; their own errors
+// are dropped.
+int l_at_error(lua_State* L) {
+  if (lua_type(L, 1) != LUA_TFUNCTION) throw InputError(bad_argument(L, 1, "function"));
+  lua_pushvalue(L, 1);
+  protected_call(L, 1, 0, [](lua_State* S) noexcept {
+    luaL_getsubtable(S, LUA_REGISTRYINDEX, kAtErrorRegistryKey);
+    lua_pushvalue(S, 1);
+    lua_rawseti(S, -2, static_cast<lua_Integer>(lua_rawlen(S, -2)) + 1);
+    return 0;
+  });
+  return 0;
+}
+
+}  // namespace
 
 int open_invasim(lua_State* L) {
   {
@@ -44,7 +65,7 @@ int open_invasim(lua_State* L) {
                  // invasim.hash(text): FNV-1a 64 of the bytes, as 16 hex digits (a run's identity).
                  method<"hash", [](std::string text) { return fnv1a64_hex(text); }>(),
                  // invasim.stop(): ends the script here, without an error (exit status 0).
-                 method<"stop", []() -> void { throw StopScript(); }>()});
+                 method<"stop", []() -> void { throw StopScript(); }>(), INVASIM_LUA_FN(at_error)});
 #define INVASIM_LUA_PART(part) open_##part(L);
 #include "lua_bindings.inc"
 #undef INVASIM_LUA_PART
