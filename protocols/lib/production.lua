@@ -148,6 +148,7 @@ local function production(tissue, opts)
   if resume.pending() and checkpoint then
     local state = resume.deserialize(iv.load_checkpoint(checkpoint, parts), checkpoint)
     rows, end_step, tissue.compression = state.rows, state.end_step, state.compression
+    tissue.last_checkpoint = { path = checkpoint, step = sys:step() }  -- good until replaced
     resume.done()
     if o.proliferation then observers.follow_cells(tissue) end
     -- Frames after the checkpoint's step belong to the abandoned part of the run: out of the

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Test: a resumed run rewrites series.csv (its header and the rows the checkpoint holds)
 # atomically, so a resume that fails while writing it (here a file-size limit, as a full disk or
-# a quota would) leaves the previous series.csv whole instead of truncated; a later resume
-# then finishes the run.
+# a quota would) leaves the previous series.csv whole instead of truncated; a resume whose first
+# checkpoint write fails (ENOSPC, the test hook of io/test_hooks.hpp) names the checkpoint it
+# resumed from as the last good one; a later resume then finishes the run.
 # Usage: series_resume_atomic.sh INVASIM WORKDIR
 set -euo pipefail
 invasim=$1
@@ -31,6 +32,12 @@ if (trap '' XFSZ; ulimit -f "$limit"; "$invasim" run --resume "$work/run") > "$w
 fi
 cmp "$work/series_before.csv" "$work/run/series.csv" ||
   fail "series.csv changed by the failed resume ($(stat -c %s "$work/run/series.csv") of $series bytes)" "$work/limited.log"
+stopped=$(grep -o "stopped by SIGTERM at step [0-9]*" "$work/killed.log" | grep -o "[0-9]*$")
+if INVASIM_TEST_FAIL_CHECKPOINT_WRITE=1 "$invasim" run --resume "$work/run" > "$work/nospace.log" 2>&1; then
+  fail "a resume whose checkpoint write failed succeeded" "$work/nospace.log"
+fi
+grep -q "last good checkpoint: $work/run/checkpoint/state.ckpt (step $stopped)" "$work/nospace.log" ||
+  fail "the failed resume does not name the checkpoint of step $stopped" "$work/nospace.log"
 "$invasim" run --resume "$work/run" > "$work/resumed.log" 2>&1 || fail "resume" "$work/resumed.log"
 rows=$(($(wc -l < "$work/run/series.csv") - 1))
 [ "$rows" -eq 2000 ] || fail "series.csv has $rows rows after the resume, not 2000"
