@@ -257,7 +257,7 @@ class SpecReader {
     if (!lua_istable(L_, -1))
       fail_input(path_,
                  ": a sweep spec must return a table { protocol = ..., set = ..., product = "
-                 "..., zip = ..., seeds = ..., prep = ... }; it returned a ",
+                 "..., zip = ..., seeds = ..., prep = ... }; it returned ",
                  type_at(-1));
     static const std::set<std::string> known = {"protocol", "set",  "product", "zip",
                                                 "seeds",    "prep", "tiny"};
