@@ -7,7 +7,6 @@ local files = require("lib.files")
 
 local M = {}
 local tee_file, tee_path = nil, nil
-local at_error_registered = false
 
 -- Appends a line to log.txt; a failed write or flush raises an error naming the file (and
 -- stops the tee, so that reporting that error does not write to it again).
@@ -28,12 +27,12 @@ function M.tee(path)
   if tee_file then tee_file:close() end
   local f, err = io.open(path, "a")
   if not f then error(string.format("cannot open the run's log %s: %s", path, err), 0) end
-  if not at_error_registered then  -- the message that ends the run goes to its log too
-    iv.at_error(function(message) append("end: " .. message .. "\n") end)
-    at_error_registered = true
-  end
   tee_file, tee_path = f, path
 end
+
+-- The message that ends a run (an error, a stop by a signal) goes to its log too (nowhere
+-- before a tee).
+iv.at_error(function(message) append("end: " .. message .. "\n") end)
 
 function M.say(stage, fmt, ...)
   local line = stage .. ": " .. string.format(fmt, ...) .. "\n"

@@ -56,16 +56,16 @@ local function fail(fmt, ...) error(string.format(fmt, ...), 0) end
 -- vertices); a vertex's modes scale with sqrt(vertex_mass).
 function M.max_dt(eps_v, vertex_mass)
   local m = vertex_mass or 1
+  local vertex = m ~= 1 and string.format(", vertex_mass = %g", m) or ""  -- in a vertex mode
   local modes = { { 2 * 0.9, "a contact spring between cells of diameter 0.9" },
-                  { 2 * 1.45 * math.sqrt(math.min(m, 1)), "a contact spring between a cell and a vertex" },
-                  { 2 * 2 * math.sqrt(m), "a contact spring between two vertices" } }
+                  { 2 * 1.45 * math.sqrt(math.min(m, 1)), "a contact spring between a cell and a vertex" .. vertex },
+                  { 2 * 2 * math.sqrt(m), "a contact spring between two vertices" .. vertex } }
   if eps_v > 0 then
     modes[#modes + 1] = { 0.25 * math.sqrt(1e3 / eps_v) * math.sqrt(m),
-                          string.format("the adipocytes' volume mode at eps_v = %g", eps_v) }
+                          string.format("the adipocytes' volume mode at eps_v = %g", eps_v) .. vertex }
   end
   local limit, mode = math.huge, nil
   for _, x in ipairs(modes) do if x[1] < limit then limit, mode = x[1], x[2] end end
-  if m ~= 1 and mode ~= modes[1][2] then mode = mode .. string.format(", vertex_mass = %g", m) end
   return limit, mode
 end
 

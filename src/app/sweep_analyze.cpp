@@ -12,6 +12,7 @@
 
 #include "app/cli.hpp"
 #include "core/errors.hpp"
+#include "io/atomic_file.hpp"
 #include "sweep/collect.hpp"
 #include "sweep/spec.hpp"
 #include "sweep/workspace.hpp"
@@ -98,7 +99,7 @@ int sweep_analyze(const std::vector<std::string>& args) {
   std::ostringstream table;
   const int rows = sweep::collect(ws, table);
   const fs::path results = ws.root() / "results.csv";
-  sweep::write_file(results, table.str());
+  write_file_atomically(results, table.str());
   std::cout << "sweep analyze: " << rows << " rows in " << results.string() << '\n';
 
   // The parameters the fits use, at the protocol's defaults where the sweep does not set them.

@@ -18,6 +18,7 @@
 #include "app/tee_output.hpp"
 #include "core/errors.hpp"
 #include "core/stop_request.hpp"
+#include "io/atomic_file.hpp"
 #include "lua/lua_state.hpp"
 #include "sweep/collect.hpp"
 #include "sweep/init_workspace.hpp"
@@ -167,7 +168,7 @@ int collect(const std::vector<std::string>& args) {
   // point) or writing (a full disk) leaves the previous table as it was.
   std::ostringstream table;
   const int rows = sweep::collect(ws, table);
-  sweep::write_file(*output, table.str());
+  write_file_atomically(*output, table.str());
   std::cerr << "sweep collect: " << rows << " rows in " << *output << '\n';
   return 0;
 }

@@ -18,17 +18,6 @@ void TetherForce::set_stiffness(double k) {
   stiffness_ = k;
 }
 
-std::vector<Vec3> TetherForce::body_centres(const System& sys) {
-  std::vector<Vec3> c(sys.bodies().size());
-  std::vector<Vec3> x;
-  for (std::size_t b = 0; b < c.size(); ++b) {
-    x.resize(sys.bodies()[b].n_vertices());
-    sys.body_vertices(int(b), x.data());
-    c[b] = vertex_centroid(int(x.size()), x.data());
-  }
-  return c;
-}
-
 namespace {
 
 // Refuses a tether between bodies that do not exist, a body and itself, or a negative rest
@@ -51,9 +40,16 @@ Vec3 body_centre(const System& sys, int b) {
 
 }  // namespace
 
+std::vector<Vec3> TetherForce::body_centres(const System& sys) {
+  std::vector<Vec3> c(sys.bodies().size());
+  for (std::size_t b = 0; b < c.size(); ++b) c[b] = body_centre(sys, int(b));
+  return c;
+}
+
 void TetherForce::add(const System& sys, int a, int b, double rest_length) {
   check_tether(sys, a, b, rest_length);
-  add(sys, a, b, rest_length, sys.box().nearest_periods(body_centre(sys, a) - body_centre(sys, b)));
+  tethers_.push_back(
+      {a, b, rest_length, sys.box().nearest_periods(body_centre(sys, a) - body_centre(sys, b))});
 }
 
 void TetherForce::add(const System& sys, int a, int b, double rest_length, const Vec3i& periods) {

@@ -146,13 +146,12 @@ LuaState::Outcome LuaState::call_loaded(int load_status) {
   } else if (lua_isstring(L_, -1)) {
     message = lua_tostring(L_, -1);  // e.g. out of memory before the handler ran
   }
-  lua_settop(L_, 0);
+  lua_settop(L_, 0);  // run_error_functions starts from an empty stack
   run_error_functions(message);
   throw ScriptError(message, traceback);
 }
 
 void LuaState::run_error_functions(const std::string& message) {
-  lua_settop(L_, 0);
   try {
     protected_call(L_, 0, 2, [&message](lua_State* S) noexcept {
       lua_getfield(S, LUA_REGISTRYINDEX, kAtErrorRegistryKey);
@@ -167,8 +166,8 @@ void LuaState::run_error_functions(const std::string& message) {
   for (lua_Integer i = 1; i <= n; ++i) {
     lua_rawgeti(L_, 1, i);
     lua_pushvalue(L_, 2);
-    lua_pcall(L_, 1, 0,
-              0);  // its own error (a full disk, a stop) is dropped: the first is reported
+    // Its own error (a full disk, a stop) is dropped: the script's error is the one reported.
+    lua_pcall(L_, 1, 0, 0);
     lua_settop(L_, 2);
   }
   lua_settop(L_, 0);

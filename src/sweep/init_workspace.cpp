@@ -14,6 +14,7 @@
 
 #include "core/errors.hpp"
 #include "core/names.hpp"
+#include "io/atomic_file.hpp"
 #include "sweep/workspace.hpp"
 
 namespace invasim::sweep {
@@ -155,7 +156,7 @@ void check_same_sweep(const SweepSpec& spec, const Json& old, const fs::path& ro
 // A pending job: its state point and job document in `dir` (created).
 void write_job(const fs::path& dir, const Json& point) {
   fs::create_directories(dir);
-  write_file(dir / "signac_statepoint.json", python_dumps(point));
+  write_file_atomically(dir / "signac_statepoint.json", python_dumps(point));
   write_pending(dir);
 }
 
@@ -172,7 +173,7 @@ InitReport create(const SweepSpec& spec, const fs::path& root) {
   fs::remove_all(tmp);
   fs::create_directories(tmp / ".signac");
   fs::create_directories(tmp / "workspace");
-  write_file(tmp / ".signac" / "config", "schema_version = 2\n");
+  write_file_atomically(tmp / ".signac" / "config", "schema_version = 2\n");
   InitReport report;
   std::vector<std::string> ids;  // in the spec's order, for the configuration
   std::unordered_set<std::string> written;
@@ -188,7 +189,7 @@ InitReport create(const SweepSpec& spec, const fs::path& root) {
     fs::create_directories(tmp / "prep");
     write_pending(tmp / "prep");
   }
-  write_file(tmp / kConfig, config_of(spec, ids).dump(2) + "\n");
+  write_file_atomically(tmp / kConfig, config_of(spec, ids).dump(2) + "\n");
   fs::rename(tmp, root);  // root is absent or an empty directory
   return report;
 }
@@ -215,7 +216,7 @@ InitReport grow(const SweepSpec& spec, const fs::path& root, std::vector<std::st
       // Moved in by an init killed before it wrote the configuration (or listed without a
       // state point): list it, keeping what it holds.
       if (!fs::exists(dir / "signac_statepoint.json"))
-        write_file(dir / "signac_statepoint.json", python_dumps(point));
+        write_file_atomically(dir / "signac_statepoint.json", python_dumps(point));
       if (!fs::exists(dir / "signac_job_document.json")) write_pending(dir);
       if (listed_ids.insert(id).second) ids.push_back(id);
       ++report.added;
@@ -237,7 +238,7 @@ InitReport grow(const SweepSpec& spec, const fs::path& root, std::vector<std::st
     fs::create_directories(root / "prep");
     write_pending(root / "prep");
   }
-  write_file(root / kConfig, config_of(spec, ids).dump(2) + "\n");
+  write_file_atomically(root / kConfig, config_of(spec, ids).dump(2) + "\n");
   return report;
 }
 

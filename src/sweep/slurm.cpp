@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "io/atomic_file.hpp"
 #include "sweep/job_record.hpp"
 #include "sweep/status.hpp"
 
@@ -117,7 +118,7 @@ int submit_slurm(const Workspace& ws, const SlurmOptions& o, std::ostream& out) 
            << "# the shared preparation every point starts from (--from "
            << ws.job_dir(kPrepId).string() << ")\nexec " << exe << " sweep job " << root << ' '
            << kPrepId << ' ' << threads << " --max-requeues " << o.max_requeues << '\n';
-    write_file(dir / "prep.sbatch", script.str());
+    write_file_atomically(dir / "prep.sbatch", script.str());
   }
   const std::size_t chunk =
       static_cast<std::size_t>(o.max_array_size > 0 ? o.max_array_size : cluster_max_array_size());
@@ -131,7 +132,7 @@ int submit_slurm(const Workspace& ws, const SlurmOptions& o, std::ostream& out) 
     const fs::path points = dir / ("points" + suffix + ".txt");
     std::string list;  // atomic and checked like the scripts: a cut list would drop points
     for (const auto& id : arrays[j]) list.append(id).append("\n");
-    write_file(points, list);
+    write_file_atomically(points, list);
     std::ostringstream script;
     script << header(o, "invasim-sweep", (dir / "slurm-%A_%a.out").string(), false)
            << "#SBATCH --array=0-" << arrays[j].size() - 1;
@@ -141,7 +142,7 @@ int submit_slurm(const Workspace& ws, const SlurmOptions& o, std::ostream& out) 
            << quoted(points.string()) << ")\nexec " << exe << " sweep job " << root << " \"$id\" "
            << threads << " --max-requeues " << o.max_requeues << '\n';
     scripts.push_back(dir / ("array" + suffix + ".sbatch"));
-    write_file(scripts.back(), script.str());
+    write_file_atomically(scripts.back(), script.str());
   }
   if (o.dry_run) {
     out << "sweep submit: wrote " << (need_prep ? (dir / "prep.sbatch").string() + " and " : "")
@@ -168,7 +169,7 @@ int submit_slurm(const Workspace& ws, const SlurmOptions& o, std::ostream& out) 
                    {"array_job", array_job},
                    {"prep_job", prep_job.empty() ? Json(nullptr) : Json(prep_job)},
                    {"points", arrays[j]}});
-    write_file(slurm_dir / "submissions.json", log.dump(2) + "\n");
+    write_file_atomically(slurm_dir / "submissions.json", log.dump(2) + "\n");
     out << "sweep submit: " << arrays[j].size() << " points as Slurm job array " << array_job
         << (prep_job.empty() ? "" : " (after job " + prep_job + ")") << "; script "
         << scripts[j].string() << '\n';

@@ -11,12 +11,6 @@
 
 namespace invasim::sweep {
 
-// The output layer's atomic writer: every write checked (a full disk is an error, not an
-// empty file), fsynced, through a temporary file of this process renamed over the target.
-void write_file(const fs::path& path, const std::string& text) {
-  write_file_atomically(path, text);
-}
-
 Json read_document(const fs::path& job_dir) {
   const fs::path path = job_dir / "signac_job_document.json";
   if (!fs::exists(path)) return Json{{"status", "pending"}};
@@ -24,7 +18,7 @@ Json read_document(const fs::path& job_dir) {
 }
 
 void write_document(const fs::path& job_dir, const Json& document) {
-  write_file(job_dir / "signac_job_document.json", document.dump(2) + "\n");
+  write_file_atomically(job_dir / "signac_job_document.json", document.dump(2) + "\n");
 }
 
 JobLock::~JobLock() {

@@ -56,10 +56,6 @@ class Workspace {
 Json read_document(const fs::path& job_dir);
 void write_document(const fs::path& job_dir, const Json& document);  // atomic (rename)
 
-// Writes text to path atomically (io/atomic_file.hpp: "<path>.tmp.<pid>", checked, fsynced,
-// renamed over it); on a failure an IoError names the path and the old file is unchanged.
-void write_file(const fs::path& path, const std::string& text);
-
 // An exclusive lock on a job (flock on DIR/run.lock), held by whoever runs it; child
 // processes inherit it. Not copyable.
 class JobLock {
