@@ -55,7 +55,9 @@ local function summarise(rows, columns, fraction)
       for i, row in ipairs(rows) do xs[i] = row[c] end
       if #xs > 0 then
         local b = iv.block_average(xs, { fraction = fraction })
-        summary[c] = { mean = b.mean, error = b.error, samples = b.n }
+        -- error_converged: the blocking reached its plateau; false when the window is too
+        -- short for the column's correlation time, and `error` is then a lower bound.
+        summary[c] = { mean = b.mean, error = b.error, samples = b.n, error_converged = b.plateau }
       end
     end
   end

@@ -3,18 +3,28 @@ local log = require("lib.log")
 
 local M = {}
 
--- Prints "name = mean +- error unit" for each name of `names` present in `summary`.
+-- Prints "name = mean +- error unit" for each name of `names` present in `summary`. An error
+-- bar that is only a lower bound (error_converged false: the blocking analysis found no
+-- plateau, the window being too short for the quantity's correlation time) is marked with
+-- "(*)", and one line after the list says what the mark means.
 function M.print(label, summary, names, units)
+  local marked = false
   for _, name in ipairs(names) do
     local s = summary[name]
     if s then
       local unit = units and units[name] or ""
       if s.error == s.error then
-        log.say(label, "%-8s = %.5g +- %.2g %s", name, s.mean, s.error, unit)
+        local lower_bound = s.error_converged == false
+        marked = marked or lower_bound
+        log.say(label, "%-8s = %.5g +- %.2g %s%s", name, s.mean, s.error, unit, lower_bound and " (*)" or "")
       else  -- too few samples for an error bar
         log.say(label, "%-8s = %.5g (no error bar: too few samples) %s", name, s.mean, unit)
       end
     end
+  end
+  if marked then
+    log.say(label, "(*) error bar a lower bound: the blocking analysis found no plateau (the window is " ..
+            "too short for the correlation time; even uncorrelated values need about 128 samples to show one)")
   end
 end
 

@@ -66,9 +66,11 @@ for i = 2, #series do
   local A_t, A_max = tonumber(f[col.A_t]), tonumber(f[col.A_t_max])
   assert(A_t > 0 and A_t <= A_max, "A_t out of range in row " .. i)
   -- T_c/T_a and the paper's temperature convention (2 T_c) are derived from the same row.
+  -- Each of the three numbers is printed with 10 digits (%.10g, a relative rounding of up to
+  -- 5e-10 each), hence 2e-9.
   local T_c, T_a = tonumber(f[col.T_c]), tonumber(f[col.T_a])
-  assert(math.abs(tonumber(f[col.T_c_over_T_a]) - T_c / T_a) <= 1e-9 * T_c / T_a, "T_c_over_T_a in row " .. i)
-  assert(math.abs(tonumber(f[col.kT_c_paper]) - 2 * T_c) <= 1e-9 * T_c, "kT_c_paper in row " .. i)
+  assert(math.abs(tonumber(f[col.T_c_over_T_a]) - T_c / T_a) <= 2e-9 * T_c / T_a, "T_c_over_T_a in row " .. i)
+  assert(math.abs(tonumber(f[col.kT_c_paper]) - 2 * T_c) <= 2e-9 * T_c, "kT_c_paper in row " .. i)
   -- Samples are taken at the steps of the System that are multiples of `every`.
   local step = tonumber(f[col.step])
   assert(step % p.every == 0 and step > tissue.sys:step() - p.steps and step <= tissue.sys:step(),
@@ -106,6 +108,50 @@ for _, name in ipairs{ "A_t", "T_c", "P_right", "L_x" } do
                        a.mean, a.samples, half, sum / half))
 end
 assert(pressures_checked == expected_rows, "wall pressures checked at " .. pressures_checked .. " samples")
+-- Each error bar says whether the blocking analysis reached its plateau (error_converged), as
+-- the criterion of Lee et al. (block size B with B^3 > 2 n (err_B / err_1)^4, at least 16
+-- blocks; docs/measurements_dynamics.md) decides it over series.csv's window, here computed
+-- anew; a lower bound is marked "(*)" in the printed summary. Runs of at least 256 rows must
+-- show both kinds (the CTest run of 1000 rows does).
+local function blocking_plateau(xs)
+  local m, n = {}, #xs
+  for i, x in ipairs(xs) do m[i] = x end
+  local e1, B = nil, 1
+  while #m >= 16 do
+    local mean, ss = 0, 0
+    for _, x in ipairs(m) do mean = mean + x / #m end
+    for _, x in ipairs(m) do ss = ss + (x - mean) ^ 2 end
+    local e = math.sqrt(ss / #m / (#m - 1))
+    e1 = e1 or e
+    local margin = e1 > 0 and B ^ 3 / (2 * n * (e / e1) ^ 4) or math.huge
+    if margin > 1 then return true, margin end
+    local halved = {}
+    for i = 1, #m - 1, 2 do halved[#halved + 1] = 0.5 * (m[i] + m[i + 1]) end
+    m, B = halved, 2 * B
+    if #m < 16 then return false, margin end
+  end
+  return false, 0
+end
+local converged, judged = 0, 0
+for name, a in pairs(s.averages) do
+  if type(a) == "table" and a.error and col[name] then
+    assert(type(a.error_converged) == "boolean", "summary " .. name .. ": error_converged missing")
+    local xs = {}
+    for i = #rows - half + 1, #rows do xs[#xs + 1] = tonumber(rows[i][col[name]]) end
+    local plateau, margin = blocking_plateau(xs)
+    if math.abs(margin - 1) > 1e-6 then  -- series.csv's %.10g could flip a tie
+      assert(a.error_converged == plateau, string.format("summary %s: error_converged = %s, " ..
+             "the blocking criterion over series.csv says %s", name, a.error_converged, plateau))
+    end
+    judged = judged + 1
+    if a.error_converged then converged = converged + 1 end
+  end
+end
+assert(judged >= 10, "error_converged judged for " .. judged .. " averages")
+if #rows >= 256 then
+  assert(converged > 0 and converged < judged, string.format("%d of %d error bars converged: " ..
+         "expected both kinds at %d rows", converged, judged, #rows))
+end
 -- The slices' median A_2D (robust to sliver profiles) next to the mean, and the profile count.
 local median = tonumber(summary:match('"shape_2d_median": ([%d%.eE+-]+)'))
 local profiles = tonumber(summary:match('"shape_2d_profiles": (%d+)'))
@@ -115,10 +161,18 @@ assert(median and median >= 1.0 and profiles and profiles > 0 and mean2,
 local log_text = table.concat(lines(out .. "/log.txt"), "\n")
 assert(log_text:find("summary: T_c_over_T_a = ") and log_text:find("summary: kT_c_paper = ") and
        log_text:find("paper's convention: "), "the printed summary shows T_c/T_a and kT_c_paper")
+for _, name in ipairs{ "A_t", "T_c", "T_a", "P_left", "L_x", "phi" } do
+  local line = log_text:match("\nsummary: " .. name .. " +=[^\n]*")
+  assert(line, "printed summary line of " .. name)
+  assert((line:find("%(%*%)$") ~= nil) == (s.averages[name].error_converged == false),
+         "the printed line marks a lower bound iff error_converged is false: " .. line)
+end
+assert(converged == judged or log_text:find("%(%*%) error bar a lower bound"), "the (*) footnote")
 assert(table.concat(lines(out .. "/params.json"), "\n"):find('"N_c": 60'), "params.json")
 assert(table.concat(lines(out .. "/log.txt"), "\n"):find("summary: results in"), "log.txt")
 local pvd = table.concat(lines(out .. "/snapshots/adipocytes.pvd"), "\n")
 local frames = 0
 for _ in pvd:gmatch("<DataSet ") do frames = frames + 1 end
 assert(frames == 1 + p.steps // p.snapshot_every, "adipocytes.pvd has " .. frames .. " frames")
-print("production_outputs: ok (" .. expected_rows .. " rows, " .. frames .. " frames)")
+print("production_outputs: ok (" .. expected_rows .. " rows, " .. frames .. " frames, " .. converged ..
+      " of " .. judged .. " error bars converged)")
