@@ -300,9 +300,10 @@ void throw_protected_error(lua_State* L, int status) {
 
 void call_lua(lua_State* L, int nargs, int nresults) {
   if (!lua_checkstack(L, 1)) throw LuaApiError("Lua stack overflow");
-  // describe_error_object below the function: error({}) in a callback names its place.
+  // The handler below the function: error({}) in a callback names its place, and the
+  // traceback with the callback's frames is kept for --traceback.
   const int handler = lua_gettop(L) - nargs;
-  lua_pushcfunction(L, &describe_error_object);  // a light C function: no allocation
+  lua_pushcfunction(L, &callback_message_handler);  // a light C function: no allocation
   lua_insert(L, handler);
   const int status = lua_pcall(L, nargs, nresults, handler);
   lua_remove(L, handler);

@@ -2,6 +2,8 @@
 
 #include <lua.hpp>
 
+#include <cstring>
+
 #include "lua/binding.hpp"
 
 namespace invasim::lua {
@@ -33,6 +35,52 @@ int describe_error_object(lua_State* L) {
   }
   lua_concat(L, lua_gettop(L) - 1);
   return 1;
+}
+
+namespace {
+constexpr const char* kCallbackTracebackKey = "invasim.callback_traceback";  // {message, traceback}
+
+// Whether the table at `index` records `message` (its entry 1). Leaves the stack as it was.
+bool records_message(lua_State* L, int index, const char* message) {
+  if (lua_type(L, index) != LUA_TTABLE) return false;
+  lua_rawgeti(L, index, 1);
+  const bool same =
+      lua_type(L, -1) == LUA_TSTRING && std::strcmp(lua_tostring(L, -1), message) == 0;
+  lua_pop(L, 1);
+  return same;
+}
+}  // namespace
+
+int callback_message_handler(lua_State* L) {
+  describe_error_object(L);  // the description (or the stop sentinel) on top
+  lua_copy(L, -1, 1);
+  lua_settop(L, 1);
+  if (lua_type(L, 1) != LUA_TSTRING) return 1;
+  const char* message = lua_tostring(L, 1);
+  lua_getfield(L, LUA_REGISTRYINDEX, kCallbackTracebackKey);
+  if (!records_message(L, -1, message)) {
+    lua_createtable(L, 2, 0);
+    lua_pushvalue(L, 1);
+    lua_rawseti(L, -2, 1);
+    luaL_traceback(L, L, nullptr, 1);
+    lua_rawseti(L, -2, 2);
+    lua_setfield(L, LUA_REGISTRYINDEX, kCallbackTracebackKey);
+  }
+  lua_settop(L, 1);
+  return 1;
+}
+
+bool take_callback_traceback(lua_State* L, const char* message) {
+  lua_getfield(L, LUA_REGISTRYINDEX, kCallbackTracebackKey);
+  const bool recorded = records_message(L, -1, message);
+  if (recorded) lua_rawgeti(L, -1, 2);
+  lua_pushnil(L);
+  lua_setfield(L, LUA_REGISTRYINDEX, kCallbackTracebackKey);
+  if (recorded)
+    lua_remove(L, -2);  // the record
+  else
+    lua_pop(L, 1);
+  return recorded;
 }
 
 }  // namespace invasim::lua

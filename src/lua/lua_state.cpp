@@ -24,8 +24,9 @@ namespace {
 constexpr const char* kContextKey = "invasim.context";
 
 // Message handler of every script run: leaves the stop sentinel alone, otherwise returns
-// {message, traceback}; a non-string error object is described with the place it was raised
-// (lua/error_object.hpp). Plain C-style code: nothing here owns a C++ object.
+// {message, traceback} (for an error from a callback, the traceback recorded where it was
+// raised: lua/error_object.hpp); a non-string error object is described with the place it was
+// raised (lua/error_object.hpp). Plain C-style code: nothing here owns a C++ object.
 int message_handler(lua_State* L) {
   if (is_stop_sentinel(L, 1)) return 1;
   lua_settop(L, 1);
@@ -36,7 +37,8 @@ int message_handler(lua_State* L) {
   lua_createtable(L, 2, 0);
   lua_pushstring(L, message);
   lua_rawseti(L, -2, 1);
-  luaL_traceback(L, L, nullptr, 1);
+  // An error raised in a callback and re-raised by its binding: the stack where it began.
+  if (!take_callback_traceback(L, message)) luaL_traceback(L, L, nullptr, 1);
   lua_rawseti(L, -2, 2);
   return 1;
 }
