@@ -43,7 +43,7 @@ function M.declarations()
     vertex_bath = { "langevin", choices = { "langevin", "damped" }, help = "bath of the adipocyte vertices and the piston: langevin (FDT noise at kT) or damped (no noise)" },
     vertex_gamma = declare.engine("Langevin", "gamma", nil, "of the adipocyte vertices"),
     vertex_mass = { 1.0, range = "(0, inf)", unit = "m", help = "mass of each adipocyte vertex (the cells have m = 1)" },
-    vertex_kT = { 0.0, range = "[0, inf)", unit = "eps_c", help = "noise temperature of langevin vertices (0: the background kT)" },
+    vertex_kT = { 0.0, range = "[0, inf)", unit = "eps_c", help = "noise temperature of langevin vertices (0: the background kT; refused > 0 with damped vertices)" },
     eps_v = declare.engine("Shape", "eps_v", 1e3),
     eps_a = declare.engine("Shape", "eps_a", 1.0),
     start = { "demixed", choices = { "demixed", "mixed" }, help = "initial placement: demixed (cells left of the adipocytes) or mixed (both over the whole box)" },
@@ -138,6 +138,11 @@ local function check_combinations(p)
     error(string.format("kT = %g and background_factor = %g both set the active cells' background " ..
                         "temperature: --set background_factor=0 to give kT yourself, or leave kT " ..
                         "at 0 (docs/model.md, Vertex bath)", p.kT, p.background_factor), 0)
+  end
+  if p.vertex_bath == "damped" and p.vertex_kT > 0 then
+    error(string.format("vertex_kT = %g sets the noise of langevin vertices, but vertex_bath = " ..
+                        "'damped' gives them none: --set vertex_bath=langevin, or leave vertex_kT at 0",
+                        p.vertex_kT), 0)
   end
   if iv.from then M.check_from(p, iv.from) end
 end

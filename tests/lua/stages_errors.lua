@@ -64,6 +64,8 @@ expect_error("^stages_errors.lua:%d+: production: key 'lags' = 0 is out of range
              require("lib.production"), tissue, { lags = 0 })
 expect_error("^stages_errors.lua:%d+: quench: vertex_bath = 'hot': unknown vertex bath; choose one of: damped, langevin",
              require("lib.quench"), tissue, { vertex_bath = "hot" })
+expect_error("^stages_errors.lua:%d+: quench: vertex_kT = 0.001 sets the noise of langevin vertices, but vertex_bath = 'damped' gives them none",
+             require("lib.quench"), tissue, { vertex_bath = "damped", vertex_kT = 1e-3 })
 expect_error("quench: key 'vertex_gamma' must be a number, got string",
              require("lib.quench"), tissue, { vertex_gamma = "low" })
 expect_error("rescale: key 'phi_a' must be a number, got boolean", require("lib.rescale"), tissue, { phi_a = true })
