@@ -39,9 +39,12 @@ function M.final(tissue, p, result, seconds, out, extra)
             derived.kT_over_P, derived.kT_c_paper_over_P, derived.T_c_over_T_a)
   end
   if s.correlation_window then
+    -- A time shorter than the correlator's interval (lib/production.lua) is marked.
+    local function time(name)
+      return optional(s[name], "%.4g") .. (s[name .. "_unresolved"] and " (unresolved)" or "")
+    end
     log.say("summary", "tau_d = %s (standard normalisation %s), tau_r = %s (window %g)",
-            optional(s.tau_d, "%.4g"), optional(s.tau_d_standard, "%.4g"), optional(s.tau_r, "%.4g"),
-            s.correlation_window)
+            time("tau_d"), time("tau_d_standard"), time("tau_r"), s.correlation_window)
   end
   if s.shape_3d_mean and s.shape_2d_error then
     log.say("summary", "shape parameter: 3D mean %.4f, no 2D slices (%s)", s.shape_3d_mean,

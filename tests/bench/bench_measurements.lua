@@ -15,8 +15,12 @@ local parameters = require("lib.parameters")
 local stage = require("lib.stages")
 local thermo = require("lib.thermo")
 
+local production_keys = require("lib.production").keys  -- the production stage's defaults
 local p = iv.params(parameters.merge{
   blocks = { 5, type = "integer", range = "[1, inf)", help = "blocks of `every` steps timed" },
+  lags = { production_keys.lags[1], type = "integer", range = "[1, inf)", help = "correlator lags" },
+  origin_every = { production_keys.origin_every[1], type = "integer", range = "[1, inf)",
+                   help = "a time origin every this many correlator samples" },
 })
 parameters.validate(p)
 local N_a, N_c, L0 = parameters.size(p)
@@ -25,7 +29,7 @@ stage.compress(tissue, { to_phi = p.phi, ftol = p.compress_ftol, final_ftol = p.
                          cohesion = p.cohesive_compression, progress = false })
 stage.quench(tissue, require("lib.motion").quench_options(p, { steps = p.quench_steps }))
 local sys, dyn = tissue.sys, tissue.dyn
-local lags, origin_every = 250, 5  -- lib/production.lua's defaults
+local lags, origin_every = p.lags, p.origin_every
 local corr = p.correlate_every > 0 and iv.Correlator{ group = tissue.cells,
   interval = p.correlate_every * dyn:dt(), lags = lags, origin_every = origin_every } or nil
 local chunk = p.correlate_every > 0 and p.correlate_every or p.every
