@@ -153,6 +153,50 @@ def case_synthetic(script, scratch):
               "%s is a PNG figure" % name)
     check_figure_labels(os.path.join(out, "figure_labels.json"), script)
     calibration(np, synthetic, truth, scratch)
+    error_scaling(np, fits)
+
+
+def error_scaling(np, fits):
+    """Fits whose points scatter more than their errors say carry errors scaled by
+    sqrt(chi2/dof) (the PDG scale factor): the fit of a over 10 curves with 20 % model scatter
+    and 1 % stated errors (pulls then t-distributed, 8 dof: rms 1.15), and the shared plateaus of the joint fit over points scattered 3x
+    their errors, both give pulls of rms about 1 over 200 trials (about 5 and 3 unscaled). A
+    curve whose A_n never reaches 1/2 within 2 errors has no located midpoint."""
+    from invasim_analysis.master_curve import plateaus
+
+    rng = np.random.default_rng(20261206)
+    q = np.repeat([0.0, 7.7], 5)
+    r = np.tile([1.0, 2.0, 3.0, 4.0, 5.0], 2)
+    c1_pulls, lo_pulls, scales = [], [], []
+    log_x = np.linspace(-2, 0, 7)
+    for _ in range(200):
+        model = 0.06 * (1.0 + 0.1 * q) * r
+        a = model * (1.0 + 0.2 * rng.standard_normal(10))
+        f = fits.fit_scale(a, 0.01 * model, q, r, np.zeros(10))
+        c1_pulls.append((f["c1"] - 0.06) / f["c1_error"])
+        scales.append(f["error_scale"])
+        curves = []
+        for log_a in (-1.3, -0.9, -0.6):
+            y = 0.05 + 0.9 * fits.sigmoid_log(log_x, log_a, 1.5) + 0.03 * rng.standard_normal(7)
+            curves.append({"points": [{"x": 10.0 ** lx, "A_n": yy, "A_n_error_own": 0.01}
+                                      for lx, yy in zip(log_x, y)],
+                           "log10_a": log_a, "b": 1.5})
+        joint = plateaus.fit_joint(curves)
+        lo_pulls.append((joint["lo"] - 0.05) / joint["lo_error"])
+    rms_c1 = float(np.sqrt(np.mean(np.square(c1_pulls))))
+    rms_lo = float(np.sqrt(np.mean(np.square(lo_pulls))))
+    check(0.7 < rms_c1 < 1.5 and min(scales) > 1,
+          "fit of a with 20 %% scatter: c1 pulls rms %.2f (within 0.7-1.5), error_scale %.2f-%.2f"
+          % (rms_c1, min(scales), max(scales)))
+    check(0.7 < rms_lo < 1.5, "joint plateaus over points scattered 3x their errors: pulls of "
+          "L rms %.2f (within 0.7-1.5)" % rms_lo)
+    xs = [0.01, 0.03, 0.1, 0.3, 1.0]
+    low = [0.05, 0.1, 0.2, 0.3, 0.39]
+    why = fits.midpoint_not_located(1.2, 0.1, 1.5, 0.2, xs, low, [0.02] * 5)
+    check(why is not None and "stays below 1/2" in why,
+          "A_n rising to 0.39 +- 0.02 only: the midpoint is an extrapolation (%s)" % why)
+    why = fits.midpoint_not_located(0.25, 0.03, 1.5, 0.2, xs, [0.05, 0.1, 0.3, 0.55, 0.8], [0.02] * 5)
+    check(why is None, "A_n crossing 1/2: the midpoint is located (%s)" % why)
 
 
 def check_figure_labels(path, script):

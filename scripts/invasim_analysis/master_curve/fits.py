@@ -108,6 +108,11 @@ def midpoint_not_located(a, a_err, b, b_err, xs, ys, errs):
     if not rise > 2 * e:
         return ("A_n does not rise across the measured temperatures (%.3g to %.3g, +- %.2g): "
                 "a is not a midpoint" % (ys[lo], ys[hi], e))
+    reach_hi = max(y + 2 * e for y, e in zip(ys, errs))
+    reach_lo = min(y - 2 * e for y, e in zip(ys, errs))
+    if not reach_lo <= 0.5 <= reach_hi:
+        return ("A_n stays %s 1/2 at every measured temperature (beyond 2 errors): the midpoint "
+                "a = %.3g is an extrapolation" % ("below" if reach_hi < 0.5 else "above", a))
     if not xs[lo] / 2 <= a <= 2 * xs[hi]:
         return ("the midpoint a = %.3g lies outside the measured temperatures %.3g-%.3g "
                 "(a factor 2 either side allowed)" % (a, xs[lo], xs[hi]))
@@ -127,7 +132,8 @@ def fit_scale(a, a_err, q, r, r_rel_err, iterations=20):
     """Fits a = c1 (1 + c2 q) r over curves (q = beta/P, r = tau_g/tau_d). Sigmas: the
     effective variance a_err^2 + (model * relative error of r)^2, iterated to a fixed point.
     c2 is fitted only if q takes at least two values; else only c1 (c2 = None). Returns a
-    dict with c1, c2, errors, chi2, dof, chi2_dof (None if dof = 0), n_curves, sigma."""
+    dict with c1, c2, errors (scaled by error_scale = max(1, sqrt(chi2/dof))), chi2, dof,
+    chi2_dof (None if dof = 0), error_scale, n_curves, sigma."""
     a, a_err, q, r, r_rel = (np.asarray(v, float) for v in (a, a_err, q, r, r_rel_err))
     r_rel = np.where(np.isfinite(r_rel), r_rel, 0.0)
     with_c2 = len(np.unique(q)) >= 2
@@ -152,11 +158,14 @@ def fit_scale(a, a_err, q, r, r_rel_err, iterations=20):
         p = p_new
         if done:
             break
-    err = np.sqrt(np.diag(cov))
     chi2 = float(np.sum(((a - model((q, r), *p)) / sigma) ** 2))
     dof = len(a) - n_par
+    # The errors scaled by sqrt(chi2/dof) when the curves scatter more than their errors
+    # (the PDG scale factor, as fit_sigmoid's): the model's own scatter then sets them.
+    scale = max(1.0, math.sqrt(chi2 / dof)) if dof > 0 else 1.0
+    err = np.sqrt(np.diag(cov)) * scale
     return {"c1": float(p[0]), "c1_error": float(err[0]),
             "c2": float(p[1]) if with_c2 else None,
             "c2_error": float(err[1]) if with_c2 else None,
             "chi2": chi2, "dof": dof, "chi2_dof": chi2 / dof if dof > 0 else None,
-            "n_curves": len(a), "sigma": sigma.tolist()}
+            "error_scale": scale, "n_curves": len(a), "sigma": sigma.tolist()}

@@ -64,9 +64,13 @@ def fit_joint(curves):
         return None
     err = np.sqrt(np.diag(cov))
     residual = (y - model(None, *p)) / sigma
-    out = {"lo": float(p[0]), "lo_error": float(err[0]), "hi": float(p[1]),
-           "hi_error": float(err[1]), "chi2": float(np.sum(residual ** 2)),
-           "dof": int(len(y) - n_par), "per_curve": []}
+    chi2_all, dof_all = float(np.sum(residual ** 2)), int(len(y) - n_par)
+    # The shared plateaus' errors scaled as every fit's: by max(1, sqrt(chi2/dof)) of the
+    # joint fit (the points scatter more than their errors: the scatter sets the errors).
+    joint_scale = max(1.0, math.sqrt(chi2_all / dof_all))
+    out = {"lo": float(p[0]), "lo_error": float(err[0]) * joint_scale, "hi": float(p[1]),
+           "hi_error": float(err[1]) * joint_scale, "chi2": chi2_all, "dof": dof_all,
+           "error_scale": joint_scale, "per_curve": []}
     for n, c in enumerate(curves):
         mine = k == n
         chi2 = float(np.sum(residual[mine] ** 2))
