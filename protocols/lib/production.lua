@@ -163,6 +163,7 @@ local function production(tissue, opts)
             checkpoint, end_step - sys:step())
   end
   local file = o.out and series_file.open(o.out .. "/series.csv", columns, units, rows) or nil
+  local rows_text = resume.growing_list(rows)  -- each row serialized once, at its first checkpoint
   local sim = iv.Simulation{ system = sys, dynamics = dyn }
   -- Proliferation and lipolysis first: at a step where they are due, the samples and the
   -- checkpoint see their result.
@@ -183,7 +184,7 @@ local function production(tissue, opts)
     sim:checkpoint(resume.stamp{
       path = checkpoint, tethers = tissue.tethers, correlator = correlator,
       extra = function()
-        return resume.serialize{ rows = rows, end_step = end_step, compression = tissue.compression }
+        return resume.serialize{ rows = rows_text(), end_step = end_step, compression = tissue.compression }
       end,
       written = function(step)
         tissue.last_checkpoint = { path = checkpoint, step = step }
@@ -205,7 +206,11 @@ local function production(tissue, opts)
     error(tostring(err) .. where, 0)
   end
   local signal = iv.interrupted()
-  if signal then
+  if signal and sys:step() >= end_step then
+    -- The signal came with the last steps: the production is complete, and the run finishes
+    -- (its summary takes moments) instead of asking for a resume with nothing to run.
+    log.say(o.label, "%s arrived as the last step completed: finishing the run", signal)
+  elseif signal then
     if progress then progress:finish() end
     if checkpoint then
       error(string.format("stopped by %s at step %d (t = %g); checkpoint saved to %s; continue with: %s",

@@ -106,6 +106,21 @@ local function key_order(a, b)
   return false
 end
 
+-- Text that serialize writes as it is (see growing_list).
+local raw_text = {}
+
+-- serialize for a list that only grows (the production's rows, saved at every checkpoint):
+-- returns a function giving, as of the call, text that serialize writes exactly as it would
+-- write the list, each element serialized once, when first seen (not at every checkpoint,
+-- which made a long run's checkpoints cost O(rows) each). Elements must not change after that.
+function M.growing_list(list)
+  local parts = {}
+  return function()
+    for i = #parts + 1, #list do parts[i] = "[" .. M.serialize(i) .. "]=" .. M.serialize(list[i]) end
+    return setmetatable({ text = "{" .. table.concat(parts, ",") .. "}" }, raw_text)
+  end
+end
+
 -- Serialises plain Lua data (tables, numbers, strings, booleans) to a chunk that load()
 -- turns back into equal data; floats in hexadecimal, so they come back bit for bit. Keys are
 -- written in a fixed order (key_order): equal data gives identical text.
@@ -119,6 +134,7 @@ function M.serialize(v)
   elseif t == "string" then return string.format("%q", v)
   elseif t == "boolean" or t == "nil" then return tostring(v)
   elseif t == "table" then
+    if getmetatable(v) == raw_text then return v.text end
     local keys = {}
     for k, x in pairs(v) do
       if type(x) ~= "function" and type(x) ~= "userdata" then keys[#keys + 1] = k end

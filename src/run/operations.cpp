@@ -1,6 +1,7 @@
 #include "run/operations.hpp"
 
 #include "core/errors.hpp"
+#include "core/stop_request.hpp"
 #include "run/simulation.hpp"
 
 namespace invasim {
@@ -58,6 +59,7 @@ CheckpointOperation::CheckpointOperation(std::filesystem::path path, ComposeFn c
 }
 
 void CheckpointOperation::apply(Simulation& sim) {
+  const StopPathWork writing;  // a stop request meanwhile waits for this checkpoint
   CheckpointWriter w;
   compose_(w);
   w.write(path_);

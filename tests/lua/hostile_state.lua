@@ -31,4 +31,14 @@ local back = load_state(resume.serialize(state))
 assert(resume.serialize(back) == resume.serialize(state), "the state did not round-trip")
 assert(math.type(back.end_step) == "integer" and math.type(back.compression.phi) == "float")
 assert(back.rows[2].nan ~= back.rows[2].nan and back[-7] == false and back[3.5] == "float key")
+-- growing_list: the text serialize writes for the list, as the list grows (each element
+-- serialized once), also nested as the production stage's checkpoint state nests it.
+local rows, grown = {}, nil
+grown = resume.growing_list(rows)
+for n = 0, 5 do
+  if n > 0 then rows[n] = { A_t = n + 0.25, step = 1000 * n, label = "r" .. n } end
+  assert(resume.serialize(grown()) == resume.serialize(rows), "growing_list at " .. n .. " rows")
+  assert(resume.serialize{ rows = grown(), end_step = 7 } == resume.serialize{ rows = rows, end_step = 7 },
+         "growing_list nested at " .. n .. " rows")
+end
 print("hostile_state: crafted states refused, serialize round-trips")

@@ -7,7 +7,9 @@
 #     a module of its lib/ (the observers that write series.csv), naming the module;
 #  4. a finished run (its summary.json written) is not run again: exit 0, "nothing to resume";
 #  5. params.json with another invasim_version continues with a warning on stderr and in log.txt
-#     (a run without its summary.json, as one killed during its end-of-run analysis).
+#     (a run without its summary.json, as one killed during its end-of-run analysis);
+#  6. a run started with a relative protocol path resumes from another working directory
+#     (resume.txt records the resolved path).
 # Usage: resume_trusts.sh INVASIM WORKDIR
 set -euo pipefail
 invasim=$1 work=$2
@@ -64,4 +66,14 @@ sed -i 's/"invasim_version": "[^"]*"/"invasim_version": "9.9.9"/' "$dir/params.j
 grep -q "^invasim: warning: this run was started by invasim 9.9.9 (.*) and is continued by invasim " "$work/version.err" ||
   fail "no warning on stderr" "$work/version.err"
 grep -q "^run: warning: this run was started by invasim 9.9.9 " "$dir/log.txt" || fail "no warning in log.txt" "$dir/log.txt"
-echo "resume_trusts passed: edited params.json, resume.txt, protocol and module refused; a finished run kept; another version warned"
+
+# 6. A relative protocol path, resumed elsewhere.
+(cd "$work" && "$invasim" run protocols/invasion.lua --set N_a=4 --set N_c=60 --set L0=32.0 \
+  --set quench_steps=200 --set steps=400 --set every=200 --set snapshot_every=0 --out relative) \
+  > "$work/relative.log" 2>&1 || fail "run with a relative protocol path" "$work/relative.log"
+[ "$(head -1 "$work/relative/resume.txt")" = "$work/protocols/invasion.lua" ] ||
+  fail "resume.txt does not record the resolved protocol path" "$work/relative/resume.txt"
+(cd / && "$invasim" run --resume "$work/relative") > "$work/elsewhere.log" 2>&1 ||
+  fail "--resume from another working directory" "$work/elsewhere.log"
+grep -qF "nothing to resume" "$work/elsewhere.log" || fail "elsewhere: no message" "$work/elsewhere.log"
+echo "resume_trusts passed: edited params.json, resume.txt, protocol and module refused; a finished run kept; another version warned; resumed from another directory"

@@ -3,9 +3,12 @@
 --   callback: an endless loop inside an observer of the engine;
 --   graceful: the engine's step loop takes the stop, then the script's own stop path runs Lua
 --             code for 2 s (longer than the hook gives a stop that no stop point took) and
---             ends with its own message: the hook must leave that path alone.
+--             ends with its own message: the hook must leave that path alone;
+--   checkpoint: the signal arrives while a checkpoint's Lua state takes 2 s to compose (a long
+--             run's state): the checkpoint is finished and the run stops right after it, not
+--             cut short by the hook.
 local iv = require("invasim")
-local p = iv.params{ case = { "loop", help = "loop, callback or graceful" } }
+local p = iv.params{ case = { "loop", help = "loop, callback, graceful or checkpoint" } }
 
 local function say(text)
   print(text)
@@ -44,5 +47,25 @@ elseif p.case == "graceful" then
   while iv.clock() - start < 2.0 do end  -- a slow stop path in Lua
   say("stop_endless_loop: the stop path finished")
   error("stopped by " .. signal .. " after the script's own stop path", 0)
+end
+if p.case == "checkpoint" then
+  local sim = simulation()
+  iv.make_dirs(iv.out_dir)
+  local composed = 0
+  sim:checkpoint{ path = iv.out_dir .. "/state.ckpt", every = 100, on_stop = true,
+                  extra = function()
+                    composed = composed + 1
+                    if composed == 2 then
+                      say("stop_endless_loop: composing a slow checkpoint")
+                      local start = iv.clock()
+                      while iv.clock() - start < 2.0 do end
+                    end
+                    return "state " .. composed
+                  end }
+  local done, signal = sim:run(1000000000000)
+  assert(signal == "SIGTERM", "the run ended without a signal after " .. tostring(done) .. " steps")
+  -- The slow checkpoint (step 200) is the stop's: on_stop does not write a second one there.
+  assert(composed == 2 and iv.exists(iv.out_dir .. "/state.ckpt"), composed .. " checkpoints composed")
+  error("stopped by " .. signal .. " at step " .. done .. "; the slow checkpoint finished", 0)
 end
 error("unknown case " .. tostring(p.case))

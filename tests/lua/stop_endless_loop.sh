@@ -3,7 +3,8 @@
 # an endless loop at the top level and one inside an engine callback each end with exit status
 # 1 and "stopped by SIGTERM" naming the script's line, within 10 s; a stop the engine took
 # first keeps its own stop path, even when that path runs Lua code for 2 s, and a second
-# SIGTERM 0.5 s into that path (a batch system or a wrapper repeating it) does not cut it short.
+# SIGTERM 0.5 s into that path (a batch system or a wrapper repeating it) does not cut it short;
+# a SIGTERM while a checkpoint's Lua state takes 2 s lets that checkpoint finish.
 # Usage: stop_endless_loop.sh INVASIM WORKDIR
 set -euo pipefail
 invasim=$1 work=$2
@@ -41,9 +42,9 @@ stop() {
 }
 
 stop loop "stop_endless_loop: looping" \
-  "^invasim: error: stop_endless_loop.lua:26: stopped by SIGTERM while the script ran Lua code with no stop point of the engine"
+  "^invasim: error: stop_endless_loop.lua:29: stopped by SIGTERM while the script ran Lua code with no stop point of the engine"
 stop callback "stop_endless_loop: looping in a callback" \
-  "^invasim: error: stop_endless_loop.lua:31: stopped by SIGTERM while the script ran Lua code with no stop point of the engine"
+  "^invasim: error: stop_endless_loop.lua:34: stopped by SIGTERM while the script ran Lua code with no stop point of the engine"
 stop graceful "stop_endless_loop: running" \
   "^invasim: stopped by SIGTERM after the script's own stop path"
 grep -q "stop_endless_loop: the stop path finished" "$work/graceful.txt" ||
@@ -52,4 +53,8 @@ stop graceful "stop_endless_loop: running" \
   "^invasim: stopped by SIGTERM after the script's own stop path" graceful_twice
 grep -q "stop_endless_loop: the stop path finished" "$work/graceful_twice.txt" ||
   fail "graceful: a second SIGTERM cut the script's stop path short" "$work/graceful_twice.txt"
+# The signal during a checkpoint's slow Lua state (2 s, past the hook's 1 s for a stop that no
+# stop point took): the checkpoint is finished, then the stop point takes the signal.
+stop checkpoint "stop_endless_loop: composing a slow checkpoint" \
+  "^invasim: stopped by SIGTERM at step 200; the slow checkpoint finished"
 echo "stop_endless_loop: one SIGTERM ended every Lua loop; the engine's stop path kept"
