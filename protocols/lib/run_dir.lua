@@ -134,7 +134,8 @@ function M.open(p, dir)
   end
   if continuing then
     log.tee(dir .. "/log.txt")
-    log.say("run", "resuming the run in %s (run %s) from its checkpoint", dir, identity.id)
+    log.say("run", "resuming the run in %s (run %s) from its checkpoint; invasim %s (%s), %d threads",
+            dir, identity.id, iv.version, iv.git_revision, iv.threads())
     report(dir, temporaries, warnings)
     return dir
   end
@@ -166,6 +167,9 @@ function M.open(p, dir)
   end
   log.say("run", "invasim %s (%s), %d threads; run %s; output in %s", iv.version,
           iv.git_revision, iv.threads(), identity.id, dir)
+  if iv.resume then  -- stopped before its first checkpoint (or killed): nothing to continue from
+    log.say("run", "no checkpoint of this run in %s: --resume starts it again from the beginning", dir)
+  end
   report(dir, temporaries, warnings)
   return dir
 end

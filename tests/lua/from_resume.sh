@@ -31,6 +31,8 @@ grep -qF "invasim run --resume $work/killed starts the run again from the beginn
 [ ! -e "$work/killed/checkpoint/state.ckpt" ] || fail "a checkpoint was written before production"
 
 "$invasim" run --resume "$work/killed" > "$work/resumed.log" 2>&1 || fail "--resume" "$work/resumed.log"
+grep -qF "run: no checkpoint of this run in $work/killed: --resume starts it again from the beginning" "$work/killed/log.txt" ||
+  fail "log.txt does not say the resume starts again" "$work/killed/log.txt"
 grep -qF "compress: skipped: the compressed tissue of $first" "$work/resumed.log" ||
   fail "the resumed run did not start from the first run's compressed tissue" "$work/resumed.log"
 ! grep -q "^compress: to phi" "$work/resumed.log" || fail "the resumed run compressed a new tissue" "$work/resumed.log"

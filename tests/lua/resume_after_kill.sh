@@ -47,6 +47,9 @@ fi
 "$invasim" run --resume "$work/killed" > "$work/resumed.log" 2>&1 ||
   { echo "FAILED: resume"; cat "$work/resumed.log"; exit 1; }
 grep -q "resumed at step" "$work/resumed.log" || { echo "FAILED: did not resume"; cat "$work/resumed.log"; exit 1; }
+# The log names the program and threads of each part of the run.
+grep -q "^run: resuming the run in .* from its checkpoint; invasim .* [0-9]* threads$" "$work/killed/log.txt" ||
+  { echo "FAILED: log.txt does not record the resumed part's threads"; cat "$work/killed/log.txt"; exit 1; }
 
 # RESUME_COMPARE names other files to compare (a run without correlators has no
 # correlations.csv).
