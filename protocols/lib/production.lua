@@ -38,7 +38,7 @@ local spec = {
   slices_per_body = { 20, type = "number", range = "[0, inf)" },  -- random slices per adipocyte at the end (0: none)
   average_fraction = { 0.5, range = "(0, 1]" },  -- the summary averages the last half of the samples
   out = { type = "string" },        -- directory for series.csv, correlations.csv, shapes.csv
-  checkpoint_every = { 0, range = "[0, inf)", help = "steps between checkpoints in out/checkpoint/ (0: only on SIGINT/SIGTERM)" },
+  checkpoint_every = { 0, range = "[0, inf)", help = "steps between checkpoints in out/checkpoint/ (0: only on SIGINT/SIGTERM); also one at the last step" },
   lipolysis = { type = "Lipolysis", help = "adipocytes shrinking where cancer cells touch them (off: nil)" },
   lipolysis_every = { 1000, range = "[1, inf)", help = "steps between two applications of lipolysis (each recomputes the touched adipocytes' V_i, ~2 ms each)" },
   proliferation = { type = "Proliferation", help = "cancer cells dividing and dying (off: nil); the correlators follow the cells present at the start, the dead leaving them" },
@@ -190,7 +190,9 @@ local function production(tissue, opts)
         tissue.last_checkpoint = { path = checkpoint, step = step }
         log.note(o.label, "checkpoint of step %d written to %s", step, checkpoint)
       end,
-      every = o.checkpoint_every > 0 and o.checkpoint_every or nil, on_stop = true,
+      -- at_end: a run ends on a checkpoint of its last step, so a run stopped and resumed
+      -- ends with the same state.ckpt as one never interrupted.
+      every = o.checkpoint_every > 0 and o.checkpoint_every or nil, on_stop = true, at_end = true,
     })
   end
   local n = end_step - sys:step()

@@ -12,7 +12,7 @@ require("lib.quench")(tissue, { kT = 1e-3, steps = 100, progress = false })
 local production = require("lib.production")
 production(tissue, { steps = 400, every = 100, checkpoint_every = 200, out = out, progress = false,
                      correlate_every = 0, slices_per_body = 0 })
-local saved_step = tissue.last_checkpoint.step   -- the last periodic checkpoint (step 400)
+local saved_step = tissue.last_checkpoint.step   -- the checkpoint of its last step (500)
 tissue.dyn:set_dt(4.0)   -- unstable: contacts blow the cells apart
 local ok, err = pcall(production, tissue, { steps = 100000, every = 100, checkpoint_every = 200000,
                                             out = out, progress = false, correlate_every = 0 })

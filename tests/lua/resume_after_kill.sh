@@ -53,7 +53,7 @@ grep -q "^run: resuming the run in .* from its checkpoint; invasim .* [0-9]* thr
 
 # RESUME_COMPARE names other files to compare (a run without correlators has no
 # correlations.csv).
-for f in ${RESUME_COMPARE:-series.csv correlations.csv snapshots/cells_000030000.xyz}; do
+for f in ${RESUME_COMPARE:-series.csv correlations.csv snapshots/cells_000030000.xyz checkpoint/state.ckpt}; do
   cmp "$work/straight/$f" "$work/killed/$f" || { echo "FAILED: $f differs"; exit 1; }
 done
 echo "resume_after_kill: identical after SIGTERM at $(grep -o 'at step [0-9]*' "$work/killed.log" | head -1) and --resume"

@@ -35,10 +35,13 @@ grep -q '"P": 5,' "$dir/params.json" || fail "the test could not edit params.jso
 refused params "$dir/params.json does not agree with $dir/resume.txt, which this resume follows: P = 5 in params.json, 0.0013 in resume.txt"
 cp "$work/params.json" "$dir/params.json"
 
-# 2. resume.txt edited.
+# 2. resume.txt edited (the run's final checkpoint set aside: its own refusal, naming P too,
+#    would come first; stale_checkpoint.sh tests that one).
+mv "$dir/checkpoint/state.ckpt" "$work/state.ckpt"
 sed -i 's/^P=0.0013$/P=0.002/' "$dir/resume.txt"
 refused resume_txt "P = 0.0013 in params.json, 0.002 in resume.txt"
 cp "$work/resume.txt" "$dir/resume.txt"
+mv "$work/state.ckpt" "$dir/checkpoint/state.ckpt"
 
 # 3. The protocol changed.
 recorded=$(sed -n 's/^# protocol_hash=//p' "$dir/resume.txt")
