@@ -20,6 +20,13 @@ function M.check_vertex_bath(bath)
   return "unknown vertex bath; choose one of: damped, langevin"
 end
 
+-- nil, or why vertex_kT cannot go with the bath: damped vertices have no noise to set.
+function M.check_vertex_kT(bath, vertex_kT)
+  if bath ~= "damped" or not vertex_kT or vertex_kT <= 0 then return nil end
+  return string.format("vertex_kT = %g sets the noise of langevin vertices, but vertex_bath = " ..
+                       "'damped' gives them none", vertex_kT)
+end
+
 -- The langevin vertices' noise temperature: vertex_kT, or the background kT when it is 0.
 function M.vertex_kT(o)
   if o.vertex_kT and o.vertex_kT > 0 then return o.vertex_kT end

@@ -139,11 +139,8 @@ local function check_combinations(p)
                         "temperature: --set background_factor=0 to give kT yourself, or leave kT " ..
                         "at 0 (docs/model.md, Vertex bath)", p.kT, p.background_factor), 0)
   end
-  if p.vertex_bath == "damped" and p.vertex_kT > 0 then
-    error(string.format("vertex_kT = %g sets the noise of langevin vertices, but vertex_bath = " ..
-                        "'damped' gives them none: --set vertex_bath=langevin, or leave vertex_kT at 0",
-                        p.vertex_kT), 0)
-  end
+  local bad_kT = require("lib.motion").check_vertex_kT(p.vertex_bath, p.vertex_kT)
+  if bad_kT then error(bad_kT .. ": --set vertex_bath=langevin, or leave vertex_kT at 0", 0) end
   if iv.from then M.check_from(p, iv.from) end
 end
 

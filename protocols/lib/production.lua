@@ -231,11 +231,11 @@ local function production(tissue, opts)
     summary.tau_d = correlator:tau_d()
     summary.tau_d_standard = correlator:tau_d_standard()
     summary.tau_r = correlator:tau_r()
-    summary.correlation_window = o.lags * o.correlate_every * dyn:dt()
+    local interval, unresolved = o.correlate_every * dyn:dt(), {}
+    summary.correlation_window = o.lags * interval
     -- A decay time below the first lag is a straight line from C(0) = 1 to C(interval): not
     -- resolved (its bias depends on C's shape between the samples; a few % at tau_d ~ 0.9
     -- interval). Flagged in summary.json and the log.
-    local interval, unresolved = o.correlate_every * dyn:dt(), {}
     for _, name in ipairs{ "tau_d", "tau_d_standard", "tau_r" } do
       if summary[name] and summary[name] <= interval then
         summary[name .. "_unresolved"] = true

@@ -35,10 +35,8 @@ return function(tissue, opts)
   local o = iv.keywords(opts and opts.label or "quench", opts, spec)
   local bad_bath = motion.check_vertex_bath(o.vertex_bath)
   if bad_bath then error(string.format("%s: vertex_bath = '%s': %s", o.label, o.vertex_bath, bad_bath), 2) end
-  if o.vertex_bath == "damped" and o.vertex_kT > 0 then
-    error(string.format("%s: vertex_kT = %g sets the noise of langevin vertices, but vertex_bath = " ..
-                        "'damped' gives them none", o.label, o.vertex_kT), 2)
-  end
+  local bad_kT = motion.check_vertex_kT(o.vertex_bath, o.vertex_kT)
+  if bad_kT then error(o.label .. ": " .. bad_kT, 2) end
   local sys = tissue.sys
   local dyn = tissue.dyn
   if not dyn then

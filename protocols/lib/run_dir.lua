@@ -147,11 +147,11 @@ function M.open(p, dir)
   local params = {}
   for k, v in pairs(p) do params[k] = v end
   files.write(dir .. "/params.json", iv.json_encode{
-    protocol = iv.resolve_path(iv.script), protocol_hash = protocol_hash, parameters = params,
+    protocol = identity.protocol, protocol_hash = protocol_hash, parameters = params,
     run_id = identity.id, from = identity.from, from_checkpoint = identity.from_checkpoint,
     invasim_version = iv.version, git_revision = iv.git_revision, threads = iv.threads(),
   })
-  local lines = { iv.resolve_path(iv.script), "# run_id=" .. identity.id, "# protocol_hash=" .. protocol_hash }
+  local lines = { identity.protocol, "# run_id=" .. identity.id, "# protocol_hash=" .. protocol_hash }
   for _, m in ipairs(run_identity.module_hashes()) do
     lines[#lines + 1] = "# module " .. m.name .. "=" .. m.hash
   end

@@ -35,12 +35,14 @@ function M.parameter_lines(p)
 end
 
 -- The identity of the running protocol with resolved parameters p:
--- { id = 16 hex digits, text = the hashed text, from = resolved --from or nil,
+-- { id = 16 hex digits, text = the hashed text, protocol = resolved path of the protocol
+--   (what params.json and resume.txt record), from = resolved --from or nil,
 --   from_checkpoint = content hash of the --from source's compressed.ckpt (nil if missing),
 --   lines = the parameter lines }.
 function M.of(p)
   local from = iv.from and iv.resolve_path(iv.from) or nil
-  local head = { "protocol " .. iv.resolve_path(iv.script) }
+  local protocol = iv.resolve_path(iv.script)
+  local head = { "protocol " .. protocol }
   local from_checkpoint
   if from then
     from_checkpoint = M.source_hash(from)
@@ -49,8 +51,8 @@ function M.of(p)
   end
   local lines = M.parameter_lines(p)
   local text = table.concat(head, "\n") .. "\n" .. table.concat(lines, "\n") .. "\n"
-  return { id = iv.hash(text), text = text, from = from, from_checkpoint = from_checkpoint,
-           lines = lines }
+  return { id = iv.hash(text), text = text, protocol = protocol, from = from,
+           from_checkpoint = from_checkpoint, lines = lines }
 end
 
 -- The Lua modules the protocol has loaded from files (the lib/ stages, observers, ...), as

@@ -24,9 +24,9 @@ namespace {
 constexpr const char* kContextKey = "invasim.context";
 
 // Message handler of every script run: leaves the stop sentinel alone, otherwise returns
-// {message, traceback} (for an error from a callback, the traceback recorded where it was
-// raised: lua/error_object.hpp); a non-string error object is described with the place it was
-// raised (lua/error_object.hpp). Plain C-style code: nothing here owns a C++ object.
+// {message, traceback}: a non-string error object described with the place it was raised,
+// and for an error from a callback the traceback recorded where it was raised (both
+// lua/error_object.hpp). Plain C-style code: nothing here owns a C++ object.
 int message_handler(lua_State* L) {
   if (is_stop_sentinel(L, 1)) return 1;
   lua_settop(L, 1);

@@ -13,6 +13,12 @@ from scipy.optimize import OptimizeWarning, curve_fit
 from ..errors import InputError
 
 
+def error_scale(chi2, dof):
+    """The PDG scale factor of a fit's errors: sqrt(chi2/dof) when above 1 (the points scatter
+    more than their errors: the scatter sets the errors), else 1; 1 without degrees of freedom."""
+    return max(1.0, math.sqrt(chi2 / dof)) if dof > 0 else 1.0
+
+
 def sigmoid_log(log_x, log_a, b):
     """The paper's Eq. (fitA) in log10 x and log10 a: the one form that fit_sigmoid, the joint
     fit with plateaus (plateaus.py) and the figures (sigmoid) use."""
@@ -64,7 +70,7 @@ def fit_sigmoid(x, y, sigma, name):
         note = "the errors of a and b could not be estimated (the data do not constrain them)"
     chi2 = float(np.sum(((y - sigmoid_log(log_x, *p)) / sigma) ** 2))
     dof = len(x) - 2
-    scale = max(1.0, math.sqrt(chi2 / dof)) if dof > 0 else 1.0
+    scale = error_scale(chi2, dof)
     err = err * scale
     # A flat curve (b ~ 0) puts its midpoint anywhere: log10 a may be beyond a double's range,
     # and a is then inf or 0 (numpy's values, not_a_fit names the curve) without a warning.
@@ -160,9 +166,7 @@ def fit_scale(a, a_err, q, r, r_rel_err, iterations=20):
             break
     chi2 = float(np.sum(((a - model((q, r), *p)) / sigma) ** 2))
     dof = len(a) - n_par
-    # The errors scaled by sqrt(chi2/dof) when the curves scatter more than their errors
-    # (the PDG scale factor, as fit_sigmoid's): the model's own scatter then sets them.
-    scale = max(1.0, math.sqrt(chi2 / dof)) if dof > 0 else 1.0
+    scale = error_scale(chi2, dof)  # as fit_sigmoid's: the curves' own scatter may set them
     err = np.sqrt(np.diag(cov)) * scale
     return {"c1": float(p[0]), "c1_error": float(err[0]),
             "c2": float(p[1]) if with_c2 else None,

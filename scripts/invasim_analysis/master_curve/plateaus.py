@@ -65,9 +65,7 @@ def fit_joint(curves):
     err = np.sqrt(np.diag(cov))
     residual = (y - model(None, *p)) / sigma
     chi2_all, dof_all = float(np.sum(residual ** 2)), int(len(y) - n_par)
-    # The shared plateaus' errors scaled as every fit's: by max(1, sqrt(chi2/dof)) of the
-    # joint fit (the points scatter more than their errors: the scatter sets the errors).
-    joint_scale = max(1.0, math.sqrt(chi2_all / dof_all))
+    joint_scale = fits.error_scale(chi2_all, dof_all)  # the shared plateaus', as every fit's
     out = {"lo": float(p[0]), "lo_error": float(err[0]) * joint_scale, "hi": float(p[1]),
            "hi_error": float(err[1]) * joint_scale, "chi2": chi2_all, "dof": dof_all,
            "error_scale": joint_scale, "per_curve": []}
@@ -75,7 +73,7 @@ def fit_joint(curves):
         mine = k == n
         chi2 = float(np.sum(residual[mine] ** 2))
         dof = int(np.sum(mine)) - 2
-        scale = max(1.0, math.sqrt(chi2 / dof)) if dof > 0 else 1.0
+        scale = fits.error_scale(chi2, dof)
         la, b = p[2 + 2 * n], p[3 + 2 * n]
         e_la, e_b = err[2 + 2 * n] * scale, err[3 + 2 * n] * scale
         a = 10.0 ** la
