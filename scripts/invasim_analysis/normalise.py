@@ -112,10 +112,13 @@ def normalise(points):
 
 
 def scale_like(point, extremes):
-    """A_n of a state point (dict with A_t, A_t_max, optionally A_t_error) with the
-    extremes of normalise()."""
+    """A_n of a state point (dict with A_t, A_t_max, optionally A_gap_error or A_t_error)
+    with the extremes of normalise(). A_n is linear in the gap A_t^max - A_t, so its error is
+    the gap's (A_gap_error: validation/points.py, with the covariance of A_t and A_t^max);
+    without it, A_t's alone."""
     lo, hi, min_max = extremes["min_rA_t"], extremes["max_rA_t"], extremes["min_A_t_max"]
     point["rA_t"] = relative_area(point["A_t"], point["A_t_max"], min_max)
     point["A_n"] = scaled(point["rA_t"], lo, hi)
-    point["A_n_error"] = float(run_error(point.get("A_t_error", math.nan), None, min_max, lo, hi))
+    err = point.get("A_gap_error", point.get("A_t_error", math.nan))
+    point["A_n_error"] = float(run_error(err, None, min_max, lo, hi))
     return point

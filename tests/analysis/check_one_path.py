@@ -48,8 +48,9 @@ def identity():
           "the plan and sweep_results.py read workspaces with workspace.py")
     # The page's Fig. 5 fits with the master curve's own functions.
     from invasim_analysis.master_curve import fits
-    check(figures_master.fits is fits and figures_master.build_points is analysis.build_points,
-          "the page's Fig. 5 fits with the master curve's fits and state points")
+    check(figures_master.fits is fits and figures_master.build_points is analysis.build_points
+          and figures_master.analysis is analysis,
+          "the page's Fig. 5 fits with the master curve's fits, state points and judgement")
     scripts = os.path.join(REPO, "scripts")
     for name, main in (("master_curve", master_cli.main), ("validation", validation_cli.main)):
         spec = importlib.util.spec_from_file_location("entry_" + name,
@@ -61,9 +62,12 @@ def identity():
 
 # name pattern -> the one file (under scripts/invasim_analysis/) allowed to define it
 DEFINITIONS = [
-    (r"^\s*def (block_error|window|steadiness|point_steadiness|start_agreement|"
-     r"steadiness_summary|unsteady_points)\(", "steady.py"),
-    (r"^(STEADY_FACTOR|NEGLIGIBLE_DRIFT|MIN_BLOCKS) =", "steady.py"),
+    (r"^\s*def (block_error|window|window_rows|window_mean|window_error|steadiness|"
+     r"point_steadiness|start_agreement|steadiness_summary|unsteady_points|drift_residuals|"
+     r"autocovariance|integrated_time|mean_error)\(", "steady.py"),
+    (r"^(STEADY_FACTOR|NEGLIGIBLE_DRIFT|MIN_BLOCKS|SOKAL_C|MAX_FIT_SHARE) =", "steady.py"),
+    (r"^\s*def (state_point|gap_error|job_areas|pooled_errors|widening)\(",
+     os.path.join("validation", "points.py")),
     (r"^\s*def (normalise\w*|scale_like|relative_area|scaled|run_error|point_means|"
      r"extremes)\(", "normalise.py"),
     (r"^\s*class Job\b", "workspace.py"),

@@ -149,23 +149,26 @@ def runs_steadiness(table, rows, point_of, ws):
     return reasons
 
 
-def a_n_by_partition(keys, rows, opts, a_t, a_max, err_t, err_max, point_of, is_steady):
-    """A_n per row, normalised separately in each --normalise-within partition; rows that
-    are not steady are scaled like the others but never set the normalisation."""
-    n = len(rows)
+def a_n_by_partition(part_of, within, in_group, a_t, a_max, err_t, err_max, point_of,
+                     is_steady):
+    """A_n per row, normalised separately in each partition (part_of: per row its values of
+    the --normalise-within keys `within`); the rows in_group (--normalise-by) that are steady
+    set the extremes, the others are scaled like them (docs/sweeps_analysis.md, steps 0-1).
+    Also the validation page's Fig. 5 (one partition, every curve of the figure)."""
+    n = len(part_of)
     r_a, a_n, run_err = np.empty(n), np.empty(n), np.empty(n)
     norm_err = np.empty((n, 2))
     info = []
-    parts = group_indices([keys.label(r, opts.within) for r in rows])
+    parts = group_indices(part_of)
     for part, idx in parts.items():
-        where = ", ".join("%s=%s" % kv for kv in zip(opts.within, part)) or "the whole sweep"
-        sel = [matches(keys, rows[i], opts.selector) and is_steady[i] for i in idx]
+        where = ", ".join("%s=%s" % kv for kv in zip(within, part)) or "the whole sweep"
+        sel = [in_group[i] and is_steady[i] for i in idx]
         res = normalise_group(a_t[idx], a_max[idx], [point_of[i] for i in idx], sel,
                         None if err_t is None else err_t[idx],
                         None if err_max is None else err_max[idx], where)
         r_a[idx], a_n[idx], run_err[idx] = res["rA_t"], res["A_n"], res["A_n_run_error"]
         norm_err[idx] = (res["error_lo"], res["error_hi"])
-        info.append({"partition": dict(zip(opts.within, part)), "min_A_t_max": res["min_A_t_max"],
+        info.append({"partition": dict(zip(within, part)), "min_A_t_max": res["min_A_t_max"],
                      "min_rA_t": res["min_rA_t"], "max_rA_t": res["max_rA_t"],
                      "group_state_points": res["group_points"], "group_jobs": res["group_rows"],
                      "A_n_error_of_min": res["error_lo"], "A_n_error_of_max": res["error_hi"]})
@@ -222,10 +225,11 @@ def curve_scale_inputs(keys, table, rows, tau_g_opt):
         tau_g = 1.0 / DEFAULT_GAMMA
     tau_d = np.array([table.number(r, "tau_d", "for the fit of a", allow_missing=True)
                       for r in rows]) if table.has("tau_d") else np.array([])
+    mean, error, used = mean_tau_d(tau_d)
     # Jobs whose tau_d is empty, NaN, infinite or not positive: named, left out of the mean.
     dropped = [{"job": r.get("job_id") or "line %d" % r["_line"], "tau_d": r["tau_d"] or "(empty)"}
-               for r, t in zip(rows, tau_d) if not (math.isfinite(t) and t > 0)]
-    tau_d = tau_d[np.isfinite(tau_d) & (tau_d > 0)]
+               for r, ok in zip(rows, used) if not ok]
+    tau_d = tau_d[used]
     reason = None
     if not keys.known("beta"):
         reason = "no beta column (give it with --fixed beta=VALUE)"
@@ -239,11 +243,61 @@ def curve_scale_inputs(keys, table, rows, tau_g_opt):
         reason = "no tau_d column"
     elif tau_d.size == 0:
         reason = "no finite, positive tau_d in the curve"
-    return {"beta": beta, "P": p, "tau_g": tau_g,
-            "tau_d": float(np.mean(tau_d)) if tau_d.size else None,
-            "tau_d_error": _sem(tau_d) if tau_d.size > 1 else None,
+    return {"beta": beta, "P": p, "tau_g": tau_g, "tau_d": mean, "tau_d_error": error,
             "tau_d_jobs": int(tau_d.size), "tau_d_dropped": dropped,
             "excluded_from_scale_fit": reason}
+
+
+def mean_tau_d(values):
+    """A curve's tau_d for the fit of a (docs/sweeps_analysis.md, step 4): the mean of its
+    jobs' tau_d that are finite and positive, the standard error of that mean (None for
+    fewer than two; None, None for none), and per job whether it was used."""
+    v = np.asarray(values, float)
+    used = np.isfinite(v) & (v > 0)
+    kept = v[used]
+    return (float(np.mean(kept)) if kept.size else None,
+            _sem(kept) if kept.size > 1 else None, used)
+
+
+def min_max_fit(name, points):
+    """A curve's first fit (step 3): the sigmoid with the plateaus at the normalisation's
+    extremes, 0 and 1, its sigmas the state points' errors with the extremes' share
+    (A_n_error of build_points). judge_fits then replaces it by the fit with shared plateaus.
+    InputError when the points do not allow a fit (fits.fit_sigmoid)."""
+    from . import fits  # scipy: imported only once the input has been read and checked
+
+    fit = fits.fit_sigmoid([p["x"] for p in points], [p["A_n"] for p in points],
+                           [p["A_n_error"] for p in points], name)
+    return dict(fit, name=name, points=points, plateaus=(0.0, 1.0))
+
+
+def judge_fits(curves, in_group, partition_of, plateaus_mode="fitted"):
+    """The end of step 3 and the curves' admission to step 4: the fits with plateaus shared by
+    the curves of a normalisation group (plateaus.refine; "extremes" keeps the min-max fits,
+    biased), then per curve not_a_fit (fits.not_a_fit) and, unless excluded_from_scale_fit
+    already gives a reason, whether a is a located midpoint (fits.midpoint_not_located, on
+    A_n rescaled to the curve's plateaus). Returns the records of the plateau fits, each
+    with its partition label as partition_of gives it."""
+    from . import fits, plateaus
+
+    if plateaus_mode == "fitted":
+        plateau_fits = plateaus.refine(curves, in_group, partition_of)
+    else:  # --plateaus extremes: the paper's min-max normalisation as it stands
+        plateau_fits = [{"partition": part, "done": False, "reason": "--plateaus extremes"}
+                        for part in sorted(set(partition_of.values()) - {None}, key=repr)]
+    for curve in curves:
+        curve["not_a_fit"] = fits.not_a_fit(curve["a"], curve["a_error"], curve["b"],
+                                            curve["b_error"])
+        if curve["not_a_fit"] is not None:
+            curve["excluded_from_scale_fit"] = "not a fit: " + curve["not_a_fit"]
+        elif curve.get("excluded_from_scale_fit") is None:
+            lo, hi = curve["plateaus"]
+            points = curve["points"]
+            curve["excluded_from_scale_fit"] = fits.midpoint_not_located(
+                curve["a"], curve["a_error"], curve["b"], curve["b_error"],
+                [p["x"] for p in points], [(p["A_n"] - lo) / (hi - lo) for p in points],
+                [p["A_n_error"] / (hi - lo) for p in points])
+    return plateau_fits
 
 
 def analyse(table, opts):
@@ -267,8 +321,10 @@ def analyse(table, opts):
     if not any(is_steady):
         raise InputError("%s: no finished job is steady (A_t, --max-drift %s): %s" % (
             table.path, ",".join("%s=%g" % kv for kv in opts.max_drift), unsteady[0]))
-    r_a, a_n, run_err, norm_err, norm_info = a_n_by_partition(keys, rows, opts, a_t, a_max,
-                                                              err_t, err_max, point_of, is_steady)
+    in_selector = [matches(keys, r, opts.selector) for r in rows]
+    r_a, a_n, run_err, norm_err, norm_info = a_n_by_partition(
+        [keys.label(r, opts.within) for r in rows], opts.within, in_selector, a_t, a_max,
+        err_t, err_max, point_of, is_steady)
     from . import fits  # scipy: imported only once the input has been read and checked
 
     curves, curve_of = [], [None] * len(rows)
@@ -284,8 +340,7 @@ def analyse(table, opts):
         points = build_points([np.array([idx[j] for j in js]) for js in by_point.values()],
                               x, a_n, run_err, norm_err, opts.min_error, opts.window)
         try:
-            fit = fits.fit_sigmoid([p["x"] for p in points], [p["A_n"] for p in points],
-                                   [p["A_n_error"] for p in points], name)
+            curve = min_max_fit(name, points)
         except InputError as e:
             left_out = len(all_idx) - len(idx)
             if not left_out:
@@ -294,32 +349,14 @@ def analyse(table, opts):
                              % (e, left_out, "" if left_out == 1 else "s"))
         varying = [k for k in point_keys if k not in opts.group
                    and len({keys.label(rows[i], [k]) for i in idx}) > 1]
-        curve = {"name": name, "group": dict(zip(opts.group, label)), "points": points,
-                 "jobs": len(idx), "varying": varying, "plateaus": (0.0, 1.0), **fit}
+        curve.update(group=dict(zip(opts.group, label)), jobs=len(idx), varying=varying)
         curve.update(curve_scale_inputs(keys, table, [rows[i] for i in idx], opts.tau_g))
-        in_group[name] = all(matches(keys, rows[i], opts.selector) for i in idx)
+        in_group[name] = all(in_selector[i] for i in idx)
         parts = {keys.label(rows[i], opts.within) for i in idx}
         partition_of[name] = parts.pop() if len(parts) == 1 else None
         curves.append(curve)
-    from . import plateaus
-
-    if getattr(opts, "plateaus", "fitted") == "fitted":
-        plateau_fits = plateaus.refine(curves, in_group, partition_of)
-    else:  # --plateaus extremes: the paper's min-max normalisation as it stands
-        plateau_fits = [{"partition": part, "done": False, "reason": "--plateaus extremes"}
-                        for part in sorted(set(partition_of.values()) - {None}, key=repr)]
-    for curve in curves:
-        curve["not_a_fit"] = fits.not_a_fit(curve["a"], curve["a_error"], curve["b"],
-                                            curve["b_error"])
-        if curve["not_a_fit"] is not None:
-            curve["excluded_from_scale_fit"] = "not a fit: " + curve["not_a_fit"]
-        elif curve["excluded_from_scale_fit"] is None:
-            lo, hi = curve["plateaus"]
-            points = curve["points"]
-            curve["excluded_from_scale_fit"] = fits.midpoint_not_located(
-                curve["a"], curve["a_error"], curve["b"], curve["b_error"],
-                [p["x"] for p in points], [(p["A_n"] - lo) / (hi - lo) for p in points],
-                [p["A_n_error"] / (hi - lo) for p in points])
+    plateau_fits = judge_fits(curves, in_group, partition_of,
+                              getattr(opts, "plateaus", "fitted"))
     for record in plateau_fits:
         record["partition"] = dict(zip(opts.within, record["partition"]))
     scale = scale_fit(curves, fits)

@@ -2,9 +2,17 @@
 the measured 2 T_c/P, one colour per tau_p and one marker per beta, the passive curve as filled
 black diamonds, the fits as lines; (b) the collapse on E_c^b; (c) the paper's inset, the fitted
 a against c1 (1 + c2 beta/P) tau_g/tau_d with the line a = that. Same contract as
-figures_tissue.py. A curve with a state point that is not steady is drawn hollow and enters
-neither the collapse nor the fit of a; a curve whose midpoint a is not located (b <= 0, no
-rise, outside the temperatures; fits.midpoint_not_located) is drawn as data only."""
+figures_tissue.py.
+
+The analysis is master_curve.py's, by its own functions (master_curve/analysis.py: the
+normalisation, the state points, the per-curve fits with plateaus shared by the figure's
+curves, the midpoint rule and the fit of a; docs/sweeps_analysis.md): for the same jobs the
+page's a, b, c1, c2 are master_curve.py's. The page's own choices: the curves of fig5_long
+replace those of the same beta and tau_p, the passive curve is fitted (and shares the
+plateaus) but never enters the fit of a, steadiness is the criterion's alone
+(steady.point_steadiness; master_curve.py's --max-drift is not applied), and a curve with a
+state point that is not steady is drawn hollow and enters neither the collapse nor the fit
+of a (master_curve.py drops only that state point, as the page's fits do too)."""
 
 import math
 import textwrap
@@ -14,17 +22,15 @@ from matplotlib.lines import Line2D
 
 from .. import normalise, steady, workspace
 from . import points, verdict
-from .figures_tissue import tc_equals_ta_row, x_measured
+from .figures_tissue import pressure, tc_equals_ta_row, x_measured
 from .plotting import T_PAPER, figure, label, log_axis, save
 
 from ..errors import InputError as FitError
-from ..master_curve import fits
+from ..master_curve import analysis, fits
 from ..master_curve.analysis import build_points
 
-MIN_ERROR = 1e-3  # floor of a state point's A_n error in the fits (as master_curve.py)
+MIN_ERROR = 1e-3  # floor of a state point's A_n error in the fits (master_curve.py's default)
 POOL = 1  # neighbours on each side whose replicate variance is pooled (master_curve.py --pool)
-TAU_G = 5.0  # tau_gamma = m/gamma of the protocols (docs/model.md), the tau_d of tau_p -> 0
-P_DEFAULT = 1.3e-3
 # The paper's Fig. 5(a): colours by tau_p, markers by beta.
 TAU_P_COLOURS = {0.02: "tab:purple", 25.0: "tab:blue", 250.0: "magenta", 2500.0: "tab:orange"}
 BETA_MARKERS = {1e-4: "^", 1e-3: "s", 1e-2: "D"}
@@ -60,27 +66,6 @@ def _curve_points(jobs, keys):
     return out
 
 
-def _pooled_errors(pts, jobs_by_id, extremes):
-    """The A_n errors of a curve's state points as master_curve.py computes them
-    (analysis.build_points): the replicate variance pooled with POOL neighbours on each side
-    along x, so that two replicates give usable weights (the standard error of two values
-    alone can be near zero by chance and then dominates a fit), floored at MIN_ERROR."""
-    groups = [[jobs_by_id[i] for i in p["jobs"]] for p in pts]
-    rows = [j for g in groups for j in g]
-    scaled = [normalise.scale_like({"A_t": j.mean("A_t")[0], "A_t_max": j.mean("A_t_max")[0],
-                               "A_t_error": j.mean("A_t")[1]}, extremes) for j in rows]
-    idx, k = [], 0
-    for g in groups:
-        idx.append(np.arange(k, k + len(g)))
-        k += len(g)
-    out = build_points(idx, np.array([x_measured(j) for j in rows]),
-                       np.array([q["A_n"] for q in scaled]),
-                       np.array([q["A_n_error"] for q in scaled]),
-                       [(math.nan, math.nan)] * len(rows), MIN_ERROR, POOL)
-    error_of = {tuple(o["rows"]): o["A_n_error"] for o in out}
-    return [error_of[tuple(ix)] for ix in idx]
-
-
 def _run_time(jobs):
     """The production run's length t of jobs (their longest), for labels."""
     return max(int(j.sp.get("steps", j.scalar("steps"))) * float(j.sp.get("dt", 0.05))
@@ -103,41 +88,141 @@ def _curves(jobs, passive_jobs, long_jobs, extra_jobs):
     return curves, replaced
 
 
-def _fit_curve(key, pts, plain, jobs_by_id, extremes):
-    """One curve's record: its points, steadiness, sigmoid fit and why it is left out of the
-    collapse (in_collapse) and of the fit of a (excluded_from_scale_fit)."""
-    sig = _pooled_errors(pts, jobs_by_id, extremes)
-    for p, e in zip(pts, sig):
-        p["A_n_error"] = e
-        p["steady"] = steady.point_steadiness([jobs_by_id[i] for i in p["jobs"]])[0]
-    entry = {"curve": plain, "key": list(key), "points": len(pts),
+def _job_rows(curves, jobs_by_id):
+    """The jobs of the fitted curves as the master curve's per-row arrays (what
+    master_curve/analysis.py reads from results.csv, i.e. summary.json's means and errors):
+    x = the measured 2 T_c/P, A_t, A_t^max and their errors; per row its state point (curve
+    key, index); per state point (key, index) its rows; per row whether its state point is
+    steady (steady.point_steadiness, set on the points as "steady")."""
+    ids, point_of, rows_of, is_steady = [], [], {}, []
+    for key, pts in curves.items():
+        for k, p in enumerate(pts):
+            p["steady"] = steady.point_steadiness([jobs_by_id[i] for i in p["jobs"]])[0]
+            rows_of[(key, k)] = np.arange(len(ids), len(ids) + len(p["jobs"]))
+            ids += p["jobs"]
+            point_of += [(key, k)] * len(p["jobs"])
+            is_steady += [p["steady"]] * len(p["jobs"])
+    js = [jobs_by_id[i] for i in ids]
+    return {"jobs": js, "point": point_of, "rows_of": rows_of, "steady": is_steady,
+            "x": np.array([x_measured(j) for j in js]),
+            "A_t": np.array([j.mean("A_t")[0] for j in js]),
+            "A_t_error": np.array([j.mean("A_t")[1] for j in js]),
+            "A_t_max": np.array([j.mean("A_t_max")[0] for j in js]),
+            "A_t_max_error": np.array([j.mean("A_t_max")[1] for j in js])}
+
+
+def _normalise(rows):
+    """A_n of every job by the master curve's normalisation (analysis.a_n_by_partition): one
+    partition, the whole figure (every fitted curve, the passive one included); the steady
+    state points set the extremes, as in master_curve.py. When no state point of the figure
+    is steady (runs too short to judge, as at the CI size), every one counts, for A_n and the
+    fits, and the record says so (numbers: "basis"). Returns (basis rows, A_n and errors per
+    row, the extremes for normalise.scale_like)."""
+    n = len(rows["x"])
+    basis = rows["steady"] if any(rows["steady"]) else [True] * n
+    r_a, a_n, run_err, norm_err, info = analysis.a_n_by_partition(
+        [()] * n, [], [True] * n, rows["A_t"], rows["A_t_max"], rows["A_t_error"],
+        rows["A_t_max_error"], rows["point"], basis)
+    extremes = {k: v for k, v in info[0].items() if k != "partition"}
+    extremes["basis"] = ("the steady state points" if any(rows["steady"]) else
+                         "every state point (none is steady)")
+    norm = {"rA_t": r_a, "A_n": a_n, "run_error": run_err, "norm_error": norm_err}
+    return basis, norm, extremes
+
+
+def _points(idx, rows, norm, window=POOL):
+    """State points of a curve from their rows, as master_curve.py makes them
+    (analysis.build_points: replicate means, the pooled replicate error plus the
+    normalisation's extremes' share, floored at MIN_ERROR), keyed by their rows."""
+    out = build_points(idx, rows["x"], norm["A_n"], norm["run_error"], norm["norm_error"],
+                       MIN_ERROR, window)
+    return {tuple(p["rows"]): p for p in out}
+
+
+def _fit_curve(key, pts, plain, rows, norm, basis):
+    """One curve's record: its state points' A_n and errors (set on pts for the figure), and
+    its min-max fit (analysis.min_max_fit) over the state points that count (the steady ones,
+    as master_curve.py), kept under "_fit" for analysis.judge_fits; why there is none."""
+    idx = [rows["rows_of"][(key, k)] for k in range(len(pts))]
+    counted = [ix for ix in idx if basis[ix[0]]]
+    fitted = _points(counted, rows, norm)
+    for p, ix in zip(pts, idx):
+        q = fitted.get(tuple(ix)) or _points([ix], rows, norm, window=0)[tuple(ix)]
+        p["A_n"], p["A_n_error"] = q["A_n"], q["A_n_error"]
+    entry = {"curve": plain, "key": list(key), "points": len(pts), "fitted_points": len(counted),
              "unsteady_points": ["2T_c/P = %.3g" % p["x"] for p in pts if not p["steady"]],
-             "beta": key[1] if key[0] == "passive" else key[0]}
-    xs, ys = [p["x"] for p in pts], [p["A_n"] for p in pts]
+             "beta": key[1] if key[0] == "passive" else key[0], "_fit": None}
     try:
-        if min(xs) <= 0:
+        if not counted:
+            raise FitError("curve %s: no steady state point" % plain)
+        if min(p["x"] for p in pts) <= 0:
             raise FitError("a non-positive temperature")
-        entry.update(fits.fit_sigmoid(xs, ys, sig, plain))
+        entry["_fit"] = analysis.min_max_fit(plain, sorted(fitted.values(),
+                                                            key=lambda p: p["x"]))
     except FitError as e:
-        entry["why_no_fit"] = str(e)
-    taus = [p["tau_d"] for p in pts if verdict.finite(p["tau_d"]) and p["tau_d"] > 0]
-    entry["tau_d"] = float(np.mean(taus)) if taus else math.nan
-    entry["tau_d_rel_error"] = (float(np.std(taus, ddof=1) / math.sqrt(len(taus)) /
-                                      np.mean(taus)) if len(taus) > 1 else 0.0)
-    if "a" not in entry:
-        why = "no sigmoid fit: " + entry["why_no_fit"]
-    elif entry["unsteady_points"]:
-        why = "not steady at " + ", ".join(entry["unsteady_points"])
-    else:
-        why = fits.midpoint_not_located(entry["a"], entry["a_error"], entry["b"],
-                                        entry["b_error"], xs, ys, sig)
-    entry["in_collapse"] = why is None
-    if key[0] == "passive":
-        why = why or "passive (no tau_d of self-propulsion)"
-    elif why is None and not verdict.finite(entry["tau_d"]):
-        why = "no finite tau_d"
-    entry["excluded_from_scale_fit"] = why
+        left = len(idx) - len(counted)
+        entry["why_no_fit"] = str(e) + (" (%d state point%s not steady, left out)" % (
+            left, "" if left == 1 else "s") if left else "")
+    entry.update(_scale_inputs(key, [rows["jobs"][i] for ix in (counted or idx) for i in ix]))
+    if entry["_fit"] is not None:
+        entry["_fit"].update({k: entry[k] for k in ("beta", "P", "tau_g", "tau_d_error")},
+                             tau_d=entry["tau_d"])
     return entry
+
+
+def _scale_inputs(key, jobs):
+    """beta, P, tau_g = m/gamma and tau_d of a curve as master_curve.py takes them
+    (analysis.curve_scale_inputs: tau_d the mean over the curve's jobs, analysis.mean_tau_d;
+    gamma from the state point, else analysis.DEFAULT_GAMMA), and why it cannot enter the
+    fit of a (passive, or no finite tau_d)."""
+    tau_d, tau_d_error, _ = analysis.mean_tau_d([j.scalar("tau_d") for j in jobs])
+    pressures = {pressure(j) for j in jobs}
+    gammas = {float(j.sp.get("gamma", analysis.DEFAULT_GAMMA)) for j in jobs}
+    gamma = gammas.pop() if len(gammas) == 1 else math.nan
+    why = None
+    if key[0] == "passive":
+        why = "passive (no tau_d of self-propulsion)"
+    elif len(pressures) > 1 or not gamma > 0:
+        why = "P or gamma varies within the curve, or gamma is not > 0"
+    elif tau_d is None:
+        why = "no finite tau_d"
+    return {"P": pressures.pop() if len(pressures) == 1 else None,
+            "tau_g": 1.0 / gamma if gamma > 0 else None,
+            "tau_d": tau_d if tau_d is not None else math.nan, "tau_d_error": tau_d_error,
+            "tau_d_rel_error": (tau_d_error or 0.0) / tau_d if tau_d else 0.0,
+            "scale_input_problem": why}
+
+
+FIT_FIELDS = ("a", "a_error", "b", "b_error", "log10_a", "log10_a_error", "chi2", "dof",
+              "error_scale", "fit_note", "not_a_fit")
+
+
+def _judge(fitted):
+    """The fits with shared plateaus and the midpoint rule, by master_curve.py's own functions
+    (analysis.judge_fits: plateaus.refine over the figure's one normalisation group, then
+    fits.not_a_fit and fits.midpoint_not_located); then the page's own rule: a curve with a
+    state point that is not steady enters neither the collapse nor the fit of a. Sets each
+    curve's fit fields, plateaus, in_collapse and excluded_from_scale_fit; returns the record
+    of the plateau fit."""
+    fits_ = [f["_fit"] for f in fitted if f["_fit"] is not None]
+    for c in fits_:
+        c["excluded_from_scale_fit"] = None
+    records = analysis.judge_fits(fits_, {c["name"]: True for c in fits_},
+                                  {c["name"]: () for c in fits_})
+    for f in fitted:
+        c = f["_fit"]
+        if c is None:
+            why = "no sigmoid fit: " + f["why_no_fit"]
+        else:
+            f.update({k: c[k] for k in FIT_FIELDS}, plateaus=list(c["plateaus"]))
+            why = ("not steady at " + ", ".join(f["unsteady_points"]) if f["unsteady_points"]
+                   else c["excluded_from_scale_fit"])
+        f["in_collapse"] = why is None
+        problem = f.pop("scale_input_problem")
+        f["excluded_from_scale_fit"] = why or problem
+        if c is not None:
+            c["excluded_from_scale_fit"] = f["excluded_from_scale_fit"]
+    return [{k: v for k, v in r.items() if k != "partition"} for r in records]
 
 
 def _plot_curves(axes, curves, fitted, replaced):
@@ -153,20 +238,23 @@ def _plot_curves(axes, curves, fitted, replaced):
         for p in pts:
             axes[0].errorbar([p["x"]], [p["A_n"]], yerr=[p["A_n_error"]], marker=m, ms=5,
                              color=c, mfc=c if p["steady"] else "none", ls="none", capsize=2)
-        if f["in_collapse"]:
+        if f["in_collapse"]:  # the fit as master_curve.py draws it: L + (H - L) sigmoid
+            lo, hi = f["plateaus"]
             xs = np.logspace(math.log10(pts[0]["x"]), math.log10(pts[-1]["x"]), 100)
-            axes[0].plot(xs, fits.sigmoid(xs, f["a"], f["b"]), color=c, lw=1)
-            axes[1].plot([(p["x"] / f["a"]) ** f["b"] for p in pts], [p["A_n"] for p in pts],
+            axes[0].plot(xs, lo + (hi - lo) * fits.sigmoid(xs, f["a"], f["b"]), color=c, lw=1)
+            axes[1].plot([(p["x"] / f["a"]) ** f["b"] for p in pts],
+                         [(p["A_n"] - lo) / (hi - lo) for p in pts],
                          marker=m, ls="none", color=c, ms=5)
     log_axis(axes[0], [p["x"] for pts in curves.values() for p in pts])
     axes[0].set_xlabel(T_PAPER, fontsize=8)
     axes[0].set_ylabel(label("A_n", ""))
-    axes[0].set_title("(a) $A_n$, fits (Eq. (15)) as lines", fontsize=9)
+    axes[0].set_title("(a) $A_n$, fits (Eq. (15), plateaus $L$, $H$ fitted) as lines",
+                      fontsize=9)
     e = np.logspace(-2, 2, 100)
     axes[1].plot(e, fits.sigmoid(e, 1.0, 1.0), "k-", lw=1)  # the collapse: a = b = 1
     axes[1].set_xscale("log")
     axes[1].set_xlabel(r"$E_c^b = (x/a)^b$, $x = 2k_BT_c/(P\sigma^3)$ (dimensionless)", fontsize=8)
-    axes[1].set_ylabel(label("A_n", ""))
+    axes[1].set_ylabel(r"$(A_n - L)/(H - L)$ (dimensionless)")
     axes[1].set_title("(b) collapse, line $(\\tanh[\\log_{10} E_c^b] + 1)/2$", fontsize=9)
 
 
@@ -192,8 +280,9 @@ def _plot_inset(ax, usable, scale):
 
 
 def _model(f, scale):
-    """c1 (1 + c2 beta/P) tau_g/tau_d of a curve with the fitted c1, c2 (c2 = 0 if not fitted)."""
-    return scale["c1"] * (1 + (scale.get("c2") or 0.0) * f["beta"] / P_DEFAULT) * TAU_G / f["tau_d"]
+    """c1 (1 + c2 beta/P) tau_g/tau_d of a curve of the fit of a (q = beta/P and tau_g/tau_d as
+    analysis.scale_fit took them) with the fitted c1, c2 (c2 = 0 if not fitted)."""
+    return scale["c1"] * (1 + (scale.get("c2") or 0.0) * f["q"]) * f["tau_g_over_tau_d"]
 
 
 def _legend(fig, curves, replaced):
@@ -217,22 +306,27 @@ def _legend(fig, curves, replaced):
 def fig5(jobs, out, invasim, passive_jobs=None, long_jobs=None, extra_jobs=None):
     """long_jobs (fig5_long.lua): curves run longer; each replaces the curve of the same beta
     and tau_p of jobs, which is drawn for comparison (grey, hollow) but not fitted.
-    extra_jobs (fig5_extra_curves.lua): further curves, fitted like those of jobs."""
+    extra_jobs (fig5_extra_curves.lua): further curves, fitted like those of jobs. The fits
+    are master_curve.py's (docs/sweeps_analysis.md): for the same jobs, the same a, b, L, H
+    per curve, and the same c1, c2 over the same curves."""
     curves, replaced = _curves(jobs, passive_jobs, long_jobs, extra_jobs)
-    extremes = normalise.normalise([p for pts in curves.values() for p in pts])
+    for pts in curves.values():
+        pts.sort(key=lambda p: p["x"])
+    jobs_by_id = {j.id: j for j in jobs + (passive_jobs or []) + (long_jobs or []) + (extra_jobs or [])}
+    short_t, long_t = _run_time(jobs), _run_time(long_jobs) if long_jobs else None
+    rows = _job_rows(curves, jobs_by_id)
+    basis, norm, extremes = _normalise(rows)
     for pts in replaced.values():
         for p in pts:
             p.update(normalise.scale_like(p, extremes))
-    jobs_by_id = {j.id: j for j in jobs + (passive_jobs or []) + (long_jobs or []) + (extra_jobs or [])}
-    short_t, long_t = _run_time(jobs), _run_time(long_jobs) if long_jobs else None
     fitted = []
     for key, pts in curves.items():
-        pts.sort(key=lambda p: p["x"])
         plain = ("beta = %g, passive" % key[1] if key[0] == "passive"
                  else "beta = %g, tau_p = %g" % (key[0], key[1]))
         if key in replaced:
             plain += " (t = %g)" % long_t
-        fitted.append(_fit_curve(key, pts, plain, jobs_by_id, extremes))
+        fitted.append(_fit_curve(key, pts, plain, rows, norm, basis))
+    plateau_fits = _judge(fitted)
     usable = [f for f in fitted if f["excluded_from_scale_fit"] is None]
     scale = _scale_fit(usable, fitted)
     fig, axes = figure(3, width=4.6)
@@ -240,10 +334,11 @@ def fig5(jobs, out, invasim, passive_jobs=None, long_jobs=None, extra_jobs=None)
     _plot_inset(axes[2], usable, scale)
     _legend(fig, curves, replaced)
     images = [save(fig, out, "fig5_An.png", rect=(0, 0, 0.91, 1))]
-    rows = _rows(fitted, usable, scale, curves, passive_jobs)
+    rows = _rows(fitted, usable, scale, curves, passive_jobs, plateau_fits)
     for f in fitted:
         f["steady"] = not f["unsteady_points"]
     numbers = {"curves": fitted, "scale_fit": scale, "normalisation": extremes,
+               "plateau_fits": plateau_fits,
                "replaced_by_longer_runs": [
                    {"key": list(k), "t": short_t, "replaced_by_t": long_t,
                     "A_n": [p["A_n"] for p in sorted(v, key=lambda p: p["x"])]}
@@ -258,18 +353,25 @@ def fig5(jobs, out, invasim, passive_jobs=None, long_jobs=None, extra_jobs=None)
 
 
 def _scale_fit(usable, fitted):
-    """The fit of a = c1 (1 + c2 beta/P) tau_g/tau_d over the usable curves, or {"why": ...}."""
+    """The fit of a = c1 (1 + c2 beta/P) tau_g/tau_d over the usable curves by
+    master_curve.py's own function (analysis.scale_fit: fits.fit_scale, tau_d's standard
+    error as effective variance), or {"why": ...}. Copies q = beta/P, tau_g/tau_d and the sigma
+    of a in the fit onto the curves used, and drops the curves' fit objects."""
     excluded = _left_out(fitted)
     if len(usable) < 2:
-        return {"why": "%d curve%s with a located midpoint (needs 2)%s" % (
+        res = {"why": "%d curve%s with a located midpoint (needs 2)%s" % (
             len(usable), "" if len(usable) == 1 else "s", ": " + excluded if excluded else "")}
-    try:
-        return fits.fit_scale([f["a"] for f in usable], [f["a_error"] for f in usable],
-                              [f["beta"] / P_DEFAULT for f in usable],
-                              [TAU_G / f["tau_d"] for f in usable],
-                              [f["tau_d_rel_error"] for f in usable])
-    except (FitError, RuntimeError, ValueError) as err:
-        return {"why": str(err)}
+    else:
+        try:
+            res = analysis.scale_fit([f["_fit"] for f in fitted if f["_fit"] is not None], fits)
+        except (FitError, RuntimeError, ValueError) as err:
+            res = {"why": str(err)}
+    for f in fitted:
+        c = f.pop("_fit")
+        for k in ("q", "tau_g_over_tau_d", "a_sigma_in_scale_fit"):
+            if c is not None and k in c and f["excluded_from_scale_fit"] is None:
+                f[k] = c[k]
+    return res
 
 
 def _left_out(fitted):
@@ -277,17 +379,30 @@ def _left_out(fitted):
                      if f["key"][0] != "passive" and f["excluded_from_scale_fit"])
 
 
-def _rows(fitted, usable, scale, curves, passive_jobs):
+def _plateau_text(plateau_fits):
+    """"; plateaus L = .., H = .." of the shared plateau fit (plateaus.refine), or ""."""
+    done = [p for p in plateau_fits if p.get("done")]
+    if not done:
+        return "; plateaus: the extremes, 0 and 1 (no shared fit)"
+    fit = done[0]
+    return "; plateaus fitted: L = %s, H = %s" % (verdict.fmt(fit["lo"], fit["lo_error"]),
+                                                 verdict.fmt(fit["hi"], fit["hi_error"]))
+
+
+def _rows(fitted, usable, scale, curves, passive_jobs, plateau_fits=()):
     """The verdict rows of Fig. 5. fig5_b_range: one row per curve (the variant), resting on
-    all of the curve's state points. fig5_c1, fig5_c2, fig5_inset: on the active curves whose
-    midpoint is located; the curves left out as not steady make them "not steady" when fewer
-    than two remain."""
+    all of the curve's state points (its b fitted on the steady ones, as master_curve.py).
+    fig5_c1, fig5_c2, fig5_inset: on the active curves whose midpoint is located; the curves
+    left out as not steady make them "not steady" when fewer than two remain."""
     rows = []
     sb = verdict.paper()["fig5_b_range"]
     for f in fitted:
         if "b" in f:
             ours, v = "b = %s" % verdict.fmt(f["b"], f["b_error"]), verdict.range_verdict(
                 [(f["b"], f["b_error"])], sb["low"], sb["high"])
+            if f["fitted_points"] < f["points"]:
+                ours += " (fit of the %d steady of its %d state points)" % (
+                    f["fitted_points"], f["points"])
         else:
             ours, v = "n/a: %s" % f["why_no_fit"], verdict.NO_DATA
         r = verdict.row("fig5_b_range", ours, v, "b in [0.5, 2.5] within 2 errors; rests on "
@@ -306,9 +421,9 @@ def _rows(fitted, usable, scale, curves, passive_jobs):
         v, e_ = scale.get(name), scale.get(name + "_error")
         how = ""
         if v is not None:
-            how = " (fit of a over %d curves, chi2/dof = %s%s)" % (
+            how = " (fit of a over %d curves, chi2/dof = %s%s%s)" % (
                 scale["n_curves"], verdict.fmt(scale.get("chi2_dof")),
-                "; left out: " + excluded if excluded else "")
+                _plateau_text(plateau_fits), "; left out: " + excluded if excluded else "")
         if v is not None and name == "c1":  # a, hence c1, is a temperature: both conventions
             how = " (2T_c/P; by T_c/P: %s)%s" % (verdict.fmt(v / 2, e_ / 2), how)
         rows.append(verdict.row(

@@ -138,6 +138,9 @@ def _fig8_scan(jobs, out, box, image, variant):
             "dphi": j.mean("phi_a_local_std")[0], "dphi_error": j.mean("phi_a_local_std")[1]})
         p["lambda"], p["phi_a_target"] = float(lam), float(phi_a)
         pts.append(p)
+    for lam in {p["lambda"] for p in pts}:
+        for name in ("A_gap", "dphi"):
+            points.pooled_errors([p for p in pts if p["lambda"] == lam], name, "phi_a_target")
     extremes = normalise.normalise(pts)
     by_lambda = {lam: sorted((p for p in pts if p["lambda"] == lam),
                              key=lambda p: p["phi_a_measured"])
@@ -177,16 +180,36 @@ def _fig8_plot(by_lambda, box, out, image):
     return save(fig, out, image)
 
 
+def difference_mean(pairs):
+    """The mean of the differences base - other and its error, for pairs [(base key, base,
+    base error, other, other error)] (a missing error counts as 0; a pair whose difference is
+    not finite is left out). The mean is a linear combination of the state points' values:
+    each other point enters with -1/n, a base point shared by m differences with m/n, so its
+    error counts once with that summed weight, sqrt(sum c_i^2 e_i^2); summing the pairs'
+    errors as if independent would count it m times with weight 1/n. Returns (mean, error,
+    n), nan with n = 0 when no pair is finite."""
+    pairs = [p for p in pairs if verdict.finite(p[1] - p[3])]
+    n = len(pairs)
+    if not n:
+        return math.nan, math.nan, 0
+    base = {}  # base key -> (the number of differences it is in, its error)
+    for key, _, e0, _, _ in pairs:
+        base[key] = (base.get(key, (0, 0.0))[0] + 1, e0 if verdict.finite(e0) else 0.0)
+    var = sum((m * e0 / n) ** 2 for m, e0 in base.values())
+    var += sum((e / n) ** 2 for _, _, _, _, e in pairs if verdict.finite(e))
+    return float(np.mean([b - a for _, b, _, a, _ in pairs])), math.sqrt(var), n
+
+
 def _fig8_rows(pts, by_lambda, box, variant, jobs_by_id):
     """The verdict rows of one box's scan (variant: the box's name when both are shown). Each
     row rests on the state points it names (`on`): not steady if one of them is not."""
     rows = []
 
-    def add(sid, ours, v, why, on=()):
+    def add(sid, ours, v, why, on=(), data=None):
         unsteady = steady.unsteady_points(list(on), jobs_by_id, lambda p: "lambda = %g, phi_a = %g"
                                         % (p["lambda"], p["phi_a_target"]))
         r = verdict.row(sid, ours, v, why + ("; rests on the state points it names, each steady"
-                                             if on else ""), unsteady=unsteady)
+                                             if on else ""), data=data, unsteady=unsteady)
         if variant:
             r["variant"] = variant
         rows.append(r)
@@ -224,19 +247,19 @@ def _fig8_rows(pts, by_lambda, box, variant, jobs_by_id):
         base = {p["phi_a_target"]: p for p in by_lambda[lams[0]]}
         pairs = [(lam, base[p["phi_a_target"]], p) for lam in lams[1:] for p in by_lambda[lam]
                  if p["phi_a_target"] in base]
-        ds = [(q0["A_n"] - q["A_n"], math.hypot(*(e if verdict.finite(e) else 0.0 for e in (
-            q0["A_n_error"], q["A_n_error"])))) for _, q0, q in pairs]
-        ds = [(d, e) for d, e in ds if verdict.finite(d)]
-        mean = float(np.mean([d for d, _ in ds])) if ds else math.nan
-        err = math.sqrt(sum(e * e for _, e in ds)) / len(ds) if ds else math.nan
+        mean, err, n = difference_mean([(q0["phi_a_target"], q0["A_n"], q0["A_n_error"],
+                                         q["A_n"], q["A_n_error"]) for _, q0, q in pairs])
         add("fig8_lambda_lowers", "A_n(lambda = %g) - A_n(lambda) at the same phi_a: %s; mean %s"
             % (lams[0], ", ".join("%s (lambda = %g, phi_a = %g)" % (
                 verdict.fmt(q0["A_n"] - q["A_n"]), lam, q["phi_a_target"])
                 for lam, q0, q in pairs) or "no shared phi_a", verdict.fmt(mean, err)),
-            verdict.trend_verdict(mean, err) if ds else verdict.NO_DATA,
+            verdict.trend_verdict(mean, err) if n else verdict.NO_DATA,
             "pointwise at each target phi_a shared by lambda = %g and a larger lambda, then "
-            "the mean of the differences > 2 errors" % lams[0],
-            on=list({id(q): q for _, q0, q in pairs for q in (q0, q)}.values()))
+            "the mean of the differences > 2 errors, its error that of the mean as a sum over "
+            "the state points, each lambda = %g point once with the weight of all the "
+            "differences it is in" % (lams[0], lams[0]),
+            on=list({id(q): q for _, q0, q in pairs for q in (q0, q)}.values()),
+            data={"mean": mean, "error": err, "differences": n})
         tops = [(lam, max(by_lambda[lam], key=lambda p: p["dphi"])) for lam in lams]
         steps = [(b[1]["dphi"] - a[1]["dphi"], math.hypot(*(e if verdict.finite(e) else 0.0 for e in (
             a[1]["dphi_error"], b[1]["dphi_error"])))) for a, b in zip(tops, tops[1:])]

@@ -15,21 +15,89 @@ from .figures_tissue import x_measured
 from .plotting import T_PAPER, figure, label, log_axis, save, state
 
 
-def onset(xs, ans, errs):
-    """Where A_n first rises above zero: the lowest temperature whose A_n exceeds the
-    lowest-temperature value by more than 2 combined errors, log-interpolated to that level
-    from the point before it; nan when no point does (errors: a missing one counts as 0)."""
+def _sorted_curve(xs, ans, errs):
+    """One K_ecm's curve sorted by temperature, a missing error counting as 0 (as onset() and
+    its error take them)."""
     order = np.argsort(xs)
     x, y = np.asarray(xs, float)[order], np.asarray(ans, float)[order]
     e = np.array([v if verdict.finite(v) else 0.0 for v in np.asarray(errs, float)[order]])
+    return x, y, e
+
+
+def _onset_bracket(x, y, e):
+    """Where onset() places the crossing on a sorted curve: (k, t, interpolated), k the first
+    point above the level y[0] + 2 hypot(e[0], e[k]), t the fraction of the log bracket
+    (x[k-1], x[k]) where the line between them reaches that level, and whether the line placed
+    it (False: y[k-1] already lies above this level, though not above its own, so t is
+    clamped to 0; or there is no line in log x). None when no point rises above its level."""
     for k in range(1, len(x)):
         level = y[0] + 2 * math.hypot(e[0], e[k])
         if y[k] > level:
             if x[k - 1] <= 0 or y[k] == y[k - 1]:
-                return float(x[k])
-            t = min(1.0, max(0.0, (level - y[k - 1]) / (y[k] - y[k - 1])))
-            return float(10 ** (math.log10(x[k - 1]) + t * (math.log10(x[k]) - math.log10(x[k - 1]))))
-    return math.nan
+                return k, 1.0, False
+            t = (level - y[k - 1]) / (y[k] - y[k - 1])
+            return k, min(1.0, max(0.0, t)), 0.0 <= t <= 1.0
+    return None
+
+
+def onset(xs, ans, errs):
+    """Where A_n first rises above zero: the lowest temperature whose A_n exceeds the
+    lowest-temperature value by more than 2 combined errors, log-interpolated to that level
+    from the point before it; nan when no point does (errors: a missing one counts as 0)."""
+    x, y, e = _sorted_curve(xs, ans, errs)
+    found = _onset_bracket(x, y, e)
+    if found is None:
+        return math.nan
+    k, t, _ = found
+    if t >= 1.0:  # no line to interpolate on
+        return float(x[k])
+    return float(10 ** (math.log10(x[k - 1]) + t * (math.log10(x[k]) - math.log10(x[k - 1]))))
+
+
+def onset_log_error(xs, ans, errs):
+    """The error of log10 onset(xs, ans, errs). Where the line between the bracketing points
+    places the crossing, the A_n errors propagated through that interpolation, as
+    points.crossing_log_error does for a midpoint: log10 onset = log10 x[k-1] + w t with
+    t = (y[0] + 2 e_c - y[k-1])/(y[k] - y[k-1]), so the lowest point (it sets the level) and
+    the two bracketing ones enter, each over the slope (y[k] - y[k-1])/w. Where it does not
+    (onset() took a grid point), the crossing is known only to its bracket: the bracket's log
+    width w over sqrt(12), the standard deviation of a position uniform in it. nan without
+    an onset or without a log bracket (x[k-1] <= 0)."""
+    x, y, e = _sorted_curve(xs, ans, errs)
+    found = _onset_bracket(x, y, e)
+    if found is None or x[found[0] - 1] <= 0:
+        return math.nan
+    k, t, interpolated = found
+    w = math.log10(x[k]) - math.log10(x[k - 1])
+    if not interpolated:
+        return float(w / math.sqrt(12))
+    if k == 1:  # y[0] is both the baseline and the bracket's foot: t = 2 e_c/(y[1] - y[0])
+        a_err = t * math.hypot(e[0], e[1])
+    else:
+        a_err = math.sqrt(e[0] ** 2 + ((1 - t) * e[k - 1]) ** 2 + (t * e[k]) ** 2)
+    return float(w * a_err / (y[k] - y[k - 1]))
+
+
+def onset_ratios(onsets, factor):
+    """onset(K_ecm)/onset(0) with its error and verdict for each K_ecm. onsets: [(K_ecm, x,
+    log10 error)], K_ecm = 0 first. The ratio's log10 error is the two onsets' in quadrature;
+    verdict.log_verdict takes it in the ratio's units (r ln10 times it). Returns [(K_ecm,
+    ratio, log10 error, verdict)]."""
+    _, base, base_err = onsets[0]
+    out = []
+    for k, x, err in onsets[1:]:
+        r = x / base if verdict.finite(x, base) and base > 0 else math.nan
+        e = math.hypot(err, base_err) if verdict.finite(err, base_err) else math.nan
+        out.append((k, r, e, verdict.log_verdict(r, r * math.log(10) * e if verdict.finite(r, e)
+                                                 else math.nan, 1.0, factor)))
+    return out
+
+
+def fmt_log(v, log_err):
+    """A positive number with its error in log10: "0.354 (+- 0.054 in log10)"."""
+    if not verdict.finite(log_err):
+        return verdict.fmt(v)
+    return "%s (+- %.2g in log10)" % (verdict.fmt(v), log_err)
 
 
 def fig7a(jobs, out, invasim):
@@ -50,6 +118,8 @@ def fig7(jobs, out, name):
                                               "A_t_error": j.mean("A_t")[1]})
         p["K_ecm"] = float(k)
         pts.append(p)
+    for k in {p["K_ecm"] for p in pts}:
+        points.pooled_errors([p for p in pts if p["K_ecm"] == k], "A_gap")
     free = [p for p in pts if p["K_ecm"] == 0.0]
     if not free:
         raise workspace.InputError("%s: no K_ecm = 0 points to normalise by" % name)
@@ -77,7 +147,8 @@ def fig7(jobs, out, name):
         top = max(c, key=lambda p: p["A_n"])
         plateau.append((k, top["A_n"], top["A_n_error"]))
         axes[0].axhline(top["A_n"], color=colour, ls="--", lw=0.8)  # this K_ecm's A_n^max
-        onsets.append((k, onset([p["x"] for p in c], [p["A_n"] for p in c], errs)))
+        curve = ([p["x"] for p in c], [p["A_n"] for p in c], errs)
+        onsets.append((k, onset(*curve), onset_log_error(*curve)))
         plateau_points.append(top)
         reached = [p for p in c if not verdict.finite(onsets[-1][1]) or p["x"] <= onsets[-1][1]]
         onset_points += reached + [p for p in c if p not in reached][:1]
@@ -98,9 +169,7 @@ def fig7(jobs, out, name):
     d = plateau[0][1] - plateau[-1][1]
     e = math.hypot(*(x if verdict.finite(x) else 0 for x in (plateau[0][2], plateau[-1][2])))
     so = verdict.paper()[name + "_onset"]
-    base = onsets[0][1]
-    ratios = [(k, x / base if verdict.finite(x, base) else math.nan) for k, x in onsets[1:]]
-    each = [verdict.log_verdict(r, math.nan, 1.0, so["log_factor"]) for _, r in ratios]
+    ratios = onset_ratios(onsets, so["log_factor"])
     point_name = lambda p: "K_ecm = %g, 2T_c/P = %.3g" % (p["K_ecm"], p["x"])  # noqa: E731
     rows = [verdict.row(name + "_plateau_falls", "A_n^max = " + ", ".join(
                 "%s (K_ecm = %g)" % (verdict.fmt(v, e_), k) for k, v, e_ in plateau),
@@ -109,15 +178,19 @@ def fig7(jobs, out, name):
                 "K_ecm's top state point, each steady" % verdict.fmt(d, e),
                 unsteady=steady.unsteady_points(plateau_points, jobs_by_id, point_name)),
             verdict.row(name + "_onset", "onset at 2T_c/P = " + ", ".join(
-                "%s (K_ecm = %g)" % (verdict.fmt(x), k) for k, x in onsets),
-                verdict.all_of(each) if ratios else verdict.NO_DATA,
+                "%s (K_ecm = %g)" % (fmt_log(x, e_), k) for k, x, e_ in onsets),
+                verdict.all_of([v for _, _, _, v in ratios]) if ratios else verdict.NO_DATA,
                 "the onset is where A_n first exceeds its lowest-temperature value by more than "
-                "2 combined errors (log-interpolated); onset(K_ecm)/onset(0) = %s, each within "
-                "a factor %g; rests on each K_ecm's state points up to its onset (and the one "
-                "that crosses), each steady" % (", ".join("%s (K_ecm = %g)" % (verdict.fmt(r), k)
-                                                         for k, r in ratios) or "n/a",
-                                                so["log_factor"]),
+                "2 combined errors (log-interpolated), its error in log10 that of the "
+                "interpolation (the A_n errors of the lowest and the two bracketing points over "
+                "the slope), or the bracket's log width/sqrt(12) where it takes a grid point; "
+                "onset(K_ecm)/onset(0) = %s, each within a factor %g (+ 2 errors in log10); "
+                "rests on each K_ecm's state points up to its onset (and the one that crosses), "
+                "each steady" % (", ".join("%s (K_ecm = %g)" % (fmt_log(r, e_), k)
+                                           for k, r, e_, _ in ratios) or "n/a", so["log_factor"]),
+                data={"onset": onsets, "ratio": [r[:3] for r in ratios]},
                 unsteady=steady.unsteady_points(onset_points, jobs_by_id, point_name))]
     return {"images": images, "rows": rows,
-            "numbers": {"plateau": plateau, "onset": onsets, "normalisation": extremes,
+            "numbers": {"plateau": plateau, "onset": onsets,
+                        "onset_ratio": [r[:3] for r in ratios], "normalisation": extremes,
                         "points": pts}, "steadiness": steady.steadiness_summary(jobs)}

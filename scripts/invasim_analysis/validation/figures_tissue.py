@@ -56,6 +56,7 @@ def an_over_time(jobs, keys, xfun, fractions, fraction_of=None):
             p["key"] = list(key)
             table[f].append(p)
             flat.append(p)
+        points.pooled_errors(table[f], "A_gap")
     extremes = normalise.normalise(flat)
     return table, extremes
 
@@ -63,7 +64,7 @@ def an_over_time(jobs, keys, xfun, fractions, fraction_of=None):
 def _window_values(job, xfun, fraction):
     return {"x": xfun(job, fraction), "A_t": steady.window_mean(job, "A_t", fraction),
             "A_t_max": steady.window_mean(job, "A_t_max", fraction),
-            "A_t_error": job.mean("A_t")[1]}
+            "A_t_error": job.mean("A_t")[1], "A_gap_error": points.gap_error(job, fraction)}
 
 
 def fmt_time(t):
@@ -323,12 +324,12 @@ def fig4b(jobs, out, invasim, inset_jobs=None):
     if inset_jobs:
         by_start = {}
         for (start,), reps in workspace.group(inset_jobs, ["start"]).items():
-            pts = [normalise.scale_like({"A_t": j.mean("A_t")[0], "A_t_max": j.mean("A_t_max")[0],
-                                    "A_t_error": j.mean("A_t")[1]}, extremes) for j in reps]
+            pts = [normalise.scale_like(points.job_areas(j), extremes) for j in reps]
             vals = np.array([p["A_n"] for p in pts])
-            by_start[start] = (float(vals.mean()),
-                               float(vals.std(ddof=1) / math.sqrt(len(vals))) if len(vals) > 1
-                               else pts[0]["A_n_error"], float(np.mean([x_measured(j) for j in reps])))
+            by_start[start] = (float(vals.mean()), float(
+                vals.std(ddof=1) / math.sqrt(len(vals)) * points.widening(len(vals) - 1))
+                if len(vals) > 1 else pts[0]["A_n_error"],
+                float(np.mean([x_measured(j) for j in reps])))
             axes[1].plot([start] * len(vals), vals, "o", alpha=0.6)
             axes[1].errorbar([start], [by_start[start][0]], yerr=[by_start[start][1] if
                              verdict.finite(by_start[start][1]) else 0], fmt="s",

@@ -17,7 +17,7 @@ import os
 import re
 
 from .. import normalise, steady, workspace
-from . import panels, verdict
+from . import panels, points, verdict
 from .figures_master import fig5 as reduced_fig5
 from .figures_tissue import fig3 as reduced_fig3
 from .figures_tissue import fig4a as reduced_fig4a
@@ -186,12 +186,11 @@ def fig4b(sets, out, invasim):
         return [an, inset], [], {"starts_in_ratio": inset["data"]}, None
     rec = reduced_fig4b(curve, out, invasim, inset_jobs=starts)
     extremes = rec["numbers"]["normalisation"]
-    pts = [normalise.scale_like({"A_t": j.mean("A_t")[0], "A_t_max": j.mean("A_t_max")[0],
-                            "A_t_error": j.mean("A_t")[1]}, extremes) for j in starts]
+    pts = [normalise.scale_like(points.job_areas(j), extremes) for j in starts]
     vals = [p["A_n"] for p in pts]
     mean = sum(vals) / len(vals)
     err = (math.sqrt(sum((v - mean) ** 2 for v in vals) / (len(vals) - 1) / len(vals))
-           if len(vals) > 1 else pts[0]["A_n_error"])
+           * points.widening(len(vals) - 1) if len(vals) > 1 else pts[0]["A_n_error"])
     x = sum(x_measured(j) for j in starts) / len(starts)
     st = verdict.paper()["fig4b_An_at_0.3"]
     is_steady, reasons = steady.point_steadiness(starts)

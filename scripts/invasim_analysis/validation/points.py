@@ -5,10 +5,20 @@ import math
 
 import numpy as np
 
+from .. import steady
+
+
 def state_point(jobs, values):
     """Replicate means of named per-job values: values(job) -> {name: value}. The error of
-    each is the standard error over replicates (n >= 2), else the job's own `<name>_error`."""
+    each is the standard error over replicates (n >= 2), else the job's own `<name>_error`.
+    Where the values hold A_t and A_t_max, also the gap A_t_max - A_t that A_n is made of
+    (normalise.py), whose error A_gap_error carries the covariance of the two: the
+    replicates' scatter of the gap, or the run's own error of its window's gap (gap_error)."""
     rows = [values(j) for j in jobs]
+    if "A_t" in rows[0] and "A_t_max" in rows[0]:
+        for j, r in zip(jobs, rows):
+            r["A_gap"] = r["A_t_max"] - r["A_t"]
+            r.setdefault("A_gap_error", gap_error(j))
     out = {"replicates": len(jobs), "jobs": [j.id for j in jobs]}
     for name in rows[0]:
         if name.endswith("_error"):
@@ -20,6 +30,63 @@ def state_point(jobs, values):
         else:
             out[name + "_error"] = float(rows[0].get(name + "_error", math.nan))
     return out
+
+
+# The one-sided tail of 2 standard deviations of a normal distribution: the t quantile at
+# this level over 2 is the factor that keeps a "2 errors" criterion's coverage (95.4 %) for
+# an error estimated from few replicates (pooled_errors).
+TWO_SIGMA_LEVEL = 0.97725
+
+
+def widening(dof):
+    """t_{0.977}(dof)/2: 6.9 for 1 degree of freedom, 1.95 for 3, 1.2 for 10, 1 for many."""
+    from scipy.stats import t  # slow import
+    return float(t.ppf(TWO_SIGMA_LEVEL, dof)) / 2.0 if dof > 0 else math.nan
+
+
+def pooled_errors(curve, name, axis="x", window=1):
+    """Replaces the replicate errors of `name` of the state points of one curve (dicts from
+    state_point, ordered by `axis` here) by errors from the replicate variance pooled over each
+    point and its `window` neighbours on each side along it (dof-weighted, as the master
+    curve pools A_n: master_curve/analysis.py, build_points), widened by widening(pooled
+    dof): two replicates alone give one degree of freedom, and a standard error from them is
+    near zero by chance often enough that "2 errors" covers the truth 70 % of the time, not
+    95 %. A point with no replicates in its window keeps its run's own error. Adds
+    name_dof (the pooled degrees of freedom; 0 for a run's own error)."""
+    pts = sorted(curve, key=lambda p: p[axis])
+    spread = [(p["replicates"] - 1, p[name + "_error"] ** 2 * p["replicates"])
+              if p["replicates"] >= 2 else (0, 0.0) for p in pts]
+    for k, p in enumerate(pts):
+        near = spread[max(0, k - window):k + window + 1]
+        dof = sum(d for d, _ in near)
+        p[name + "_dof"] = dof
+        if dof > 0:
+            var = sum(d * v for d, v in near) / dof
+            p[name + "_error"] = math.sqrt(var / p["replicates"]) * widening(dof)
+    return curve
+
+
+def gap_error(job, end_fraction=None):
+    """The run's own error of the mean of A_t_max - A_t over its averaging window (the series,
+    so that the covariance of A_t and A_t^max is in it; they move together as the box
+    breathes), by the same estimator as the steady-state test's errors (steady.window_error);
+    with end_fraction, over the window steady.window_mean takes for that time."""
+    s = job.series
+    if "A_t" not in s or "A_t_max" not in s:
+        return math.nan
+    if end_fraction is None:
+        first, end = steady.window(job)
+    else:
+        first, end = steady.window_rows(len(s["A_t"]), end_fraction)
+    return steady.window_error(np.asarray(s["A_t_max"][first:end], float)
+                               - np.asarray(s["A_t"][first:end], float))[0]
+
+
+def job_areas(job):
+    """One run as a state point of its own, for normalise.scale_like: its means of A_t and
+    A_t_max (summary.json), the error of A_t and the error of the gap (gap_error)."""
+    return {"A_t": job.mean("A_t")[0], "A_t_max": job.mean("A_t_max")[0],
+            "A_t_error": job.mean("A_t")[1], "A_gap_error": gap_error(job)}
 
 
 def crossing(x, y, level=0.5):

@@ -9,7 +9,9 @@ Two kinds of statement, each with an explicit criterion:
 - a trend (a signed difference d with error e that the paper says is > 0):
   agrees               d > 2 e
   agrees in trend only 0 < d <= 2 e (the right sign, not significant at 2 sigma)
-  disagrees            d <= 0
+  inconclusive         -2 e <= d <= 0 (the wrong sign, not significant either: a true
+                       d = 0 lands here or in "trend only", never in "disagrees")
+  disagrees            d < -2 e
 A row whose numbers are missing or not finite (too few points, e.g. at the CI size) gets
 "no data" with the reason; a statement that needs data we do not have gets "not testable".
 Two classes say why a number is not compared:
@@ -32,18 +34,23 @@ import os
 
 from ..repo_paths import REPO
 
-AGREES, TREND, DISAGREES, NO_DATA, UNTESTABLE = (
-    "agrees", "agrees in trend only", "disagrees", "no data", "not testable")
+AGREES, TREND, INCONCLUSIVE, DISAGREES, NO_DATA, UNTESTABLE = (
+    "agrees", "agrees in trend only", "inconclusive", "disagrees", "no data", "not testable")
 PAPER_INCONSISTENT, NOT_STEADY = "paper inconsistent", "not steady"
 RUNNING, PENDING = "running", "pending"
 # The version of the criteria a figure record was computed with (its "criteria"): 2 is the
 # measured 2 T_c/P axis for every figure, the classes above and the per-point criteria of
 # Figs. 5-8; 3 the steady-state criterion of steady.py (the two quarter means, the starts
-# agreeing) and the values at earlier times over the averaging window ending there; records
-# without it are older (docs/validation.md says so under the figure).
-CRITERIA = 3
+# agreeing) and the values at earlier times over the averaging window ending there; 4 the
+# statistics of Method: quarter errors from the window's autocorrelation time (steady.py),
+# "inconclusive" trends, A_n's error from the gap A_t^max - A_t with replicate variances
+# pooled and widened (points.py), errors of Fig. 7's onsets and of Fig. 8's mean difference,
+# and Fig. 5 fitted as the master curve is; records without it are older (docs/validation.md
+# says so under the figure).
+CRITERIA = 4
 # Every verdict, in the order of the page's counts.
-VERDICTS = (AGREES, TREND, DISAGREES, PAPER_INCONSISTENT, NOT_STEADY, NO_DATA, UNTESTABLE)
+VERDICTS = (AGREES, TREND, INCONCLUSIVE, DISAGREES, PAPER_INCONSISTENT, NOT_STEADY, NO_DATA,
+            UNTESTABLE)
 
 PAPER_FILE = os.path.join(REPO, "scripts", "validation_paper.json")
 
@@ -75,7 +82,9 @@ def trend_verdict(d, e):
     e = e if finite(e) else 0.0
     if d > 2 * e:
         return AGREES
-    return TREND if d > 0 else DISAGREES
+    if d > 0:
+        return TREND
+    return INCONCLUSIVE if d >= -2 * e else DISAGREES
 
 
 def fmt(v, err=None, digits=3):
@@ -129,13 +138,17 @@ def is_code_check(statement_id):
 
 def all_of(verdicts):
     """One verdict for a statement that must hold at every point: no data if none has data;
-    agrees if every point with data agrees; disagrees if one disagrees; else trend only."""
+    agrees if every point with data agrees; disagrees if one disagrees; else inconclusive if
+    one is; else trend only."""
     vs = [v for v in verdicts if v != NO_DATA]
     if not vs:
         return NO_DATA
     if all(v == AGREES for v in vs):
         return AGREES
-    return DISAGREES if DISAGREES in vs else TREND
+    for worst in (DISAGREES, INCONCLUSIVE):
+        if worst in vs:
+            return worst
+    return TREND
 
 
 def log_verdict(ours, err, p, factor, trend_holds=None):
