@@ -233,12 +233,7 @@ def point_steadiness(jobs, key="start"):
     """A state point's verdict by the criterion: (steady, reasons), steady when every run is
     steady and, if its runs differ in `key` (two starts), the starts agree; reasons name the
     runs that are not steady (or not judged) and a disagreement of the starts."""
-    reasons = []
-    for j in jobs:
-        s = steadiness(j)
-        if s["steady"] is not True:
-            reasons.append("run %s %s" % (_run_name(j), "drifts: %s" % _drift_text(s)
-                                          if s["steady"] is False else "not judged"))
+    reasons = unsteady_runs(jobs)
     if len({str(j.sp.get(key)) for j in jobs}) == 2:
         a = start_agreement(jobs, key)
         if a["agree"] is not True:
@@ -246,6 +241,19 @@ def point_steadiness(jobs, key="start"):
                 "disagree" if a["agree"] is False else "cannot be compared",
                 ", ".join("%s %.4g +- %.2g" % (k, m, e) for k, (m, e) in a["means"].items())))
     return not reasons, reasons
+
+
+def unsteady_runs(jobs):
+    """The first half of point_steadiness: the runs that are not steady (or not judged), each
+    named with its drift. Alone it is the precondition of a row that compares the starts
+    themselves (Fig. 4b's inset), which the second half would otherwise decide in advance."""
+    reasons = []
+    for j in jobs:
+        s = steadiness(j)
+        if s["steady"] is not True:
+            reasons.append("run %s %s" % (_run_name(j), "drifts: %s" % _drift_text(s)
+                                          if s["steady"] is False else "not judged"))
+    return reasons
 
 
 def _run_name(job):

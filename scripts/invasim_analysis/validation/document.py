@@ -141,13 +141,14 @@ same test: their means of `A_t` over the averaging windows (each start's mean ov
 its error the standard error over the seeds, or with one seed its window's by the same
 estimator) differ by at most twice the combined error, or by less than 1 % of `A_t^max`. Each
 figure says how many of its runs pass. A row that rests on state points (its criterion names
-them: Fig. 4b's two points bracketing 0.3, the inset's state point, every point of a Fig. 5
-curve) gets the verdict *not steady* when one of them is not steady, and names the runs and the
-starts that fail; a Fig. 5 curve that is not steady is drawn hollow and left out of the collapse
-and of the fit of `a`. Rows about the approach in time (Fig. 3's `A_t(t)`, Fig. 4a's curve at
-three times) do not rest on a steady state. A value at an earlier time (Fig. 4a's curves at a
-quarter and half of the run, or at `t = 1e4` and `1e5` at the paper's scale) is the mean over
-the averaging window the run would have had, had it ended there.
+them: Fig. 4b's two points bracketing 0.3, every point of a Fig. 5 curve) gets the verdict *not
+steady* when one of them is not steady, and names the runs and the starts that fail (the inset's
+row, which tests the starts' agreement itself, rests on its runs alone); a Fig. 5 curve that is
+not steady is drawn hollow and left out of the collapse and of the fit of `a`. Rows about the
+approach in time (Fig. 3's `A_t(t)`, Fig. 4a's curve at three times) do not rest on a steady
+state. A value at an earlier time (Fig. 4a's curves at a quarter and half of the run, or at
+`t = 1e4` and `1e5` at the paper's scale) is the mean over the averaging window the run would
+have had, had it ended there.
 
 **Verdicts** (`scripts/invasim_analysis/validation/verdict.py`). The paper's statements and
 their stated precision are in `scripts/validation_paper.json` (each citing its place in the

@@ -245,7 +245,7 @@ def _inset_in_ratio(starts, why_no_an):
     x = sum(x_measured(j) for j in starts) / len(starts)
     # Each run's own steadiness; the starts' disagreement, the criterion's second half, is
     # what this row reports.
-    runs_unsteady = [r for r in steady.point_steadiness(starts)[1] if not r.startswith("the starts")]
+    runs_unsteady = steady.unsteady_runs(starts)
     return verdict.row(
         "fig4b_inset_starts", "A_t/A_t^max = %s (de-mixed, %d runs), %s (mixed, %d runs) at %s "
         "(t = 5e5)" % (verdict.fmt(*means["demixed"][:2]), means["demixed"][2],
