@@ -9,23 +9,10 @@ import math
 import os
 import sys
 
-from prerequisites import skip_test
+from prerequisites import check, require_scientific_python
 
-try:
-    import matplotlib  # noqa: F401
-    import numpy as np
-    import scipy  # noqa: F401
-except ImportError as missing:
-    skip_test("%s cannot import %s" % (sys.executable, missing.name),
-              "python3-numpy python3-scipy python3-matplotlib")
-
-
-def check(condition, detail=None):
-    """An assert that python -O keeps: a failed check exits with status 1 naming its line."""
-    if not condition:
-        line = sys._getframe(1).f_lineno
-        raise SystemExit("FAILED: check_statistics.py:%d%s"
-                         % (line, "" if detail is None else ": %r" % (detail,)))
+require_scientific_python()
+import numpy as np  # noqa: E402
 
 
 # The steady-state criterion (steady.py; docs/validation.md, Method, "Steady state") on

@@ -17,3 +17,24 @@ def skip_test(reason, packages):
         sys.exit(1)
     print("SKIPPED: %s (Debian: %s)" % (reason, packages))
     sys.exit(SKIP)
+
+
+def require_scientific_python():
+    """Skips (skip_test) unless numpy, scipy and matplotlib import: the analysis needs all three."""
+    try:
+        import matplotlib  # noqa: F401
+        import numpy  # noqa: F401
+        import scipy  # noqa: F401
+    except ImportError as missing:
+        skip_test("%s cannot import %s" % (sys.executable, missing.name),
+                  "python3-numpy python3-scipy python3-matplotlib")
+
+
+def check(condition, detail=None):
+    """An assert that python -O keeps: a failed check exits with status 1 naming the calling
+    script's file and line (and the detail)."""
+    if not condition:
+        frame = sys._getframe(1)
+        raise SystemExit("FAILED: %s:%d%s" % (os.path.basename(frame.f_code.co_filename),
+                                              frame.f_lineno,
+                                              "" if detail is None else ": %r" % (detail,)))
