@@ -121,4 +121,5 @@ def scale_like(point, extremes):
     point["A_n"] = scaled(point["rA_t"], lo, hi)
     err = point.get("A_gap_error", point.get("A_t_error", math.nan))
     point["A_n_error"] = float(run_error(err, None, min_max, lo, hi))
+    point["A_n_dof"] = point.get("A_gap_dof")  # A_n's error is a multiple of the gap's
     return point

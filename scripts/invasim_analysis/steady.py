@@ -26,6 +26,7 @@ import math
 
 import numpy as np
 
+from . import student
 from .workspace import group
 
 STEADY_FACTOR = 2.0
@@ -43,9 +44,13 @@ SOKAL_C = 5.0
 # The window's cap: removing p fitted drift parameters from n rows biases every lag of the
 # autocovariance by about -p C_F / n (C_F = 2 tau_int x variance), so the sum up to W is
 # divided by 1 - p (2W + 1) / n (Wolff, Comput. Phys. Commun. 156, 143 (2004)); W is kept
-# where p (2W + 1) / n <= MAX_FIT_SHARE, the correction at most a factor 3. A window of 124
-# rows (p = 3) allows W <= 13: a correlation time beyond ~3 rows then does not meet Sokal's
-# criterion and tau_int is a lower bound (tau_capped), the run too short to measure it.
+# where p (2W + 1) / n <= MAX_FIT_SHARE, the correction at most a factor 3. That is the
+# first-order form, which takes every lag's bias as the full p; the lag-t bias is really
+# the lag-t diagonal sum of the fit's projection, smaller at large t, so at W = 13 on 124
+# rows it over-corrects C_F by up to 1.4x, which about offsets the sum's truncation at the
+# cap (tests/analysis/check_statistics.py, steady_*, measures the net false-alarm rates).
+# A window of 124 rows (p = 3) allows W <= 13: a correlation time beyond ~3 rows then does
+# not meet Sokal's criterion and tau_int is a lower bound (tau_capped).
 MAX_FIT_SHARE = 2.0 / 3.0
 
 
@@ -157,7 +162,7 @@ def window(job, rows=None):
     samples = samples.get("samples") if isinstance(samples, dict) else None
     if rows is None and job.status == "done" and isinstance(samples, int) and 0 < samples <= n:
         return n - samples, n
-    return n - max(1, n // 2), n
+    return window_rows(n, 1.0)
 
 
 def steadiness(job, column="A_t", rows=None):
@@ -201,11 +206,12 @@ def start_agreement(jobs, key="start", column="A_t"):
     each start's mean of `column` over its runs' averaging windows, its error the standard
     error over the runs (two or more) or, with one run, the error of its window's mean by the
     criterion's own estimator (window_error: tau_int of the window's fluctuations about
-    its quarters' drift); the two starts agree when
-    |difference| <= STEADY_FACTOR x the combined error or is negligible (NEGLIGIBLE_DRIFT of
-    the mean A_t^max). Returns {means: {start: (mean, error)}, difference, error, agree}
-    (agree None with fewer than two starts or without a finite error)."""
-    means, amax = {}, []
+    its quarters' drift); the two starts agree when |difference| <= STEADY_FACTOR x the
+    combined error (student.factor of its Welch-Satterthwaite degrees of freedom when the
+    errors come from few runs) or is negligible (NEGLIGIBLE_DRIFT of the mean A_t^max).
+    Returns {means: {start: (mean, error)}, difference, error, dof, agree} (agree None with
+    fewer than two starts or without a finite error)."""
+    means, amax, dofs = {}, [], []
     for (start,), reps in group(jobs, [key]).items():
         vals = []
         for j in reps:
@@ -217,13 +223,17 @@ def start_agreement(jobs, key="start", column="A_t"):
         v = np.array([m for m, _ in vals])
         err = float(np.std(v, ddof=1) / math.sqrt(len(v))) if len(v) >= 2 else vals[0][1]
         means[str(start)] = (float(np.mean(v)), err)
-    out = {"means": means, "difference": math.nan, "error": math.nan, "agree": None}
+        dofs.append(len(v) - 1 if len(v) >= 2 else None)
+    out = {"means": means, "difference": math.nan, "error": math.nan, "dof": None,
+           "agree": None}
     if len(means) != 2:
         return out
     (m1, e1), (m2, e2) = means.values()
     out["difference"], out["error"] = m2 - m1, math.hypot(e1, e2)
+    out["dof"] = student.welch_dof([(e1, dofs[0]), (e2, dofs[1])])
     if math.isfinite(out["error"]):
-        out["agree"] = bool(abs(m2 - m1) <= STEADY_FACTOR * out["error"])
+        k = STEADY_FACTOR / 2.0 * student.factor(out["dof"])
+        out["agree"] = bool(abs(m2 - m1) <= k * out["error"])
     if column == "A_t" and amax and abs(m2 - m1) <= NEGLIGIBLE_DRIFT * float(np.mean(amax)):
         out["agree"] = True
     return out

@@ -66,8 +66,9 @@ DEFINITIONS = [
      r"point_steadiness|start_agreement|steadiness_summary|unsteady_points|drift_residuals|"
      r"autocovariance|integrated_time|mean_error)\(", "steady.py"),
     (r"^(STEADY_FACTOR|NEGLIGIBLE_DRIFT|MIN_BLOCKS|SOKAL_C|MAX_FIT_SHARE) =", "steady.py"),
-    (r"^\s*def (state_point|gap_error|job_areas|pooled_errors|widening)\(",
+    (r"^\s*def (state_point|gap_error|job_areas|pooled_errors|least_dof)\(",
      os.path.join("validation", "points.py")),
+    (r"^\s*def (factor|welch_dof)\(|^TWO_SIGMA_LEVEL =", "student.py"),
     (r"^\s*def (normalise\w*|scale_like|relative_area|scaled|run_error|point_means|"
      r"extremes)\(", "normalise.py"),
     (r"^\s*class Job\b", "workspace.py"),

@@ -97,15 +97,18 @@ The analysis reads the run directories of each workspace (`summary.json`: block-
 and errors over the last half of the production; `series.csv`; `shapes.csv`; `snapshots/`).
 `A_n` is the paper's Appendix C normalisation over the figure's state points (replicate means;
 docs/sweeps_analysis.md). Its error is that of the gap `A_t^max - A_t` it is linear in,
-covariance included: the replicates' variance pooled with the neighbouring state point on each
-side of the curve, widened by `t_0.977(dof)/2` so that "2 errors" keeps its 95 % coverage
-(`validation/points.py`; two seeds alone give one degree of freedom); with no replicates near,
-the run's own error (a lower bound: two seeds of a state point differ in `A_t` by a median 8 of
-those errors). Curves are fitted with `master_curve/fits.py`; Fig. 5 with `master_curve.py`'s
-own functions (docs/sweeps_analysis.md; its unsteady state points enter no fit), so that for the
-same jobs it gets that tool's `a`, `b`, `c1`, `c2`. `scripts/validation.py all` passes a missing
-optional workspace as `-` (e.g. Fig. 5 without `fig5_long`); the record names it and the
-figure's section says which workspaces were not given.
+covariance included: the replicates' standard error, their variance pooled with the neighbouring
+state point on each side of the curve (`validation/points.py`), whose degrees of freedom (two
+seeds alone give one) turn "2 errors" into `t_0.977(dof)` errors
+(`scripts/invasim_analysis/student.py`; Welch-Satterthwaite for a combination), so that it keeps
+its 95 % coverage: 3.3 for three, 2.3 for ten. With no replicates near, the error is the run's
+own, a lower bound: two seeds of a state point differ in `A_t` by a median 8 of `summary.json`'s
+errors (0.67 expected). Curves are fitted with `master_curve/fits.py`; Fig. 5 with
+`master_curve.py`'s own functions (docs/sweeps_analysis.md; its unsteady state points enter no
+fit), so that from one workspace without an unsteady curve it gets that tool's `a`, `b`, `c1`,
+`c2`. `scripts/validation.py all` passes a missing optional workspace as `-` (e.g. Fig. 5
+without `fig5_long`); the record names it and the figure's section says which workspaces were
+not given.
 
 **One temperature axis.** Every figure's `k_B T/(P sigma^3)` is the measured cancer-cell
 temperature in the paper's convention, `2 k_B T_c/(P sigma^3)` (`kT_c_paper/P` of
@@ -139,36 +142,37 @@ be judged and does not count as steady. A state point is steady when all its run
 it was run from two starts (Fig. 4b's de-mixed and mixed starts), when the starts agree by the
 same test: their means of `A_t` over the averaging windows (each start's mean over its seeds,
 its error the standard error over the seeds, or with one seed its window's by the same
-estimator) differ by at most twice the combined error, or by less than 1 % of `A_t^max`. Each
-figure says how many of its runs pass. A row that rests on state points (its criterion names
-them: Fig. 4b's two points bracketing 0.3, every point of a Fig. 5 curve) gets the verdict *not
-steady* when one of them is not steady, and names the runs and the starts that fail (the inset's
-row, which tests the starts' agreement itself, rests on its runs alone); a Fig. 5 curve that is
-not steady is drawn hollow and left out of the collapse and of the fit of `a`. Rows about the
-approach in time (Fig. 3's `A_t(t)`, Fig. 4a's curve at three times) do not rest on a steady
-state. A value at an earlier time (Fig. 4a's curves at a quarter and half of the run, or at
-`t = 1e4` and `1e5` at the paper's scale) is the mean over the averaging window the run would
-have had, had it ended there.
+estimator) differ by at most twice the combined error (`t_0.977(dof)` times with few seeds), or
+by less than 1 % of `A_t^max`. Each figure says how many of its runs pass. A row that rests on
+state points (its criterion names them: Fig. 4b's two points bracketing 0.3, every point of a
+Fig. 5 curve) gets the verdict *not steady* when one of them is not steady, and names the runs
+and the starts that fail (the inset's row, which tests the starts' agreement itself, rests on
+its runs alone); a Fig. 5 curve that is not steady is drawn hollow and left out of the collapse
+and of the fit of `a`. Rows about the approach in time (Fig. 3's `A_t(t)`, Fig. 4a's curve at
+three times) do not rest on a steady state. A value at an earlier time (Fig. 4a's curves at a
+quarter and half of the run, or at `t = 1e4` and `1e5` at the paper's scale) is the mean over
+the averaging window the run would have had, had it ended there.
 
 **Verdicts** (`scripts/invasim_analysis/validation/verdict.py`). The paper's statements and
 their stated precision are in `scripts/validation_paper.json` (each citing its place in the
 paper: section, figure, equation). A number agrees when `|ours - paper| <= tolerance + 2 errors`
-(or within the stated factor on a log scale); it *agrees in trend only* when the number is off
-but the trend the figure is about holds; a trend (a difference the paper says is positive)
-agrees when it exceeds 2 errors, agrees in trend only when it has the right sign within 2
-errors, is *inconclusive* with the wrong sign within 2 errors, and disagrees below -2 errors.
-*No data*: too few points for the number (always the case at the CI size for fits); *not
-testable*: the paper compares with data we do not have; *not steady*: above; *paper
-inconsistent*: the paper contradicts itself on the number (its `inconsistent` in
-`scripts/validation_paper.json`; the row keeps what the verdict against one of its values would
-be). A statement marked `"check": "code"` tests our code, not the paper: it is listed under
-"Checks of our code" and not counted. Statements that must hold at several points (all `phi_c`
-of Fig. 6, all `K_ecm` of Fig. 7) agree when every point agrees, disagree when one disagrees,
-and are inconclusive when one is. Fig. 7's onset (where `A_n` first exceeds its
-lowest-temperature value by 2 combined errors) has an error in `log10 x`: the `A_n` errors of
-the lowest and the two bracketing points through the interpolation, or the bracket's log
-width/sqrt(12) where it falls on a grid point. Fig. 8's mean of `A_n(lambda = 0) - A_n(lambda)`
-counts each `lambda = 0` point once, with the weight of all the differences it is in.
+(2 read as `t_0.977(dof)` for an error of pooled replicates, above) (or within the stated factor
+on a log scale); it *agrees in trend only* when the number is off but the trend the figure is
+about holds; a trend (a difference the paper says is positive) agrees when it exceeds 2 errors,
+agrees in trend only when it has the right sign within 2 errors, is *inconclusive* with the
+wrong sign within 2 errors, and disagrees below -2 errors. *No data*: too few points for the
+number (always the case at the CI size for fits); *not testable*: the paper compares with data
+we do not have; *not steady*: above; *paper inconsistent*: the paper contradicts itself on the
+number (its `inconsistent` in `scripts/validation_paper.json`; the row keeps what the verdict
+against one of its values would be). A statement marked `"check": "code"` tests our code, not
+the paper: it is listed under "Checks of our code" and not counted. Statements that must hold at
+several points (all `phi_c` of Fig. 6, all `K_ecm` of Fig. 7) agree when every point agrees,
+disagree when one disagrees, and are inconclusive when one is. Fig. 7's onset (where `A_n` first
+exceeds its lowest-temperature value by 2 combined errors) has an error in `log10 x`: the `A_n`
+errors of the lowest and the two bracketing points through the interpolation, or the bracket's
+log width/sqrt(12) where it falls on a grid point. Fig. 8's mean of
+`A_n(lambda = 0) - A_n(lambda)` counts each `lambda = 0` point once, with the weight of all the
+differences it is in.
 
 **CI.** `tests/analysis/validation_tiny.sh` (CTest `validation_pipeline_tiny`, about 75 s at 2 jobs) runs every
 campaign sweep file at its CI size (`invasim sweep init SPEC --tiny`: each file's

@@ -7,7 +7,7 @@ import os
 
 import numpy as np
 
-from .. import normalise, steady, workspace
+from .. import normalise, steady, student, workspace
 from . import points, verdict
 from .plotting import figure, label, log_axis, log_if_spans, save, state
 
@@ -180,24 +180,37 @@ def _fig8_plot(by_lambda, box, out, image):
     return save(fig, out, image)
 
 
-def difference_mean(pairs):
+def difference_mean(pairs, dofs=None):
     """The mean of the differences base - other and its error, for pairs [(base key, base,
     base error, other, other error)] (a missing error counts as 0; a pair whose difference is
     not finite is left out). The mean is a linear combination of the state points' values:
     each other point enters with -1/n, a base point shared by m differences with m/n, so its
     error counts once with that summed weight, sqrt(sum c_i^2 e_i^2); summing the pairs'
-    errors as if independent would count it m times with weight 1/n. Returns (mean, error,
-    n), nan with n = 0 when no pair is finite."""
-    pairs = [p for p in pairs if verdict.finite(p[1] - p[3])]
-    n = len(pairs)
+    errors as if independent would count it m times with weight 1/n. dofs: per pair the
+    degrees of freedom of (base error, other error), None for many. Returns (mean, error, n,
+    dof: the error's Welch-Satterthwaite degrees of freedom, student.welch_dof), nan with
+    n = 0 when no pair is finite."""
+    dofs = dofs or [(None, None)] * len(pairs)
+    kept = [(p, d) for p, d in zip(pairs, dofs) if verdict.finite(p[1] - p[3])]
+    n = len(kept)
     if not n:
-        return math.nan, math.nan, 0
-    base = {}  # base key -> (the number of differences it is in, its error)
-    for key, _, e0, _, _ in pairs:
-        base[key] = (base.get(key, (0, 0.0))[0] + 1, e0 if verdict.finite(e0) else 0.0)
-    var = sum((m * e0 / n) ** 2 for m, e0 in base.values())
-    var += sum((e / n) ** 2 for _, _, _, _, e in pairs if verdict.finite(e))
-    return float(np.mean([b - a for _, b, _, a, _ in pairs])), math.sqrt(var), n
+        return math.nan, math.nan, 0, None
+    base = {}  # base key -> (the number of differences it is in, its error, its dof)
+    for (key, _, e0, _, _), (d0, _) in kept:
+        base[key] = (base.get(key, (0,))[0] + 1, e0 if verdict.finite(e0) else 0.0, d0)
+    terms = [(m * e0 / n, d0) for m, e0, d0 in base.values()]
+    terms += [(e / n, d) for (_, _, _, _, e), (_, d) in kept if verdict.finite(e)]
+    error = math.sqrt(sum(v * v for v, _ in terms))
+    mean = float(np.mean([b - a for (_, b, _, a, _), _ in kept]))
+    return mean, error, n, student.welch_dof(terms)
+
+
+def _step_error(a, b, name):
+    """The error of b[name] - a[name] for two state points, and its degrees of freedom
+    (student.welch_dof; a missing error counts as 0)."""
+    terms = [(p[name + "_error"] if verdict.finite(p[name + "_error"]) else 0.0,
+              p.get(name + "_dof")) for p in (a, b)]
+    return math.hypot(*(v for v, _ in terms)), student.welch_dof(terms)
 
 
 def _fig8_rows(pts, by_lambda, box, variant, jobs_by_id):
@@ -232,7 +245,8 @@ def _fig8_rows(pts, by_lambda, box, variant, jobs_by_id):
                 m["P_right"] / m["P"], verdict.fmt_temperature(2 * m["T_c"] / m["P"]),
                 lo["phi_a_measured"], lo["A_t"],
                 lo["A_t_max"], lo["lambda"]),
-            verdict.value_verdict(m["A_n"], m["A_n_error"], 0.0, s0["tolerance"]),
+            verdict.value_verdict(m["A_n"], m["A_n_error"], 0.0, s0["tolerance"],
+                                  dof=m.get("A_n_dof")),
             "A_n <= 0.1 + 2 errors; " + drift + ("" if box == "pressure" else
             "; A_n is normalised with the scan's smallest A_t^max (Appendix C), i.e. the "
             "densest box's, so where A_t^max shrinks with the box faster than A_t, A_n rises "
@@ -247,25 +261,26 @@ def _fig8_rows(pts, by_lambda, box, variant, jobs_by_id):
         base = {p["phi_a_target"]: p for p in by_lambda[lams[0]]}
         pairs = [(lam, base[p["phi_a_target"]], p) for lam in lams[1:] for p in by_lambda[lam]
                  if p["phi_a_target"] in base]
-        mean, err, n = difference_mean([(q0["phi_a_target"], q0["A_n"], q0["A_n_error"],
-                                         q["A_n"], q["A_n_error"]) for _, q0, q in pairs])
+        mean, err, n, dof = difference_mean(
+            [(q0["phi_a_target"], q0["A_n"], q0["A_n_error"], q["A_n"], q["A_n_error"])
+             for _, q0, q in pairs], [(q0.get("A_n_dof"), q.get("A_n_dof")) for _, q0, q in pairs])
         add("fig8_lambda_lowers", "A_n(lambda = %g) - A_n(lambda) at the same phi_a: %s; mean %s"
             % (lams[0], ", ".join("%s (lambda = %g, phi_a = %g)" % (
                 verdict.fmt(q0["A_n"] - q["A_n"]), lam, q["phi_a_target"])
                 for lam, q0, q in pairs) or "no shared phi_a", verdict.fmt(mean, err)),
-            verdict.trend_verdict(mean, err) if n else verdict.NO_DATA,
+            verdict.trend_verdict(mean, err, dof) if n else verdict.NO_DATA,
             "pointwise at each target phi_a shared by lambda = %g and a larger lambda, then "
             "the mean of the differences > 2 errors, its error that of the mean as a sum over "
             "the state points, each lambda = %g point once with the weight of all the "
             "differences it is in" % (lams[0], lams[0]),
             on=list({id(q): q for _, q0, q in pairs for q in (q0, q)}.values()),
-            data={"mean": mean, "error": err, "differences": n})
+            data={"mean": mean, "error": err, "differences": n, "dof": dof})
         tops = [(lam, max(by_lambda[lam], key=lambda p: p["dphi"])) for lam in lams]
-        steps = [(b[1]["dphi"] - a[1]["dphi"], math.hypot(*(e if verdict.finite(e) else 0.0 for e in (
-            a[1]["dphi_error"], b[1]["dphi_error"])))) for a, b in zip(tops, tops[1:])]
+        steps = [(b[1]["dphi"] - a[1]["dphi"], *_step_error(a[1], b[1], "dphi"))
+                 for a, b in zip(tops, tops[1:])]
         add("fig8_dphi_grows", "max Delta phi_a = " + " -> ".join(
             "%s (lambda = %g)" % (verdict.fmt(t["dphi"], t["dphi_error"]), lam) for lam, t in tops),
-            verdict.all_of([verdict.trend_verdict(d, e) for d, e in steps]),
+            verdict.all_of([verdict.trend_verdict(d, e, dof) for d, e, dof in steps]),
             "each step in lambda raises max Delta phi_a by > 2 errors (trend only: every step "
             "positive)", on=[t for _, t in tops])
     for sid in ("fig8_dphi_0", "fig8_dphi_0.3", "fig8_dphi_1"):
@@ -277,7 +292,8 @@ def _fig8_rows(pts, by_lambda, box, variant, jobs_by_id):
         m = max(c, key=lambda p: p["dphi"])
         add(sid, "max Delta phi_a = %s (at phi_a = %.3g)" % (
             verdict.fmt(m["dphi"], m["dphi_error"]), m["phi_a_measured"]),
-            verdict.value_verdict(m["dphi"], m["dphi_error"], s["value"], s["tolerance"]),
+            verdict.value_verdict(m["dphi"], m["dphi_error"], s["value"], s["tolerance"],
+                                  dof=m.get("dphi_dof")),
             "|ours - %g| <= %g + 2 errors" % (s["value"], s["tolerance"]), on=[m])
     return rows
 

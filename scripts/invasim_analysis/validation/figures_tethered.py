@@ -9,7 +9,7 @@ import matplotlib
 import numpy as np
 from matplotlib.lines import Line2D
 
-from .. import normalise, steady, workspace
+from .. import normalise, steady, student, workspace
 from . import points, verdict
 from .figures_tissue import x_measured
 from .plotting import T_PAPER, figure, label, log_axis, save, state
@@ -28,8 +28,9 @@ def _onset_bracket(x, y, e):
     """Where onset() places the crossing on a sorted curve: (k, t, interpolated), k the first
     point above the level y[0] + 2 hypot(e[0], e[k]), t the fraction of the log bracket
     (x[k-1], x[k]) where the line between them reaches that level, and whether the line placed
-    it (False: y[k-1] already lies above this level, though not above its own, so t is
-    clamped to 0; or there is no line in log x). None when no point rises above its level."""
+    it (False: the line reaches the level outside the bracket, so t is clamped to 0 or 1 -
+    y[k-1] already above this level though not above its own, or y[k-1] above y[k] - or
+    there is no line in log x). None when no point rises above its level."""
     for k in range(1, len(x)):
         level = y[0] + 2 * math.hypot(e[0], e[k])
         if y[k] > level:
@@ -72,24 +73,30 @@ def onset_log_error(xs, ans, errs):
     if not interpolated:
         return float(w / math.sqrt(12))
     if k == 1:  # y[0] is both the baseline and the bracket's foot: t = 2 e_c/(y[1] - y[0])
+        # The data say only that the onset lies in the first bracket: the interpolation's
+        # small error would claim more, so the bracket's own spread is the floor.
         a_err = t * math.hypot(e[0], e[1])
-    else:
-        a_err = math.sqrt(e[0] ** 2 + ((1 - t) * e[k - 1]) ** 2 + (t * e[k]) ** 2)
+        return float(max(w * a_err / (y[1] - y[0]), w / math.sqrt(12)))
+    a_err = math.sqrt(e[0] ** 2 + ((1 - t) * e[k - 1]) ** 2 + (t * e[k]) ** 2)
     return float(w * a_err / (y[k] - y[k - 1]))
 
 
-def onset_ratios(onsets, factor):
+def onset_ratios(onsets, within, dofs=None):
     """onset(K_ecm)/onset(0) with its error and verdict for each K_ecm. onsets: [(K_ecm, x,
-    log10 error)], K_ecm = 0 first. The ratio's log10 error is the two onsets' in quadrature;
-    verdict.log_verdict takes it in the ratio's units (r ln10 times it). Returns [(K_ecm,
-    ratio, log10 error, verdict)]."""
+    log10 error)], K_ecm = 0 first; dofs: per onset the degrees of freedom of its curve's
+    A_n errors (None: many). The ratio's log10 error is the two onsets' in quadrature, with
+    their Welch-Satterthwaite degrees of freedom; verdict.log_verdict takes it in the ratio's
+    units (r ln10 times it). Returns [(K_ecm, ratio, log10 error, verdict)]."""
+    dofs = dofs or [None] * len(onsets)
     _, base, base_err = onsets[0]
     out = []
-    for k, x, err in onsets[1:]:
+    for (k, x, err), dof in zip(onsets[1:], dofs[1:]):
         r = x / base if verdict.finite(x, base) and base > 0 else math.nan
         e = math.hypot(err, base_err) if verdict.finite(err, base_err) else math.nan
+        ratio_dof = student.welch_dof([(err, dof), (base_err, dofs[0])]) if verdict.finite(
+            err, base_err) else None
         out.append((k, r, e, verdict.log_verdict(r, r * math.log(10) * e if verdict.finite(r, e)
-                                                 else math.nan, 1.0, factor)))
+                                                 else math.nan, 1.0, within, dof=ratio_dof)))
     return out
 
 
@@ -167,13 +174,16 @@ def fig7(jobs, out, name):
     axes[1].set_title("inset: plateau against $K_\\mathrm{ecm}$", fontsize=9)
     images = [save(fig, out, name + "_An.png")]
     d = plateau[0][1] - plateau[-1][1]
-    e = math.hypot(*(x if verdict.finite(x) else 0 for x in (plateau[0][2], plateau[-1][2])))
+    ends = [(x if verdict.finite(x) else 0.0, p.get("A_n_dof"))
+            for x, p in ((plateau[0][2], plateau_points[0]), (plateau[-1][2], plateau_points[-1]))]
+    e, d_dof = math.hypot(*(v for v, _ in ends)), student.welch_dof(ends)
     so = verdict.paper()[name + "_onset"]
-    ratios = onset_ratios(onsets, so["log_factor"])
+    ratios = onset_ratios(onsets, so["log_factor"],
+                          [points.least_dof([p for p in pts if p["K_ecm"] == k]) for k, _, _ in onsets])
     point_name = lambda p: "K_ecm = %g, 2T_c/P = %.3g" % (p["K_ecm"], p["x"])  # noqa: E731
     rows = [verdict.row(name + "_plateau_falls", "A_n^max = " + ", ".join(
                 "%s (K_ecm = %g)" % (verdict.fmt(v, e_), k) for k, v, e_ in plateau),
-                verdict.trend_verdict(d, e) if len(plateau) > 1 else verdict.NO_DATA,
+                verdict.trend_verdict(d, e, d_dof) if len(plateau) > 1 else verdict.NO_DATA,
                 "A_n^max(K_ecm = 0) - A_n^max(largest K_ecm) = %s (> 2 errors); rests on each "
                 "K_ecm's top state point, each steady" % verdict.fmt(d, e),
                 unsteady=steady.unsteady_points(plateau_points, jobs_by_id, point_name)),

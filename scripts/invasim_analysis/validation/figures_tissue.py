@@ -12,7 +12,7 @@ import subprocess
 
 import numpy as np
 
-from .. import normalise, steady, workspace
+from .. import normalise, steady, student, workspace
 from . import points, relaxation, verdict
 from .plotting import T_PAPER, figure, label, log_axis, save
 
@@ -220,13 +220,17 @@ def fig4a(jobs, out, invasim, *relaxation_sets, times=None):
     shift_err = math.hypot(*(e if verdict.finite(e) else 0.0 for e in (errs[first], errs[last])))
     end_err = (mids[last] * math.log(10) * errs[last] if verdict.finite(mids[last], errs[last])
                else math.nan)
+    # The crossings' errors come from A_n errors of pooled replicates: their fewest degrees of
+    # freedom set the criterion's factor (student.factor).
+    dof_last = points.least_dof(table[last])
+    dof_both = points.least_dof(table[first] + table[last])
     rows = [
         verdict.row("fig4a_moves_left",
                     "midpoint (A_n = 1/2) at 2T_c/P = %s" % ", ".join(
                         "%s (%s)" % (midpoint_text(mids[f], bounds[f]),
                                      ("t = %s" % fmt_time(f)) if times else
                                      "t = %.0f%%" % (100 * f)) for f in fractions),
-                    verdict.trend_verdict(shift, shift_err),
+                    verdict.trend_verdict(shift, shift_err, dof_both),
                     "log10 of the midpoint's ratio, %s over the end: %s%s (> 2 errors; "
                     "the error from the A_n errors and the slope at the crossing)"
                     % ("t = %s" % fmt_time(first) if times else "first quarter",
@@ -235,7 +239,8 @@ def fig4a(jobs, out, invasim, *relaxation_sets, times=None):
         verdict.row("fig4a_Tg", "midpoint at the end%s: %s" % (
                         " (t = %s)" % fmt_time(last) if times else "",
                         verdict.fmt_temperature(mids[last], end_err)),
-                    verdict.log_verdict(mids[last], end_err, st["value"], st["log_factor"], moves),
+                    verdict.log_verdict(mids[last], end_err, st["value"], st["log_factor"], moves,
+                                        dof_last),
                     "2T_c/P within a factor %g of %g (+ 2 errors), the paper's convention"
                     % (st["log_factor"], st["value"])),
         tc_equals_ta_row("fig4a_Tc_equals_Ta", jobs, ["kT"])]
@@ -309,7 +314,8 @@ def fig4b(jobs, out, invasim, inset_jobs=None):
                         "between the end-of-run state points at 2T_c/P = %s)" % (
                             verdict.fmt(an03, err03), st["at"], st["at"] / 2,
                             " and ".join(verdict.fmt(p["x"]) for p in bracket) or "n/a"),
-                        verdict.value_verdict(an03, err03, st["value"], st["tolerance"]),
+                        verdict.value_verdict(an03, err03, st["value"], st["tolerance"],
+                                              dof=points.least_dof(end)),
                         "|ours - 0.55| <= 0.1 + 2 errors; rests on the two state points "
                         "bracketing 2T_c/P = 0.3, each steady (all its runs)",
                         unsteady=unsteady03),
@@ -326,10 +332,10 @@ def fig4b(jobs, out, invasim, inset_jobs=None):
         for (start,), reps in workspace.group(inset_jobs, ["start"]).items():
             pts = [normalise.scale_like(points.job_areas(j), extremes) for j in reps]
             vals = np.array([p["A_n"] for p in pts])
-            by_start[start] = (float(vals.mean()), float(
-                vals.std(ddof=1) / math.sqrt(len(vals)) * points.widening(len(vals) - 1))
-                if len(vals) > 1 else pts[0]["A_n_error"],
-                float(np.mean([x_measured(j) for j in reps])))
+            by_start[start] = (float(vals.mean()),
+                               float(vals.std(ddof=1) / math.sqrt(len(vals))) if len(vals) > 1
+                               else pts[0]["A_n_error"], float(np.mean([x_measured(j) for j in reps])),
+                               len(vals) - 1 if len(vals) > 1 else None)
             axes[1].plot([start] * len(vals), vals, "o", alpha=0.6)
             axes[1].errorbar([start], [by_start[start][0]], yerr=[by_start[start][1] if
                              verdict.finite(by_start[start][1]) else 0], fmt="s",
@@ -357,12 +363,13 @@ def fig4b(jobs, out, invasim, inset_jobs=None):
         if "demixed" in by_start and "mixed" in by_start:
             d = by_start["mixed"][0] - by_start["demixed"][0]
             e = math.hypot(by_start["mixed"][1], by_start["demixed"][1])
+            dof = student.welch_dof([(by_start[k][1], by_start[k][3]) for k in by_start])
             si = verdict.paper()["fig4b_inset_starts"]
             rows.append(verdict.row(
                 "fig4b_inset_starts", "A_n = %s (de-mixed), %s (mixed) at %s" % (
                     verdict.fmt(*by_start["demixed"][:2]), verdict.fmt(*by_start["mixed"][:2]),
                     verdict.fmt_temperature(by_start["demixed"][2])),
-                verdict.value_verdict(d, e, si["value"], si["tolerance"]),
+                verdict.value_verdict(d, e, si["value"], si["tolerance"], dof=dof),
                 "difference %s; |difference| <= 0.1 + 2 errors; rests on every run of the "
                 "inset's state point, each steady (its starts' agreement, the criterion's second "
                 "half, is what this row tests)" % verdict.fmt(d, e),

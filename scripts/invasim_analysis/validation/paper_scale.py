@@ -16,7 +16,7 @@ import math
 import os
 import re
 
-from .. import normalise, steady, workspace
+from .. import normalise, steady, student, workspace
 from . import panels, points, verdict
 from .figures_master import fig5 as reduced_fig5
 from .figures_tissue import fig3 as reduced_fig3
@@ -190,7 +190,7 @@ def fig4b(sets, out, invasim):
     vals = [p["A_n"] for p in pts]
     mean = sum(vals) / len(vals)
     err = (math.sqrt(sum((v - mean) ** 2 for v in vals) / (len(vals) - 1) / len(vals))
-           * points.widening(len(vals) - 1) if len(vals) > 1 else pts[0]["A_n_error"])
+           if len(vals) > 1 else pts[0]["A_n_error"])
     x = sum(x_measured(j) for j in starts) / len(starts)
     st = verdict.paper()["fig4b_An_at_0.3"]
     is_steady, reasons = steady.point_steadiness(starts)
@@ -198,7 +198,8 @@ def fig4b(sets, out, invasim):
         "fig4b_An_at_0.3", "A_n = %s at %s (the state point run from both starts: %d runs, "
         "normalised with the paper-scale curve)" % (verdict.fmt(mean, err),
                                                      verdict.fmt_temperature(x), len(starts)),
-        verdict.value_verdict(mean, err, st["value"], st["tolerance"]),
+        verdict.value_verdict(mean, err, st["value"], st["tolerance"],
+                              dof=len(vals) - 1 if len(vals) > 1 else None),
         "|ours - 0.55| <= 0.1 + 2 errors (scatter of the runs); rests on the state point, "
         "steady (every run, and the two starts agreeing)", unsteady=reasons)
     rows = [row] + [r for r in rec["rows"] if r["id"] == "fig4b_inset_starts"]
@@ -240,7 +241,7 @@ def _inset_in_ratio(starts, why_no_an):
     if not (verdict.finite(d) and verdict.finite(e)):
         return None
     tol = verdict.paper()["fig4b_inset_starts"]["tolerance"]
-    if abs(d) - 2 * e <= tol:
+    if abs(d) - student.factor(agreement["dof"]) * e <= tol:
         return None
     x = sum(x_measured(j) for j in starts) / len(starts)
     # Each run's own steadiness; the starts' disagreement, the criterion's second half, is

@@ -18,7 +18,8 @@ def state_point(jobs, values):
     if "A_t" in rows[0] and "A_t_max" in rows[0]:
         for j, r in zip(jobs, rows):
             r["A_gap"] = r["A_t_max"] - r["A_t"]
-            r.setdefault("A_gap_error", gap_error(j))
+            if "A_gap_error" not in r:
+                r["A_gap_error"] = gap_error(j)
     out = {"replicates": len(jobs), "jobs": [j.id for j in jobs]}
     for name in rows[0]:
         if name.endswith("_error"):
@@ -27,43 +28,40 @@ def state_point(jobs, values):
         out[name] = float(np.mean(v))
         if len(v) >= 2:
             out[name + "_error"] = float(np.std(v, ddof=1) / math.sqrt(len(v)))
+            out[name + "_dof"] = len(v) - 1
         else:
             out[name + "_error"] = float(rows[0].get(name + "_error", math.nan))
     return out
 
 
-# The one-sided tail of 2 standard deviations of a normal distribution: the t quantile at
-# this level over 2 is the factor that keeps a "2 errors" criterion's coverage (95.4 %) for
-# an error estimated from few replicates (pooled_errors).
-TWO_SIGMA_LEVEL = 0.97725
-
-
-def widening(dof):
-    """t_{0.977}(dof)/2: 6.9 for 1 degree of freedom, 1.95 for 3, 1.2 for 10, 1 for many."""
-    from scipy.stats import t  # slow import
-    return float(t.ppf(TWO_SIGMA_LEVEL, dof)) / 2.0 if dof > 0 else math.nan
-
-
 def pooled_errors(curve, name, axis="x", window=1):
     """Replaces the replicate errors of `name` of the state points of one curve (dicts from
-    state_point, ordered by `axis` here) by errors from the replicate variance pooled over each
-    point and its `window` neighbours on each side along it (dof-weighted, as the master
-    curve pools A_n: master_curve/analysis.py, build_points), widened by widening(pooled
-    dof): two replicates alone give one degree of freedom, and a standard error from them is
-    near zero by chance often enough that "2 errors" covers the truth 70 % of the time, not
-    95 %. A point with no replicates in its window keeps its run's own error. Adds
-    name_dof (the pooled degrees of freedom; 0 for a run's own error)."""
+    state_point, ordered by `axis` here) by standard errors from the replicate variance pooled
+    over each point and its `window` neighbours on each side along it (dof-weighted, as the
+    master curve pools A_n: master_curve/analysis.py, build_points), and sets name_dof, their
+    degrees of freedom: two replicates alone give one, and a standard error from them is near
+    zero by chance often enough that "2 errors" covers the truth 70 % of the time, not 95 %;
+    the verdicts take student.factor(dof) errors instead of 2. A point with no replicates in
+    its window keeps its run's own error (name_dof None)."""
     pts = sorted(curve, key=lambda p: p[axis])
     spread = [(p["replicates"] - 1, p[name + "_error"] ** 2 * p["replicates"])
               if p["replicates"] >= 2 else (0, 0.0) for p in pts]
     for k, p in enumerate(pts):
         near = spread[max(0, k - window):k + window + 1]
         dof = sum(d for d, _ in near)
-        p[name + "_dof"] = dof
+        p[name + "_dof"] = dof if dof > 0 else None
         if dof > 0:
             var = sum(d * v for d, v in near) / dof
-            p[name + "_error"] = math.sqrt(var / p["replicates"]) * widening(dof)
+            p[name + "_error"] = math.sqrt(var / p["replicates"])
     return curve
+
+
+def least_dof(pts, name="A_n"):
+    """The fewest degrees of freedom of the points' `name` errors (None: every one a run's
+    own), for a row that rests on several of them through a maximum or an interpolation."""
+    dofs = [p.get(name + "_dof") for p in pts]
+    finite = [d for d in dofs if d is not None]
+    return min(finite) if finite else None
 
 
 def gap_error(job, end_fraction=None):

@@ -33,6 +33,7 @@ import math
 import os
 
 from ..repo_paths import REPO
+from ..student import factor
 
 AGREES, TREND, INCONCLUSIVE, DISAGREES, NO_DATA, UNTESTABLE = (
     "agrees", "agrees in trend only", "inconclusive", "disagrees", "no data", "not testable")
@@ -65,26 +66,27 @@ def finite(*values):
     return all(isinstance(v, (int, float)) and math.isfinite(v) for v in values)
 
 
-def value_verdict(ours, err, p, tol, trend_holds=None):
-    """The verdict of a number against the paper's p +- tol."""
+def value_verdict(ours, err, p, tol, trend_holds=None, dof=None):
+    """The verdict of a number against the paper's p +- tol; "2 errors" is student.factor(dof)
+    errors for an error with dof degrees of freedom (2 without)."""
     if not finite(ours, p, tol):
         return NO_DATA
     e = err if finite(err) else 0.0
-    if abs(ours - p) <= tol + 2 * e:
+    if abs(ours - p) <= tol + factor(dof) * e:
         return AGREES
     return TREND if trend_holds else DISAGREES
 
 
-def trend_verdict(d, e):
-    """The verdict of a difference the paper says is positive."""
+def trend_verdict(d, e, dof=None):
+    """The verdict of a difference the paper says is positive (2 errors: as value_verdict)."""
     if not finite(d):
         return NO_DATA
-    e = e if finite(e) else 0.0
-    if d > 2 * e:
+    k = factor(dof) * (e if finite(e) else 0.0)
+    if d > k:
         return AGREES
     if d > 0:
         return TREND
-    return INCONCLUSIVE if d >= -2 * e else DISAGREES
+    return INCONCLUSIVE if d >= -k else DISAGREES
 
 
 def fmt(v, err=None, digits=3):
@@ -151,13 +153,13 @@ def all_of(verdicts):
     return TREND
 
 
-def log_verdict(ours, err, p, factor, trend_holds=None):
-    """The verdict of a positive number against the paper's p within a factor `factor`
-    (plus 2 errors, on a log scale)."""
-    if not finite(ours, p, factor) or ours <= 0 or p <= 0:
+def log_verdict(ours, err, p, within, trend_holds=None, dof=None):
+    """The verdict of a positive number against the paper's p within a factor `within`
+    (plus 2 errors, on a log scale; 2 errors as value_verdict)."""
+    if not finite(ours, p, within) or ours <= 0 or p <= 0:
         return NO_DATA
     e = err / ours / math.log(10) if finite(err) else 0.0
-    if abs(math.log10(ours / p)) <= math.log10(factor) + 2 * e:
+    if abs(math.log10(ours / p)) <= math.log10(within) + factor(dof) * e:
         return AGREES
     return TREND if trend_holds else DISAGREES
 
