@@ -330,12 +330,8 @@ def fig4b(jobs, out, invasim, inset_jobs=None):
     if inset_jobs:
         by_start = {}
         for (start,), reps in workspace.group(inset_jobs, ["start"]).items():
-            pts = [normalise.scale_like(points.job_areas(j), extremes) for j in reps]
-            vals = np.array([p["A_n"] for p in pts])
-            by_start[start] = (float(vals.mean()),
-                               float(vals.std(ddof=1) / math.sqrt(len(vals))) if len(vals) > 1
-                               else pts[0]["A_n_error"], float(np.mean([x_measured(j) for j in reps])),
-                               len(vals) - 1 if len(vals) > 1 else None)
+            vals, mean, err, dof = points.runs_a_n(reps, extremes)
+            by_start[start] = (mean, err, float(np.mean([x_measured(j) for j in reps])), dof)
             axes[1].plot([start] * len(vals), vals, "o", alpha=0.6)
             axes[1].errorbar([start], [by_start[start][0]], yerr=[by_start[start][1] if
                              verdict.finite(by_start[start][1]) else 0], fmt="s",

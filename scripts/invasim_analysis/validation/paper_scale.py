@@ -16,7 +16,7 @@ import math
 import os
 import re
 
-from .. import normalise, steady, student, workspace
+from .. import normalise, steady, student, workspace  # noqa: F401 (normalise: via points)
 from . import panels, points, verdict
 from .figures_master import fig5 as reduced_fig5
 from .figures_tissue import fig3 as reduced_fig3
@@ -186,11 +186,7 @@ def fig4b(sets, out, invasim):
         return [an, inset], [], {"starts_in_ratio": inset["data"]}, None
     rec = reduced_fig4b(curve, out, invasim, inset_jobs=starts)
     extremes = rec["numbers"]["normalisation"]
-    pts = [normalise.scale_like(points.job_areas(j), extremes) for j in starts]
-    vals = [p["A_n"] for p in pts]
-    mean = sum(vals) / len(vals)
-    err = (math.sqrt(sum((v - mean) ** 2 for v in vals) / (len(vals) - 1) / len(vals))
-           if len(vals) > 1 else pts[0]["A_n_error"])
+    vals, mean, err, dof = points.runs_a_n(starts, extremes)
     x = sum(x_measured(j) for j in starts) / len(starts)
     st = verdict.paper()["fig4b_An_at_0.3"]
     is_steady, reasons = steady.point_steadiness(starts)
@@ -199,11 +195,11 @@ def fig4b(sets, out, invasim):
         "normalised with the paper-scale curve)" % (verdict.fmt(mean, err),
                                                      verdict.fmt_temperature(x), len(starts)),
         verdict.value_verdict(mean, err, st["value"], st["tolerance"],
-                              dof=len(vals) - 1 if len(vals) > 1 else None),
+                              dof=dof),
         "|ours - 0.55| <= 0.1 + 2 errors (scatter of the runs); rests on the state point, "
         "steady (every run, and the two starts agreeing)", unsteady=reasons)
     rows = [row] + [r for r in rec["rows"] if r["id"] == "fig4b_inset_starts"]
-    numbers = {"A_n_runs": vals, "A_n": mean, "A_n_error": err, "x": x,
+    numbers = {"A_n_runs": [float(v) for v in vals], "A_n": mean, "A_n_error": err, "x": x,
                "starts": rec["numbers"].get("inset"), "normalisation": extremes}
     return rows, rec["images"], numbers, extremes
 

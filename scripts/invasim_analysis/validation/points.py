@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from .. import steady
+from .. import normalise, steady
 
 
 def state_point(jobs, values):
@@ -62,6 +62,17 @@ def least_dof(pts, name="A_n"):
     dofs = [p.get(name + "_dof") for p in pts]
     finite = [d for d in dofs if d is not None]
     return min(finite) if finite else None
+
+
+def runs_a_n(jobs, extremes):
+    """A_n of each run scaled with `extremes` (normalise.scale_like of job_areas), and their
+    mean, its error and that error's degrees of freedom: the standard error over the runs
+    (n - 1), or with one run its own error (None: many)."""
+    pts = [normalise.scale_like(job_areas(j), extremes) for j in jobs]
+    vals = np.array([p["A_n"] for p in pts])
+    if len(vals) > 1:
+        return vals, float(vals.mean()), float(vals.std(ddof=1) / math.sqrt(len(vals))), len(vals) - 1
+    return vals, float(vals.mean()), pts[0]["A_n_error"], None
 
 
 def gap_error(job, end_fraction=None):
