@@ -3,7 +3,8 @@
 -- times the force for the same measured temperature, k_B T_c ~ f0^2 tau_p/(tau_p + tau_g)),
 -- spanning 2 k_B T_c/(P sigma^3) ~ 0.01 to 3 (the paper's convention), two seeds (the fit of a and b needs replicates
 -- for honest errors, docs/sweeps_analysis.md; a third did not fit the campaign's budget), from
--- one compressed tissue. The passive
+-- one compressed tissue. The production is 4e6 steps (t = 2e5, 0.4 of the paper's 5e5): at
+-- 2.5e5 steps, 24 of the 72 runs still drifted (docs/validation.md, "Steady state"). The passive
 -- curve of the figure (beta = 1e-2, f0 = 0) is fig5_passive.lua.
 -- Active cells carry the protocols' default background temperature (background_factor = 6:
 -- T_0 = 6 x the free-particle active temperature T_act, docs/model.md "Vertex bath"), so f0
@@ -15,8 +16,8 @@
 return {
   protocol = "../invasion.lua",
   set = { system = "reduced", P = 1.3e-3,
-          quench_steps = 20000, steps = 250000, every = 1000,
-          snapshot_every = 0, checkpoint_every = 20000 },
+          quench_steps = 20000, steps = 4000000, every = 16000,
+          snapshot_every = 0, checkpoint_every = 100000 },
   product = { beta = { 1e-3, 1e-2 } },
   zip = { { tau_p = { 25.0, 25.0, 25.0, 25.0, 25.0, 25.0,
                       2500.0, 2500.0, 2500.0, 2500.0, 2500.0, 2500.0,

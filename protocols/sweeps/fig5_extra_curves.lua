@@ -2,7 +2,8 @@
 -- cohesion beta = 1e-4 (the figure's triangles) at tau_p = 0.02 and 25, and the persistence
 -- tau_p = 250 (magenta) at beta = 1e-3 and 1e-2; six self-propulsion forces f0 per curve
 -- (zipped with it, as in fig5_active.lua: the measured 2 k_B T_c/(P sigma^3) ~ 0.01 to 3), two
--- seeds, from one compressed tissue.
+-- seeds, from one compressed tissue. The production is 4e6 steps (t = 2e5), as in
+-- fig5_active.lua: at 2.5e5 steps, 18 of the 48 runs still drifted.
 -- Active cells carry the protocols' default background temperature (background_factor = 6:
 -- T_0 = 6 x the free-particle active temperature T_act, docs/model.md "Vertex bath"), so f0
 -- sets both; the measured 2 k_B T_c/(P sigma^3) is about 14 T_act/P in a fluid and 12 T_act/P
@@ -13,8 +14,8 @@
 return {
   protocol = "../invasion.lua",
   set = { system = "reduced", P = 1.3e-3,
-          quench_steps = 20000, steps = 250000, every = 1000,
-          snapshot_every = 0, checkpoint_every = 20000 },
+          quench_steps = 20000, steps = 4000000, every = 16000,
+          snapshot_every = 0, checkpoint_every = 100000 },
   zip = { { beta = { 1e-4, 1e-4, 1e-4, 1e-4, 1e-4, 1e-4,
                      1e-4, 1e-4, 1e-4, 1e-4, 1e-4, 1e-4,
                      1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3,
