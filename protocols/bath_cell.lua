@@ -2,7 +2,7 @@
 -- scripts/bath_table.py): the main job's chain from a compressed tissue (--from DIR), quench,
 -- then a production that measures only the thermo columns (no Voronoi, correlators or
 -- slices, so the table's 36 runs stay affordable) and writes series.csv and summary.json
--- with the mean of T_c/T_a over the whole production (block-averaging error) and the measured k_B T_c / (P sigma^3).
+-- with the mean of T_c/T_a over the whole production (with its error) and the measured k_B T_c / (P sigma^3).
 --   invasim run protocols/bath_cell.lua --from out/bath_base --set kT=1.3e-3 --set f0=0 \
 --     --set vertex_bath=damped --set vertex_gamma=0.02 --out out/bath_cell
 local iv = require("invasim")

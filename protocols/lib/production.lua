@@ -1,6 +1,6 @@
 -- Stage "production" (docs/model.md, protocol step 7): runs the tissue's Dynamics (made by quench) for
 -- `steps` steps with observers attached and returns the series and a summary: time averages
--- over the last `average_fraction` of the run with block-averaging error bars, the
+-- over the last `average_fraction` of the run with error bars (src/measure/mean_error.hpp), the
 -- correlation times and shape statistics. The run is an invasim.Simulation (src/run/) whose
 -- operations each have their own schedule, called in this order at a step where several
 -- are due:
@@ -57,10 +57,12 @@ local function summarise(rows, columns, fraction)
       local xs = {}
       for i, row in ipairs(rows) do xs[i] = row[c] end
       if #xs > 0 then
-        local b = iv.block_average(xs, { fraction = fraction })
-        -- error_converged: the blocking reached its plateau; false when the window is too
-        -- short for the column's correlation time, and `error` is then a lower bound.
-        summary[c] = { mean = b.mean, error = b.error, samples = b.n, error_converged = b.plateau }
+        local m = iv.mean_error(xs, { fraction = fraction })
+        -- error from the integrated autocorrelation time tau_int (in samples); error_converged:
+        -- Sokal's window criterion met; false when the window is too short for the column's
+        -- correlation time, and `error` (and tau_int) are then lower bounds.
+        summary[c] = { mean = m.mean, error = m.error, samples = m.n, tau_int = m.tau_int,
+                       error_converged = m.resolved }
       end
     end
   end

@@ -25,7 +25,7 @@ function M.final(tissue, p, result, seconds, out, extra)
             log.box(tissue.compression.box), tissue.compression.phi, box.lengths[1], sys:packing().total)
   end
   local n = s.T_c and s.T_c.samples or 0
-  log.say("summary", "averages over the last %d of %d samples (block-averaging errors):", n, s.samples)
+  log.say("summary", "averages over the last %d of %d samples (errors from the autocorrelation time):", n, s.samples)
   summary_lines.print("summary", s, { "A_t", "A_t_max", "A_ratio", "T_c", "T_a", "T_c_over_T_a",
                                       "kT_c_paper", "P_left", "P_right",
                                       "L_x", "phi", "phi_c", "phi_a", "phi_a_local_mean", "phi_a_local_std" },

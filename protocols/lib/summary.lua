@@ -4,9 +4,9 @@ local log = require("lib.log")
 local M = {}
 
 -- Prints "name = mean +- error unit" for each name of `names` present in `summary`. An error
--- bar that is only a lower bound (error_converged false: the blocking analysis found no
--- plateau, the window being too short for the quantity's correlation time) is marked with
--- "(*)", and one line after the list says what the mark means.
+-- bar that is only a lower bound (error_converged false: the autocorrelation sum did not
+-- meet Sokal's window criterion, the window being too short for the quantity's correlation
+-- time) is marked with "(*)", and one line after the list says what the mark means.
 function M.print(label, summary, names, units)
   local marked = false
   for _, name in ipairs(names) do
@@ -23,8 +23,8 @@ function M.print(label, summary, names, units)
     end
   end
   if marked then
-    log.say(label, "(*) error bar a lower bound: the blocking analysis found no plateau (the window is " ..
-            "too short for the correlation time; even uncorrelated values need about 128 samples to show one)")
+    log.say(label, "(*) error bar a lower bound: the window is too short for the correlation time " ..
+            "(the autocorrelation time's sum needs a window of 5 correlation times, at most a third of the samples)")
   end
 end
 

@@ -2,7 +2,7 @@
 -- periodic box, 500 cells), tau_d against tau_p in {0.02, 0.25, 2.5, 25, 250, 2500} at
 -- phi_c = 0 (free particles), 0.3, 0.4 and 0.5 (the paper's values), beside the exact free-particle value tau_d_free.
 -- Each tau_p gets its equilibration (max(10 tau_g, 2 tau_p)) and at least 5 correlation
--- windows of 4 tau_d_free (zipped with it); one seed (tau_d's block error is in summary.json).
+-- windows of 4 tau_d_free (zipped with it); one seed.
 --   invasim sweep init protocols/sweeps/fig6_cells_only.lua
 --   invasim sweep run out/fig6_cells_only --jobs 2
 return {

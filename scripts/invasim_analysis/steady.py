@@ -11,10 +11,8 @@ figure, every verdict, the paper-scale records and the master curve use:
   (integrated_time, mean_error), measured on its fluctuations
   about the drift (each quarter's own mean and one common slope, so that a real step or ramp
   between the quarters inflates neither tau_int nor var_q) with Sokal's automatic window and
-  the bias of the removed drift corrected. (The blocking of summary.json's errors,
-  block_error, stops at blocks of 2-4 rows on a quarter of ~62 rows, far below the 5-25 rows
-  over which A_t is correlated: with it, 22-55 % of stationary windows with 2-10 rows of
-  correlation were called drifting; tests/analysis/check_statistics.py, steady_*.)
+  the bias of the removed drift corrected. (summary.json's errors, summary_error, are the
+  same estimator about the window's mean alone.)
   A state point is steady when every run of it is, and, where it was run from two starts
   (Fig. 4b: de-mixed and mixed), when the starts' means of the observable agree by the same
   test (start_agreement; a start with one run takes the error of its window's mean from the
@@ -35,8 +33,6 @@ STEADY_FACTOR = 2.0
 # statement on the page (0.05 and up), however many error bars it spans (a caged, de-mixed
 # tissue ages by a few tenths of sigma^2 with an error bar smaller still).
 NEGLIGIBLE_DRIFT = 0.01
-# Levels of the blocking analysis with fewer blocks are not used (src/measure/block_average.hpp).
-MIN_BLOCKS = 16
 # Sokal's automatic window: the autocorrelation is summed up to the smallest W with
 # W >= SOKAL_C tau_int(W) (Madras and Sokal, J. Stat. Phys. 50, 109 (1988); 4-6 suits
 # autocorrelations that decay about exponentially).
@@ -54,32 +50,17 @@ SOKAL_C = 5.0
 MAX_FIT_SHARE = 2.0 / 3.0
 
 
-def block_error(y):
-    """The standard error of the mean of a correlated series by blocking, as the summary's
-    errors are computed (src/measure/block_average.cpp: pairs averaged level by level; the
-    smallest block size B with B^3 > 2 n (error_B/error_1)^4 among the levels with at least
-    MIN_BLOCKS blocks, else the last such level, else level 0). nan for fewer than 2 values."""
-    m = np.asarray(y, float)
-    n = len(m)
-    if n < 2:
-        return math.nan
-    levels = []
-    block = 1
-    while len(m) >= 2:
-        nb = len(m)
-        levels.append((block, nb, math.sqrt(float(np.sum((m - m.mean()) ** 2)) / nb / (nb - 1))))
-        m = 0.5 * (m[0:2 * (nb // 2):2] + m[1:2 * (nb // 2):2])
-        block *= 2
-    e1 = levels[0][2]
-    chosen = None
-    for b, nb, err in levels:
-        if nb < MIN_BLOCKS:
-            break
-        chosen = err
-        ratio = err / e1 if e1 > 0 else 1.0
-        if e1 == 0.0 or b ** 3 > 2.0 * n * ratio ** 4:
-            break
-    return levels[0][2] if chosen is None else chosen
+def summary_error(y):
+    """The standard error of a window's mean as summary.json's errors are computed
+    (src/measure/mean_error.cpp): integrated_time on the fluctuations about the window's mean
+    alone (one fitted parameter), then mean_error. Returns (error, tau_int, resolved: Sokal's
+    criterion met, else both lower bounds); nan, nan, False for fewer than 2 values."""
+    y = np.asarray(y, float)
+    if len(y) < 2:
+        return math.nan, math.nan, False
+    r = y - y.mean()
+    tau, removed, _, capped = integrated_time(r, 1)
+    return mean_error(r, tau, removed), tau, not capped
 
 
 def drift_residuals(y):

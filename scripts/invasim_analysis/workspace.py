@@ -74,29 +74,52 @@ class Job:
 
     def provisional(self):
         """For a run without summary.json (still going, or stopped): its averages so far, the
-        mean and block error of every series column over the averaging window of the rows
-        written so far (window()), as summary.json would hold them had it ended there."""
+        mean and error of every series column over the averaging window of the rows written
+        so far (window()), as summary.json would hold them had it ended there."""
         if self.summary.get("averages") or not self.rows():
             return self
         import numpy as np
 
-        from .steady import block_error, window
+        from .steady import summary_error, window
         first, end = window(self)
-        self.summary = {"averages": {
-            name: {"mean": float(np.mean(y[first:end])), "error": block_error(y[first:end]),
-                   "samples": int(end - first)}
-            for name, y in self.series.items() if name not in ("step", "time")},
-            "provisional": True}
+        averages = {}
+        for name, y in self.series.items():
+            if name not in ("step", "time"):
+                error, tau, resolved = summary_error(y[first:end])
+                averages[name] = {"mean": float(np.mean(y[first:end])), "error": error,
+                                  "samples": int(end - first), "tau_int": tau,
+                                  "error_converged": resolved}
+        self.summary = {"averages": averages, "provisional": True}
         return self
 
     def mean(self, name):
-        """summary.json's averages[name] as (mean, error), or (nan, nan)."""
+        """summary.json's averages[name] as (mean, error), or (nan, nan). A summary whose
+        entry has no tau_int was written when the protocols' errors came from blocking, which
+        is too small on these windows (docs/measurements_dynamics.md, "Summary"): its error is
+        computed anew from series.csv's window by the summary's estimator (summary_error)."""
         entry = self.summary.get("averages", {}).get(name)
         if isinstance(entry, dict):
-            return float(entry.get("mean", math.nan)), float(entry.get("error", math.nan))
+            error = float(entry.get("error", math.nan))
+            if "tau_int" not in entry and isinstance(entry.get("samples"), int):
+                error = self._recomputed_error(name, entry["samples"], error)
+            return float(entry.get("mean", math.nan)), error
         if isinstance(entry, (int, float)):
             return float(entry), math.nan
         return math.nan, math.nan
+
+    def _recomputed_error(self, name, samples, stored):
+        """summary_error over the last `samples` rows of series.csv's column `name` (cached);
+        `stored` when the run has no such column or rows."""
+        cache = self.__dict__.setdefault("_errors", {})
+        if name not in cache:
+            from .steady import summary_error
+            try:
+                y = self.series.get(name)
+            except InputError:
+                y = None
+            cache[name] = (summary_error(y[len(y) - samples:])[0]
+                           if y is not None and 2 <= samples <= len(y) else stored)
+        return cache[name]
 
     def scalar(self, name):
         """A number of summary.json (top level or averages), or nan."""

@@ -7,8 +7,7 @@
 //   sys:shape_parameters()         -> {A_1, A_2, ...} 3D shape parameter per adipocyte
 //   sys:slices{per_body = 10, offset_fraction = 0.5, seed = 1} -> {a, ...} 2D shape parameters
 //   invasim.histogram(values, {lo =, hi =, bins = 20}) -> {edges, counts, density, below, above}
-//   invasim.block_average(values, {fraction = 1, min_blocks = 16})
-//                                  -> {mean, error, naive_error, n, block_size, n_blocks, plateau}
+//   invasim.mean_error(values, {fraction = 1}) -> {mean, error, n, tau_int, window, resolved}
 #include <lua.hpp>
 
 #include <chrono>
@@ -17,7 +16,7 @@
 #include "core/memory_budget.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
-#include "measure/block_average.hpp"
+#include "measure/mean_error.hpp"
 #include "measure/slices.hpp"
 #include "measure/voronoi.hpp"
 
@@ -108,26 +107,21 @@ int l_histogram(lua_State* L) {
                          {"above", h.above}});
 }
 
-int l_block_average(lua_State* L) {
-  const std::vector<double> values = check_numbers(L, 1, "block_average");
+int l_mean_error(lua_State* L) {
+  const std::vector<double> values = check_numbers(L, 1, "mean_error");
   double fraction = 1.0;
-  BlockingOptions options;
   if (!lua_isnoneornil(L, 2)) {
-    Kwargs kw(L, 2, "block_average");
+    Kwargs kw(L, 2, "mean_error");
     fraction = kw.number("fraction", fraction, Range::between(0, 1));
-    options.min_blocks =
-        kw.integer<std::size_t>("min_blocks", options.min_blocks, Range::at_least(2));
     kw.finish();
   }
-  const BlockAverage b =
-      engine_call("block_average", [&] { return block_average_tail(values, fraction, options); });
-  return push_record(L, {{"mean", b.mean},
-                         {"error", b.error},
-                         {"naive_error", b.naive_error},
-                         {"n", b.n},
-                         {"block_size", b.block_size},
-                         {"n_blocks", b.n_blocks},
-                         {"plateau", b.plateau}});
+  const MeanError m = engine_call("mean_error", [&] { return mean_error_tail(values, fraction); });
+  return push_record(L, {{"mean", m.mean},
+                         {"error", m.error},
+                         {"n", m.n},
+                         {"tau_int", m.tau_int},
+                         {"window", m.window},
+                         {"resolved", m.resolved}});
 }
 
 }  // namespace
@@ -142,7 +136,7 @@ const luaL_Reg kSystemMeasureMethods[] = {
 };
 
 void open_measure(lua_State* L) {
-  add_functions(L, {INVASIM_LUA_FN(histogram), INVASIM_LUA_FN(block_average)});
+  add_functions(L, {INVASIM_LUA_FN(histogram), INVASIM_LUA_FN(mean_error)});
 }
 
 }  // namespace invasim::lua

@@ -62,10 +62,10 @@ def identity():
 
 # name pattern -> the one file (under scripts/invasim_analysis/) allowed to define it
 DEFINITIONS = [
-    (r"^\s*def (block_error|window|window_rows|window_mean|window_error|steadiness|"
+    (r"^\s*def (summary_error|window|window_rows|window_mean|window_error|steadiness|"
      r"point_steadiness|start_agreement|steadiness_summary|unsteady_points|drift_residuals|"
      r"autocovariance|integrated_time|mean_error)\(", "steady.py"),
-    (r"^(STEADY_FACTOR|NEGLIGIBLE_DRIFT|MIN_BLOCKS|SOKAL_C|MAX_FIT_SHARE) =", "steady.py"),
+    (r"^(STEADY_FACTOR|NEGLIGIBLE_DRIFT|SOKAL_C|MAX_FIT_SHARE) =", "steady.py"),
     (r"^\s*def (state_point|gap_error|job_areas|pooled_errors|least_dof)\(",
      os.path.join("validation", "points.py")),
     (r"^\s*def (factor|welch_dof)\(|^TWO_SIGMA_LEVEL =", "student.py"),

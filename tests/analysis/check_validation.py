@@ -225,10 +225,24 @@ check(summary["steady"] == 1 and summary["jobs"] == 2
 # the last half of the rows; at half the run (20 rows), rows 10-19 of the flat start.
 check(abs(steady.window_mean(rising, "A_t", 1.0) - np.mean([600.0 + 2 * i for i in range(20)])) < 1e-12)
 check(steady.window_mean(rising, "A_t", 0.5) == 500.0)
-# The block error is that of src/measure/block_average.cpp: 64 alternating values, whose
-# pair means are all equal: the plateau at block size 2, error 0 (naive error 1/sqrt(63)).
-alt = [1.0 if i % 2 else -1.0 for i in range(64)]
-check(steady.block_error(alt) == 0.0 and abs(steady.block_error(alt[:10]) - math.sqrt(10 / 10 / 9)) < 1e-12)
+# The summary's error is that of src/measure/mean_error.cpp (tests/unit/test_mean_error.cpp
+# works the same two by hand): 1..8, the cap W = 2 reached before Sokal's criterion, C_F =
+# 2 tau_int(2) Gamma(0)/(1 - 5/8); alternating values, anticorrelated, the plain error.
+c_f = 2 * (0.5 + 0.625 + 1.4375 / 5.25) * 5.25 / (1 - 5 / 8)
+err, tau, resolved = steady.summary_error(list(range(1, 9)))
+check(abs(err - math.sqrt(c_f / 8)) < 1e-12 and abs(tau - c_f / (2 * (5.25 + c_f / 8))) < 1e-12
+      and resolved is False)
+alt = [1.0 if i % 2 else -1.0 for i in range(40)]
+err, tau, resolved = steady.summary_error(alt)
+check(abs(err - math.sqrt(40 / 39 / 40)) < 1e-12 and tau == 0.5 and resolved is True)
+# A summary written before the errors came from tau_int (no tau_int in its entry, `samples`
+# given) has its error computed anew from series.csv; one with tau_int keeps its own.
+old_summary = fake_job(os.path.join(work, "old_summary"), list(range(1, 9)), 99.0)
+old_summary.summary["averages"]["A_t"]["samples"] = 8
+check(abs(old_summary.mean("A_t")[1] - math.sqrt(c_f / 8)) < 1e-12, old_summary.mean("A_t"))
+new_summary = fake_job(os.path.join(work, "new_summary"), list(range(1, 9)), 99.0)
+new_summary.summary["averages"]["A_t"].update(samples=8, tau_int=1.93)
+check(new_summary.mean("A_t")[1] == 99.0, new_summary.mean("A_t"))
 # A drift of 20 error bars that is below 1 % of A_t^max (a caged tissue ageing) is negligible:
 # steady; the same rise against a smaller A_t^max (20 > 1 % of 1500) is not.
 creeping = fake_job(os.path.join(work, "creeping"), [600.0 + 0.2 * i for i in range(20)], 0.1, 2500.0)

@@ -77,8 +77,8 @@ def write_workspace(path, points, every=100, quench_steps=100, dt=0.05):
     of scripts/invasim_analysis: points is a list of (state point, status, A_t series,
     A_t_max, x) with x the measured 2 T_c/P. A point's series.csv has one row per A_t value
     (step = quench_steps + every (i + 1), time = step x dt); a done point also has summary.json
-    (the mean and block error over the last half of the rows, as the protocols write it, with
-    steady.block_error); a pending point has neither. Returns the job ids."""
+    (the mean and error over the last half of the rows, as the protocols write it, with
+    steady.summary_error); a pending point has neither. Returns the job ids."""
     import json
     import os
     from invasim_analysis import steady
@@ -106,8 +106,9 @@ def write_workspace(path, points, every=100, quench_steps=100, dt=0.05):
                                                  cols["kT_c_paper"][i], cols["A_ratio"][i]))
         if status == "done":
             half = len(a_t) // 2
-            averages = {n: {"mean": float(np.mean(v[-half:])), "error": steady.block_error(v[-half:]),
-                            "samples": half} for n, v in cols.items()}
+            averages = {n: {"mean": float(np.mean(v[-half:])),
+                            "error": steady.summary_error(v[-half:])[0], "samples": half}
+                        for n, v in cols.items()}
             with open(os.path.join(d, "summary.json"), "w") as f:
                 json.dump({"averages": averages}, f)
     with open(os.path.join(path, "invasim_sweep.json"), "w") as f:

@@ -1,7 +1,7 @@
 -- Test: with the protocols' default vertex bath and background (docs/model.md, "Vertex bath"),
 -- active cohesive cells (tau_p = 25, beta = 1e-2, f0 = 0.0035: 2 k_B T_c/(P sigma^3) ~ 0.9,
 -- inside the range of the paper's Fig. 5) keep the paper's 1 < T_c/T_a < 1.2 on the reduced
--- system: the mean of T_c/T_a over the production, +- 2 block-averaging errors, lies inside the
+-- system: the mean of T_c/T_a over the production, +- 2 errors, lies inside the
 -- window. With --set background_factor=0 (no background: damped vertices) it fails, T_c/T_a
 -- is about 4; a second case at tau_p = 0.02 (f0 = 0.028, a force shorter-lived than a step,
 -- which heats caged cells like a second bath) holds it too (about 1.16; 1.31 with a background

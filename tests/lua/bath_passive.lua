@@ -1,7 +1,7 @@
 -- Test: with the protocols' default vertex bath, passive cancer cells and adipocyte
 -- vertices equilibrate: T_c/T_a = 1 within 2 % on the reduced system (8 adipocytes, 400
 -- cells) at k_B T = 0.3 P sigma^3 (the paper: "for the passive model, T_c and T_a
--- equilibrate"). The mean of T_c/T_a over the production has a block-averaging error well
+-- equilibrate"). The mean of T_c/T_a over the production has an error well
 -- below 2 % (asserted < 0.5 %); the piston's bath is the vertices'. With --set
 -- vertex_bath=damped --set vertex_gamma=0.2 (the protocols' earlier default bath) it fails:
 -- T_c/T_a is about 20.

@@ -222,9 +222,16 @@ local h = iv.histogram({ 1, 2, 2, 3, 9 }, { lo = 0, hi = 4, bins = 4 })
 check(h.counts[3] == 2 and h.above == 1 and #h.edges == 5)
 expect_error("histogram: hi = 0 must be greater than lo = 1", iv.histogram, { 1 }, { lo = 1, hi = 0 })
 expect_error("histogram: entry %[2%] must be a number, got string", iv.histogram, { 1, "x" }, { lo = 0, hi = 1 })
-local ba = iv.block_average({ 1, 2, 3, 4, 5, 6, 7, 8 })
-check(ba.mean == 4.5 and ba.n == 8)
-expect_error("block_average: key 'fraction' = 2 is out of range", iv.block_average, { 1, 2 }, { fraction = 2 })
+-- 1..8: rho(1) = 0.625, rho(2) = 0.274; the cap (W <= floor((16/3 - 1)/2) = 2) stops the sum at
+-- tau_int(2) = 1.399 before W >= 5 tau_int(W): unresolved.
+local me = iv.mean_error({ 1, 2, 3, 4, 5, 6, 7, 8 })
+check(me.mean == 4.5 and me.n == 8 and me.window == 2 and me.resolved == false and me.tau_int > 0.5)
+-- C_F = 2 x 1.399 x 5.25 / (1 - 5/8) = 39.17, Var = 5.25 + C_F/8 = 10.15: error sqrt(C_F/8) = 2.213
+check(math.abs(me.error - 2.2128) < 1e-3, me.error)
+local flat = iv.mean_error({ 2, 2, 2, 2 }, { fraction = 0.5 })
+check(flat.n == 2 and flat.error == 0 and flat.resolved == true)
+expect_error("mean_error: key 'fraction' = 2 is out of range", iv.mean_error, { 1, 2 }, { fraction = 2 })
+expect_error("mean_error: unknown key 'min_blocks'", iv.mean_error, { 1, 2 }, { min_blocks = 4 })
 local corr = iv.Correlator{ group = cancer, interval = 0.05, lags = 10 }
 check(tostring(corr):find("^Correlator%(group 'cancer'"), tostring(corr))
 corr:sample(sys)

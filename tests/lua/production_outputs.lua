@@ -108,29 +108,32 @@ for _, name in ipairs{ "A_t", "T_c", "P_right", "L_x" } do
                        a.mean, a.samples, half, sum / half))
 end
 assert(pressures_checked == expected_rows, "wall pressures checked at " .. pressures_checked .. " samples")
--- Each error bar says whether the blocking analysis reached its plateau (error_converged), as
--- the criterion of Lee et al. (block size B with B^3 > 2 n (err_B / err_1)^4, at least 16
--- blocks; docs/measurements_dynamics.md) decides it over series.csv's window, here computed
--- anew; a lower bound is marked "(*)" in the printed summary. Runs of at least 256 rows must
--- show both kinds (the CTest run of 1000 rows does).
-local function blocking_plateau(xs)
-  local m, n = {}, #xs
-  for i, x in ipairs(xs) do m[i] = x end
-  local e1, B = nil, 1
-  while #m >= 16 do
-    local mean, ss = 0, 0
-    for _, x in ipairs(m) do mean = mean + x / #m end
-    for _, x in ipairs(m) do ss = ss + (x - mean) ^ 2 end
-    local e = math.sqrt(ss / #m / (#m - 1))
-    e1 = e1 or e
-    local margin = e1 > 0 and B ^ 3 / (2 * n * (e / e1) ^ 4) or math.huge
-    if margin > 1 then return true, margin end
-    local halved = {}
-    for i = 1, #m - 1, 2 do halved[#halved + 1] = 0.5 * (m[i] + m[i + 1]) end
-    m, B = halved, 2 * B
-    if #m < 16 then return false, margin end
+-- Each error bar is the standard error from the integrated autocorrelation time, summed up to
+-- Sokal's window (the smallest W >= 5 tau_int(W), W <= (2n/3 - 1)/2, the subtracted mean's
+-- bias corrected by 1/(1 - (2W + 1)/n); docs/measurements_dynamics.md, "Summary"), and says
+-- whether the window criterion was met (error_converged), here computed anew over
+-- series.csv's window; a lower bound is marked "(*)" in the printed summary. Runs of at
+-- least 256 rows must show both kinds (the CTest run of 1000 rows does).
+local function autocorrelation_error(xs)
+  local n, mean = #xs, 0
+  for _, x in ipairs(xs) do mean = mean + x / n end
+  local function gamma(t)
+    local s = 0
+    for i = 1, n - t do s = s + (xs[i] - mean) * (xs[i + t] - mean) end
+    return s / n
   end
-  return false, 0
+  local g0 = gamma(0)
+  if g0 <= 0 then return 0, true, 0.5 end
+  local w_max = math.min(n - 1, math.max(0, math.floor((2 / 3 * n - 1) / 2)))
+  local tau, window, met = 0.5, 0, false
+  for w = 1, w_max do
+    tau, window = tau + gamma(w) / g0, w
+    if w >= 5 * tau then met = true break end
+  end
+  local c_f = 2 * tau * g0 / (1 - (2 * window + 1) / n)
+  local variance = g0 + c_f / n
+  if c_f < variance then variance, c_f = g0 / (1 - 1 / n), g0 / (1 - 1 / n) end
+  return math.sqrt(c_f / n), met, c_f / (2 * variance), window - 5 * tau
 end
 local converged, judged = 0, 0
 for name, a in pairs(s.averages) do
@@ -138,10 +141,13 @@ for name, a in pairs(s.averages) do
     assert(type(a.error_converged) == "boolean", "summary " .. name .. ": error_converged missing")
     local xs = {}
     for i = #rows - half + 1, #rows do xs[#xs + 1] = tonumber(rows[i][col[name]]) end
-    local plateau, margin = blocking_plateau(xs)
-    if math.abs(margin - 1) > 1e-6 then  -- series.csv's %.10g could flip a tie
-      assert(a.error_converged == plateau, string.format("summary %s: error_converged = %s, " ..
-             "the blocking criterion over series.csv says %s", name, a.error_converged, plateau))
+    local err, met, tau, margin = autocorrelation_error(xs)
+    if math.abs(margin) > 1e-3 then  -- series.csv's %.10g could flip a tie
+      assert(a.error_converged == met, string.format("summary %s: error_converged = %s, " ..
+             "Sokal's criterion over series.csv says %s", name, a.error_converged, met))
+      assert(math.abs(a.error - err) <= 1e-6 * err + 1e-300 and math.abs(a.tau_int - tau) <= 1e-6 * tau,
+             string.format("summary %s: error %.10g, tau_int %.10g; over series.csv %.10g, %.10g",
+                           name, a.error, a.tau_int, err, tau))
     end
     judged = judged + 1
     if a.error_converged then converged = converged + 1 end

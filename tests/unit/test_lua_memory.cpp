@@ -159,7 +159,7 @@ TEST_CASE("Lua out of memory in constructors, keyword tables and results leaks n
       "local r = c:result()\n"
       "local t = {}; for i = 1, 30 do t[i] = iv.System{box = {10, 10, 10}, seed = i} end\n"
       "local x = {}; for i = 1, 5000 do x[i] = i % 17 end\n"
-      "local b = iv.block_average(x, {fraction = 1, min_blocks = 4})\n"
+      "local b = iv.mean_error(x, {fraction = 1})\n"
       "local s = tostring(t[1]) .. tostring(c)\n"
       "assert(#r.names > 0 and b.n == 5000)";
   scan_limits(prelude, call, 3000, 10, false);

@@ -28,7 +28,8 @@ Fits the paper's master curve to a sweep's results table.
 
 0. Steadiness: a state point is not a steady state when (a) its runs fail the criterion of
    docs/validation.md (the means of A_t over the last two quarters of a run differ by more
-   than 2 combined block errors and by 1 % of A_t^max or more), read from the runs'
+   than 2 combined errors, from the integrated autocorrelation time, and by 1 % of A_t^max
+   or more), read from the runs'
    series.csv in the workspace (--workspace, default the directory of RESULTS.csv when it is
    one; else not judged); or (b) its quantity K drifts over the averaging window by more
    than F of its mean, averaged over replicates (|mean K_drift/K| > F, --max-drift, default

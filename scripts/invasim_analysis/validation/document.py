@@ -93,8 +93,8 @@ scripts/validation.py paper ROOT -o docs/validation/paper --plan docs/validation
 
 and the `document` line above with `--paper docs/validation/paper` puts them on the page.
 
-The analysis reads the run directories of each workspace (`summary.json`: block-averaged means
-and errors over the last half of the production; `series.csv`; `shapes.csv`; `snapshots/`).
+The analysis reads the run directories of each workspace (`summary.json`: means and
+errors (from the autocorrelation time) over the last half of the production; `series.csv`; `shapes.csv`; `snapshots/`).
 `A_n` is the paper's Appendix C normalisation over the figure's state points (replicate means;
 docs/sweeps_analysis.md). Its error is that of the gap `A_t^max - A_t` it is linear in,
 covariance included: the replicates' standard error, their variance pooled with the neighbouring
@@ -132,11 +132,10 @@ their combined error, `|m4 - m3| <= 2 sqrt(e3^2 + e4^2)`, each `e = sqrt(var 2 t
 with `tau_int` the integrated autocorrelation time of the whole window's fluctuations about its
 drift (each quarter's mean and one common slope), by Sokal's automatic window (at most 13 of 124
 rows) corrected for the fitted drift. Stationary windows of 124 rows with correlation times of
-2, 5, 10, 25 rows are called drifting 6.5, 8, 11.5, 21 % of the time (4.6 % nominal;
-`summary.json`'s block errors gave 22, 41, 55, 70 %). Or the drift is negligible when
+2, 5, 10, 25 rows are called drifting 6.5, 8, 11.5, 21 % of the time (4.6 % nominal). Or the drift is negligible when
 `|m4 - m3| <= 1 %` of the window's mean `A_t^max` (it moves `A_n` by less than about 0.015,
 under the precision of every statement here: a caged, de-mixed tissue ages by a few tenths of
-`sigma^2` per quarter with a block error smaller still, which the 2-sigma test alone would call
+`sigma^2` per quarter with an error smaller still, which the 2-sigma test alone would call
 drifting forever). A run with fewer than two rows per quarter or without a finite error cannot
 be judged and does not count as steady. A state point is steady when all its runs are and, where
 it was run from two starts (Fig. 4b's de-mixed and mixed starts), when the starts agree by the

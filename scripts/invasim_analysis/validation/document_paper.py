@@ -185,7 +185,7 @@ def section(paper_dir, reduced, fig_base, page_base):
             if img.endswith("_runs.png"):
                 L += ["*Each run's `A_t(t)` over its production (right axis: `A_n`, the same "
                       "`A_t` through the figure's normalisation); grey: the averaging window; "
-                      "blue and red bars: the means of its two quarters with their block "
+                      "blue and red bars: the means of its two quarters with their "
                       "errors, which the steady-state criterion compares.*", ""]
         if rec.get("command"):
             L += ["Regenerate: `%s`" % rec["command"], ""]

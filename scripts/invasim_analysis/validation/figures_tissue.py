@@ -268,7 +268,7 @@ def midpoint_text(mid, bound):
 def tc_equals_ta_row(sid, jobs, keys):
     """The passive runs' T_c/T_a (summary.json) against 1: every state point within the
     statement's tolerance (2 %, the precision docs/model.md's bath table asks of an
-    equilibrated bath) + 2 errors (replicate scatter, or the run's block error)."""
+    equilibrated bath) + 2 errors (replicate scatter, or the run's own error)."""
     tolerance = verdict.paper()[sid]["tolerance"]
     pts = []
     for key, reps in workspace.group(jobs, keys).items():
