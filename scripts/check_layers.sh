@@ -18,7 +18,7 @@ declare -A allowed=(
   [checkpoint]="integrate measure io forces neighbor state mesh core"
   [run]="checkpoint setup integrate measure io forces neighbor state mesh core"
   [lua]="run checkpoint setup integrate measure io forces neighbor state mesh core"
-  [sweep]="lua io core"
+  [sweep]="lua measure io core"
   [app]="sweep lua run checkpoint setup integrate measure io forces neighbor state mesh core"
 )
 bad=0

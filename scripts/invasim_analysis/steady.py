@@ -170,16 +170,31 @@ def steadiness(job, column="A_t", rows=None):
     out.update({"drift": drift, "error": err, "m3": m3, "m4": m4, "e3": e3, "e4": e4,
                 "tau_int": tau, "tau_capped": capped,
                 "rows3": [end - 2 * q, end - q], "rows4": [end - q, end]})
-    if math.isfinite(err):
-        out["steady"] = bool(abs(drift) <= STEADY_FACTOR * err)
+    a_max = None
     if column == "A_t":
         a_max = (float(np.mean(s["A_t_max"][first:end])) if "A_t_max" in s
                  else job.mean("A_t_max")[0])
-        if math.isfinite(a_max) and a_max > 0:
-            out["negligible"] = NEGLIGIBLE_DRIFT * a_max
-            if abs(drift) <= out["negligible"]:
-                out["steady"] = True
+    out["steady"], out["negligible"] = judge(drift, err, a_max)
     return out
+
+
+def judge(drift, error, a_max=None):
+    """The criterion on one run's numbers (steadiness's; `sweep collect` writes them as the
+    table's A_t_drift, A_t_drift_error and A_t_max): (steady: True, False or None when the
+    error is not finite; the negligible-drift floor NEGLIGIBLE_DRIFT x a_max, or None)."""
+    steady = bool(abs(drift) <= STEADY_FACTOR * error) if math.isfinite(error) else None
+    negligible = None
+    if a_max is not None and math.isfinite(a_max) and a_max > 0:
+        negligible = NEGLIGIBLE_DRIFT * a_max
+        if abs(drift) <= negligible:
+            steady = True
+    return steady, negligible
+
+
+def run_reason(name, steady, drift, error):
+    """Why a run named `name` does not count as steady (unsteady_runs', the master curve's)."""
+    return "run %s %s" % (name, "drifts: m4 - m3 = %.3g +- %.2g" % (drift, error)
+                          if steady is False else "not judged")
 
 
 def start_agreement(jobs, key="start", column="A_t"):
@@ -242,20 +257,16 @@ def unsteady_runs(jobs):
     for j in jobs:
         s = steadiness(j)
         if s["steady"] is not True:
-            reasons.append("run %s %s" % (_run_name(j), "drifts: %s" % _drift_text(s)
-                                          if s["steady"] is False else "not judged"))
+            reasons.append(run_reason(run_name(j.sp, j.id), s["steady"], s["drift"], s["error"]))
     return reasons
 
 
-def _run_name(job):
-    """A run as the page names it: its start and seed where it has them, else its id."""
-    parts = ["%s start" % job.sp["start"]] if "start" in job.sp else []
-    parts += ["seed %s" % job.sp["seed"]] if "seed" in job.sp else []
-    return ", ".join(parts) if parts else job.id[:8]
-
-
-def _drift_text(s):
-    return "m4 - m3 = %.3g +- %.2g" % (s["drift"], s["error"])
+def run_name(sp, job_id):
+    """A run as the page names it: its start and seed where its state point `sp` has them,
+    else its id's first 8 characters."""
+    parts = ["%s start" % sp["start"]] if "start" in sp else []
+    parts += ["seed %s" % sp["seed"]] if "seed" in sp else []
+    return ", ".join(parts) if parts else job_id[:8]
 
 
 def steadiness_summary(jobs, column="A_t"):

@@ -18,8 +18,23 @@ namespace invasim {
 
 // Sokal's window constant (4-6 suits autocorrelations that decay about exponentially).
 inline constexpr double kSokalC = 5.0;
-// The window's cap: (2W + 1)/n at most this share of the samples.
+// The window's cap: fitted (2W + 1)/n at most this share of the samples.
 inline constexpr double kMaxWindowShare = 2.0 / 3.0;
+
+// The integrated autocorrelation time of fluctuations r about `fitted` least-squares
+// parameters (the mean alone: 1), by Sokal's window capped at fitted (2W + 1)/n <=
+// kMaxWindowShare, the fit's bias (every lag low by fitted C_F/n) corrected.
+struct IntegratedTime {
+  double tau_int = std::numeric_limits<double>::quiet_NaN();  // samples, at least 1/2
+  double removed = std::numeric_limits<double>::quiet_NaN();  // variance the fit took out
+  std::size_t window = 0;                                     // Sokal's W
+  bool resolved = false;  // the criterion met within the cap (else tau_int a lower bound)
+};
+// NaN for n <= max(1, fitted); tau_int = 1/2, resolved, for fluctuations that are all zero.
+IntegratedTime integrated_time(std::span<const double> r, std::size_t fitted);
+// The standard error of a mean from its fluctuations r (all or part of those `t` was
+// measured on): sqrt((mean(r^2) + t.removed) 2 t.tau_int / n).
+double error_of_mean(std::span<const double> r, const IntegratedTime& t);
 
 struct MeanError {
   std::size_t n = 0;                                          // samples used

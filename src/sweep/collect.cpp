@@ -8,7 +8,7 @@
 
 #include "io/io_error.hpp"
 #include "sweep/python_json.hpp"
-#include "sweep/window_drift.hpp"
+#include "sweep/window_statistics.hpp"
 
 namespace invasim::sweep {
 
@@ -74,6 +74,15 @@ Json time_of(const Json& summary, const std::string& name) {
   return Json();
 }
 
+// A true/false flag of the averages, or the top level (as time_of).
+Json flag_of(const Json& summary, const std::string& name) {
+  if (summary.contains("averages") && summary["averages"].contains(name) &&
+      summary["averages"][name].is_boolean())
+    return summary["averages"][name];
+  if (summary.contains(name) && summary[name].is_boolean()) return summary[name];
+  return Json();
+}
+
 std::string with_unit(const std::string& name, const std::map<std::string, std::string>& units,
                       const std::string& base) {
   const auto it = units.find(base);
@@ -86,7 +95,7 @@ int collect(const Workspace& ws, std::ostream& out) {
   struct Row {
     std::string id, status;
     Json statepoint, document, summary;
-    std::map<std::string, double> drifts;
+    std::map<std::string, WindowStatistics> window;
   };
   std::vector<Row> rows;
   std::set<std::string> keys, averages;
@@ -99,7 +108,7 @@ int collect(const Workspace& ws, std::ostream& out) {
       row.summary = read_summary(id, dir);
       read_units(dir / "series.csv", units);
       if (row.summary.contains("averages")) {
-        row.drifts = window_drifts(dir / "series.csv", row.summary["averages"]);
+        row.window = window_statistics(dir / "series.csv", row.summary["averages"]);
         for (const auto& item : row.summary["averages"].items())
           if (item.value().is_object() && item.value().contains("mean") &&
               item.value().contains("error"))
@@ -111,9 +120,10 @@ int collect(const Workspace& ws, std::ostream& out) {
   out << "job_id,status,wall_seconds [s]";
   for (const auto& k : keys) out << ',' << k;
   for (const auto& a : averages)
-    out << ',' << with_unit(a, units, a) << ',' << with_unit(a + "_error", units, a) << ','
-        << with_unit(a + "_drift", units, a);
-  out << ",tau_d [tau],tau_r [tau]\n";
+    out << ',' << with_unit(a, units, a) << ',' << with_unit(a + "_error", units, a) << ',' << a
+        << "_error_converged," << with_unit(a + "_drift", units, a) << ','
+        << with_unit(a + "_drift_error", units, a);
+  out << ",tau_d [tau],tau_r [tau],tau_d_unresolved\n";
   for (const auto& row : rows) {
     const bool done = row.status == "done";
     out << row.id << ',' << row.status << ','
@@ -126,13 +136,28 @@ int collect(const Workspace& ws, std::ostream& out) {
       if (done && row.summary.contains("averages") && row.summary["averages"].contains(a))
         entry = row.summary["averages"][a];
       const bool ok = entry.is_object();
-      const auto drift = row.drifts.find(a);
-      out << ',' << (ok && entry.contains("mean") ? cell(entry["mean"]) : "") << ','
-          << (ok && entry.contains("error") ? cell(entry["error"]) : "") << ','
-          << (drift != row.drifts.end() ? number(drift->second) : "");
+      const auto w = row.window.find(a);
+      const bool in_window = w != row.window.end();
+      // A summary without tau_int holds a blocking error: the window's is written instead.
+      const bool recomputed = ok && !entry.contains("tau_int") && in_window;
+      std::string error = ok && entry.contains("error") ? cell(entry["error"]) : "";
+      std::string converged =
+          ok && entry.contains("error_converged") && entry["error_converged"].is_boolean()
+              ? (entry["error_converged"].get<bool>() ? "1" : "0")
+              : "";
+      if (recomputed) {
+        error = number(w->second.error);
+        converged = w->second.error_converged ? "1" : "0";
+      }
+      out << ',' << (ok && entry.contains("mean") ? cell(entry["mean"]) : "") << ',' << error << ','
+          << converged << ',' << (in_window ? number(w->second.drift) : "") << ','
+          << (in_window ? number(w->second.drift_error) : "");
     }
+    const Json flag = done ? flag_of(row.summary, "tau_d_unresolved") : Json();
+    const bool unresolved = flag.is_boolean() && flag.get<bool>();
     out << ',' << (done ? cell(time_of(row.summary, "tau_d")) : "") << ','
-        << (done ? cell(time_of(row.summary, "tau_r")) : "") << '\n';
+        << (done ? cell(time_of(row.summary, "tau_r")) : "") << ','
+        << (done ? (unresolved ? "1" : "0") : "") << '\n';
   }
   return static_cast<int>(rows.size());
 }

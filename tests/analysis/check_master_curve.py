@@ -7,8 +7,8 @@ Usage: check_master_curve.py CASE MASTER_CURVE_PY SCRATCH_DIR, CASE one of
                  the temperature conventions and the outputs);
   steadiness     jobs whose L_x drifts beyond --max-drift are scaled but neither normalise
                  nor enter a fit; a unitless _drift column is not taken for a state-point key;
-  workspace      the runs of the workspace holding the table are judged by the one
-                 steady-state criterion (steady.point_steadiness);
+  runs           the table's runs are judged by the one steady-state criterion (steady.judge
+                 on A_t_drift, A_t_drift_error, A_t_max, as sweep collect writes them);
   errors         bad input: each case exits with status 1 (2: command line) and names the
                  problem;
   not_a_fit      curves whose fit is not a fit (b not positive, an error above its value)
@@ -427,12 +427,14 @@ def case_steadiness(script, scratch):
           in p.stderr, "a negative --max-drift is refused")
 
 
-# --- (c2) steadiness of A_t, judged from the workspace's runs ------------------------------
-def case_workspace(script, scratch):
+# --- (c2) steadiness of A_t, judged from the table's columns ----------------------------
+def case_runs(script, scratch):
     """A workspace of 6 temperatures x 2 seeds whose A_t is flat but for one run that rises
-    over its last quarters: master_curve.py, given the table collected into the workspace,
-    judges its runs by the one criterion (steady.point_steadiness, docs/validation.md) and
-    leaves that state point out; a table elsewhere is not judged unless --workspace says."""
+    over its last quarters, tabulated with each run's A_t_drift and A_t_drift_error as `sweep
+    collect` computes them (the numbers of steady.steadiness, which tests/analysis/
+    validation_tiny.sh checks against collect's): master_curve.py judges the runs by the one
+    criterion (steady.judge) and leaves that state point out, for the reason
+    steady.point_steadiness gives; a table without the columns is not judged, and says so."""
     import numpy as np
     import synthetic
     from invasim_analysis import steady, workspace
@@ -449,26 +451,35 @@ def case_workspace(script, scratch):
             points.append(({"kT": x * synthetic.P / 2, "seed": seed}, "done", a_t, 1000.0, x))
     ws = os.path.join(scratch, "ws")
     ids = synthetic.write_workspace(ws, points)
-    lines = ["job_id,status,wall_seconds [s],P,kT,seed,A_t [sigma^2],A_t_error [sigma^2],"
-             "A_t_max [sigma^2],A_t_max_error [sigma^2],kT_c_paper [eps_c],"
-             "kT_c_paper_error [eps_c],tau_d [tau],tau_r [tau]"]
+    head = ("job_id,status,wall_seconds [s],P,kT,seed,A_t [sigma^2],A_t_error [sigma^2],"
+            "A_t_max [sigma^2],A_t_max_error [sigma^2],kT_c_paper [eps_c],"
+            "kT_c_paper_error [eps_c],tau_d [tau],tau_r [tau]")
+    lines, jobs = [], {}
     for job_id, (sp, _, _, _, _) in zip(ids, points):
-        job = workspace.Job(os.path.join(ws, "workspace", job_id))
-        values = [v for name in ("A_t", "A_t_max", "kT_c_paper") for v in job.mean(name)]
-        lines.append(",".join([job_id, "done", "1.0", repr(synthetic.P), repr(sp["kT"]),
-                               str(sp["seed"])] + [repr(v) for v in values] + ["", ""]))
-    table = os.path.join(ws, "results.csv")
-    with open(table, "w") as f:
-        f.write("\n".join(lines) + "\n")
+        jobs[job_id] = workspace.Job(os.path.join(ws, "workspace", job_id))
+        values = [v for name in ("A_t", "A_t_max", "kT_c_paper") for v in jobs[job_id].mean(name)]
+        lines.append([job_id, "done", "1.0", repr(synthetic.P), repr(sp["kT"]),
+                      str(sp["seed"])] + [repr(v) for v in values] + ["", ""])
     out = os.path.join(scratch, "out")
-    p = run(script, [table, "-o", out, "--no-figures"])
-    check(p.returncode == 0, "the table collected into the workspace is analysed")
+    table = os.path.join(scratch, "results.csv")
+
+    def analyse(with_drifts):
+        text = [head + (",A_t_drift [sigma^2],A_t_drift_error [sigma^2]" if with_drifts else "")]
+        for line in lines:
+            s = steady.steadiness(jobs[line[0]])
+            text.append(",".join(line + ([repr(s["drift"]), repr(s["error"])] if with_drifts
+                                         else [])))
+        with open(table, "w") as f:
+            f.write("\n".join(text) + "\n")
+        p = run(script, [table, "-o", out, "--no-figures"])
+        return p, {r["job_id"]: r for r in read_csv(os.path.join(out, "rows.csv"))}
+
+    p, rows = analyse(True)
+    check(p.returncode == 0, "the table with the runs' drifts is analysed")
     if p.returncode != 0:
         return
-    rows = {r["job_id"]: r for r in read_csv(os.path.join(out, "rows.csv"))}
     drifting = [ids[6], ids[7]]
-    _, why = steady.point_steadiness([workspace.Job(os.path.join(ws, "workspace", i))
-                                      for i in drifting])
+    _, why = steady.point_steadiness([jobs[i] for i in drifting])
     check(all(rows[i]["steady"] == "false" for i in drifting)
           and rows[ids[6]]["not_steady_because"] == "A_t not steady: " + "; ".join(why)
           and "run seed 2 drifts: m4 - m3 = " in rows[ids[6]]["not_steady_because"],
@@ -478,23 +489,13 @@ def case_workspace(script, scratch):
           "the other state points are steady")
     with open(os.path.join(out, "fits.json")) as f:
         fits = json.load(f)
-    check(fits["settings"].get("workspace") == os.path.abspath(ws)
-          and sorted(j["job_id"] for j in fits["not_steady"]) == sorted(drifting),
-          "fits.json names the workspace and the jobs not steady")
-    elsewhere = os.path.join(scratch, "results.csv")
-    shutil.copy(table, elsewhere)
-    p = run(script, [elsewhere, "-o", out, "--no-figures"])
-    rows = {r["job_id"]: r for r in read_csv(os.path.join(out, "rows.csv"))}
-    check(p.returncode == 0 and "the steadiness of A_t not judged" in p.stdout
+    check(sorted(j["job_id"] for j in fits["not_steady"]) == sorted(drifting),
+          "fits.json names the jobs not steady")
+    p, rows = analyse(False)
+    check(p.returncode == 0 and "the steadiness of A_t's runs not judged" in p.stdout
           and rows[ids[7]]["steady"] == "true",
-          "a table outside the workspace: A_t's steadiness not judged, and said")
-    p = run(script, [elsewhere, "-o", out, "--no-figures", "--workspace", ws])
-    rows = {r["job_id"]: r for r in read_csv(os.path.join(out, "rows.csv"))}
-    check(p.returncode == 0 and rows[ids[7]]["steady"] == "false",
-          "--workspace WS: judged again")
-    p = run(script, [elsewhere, "-o", out, "--no-figures", "--workspace", scratch])
-    check(p.returncode == 1 and "is not a sweep workspace" in p.stderr,
-          "--workspace that is not one is refused")
+          "a table without A_t_drift_error: A_t's steadiness not judged, and said")
+
 
 # --- (d) bad input -----------------------------------------------------------------------
 def write(scratch, name, lines):
@@ -739,7 +740,7 @@ def main():
     shutil.rmtree(scratch, ignore_errors=True)
     os.makedirs(scratch)
     {"synthetic": case_synthetic, "normalisation": case_normalisation,
-     "steadiness": case_steadiness, "workspace": case_workspace, "errors": case_errors,
+     "steadiness": case_steadiness, "runs": case_runs, "errors": case_errors,
      "not_a_fit": case_not_a_fit, "plateau_bias": case_plateau_bias}[case](SCRIPT, scratch)
     if failures:
         print("%d check(s) FAILED" % len(failures))

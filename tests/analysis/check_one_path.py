@@ -34,8 +34,9 @@ def identity():
                                              figures_other, figures_tethered, figures_tissue,
                                              panels, paper_scale, plan)
 
-    check(analysis.steady is steady and analysis.workspace is workspace,
-          "the master curve judges steadiness with steady.py, reading runs with workspace.py")
+    check(analysis.steady is steady and not hasattr(analysis, "workspace"),
+          "the master curve judges steadiness with steady.py, from the table alone (no "
+          "second reading of the runs)")
     check(analysis.normalise_group is normalise.normalise_group,
           "the master curve normalises with normalise.py")
     check(steady.group is workspace.group, "steady.py groups runs with workspace.py")
@@ -62,7 +63,7 @@ def identity():
 
 # name pattern -> the one file (under scripts/invasim_analysis/) allowed to define it
 DEFINITIONS = [
-    (r"^\s*def (summary_error|window|window_rows|window_mean|window_error|steadiness|"
+    (r"^\s*def (summary_error|window|window_rows|window_mean|window_error|steadiness|judge|"
      r"point_steadiness|start_agreement|steadiness_summary|unsteady_points|drift_residuals|"
      r"autocovariance|integrated_time|mean_error)\(", "steady.py"),
     (r"^(STEADY_FACTOR|NEGLIGIBLE_DRIFT|SOKAL_C|MAX_FIT_SHARE) =", "steady.py"),

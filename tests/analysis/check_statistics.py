@@ -171,12 +171,12 @@ def fig5_workspace(path, truth, drifting=None, points=9, replicates=4, rows=40):
     which the extremes' plateaus bias a and c1 most, docs/sweeps_analysis.md), a flat series
     (steady), tau_d off by 5 % per run (in summary.json). drifting = (curve, point): the first
     run of that state point rises by 60 sigma^2 over its averaging window (not steady). Also
-    writes WS/results.csv as `invasim sweep collect` would (the runs' means and errors), for
-    master_curve.py. Returns the path of the table."""
+    writes WS/results.csv as `invasim sweep collect` would (the runs' means and errors, A_t's
+    drift and its error), for master_curve.py. Returns the path of the table."""
     import json
 
     import synthetic
-    from invasim_analysis import workspace
+    from invasim_analysis import steady, workspace
 
     rng = np.random.default_rng(5150)
     specs, tau_d = [], []
@@ -197,7 +197,8 @@ def fig5_workspace(path, truth, drifting=None, points=9, replicates=4, rows=40):
     ids = synthetic.write_workspace(path, specs)
     lines = ["job_id,status,wall_seconds [s],P,beta,tau_p,f0,seed,A_t [sigma^2],"
              "A_t_error [sigma^2],A_t_max [sigma^2],A_t_max_error [sigma^2],"
-             "kT_c_paper [eps_c],kT_c_paper_error [eps_c],tau_d [tau],tau_r [tau]"]
+             "kT_c_paper [eps_c],kT_c_paper_error [eps_c],A_t_drift [sigma^2],"
+             "A_t_drift_error [sigma^2],tau_d [tau],tau_r [tau]"]
     for job_id, (sp, _, _, _, _), t in zip(ids, specs, tau_d):
         summary_path = os.path.join(path, "workspace", job_id, "summary.json")
         with open(summary_path) as f:
@@ -207,6 +208,8 @@ def fig5_workspace(path, truth, drifting=None, points=9, replicates=4, rows=40):
             json.dump(summary, f)
         job = workspace.Job(os.path.join(path, "workspace", job_id))
         values = [v for name in ("A_t", "A_t_max", "kT_c_paper") for v in job.mean(name)]
+        s = steady.steadiness(job)
+        values += [s["drift"], s["error"]]
         lines.append(",".join([job_id, "done", "1.0", repr(synthetic.P)]
                               + [repr(sp[k]) for k in ("beta", "tau_p", "f0")] + [str(sp["seed"])]
                               + [repr(v) for v in values] + [repr(t), ""]))

@@ -111,6 +111,56 @@ fixed = rec["numbers"]["fixed"]["points"]
 if not (fixed and all(abs(p["phi_a_measured"] - p["phi_a_target"]) < 0.01 for p in fixed)):
     sys.exit("fixed box points %r" % fixed)
 PY
+# One steady-state criterion: `sweep collect`'s A_t_drift and A_t_drift_error (C++,
+# measure/quarter_drift.cpp) and A_t_error (the summary's, measure/mean_error.cpp) are the
+# numbers the analysis computes from series.csv (steady.steadiness, Job.mean), on the tiny
+# workspaces (2 rows per window: the drifts not judged) and on a synthetic one of 12 runs with
+# windows of 40-51 rows (odd ones too) that ramp, wander and drift.
+PYTHONPATH="$repo/tests/analysis:${PYTHONPATH:-}" /usr/bin/python3 - synthetic_ws <<'PY'
+import sys
+import numpy as np
+import synthetic
+rng, points = np.random.default_rng(3), []
+for k in range(12):
+    n = 80 + 2 * k + (k % 2) * 2
+    a_t = (500 + 0.3 * np.cumsum(rng.normal(0, 1, n)) + rng.normal(0, 2, n)
+           + np.linspace(0, 10 * (k % 3), n))
+    points.append(({"kT": 1e-4 * (k + 1), "seed": k % 2 + 1}, "done", a_t, 1000.0, 0.1 * (k + 1)))
+synthetic.write_workspace(sys.argv[1], points)
+PY
+for ws in ws/* synthetic_ws; do "$invasim" sweep collect "$ws" -o "$ws/results.csv" > /dev/null; done
+/usr/bin/python3 - ws synthetic_ws <<'PY' || fail "sweep collect's drifts or errors differ from the analysis's"
+import csv, math, os, sys
+from invasim_analysis import steady, workspace
+problems, judged = [], {}
+workspaces = [os.path.join(sys.argv[1], n) for n in sorted(os.listdir(sys.argv[1]))] + [sys.argv[2]]
+for ws in workspaces:
+    rows = list(csv.DictReader(open(os.path.join(ws, "results.csv"))))
+    if not any(r["status"] == "done" for r in rows):
+        continue
+    col = {h.split(" [")[0]: h for h in rows[0]}
+    jobs = {j.id: j for j in workspace.load(ws)}
+    for r in rows:
+        if r["status"] != "done" or "A_t" not in col:
+            continue
+        j = jobs[r["job_id"]]
+        s = steady.steadiness(j)
+        got = {c: float(r[col[c]]) if r[col[c]] != "" else math.nan
+               for c in ("A_t_drift", "A_t_drift_error", "A_t_error")}
+        want = {"A_t_error": j.mean("A_t")[1], "A_t_drift_error": s["error"]}
+        if s["steady"] is not None:  # judged: 2 rows per quarter at least
+            want["A_t_drift"] = s["drift"]
+            judged[ws] = judged.get(ws, 0) + 1
+        for c, w in want.items():
+            scale = 1e-9 * abs(j.mean("A_t")[0])
+            if not (abs(got[c] - w) <= scale or (math.isnan(got[c]) and math.isnan(w))):
+                problems.append("%s %s %s: collect %r, analysis %r" % (ws, r["job_id"][:8], c,
+                                                                       got[c], w))
+if problems or judged.get(sys.argv[2], 0) != 12:
+    sys.exit("\n".join(problems) + "\njudged: %r" % judged)
+print("ok: sweep collect's A_t drift, its error and A_t's error = the analysis's (%d judged)"
+      % sum(judged.values()))
+PY
 "$repo/scripts/validation.py" plan --workspace ws/* --jobs 2 -o plan.json --invasim "$invasim" | tee plan.log
 "$repo/scripts/validation.py" document figures --plan plan.json --done plan.json -o validation.md --ci-size
 

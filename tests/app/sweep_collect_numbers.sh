@@ -6,7 +6,8 @@
 #     signac_statepoint.json (integers without a decimal point: 25 and 25.0 are two rows that
 #     differ), and kT reads 0.0013, not 0.0012999999999999999;
 #  2. the done point's means, errors, drift, tau_d and tau_r are the repr of their values
-#     (0.1 + 0.2 = 0.30000000000000004 keeps its 17 digits: the text reads back exactly).
+#     (0.1 + 0.2 = 0.30000000000000004 keeps its 17 digits: the text reads back exactly), its
+#     flags (error_converged, tau_d_unresolved) 1 or 0.
 # Usage: sweep_collect_numbers.sh INVASIM SPEC_DIR WORK_DIR PYTHON3
 set -euo pipefail
 invasim=$1 specs=$2 work=$3 python=$4
@@ -25,8 +26,10 @@ d = sys.argv[1]
 doc = json.load(open(os.path.join(d, "signac_job_document.json")))
 doc.update(status="done", wall_seconds=12.5)
 json.dump(doc, open(os.path.join(d, "signac_job_document.json"), "w"))
-summary = {"averages": {"A_t": {"mean": 0.1 + 0.2, "error": 1e-05, "samples": 4},
-                        "T_c": {"mean": 25.0, "error": 0.0013, "samples": 4},
+summary = {"averages": {"A_t": {"mean": 0.1 + 0.2, "error": 1e-05, "samples": 4,
+                                "tau_int": 0.5, "error_converged": True},
+                        "T_c": {"mean": 25.0, "error": 0.0013, "samples": 4,
+                                "tau_int": 0.5, "error_converged": False},
                         "tau_d": 3.0, "tau_r": 1e20}}
 json.dump(summary, open(os.path.join(d, "summary.json"), "w"))
 with open(os.path.join(d, "series.csv"), "w") as f:
@@ -59,6 +62,14 @@ for row in rows[1:]:
                               ("A_t_drift", 0.0013), ("T_c", 25.0), ("T_c_error", 0.0013),
                               ("T_c_drift", 0.0), ("tau_d", 3.0), ("tau_r", 1e20)):
             expect(row, column, value)
+        for column, text in (("A_t_error_converged", "1"), ("T_c_error_converged", "0"),
+                             ("tau_d_unresolved", "0")):
+            if row[header.index(column)] != text:
+                problems.append("%s = %r, expected %r" % (column, row[header.index(column)], text))
+        if not float(row[header.index("A_t_drift_error")]) >= 0:
+            problems.append("A_t_drift_error = %r" % row[header.index("A_t_drift_error")])
+    elif row[header.index("tau_d_unresolved")] != "":
+        problems.append("a point not done has tau_d_unresolved %r" % row[header.index("tau_d_unresolved")])
 if taus != {"25", "25.0"}:
     problems.append("tau_p cells %s, expected 25 and 25.0" % sorted(taus))
 if problems:

@@ -89,27 +89,30 @@ head = rows[0]
 assert head[:3] == ["job_id", "status", "wall_seconds [s]"], head
 keys = head[3:head.index("A_ratio")]
 assert keys == sorted(keys) and "seed" in keys and "kT" in keys, keys
-assert head[-2:] == ["tau_d [tau]", "tau_r [tau]"], head
-means = head[head.index("A_ratio"):-2]
-names = [c.split(" [")[0] for c in means[0::3]]
+assert head[-3:] == ["tau_d [tau]", "tau_r [tau]", "tau_d_unresolved"], head
+means = head[head.index("A_ratio"):-3]
+names = [c.split(" [")[0] for c in means[0::5]]
 assert names == sorted(names), names
-for mean, err, drift in zip(means[0::3], means[1::3], means[2::3]):
+for mean, err, conv, drift, derr in zip(*(means[k::5] for k in range(5))):
     n, _, unit = mean.partition(" [")
-    assert err == n + "_error" + (" [" + unit if unit else ""), (mean, err)
-    assert drift == n + "_drift" + (" [" + unit if unit else ""), (mean, drift)
+    u = " [" + unit if unit else ""
+    assert (err, conv, drift, derr) == (n + "_error" + u, n + "_error_converged",
+                                        n + "_drift" + u, n + "_drift_error" + u), mean
 assert "T_c [eps_c]" in head and "T_c_error [eps_c]" in head and "A_ratio_error" in head, head
 assert "L_x_drift [sigma]" in head, head
 assert len(rows) == 7 and all(r[1] == "done" for r in rows[1:]), rows
 # Every cell holds a number, but tau_r's where the point's run.log says it was not reached
-# (a cold point's structure does not relax within the correlation window).
+# (a cold point's structure does not relax within the correlation window); the flags are 0/1.
 import os
+tau_r = head.index("tau_r [tau]")
 for r in rows[1:]:
-    assert all(c != "" for c in r[:-1]), r
+    assert all(c != "" for k, c in enumerate(r) if k != tau_r), r
     log = open(os.path.join("ws", "workspace", r[0], "run.log")).read()
-    assert (r[-1] == "") == ("tau_r = not reached" in log), (r[0], r[-1])
+    assert (r[tau_r] == "") == ("tau_r = not reached" in log), (r[0], r[tau_r])
     float(r[head.index("T_c [eps_c]")])
+    assert r[-1] in ("0", "1") and r[head.index("T_c_error_converged")] in ("0", "1"), r
 # The drift, recomputed from a job's series.csv and summary.json: the mean of the averaging
-# window's second half minus its first half's.
+# window's second half minus its first half's (its last 2 floor(n/2) rows).
 import json, os
 for r in rows[1:]:
     job = os.path.join("ws", "workspace", r[0])
@@ -118,7 +121,7 @@ for r in rows[1:]:
     col = series[0].index("T_c [eps_c]")
     window = [float(s[col]) for s in series[1:]][-n:]
     h = n // 2
-    want = sum(window[-h:]) / h - sum(window[:h]) / h
+    want = sum(window[-h:]) / h - sum(window[-2 * h:-h]) / h
     got = float(r[head.index("T_c_drift [eps_c]")])
     assert n >= 2 and abs(got - want) <= 1e-12 * max(1.0, abs(want)), (r[0], n, got, want)
 PY

@@ -2,7 +2,8 @@
 // (src/measure/mean_error.hpp) against exact results: a hand-worked series, i.i.d. Gaussian
 // samples (error sigma / sqrt(n), tau_int = 1/2) and AR(1) series, whose standard error of the
 // mean and tau_int = (1 + rho) / (2 (1 - rho)) are known exactly, down to windows as short as
-// the runs' summaries average (50-124 samples, 5 samples of correlation time).
+// the runs' summaries average (50-124 samples, 5 samples of correlation time); and the
+// steady-state test's drift between a window's halves (src/measure/quarter_drift.hpp).
 #include <catch2/catch.hpp>
 
 #include <array>
@@ -13,6 +14,7 @@
 #include "core/errors.hpp"
 #include "core/rng.hpp"
 #include "measure/mean_error.hpp"
+#include "measure/quarter_drift.hpp"
 
 using namespace invasim;
 
@@ -175,4 +177,47 @@ TEST_CASE("tail averages", "[mean_error]") {
   CHECK(mean_error_tail(x, 1.0).n == 1000);
   CHECK_THROWS_AS(mean_error_tail(x, 0.0), InputError);
   CHECK_THROWS_AS(mean_error_tail(x, 1.5), InputError);
+}
+
+TEST_CASE("quarter drift of a ramp and a step: all drift, no fluctuation", "[quarter_drift]") {
+  std::vector<double> ramp(9);  // odd: the first value is left out, quarters 1..4 and 5..8
+  for (std::size_t i = 0; i < ramp.size(); ++i) ramp[i] = double(i);
+  const QuarterDrift r = quarter_drift(ramp);
+  CHECK(r.quarter == 4);
+  CHECK(r.m3 == 2.5);
+  CHECK(r.m4 == 6.5);
+  CHECK(r.drift == 4.0);
+  CHECK(r.error < 1e-12);
+  std::vector<double> step(20, 3.0);
+  for (std::size_t i = 10; i < 20; ++i) step[i] = 5.0;
+  const QuarterDrift s = quarter_drift(step);
+  CHECK(s.drift == 2.0);
+  CHECK(s.error == 0.0);
+  CHECK(s.resolved);
+  CHECK(std::isnan(quarter_drift(std::vector<double>{1, 2, 3}).error));  // 1 row per quarter
+}
+
+TEST_CASE("quarter drift of stationary and ramping AR(1) windows", "[quarter_drift]") {
+  // 124 rows correlated over tau_int = 2 rows (rho = 0.6): |m4 - m3| > 2 errors in about 6.5 %
+  // of stationary windows (tests/analysis/check_statistics.py measures the same estimator in
+  // Python; 4.6 % nominal), and a ramp over the window of 6 true sd of m4 - m3 is found in
+  // nearly all.
+  const double rho = 0.6;
+  const double sd = std::sqrt(2.0) * ar1_error(62, rho);  // of m4 - m3, quarters ~independent
+  int alarms = 0, found = 0;
+  const int windows = 2000;
+  for (int k = 0; k < windows; ++k) {
+    std::vector<double> x = ar1(124, rho, 0xD000ull + std::uint64_t(k));
+    QuarterDrift d = quarter_drift(x);
+    alarms += std::abs(d.drift) > 2.0 * d.error;
+    // The ramp rises 12 sd over the window: the quarters' means differ by 6 sd.
+    for (std::size_t i = 0; i < x.size(); ++i) x[i] += 12.0 * sd * double(i) / 123.0;
+    d = quarter_drift(x);
+    found += std::abs(d.drift) > 2.0 * d.error;
+  }
+  std::printf("[quarter_drift] AR(1) rho = 0.6, 124 rows: false alarms %.3f, ramps found %.3f\n",
+              double(alarms) / windows, double(found) / windows);
+  CHECK(double(alarms) / windows > 0.03);
+  CHECK(double(alarms) / windows < 0.10);
+  CHECK(double(found) / windows > 0.95);
 }

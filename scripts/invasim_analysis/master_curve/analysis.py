@@ -2,11 +2,10 @@
 points (replicate means), curves and their fits, the fit of the scale a across curves."""
 
 import math
-import os
 
 import numpy as np
 
-from .. import steady, workspace
+from .. import steady
 from ..errors import InputError
 from ..normalise import normalise_group
 from .selection import Keys, canonical, group_indices, matches
@@ -114,36 +113,28 @@ def drift_steadiness(table, rows, max_drift, point_of):
     return reasons, unchecked
 
 
-def find_workspace(option, results):
-    """The sweep workspace whose jobs the table lists: `option` (--workspace), else the
-    directory holding the table when it is one, else None."""
-    if option:
-        if not os.path.exists(os.path.join(option, "invasim_sweep.json")):
-            raise InputError("--workspace %s is not a sweep workspace (no invasim_sweep.json)"
-                             % option)
-        return option
-    here = os.path.dirname(os.path.abspath(results))
-    return here if os.path.exists(os.path.join(here, "invasim_sweep.json")) else None
-
-
-def runs_steadiness(table, rows, point_of, ws):
+def runs_steadiness(table, rows, point_of):
     """Per row: None if its state point is steady by the one steady-state criterion
-    (steady.point_steadiness: A_t's two quarter means, its runs read from the workspace's job
-    files through workspace.Job), else why not. Without a workspace: None (not judged)."""
-    if ws is None:
+    (steady.judge on each run's A_t_drift, A_t_drift_error and A_t_max, which `sweep
+    collect` computes from the run's series.csv as steady.steadiness does), else why not: a
+    state point is steady when all its runs are. None (not judged) for a table without the
+    A_t_drift_error column (from an older `sweep collect`)."""
+    if not (table.has("A_t_drift") and table.has("A_t_drift_error") and table.has("A_t_max")):
         return None
     reasons = [None] * len(rows)
     for idx in group_indices(point_of).values():
-        jobs = []
+        why = []
         for i in idx:
-            path = os.path.join(ws, "workspace", rows[i].get("job_id", ""))
-            if not rows[i].get("job_id") or not os.path.isdir(path):
-                raise InputError("%s: the job is not in the workspace %s (give the one the "
-                                 "table was collected from with --workspace)"
-                                 % (table.where(rows[i]), ws))
-            jobs.append(workspace.Job(path))
-        ok, why = steady.point_steadiness(jobs)
-        if not ok:
+            r = rows[i]
+            drift, error, a_max = (table.number(r, name, "for the steadiness of A_t",
+                                                allow_missing=True)
+                                   for name in ("A_t_drift", "A_t_drift_error", "A_t_max"))
+            ok = steady.judge(drift, error, a_max)[0] if math.isfinite(drift) else None
+            if ok is not True:
+                sp = {k: r[k] for k in ("start", "seed") if r.get(k, "") != ""}
+                why.append(steady.run_reason(steady.run_name(sp, r.get("job_id", "")), ok,
+                                             drift, error))
+        if why:
             for i in idx:
                 reasons[i] = "A_t not steady: " + "; ".join(why)
     return reasons
@@ -312,8 +303,7 @@ def analyse(table, opts):
     warnings = same_number_written_twice(keys, rows)
     x, a_t, a_max, err_t, err_max = row_values(table, keys, rows, opts.temperature)
     unsteady, unchecked = drift_steadiness(table, rows, opts.max_drift, point_of)
-    ws = find_workspace(getattr(opts, "workspace", None), table.path)
-    by_runs = runs_steadiness(table, rows, point_of, ws)
+    by_runs = runs_steadiness(table, rows, point_of)
     if by_runs is not None:
         unsteady = [a if b is None else b if a is None else b + "; " + a
                     for a, b in zip(unsteady, by_runs)]
@@ -362,7 +352,7 @@ def analyse(table, opts):
     scale = scale_fit(curves, fits)
     return {"rows": rows, "x": x, "rA_t": r_a, "A_n": a_n, "curves": curves,
             "curve_of": curve_of, "unsteady": unsteady, "unchecked_drift": unchecked,
-            "workspace": ws,
+            "runs_judged": by_runs is not None,
             "scale_fit": scale, "normalisation": norm_info, "plateau_fits": plateau_fits,
             "warnings": warnings,
             "state_keys": keys.state_keys}

@@ -4,11 +4,10 @@ Usage: master_curve.py RESULTS.csv -o DIR [--group K1,K2] [--temperature kT|T_c|
                        [--normalise-by K=V[,K=V]] [--normalise-within K1,K2]
                        [--fixed K=V[,K=V]] [--replicate-key seed] [--tau-g T] [--pool N]
                        [--min-error E] [--max-drift K=F[,K=F]|none]
-                       [--workspace WS] [--plateaus fitted|extremes] [--no-figures]
+                       [--plateaus fitted|extremes] [--no-figures]
 
 RESULTS.csv is what `invasim sweep collect WS -o results.csv` writes; only jobs with status
-`done` count; their runs are read from the workspace WS (default: RESULTS.csv's directory, as
-`invasim sweep analyze WS` writes WS/results.csv) to judge their steadiness. Writes into DIR: fits.csv, fits.json, points.csv, rows.csv, An_vs_T.png,
+`done` count. Writes into DIR: fits.csv, fits.json, points.csv, rows.csv, An_vs_T.png,
 collapse.png and (with at least two usable curves) a_vs_tau.png.
 
 Needs numpy, scipy and matplotlib (Debian 12: apt-get install python3-numpy python3-scipy
@@ -29,9 +28,8 @@ Fits the paper's master curve to a sweep's results table.
 0. Steadiness: a state point is not a steady state when (a) its runs fail the criterion of
    docs/validation.md (the means of A_t over the last two quarters of a run differ by more
    than 2 combined errors, from the integrated autocorrelation time, and by 1 % of A_t^max
-   or more), read from the runs'
-   series.csv in the workspace (--workspace, default the directory of RESULTS.csv when it is
-   one; else not judged); or (b) its quantity K drifts over the averaging window by more
+   or more: the table's A_t_drift, A_t_drift_error and A_t_max; not judged, with a note,
+   for a table without them); or (b) its quantity K drifts over the averaging window by more
    than F of its mean, averaged over replicates (|mean K_drift/K| > F, --max-drift, default
    L_x=0.05: a box still growing or shrinking under the barostat). Its jobs are scaled like
    the others (rows.csv, hollow in the figure) but set no normalisation and enter no fit.
@@ -94,9 +92,6 @@ def parse_args(argv):
                    help="state points whose K drifts by more than F of its mean over the "
                    "averaging window (mean over replicates) are not steady: not fitted "
                    "(default: L_x=0.05; none: no check)")
-    p.add_argument("--workspace", metavar="WS",
-                   help="the sweep workspace RESULTS.csv was collected from, whose runs are "
-                   "judged steady or not (default: RESULTS.csv's directory when it is one)")
     p.add_argument("--plateaus", default="fitted", choices=["fitted", "extremes"],
                    help="the plateaus of A_n in the per-curve fits: fitted jointly over the "
                    "normalisation group's curves (default; unbiased), or the extremes of the "
@@ -129,7 +124,7 @@ def main(argv):
             fixed=dict(parse_assignments(args.fixed, "--fixed")), temperature=args.temperature,
             replicate_key=args.replicate_key, tau_g=args.tau_g, min_error=args.min_error,
             window=args.pool, max_drift=parse_limits(args.max_drift, "--max-drift"),
-            plateaus=args.plateaus, workspace=args.workspace)
+            plateaus=args.plateaus)
         table = Table(args.results)
         for k in opts.fixed:
             if table.has(k):
@@ -146,8 +141,6 @@ def main(argv):
                 "tau_g": args.tau_g, "min_error": args.min_error, "pool": args.pool,
                 "max_drift": dict(opts.max_drift), "plateaus": args.plateaus,
                 "state_keys": result["state_keys"]}
-    if result["workspace"]:
-        settings["workspace"] = os.path.abspath(result["workspace"])
     paths = output.write_tables(args.out, result, settings)
     if args.figures:
         from . import plots
@@ -183,9 +176,9 @@ def report(result, paths):
     for key in result["unchecked_drift"]:
         print("note: no %s_drift column (a results.csv from an older `sweep collect`?): "
               "steadiness in %s not checked" % (key, key))
-    if result["workspace"] is None:
-        print("note: no workspace (RESULTS.csv's directory is none; --workspace WS): the "
-              "steadiness of A_t not judged")
+    if not result["runs_judged"]:
+        print("note: no A_t_drift_error column (a results.csv from an older `sweep collect`: "
+              "collect again): the steadiness of A_t's runs not judged")
     unsteady = [i for i, why in enumerate(result["unsteady"]) if why]
     if unsteady:
         print("not steady, so not fitted and not used to normalise (%d of %d jobs):"

@@ -1,9 +1,9 @@
 """Reads the results table written by `invasim sweep collect` (results.csv).
 
 One row per job: job_id, status, wall_seconds, the state-point keys (bare names), then the
-summary averages `<name> [unit]` with `<name>_error [unit]` and
-`<name>_drift [unit]`, then tau_d, tau_r. Columns are
-addressed by their bare name (the ` [unit]` suffix stripped)."""
+summary averages `<name> [unit]` with `<name>_error [unit]`, `<name>_error_converged`,
+`<name>_drift [unit]` and `<name>_drift_error [unit]`, then tau_d, tau_r, tau_d_unresolved.
+Columns are addressed by their bare name (the ` [unit]` suffix stripped)."""
 
 import math
 
@@ -12,7 +12,7 @@ from ..csv_header import header_entry, read_rows
 
 BOOKKEEPING = ("job_id", "status", "wall_seconds")
 # Measured columns that carry no `_error` companion and may come without a unit.
-MEASURED_WITHOUT_ERROR = ("tau_d", "tau_r", "tau_d_standard", "tau_d_free")
+MEASURED_WITHOUT_ERROR = ("tau_d", "tau_r", "tau_d_standard", "tau_d_free", "tau_d_unresolved")
 
 
 def as_number(text):
@@ -76,8 +76,8 @@ class Table:
 
     def state_keys(self):
         """The state-point columns: unitless columns that are neither bookkeeping nor a
-        measurement (a measurement has an `_error` companion, is one or a `_drift`, or is a
-        tau_*)."""
+        measurement (a measurement has an `_error` companion, is one, its `_drift` or its
+        `_error_converged`, or is a tau_*)."""
         names = set(self.names)
         keys = []
         for n in self.names:
@@ -86,6 +86,8 @@ class Table:
             if n.endswith("_error") or n + "_error" in names:
                 continue
             if n.endswith("_drift") and n[:-len("_drift")] + "_error" in names:
+                continue
+            if n.endswith("_error_converged") and n[:-len("_converged")] in names:
                 continue
             keys.append(n)
         return keys

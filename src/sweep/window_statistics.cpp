@@ -1,10 +1,13 @@
-#include "sweep/window_drift.hpp"
+#include "sweep/window_statistics.hpp"
 
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <vector>
+
+#include "measure/mean_error.hpp"
+#include "measure/quarter_drift.hpp"
 
 namespace invasim::sweep {
 
@@ -32,11 +35,12 @@ std::string bare_column_name(const std::string& column) {
   return open == std::string::npos ? column : column.substr(0, open);
 }
 
-std::map<std::string, double> window_drifts(const fs::path& series, const Json& averages) {
-  std::map<std::string, double> drifts;
+std::map<std::string, WindowStatistics> window_statistics(const fs::path& series,
+                                                          const Json& averages) {
+  std::map<std::string, WindowStatistics> out;
   std::ifstream in(series);
   std::string line;
-  if (!averages.is_object() || !std::getline(in, line)) return drifts;
+  if (!averages.is_object() || !std::getline(in, line)) return out;
   std::map<std::string, std::size_t> column_of;
   const auto header = split_csv_line(line);
   for (std::size_t c = 0; c < header.size(); ++c) column_of.emplace(bare_column_name(header[c]), c);
@@ -51,22 +55,23 @@ std::map<std::string, double> window_drifts(const fs::path& series, const Json& 
       continue;
     const long long samples = entry["samples"].get<long long>();
     if (samples < 2 || static_cast<std::size_t>(samples) > rows.size()) continue;
-    const std::size_t n = static_cast<std::size_t>(samples), half = n / 2;
-    const std::size_t first = rows.size() - n;
-    double sum_early = 0, sum_late = 0;
-    bool finite = true;
-    for (std::size_t k = 0; k < half && finite; ++k) {
-      const auto& early = rows[first + k];
-      const auto& late = rows[rows.size() - half + k];
-      const double a = column->second < early.size() ? parse_number(early[column->second]) : NAN;
-      const double b = column->second < late.size() ? parse_number(late[column->second]) : NAN;
-      finite = std::isfinite(a) && std::isfinite(b);
-      sum_early += a;
-      sum_late += b;
+    std::vector<double> window;
+    for (std::size_t k = rows.size() - static_cast<std::size_t>(samples); k < rows.size(); ++k) {
+      const auto& row = rows[k];
+      window.push_back(column->second < row.size() ? parse_number(row[column->second]) : NAN);
+      if (!std::isfinite(window.back())) break;
     }
-    if (finite) drifts[item.key()] = (sum_late - sum_early) / static_cast<double>(half);
+    if (window.size() != static_cast<std::size_t>(samples) || !std::isfinite(window.back()))
+      continue;
+    // The halves are the window's last 2 floor(n/2) rows, as the steady-state test's; their
+    // difference is written also at 1 row per half, where it has no error.
+    const QuarterDrift d = quarter_drift(window);
+    const double drift =
+        d.quarter >= 2 ? d.drift : window[window.size() - 1] - window[window.size() - 2];
+    const MeanError m = mean_error(window);
+    out[item.key()] = {drift, d.error, m.error, m.resolved};
   }
-  return drifts;
+  return out;
 }
 
 }  // namespace invasim::sweep
