@@ -65,22 +65,21 @@ Json read_summary(const std::string& id, const fs::path& dir) {
   }
 }
 
-// tau_d / tau_r from the averages, or the top level (cells_only.lua writes them there).
-Json time_of(const Json& summary, const std::string& name) {
+// summary.json's `name` from its averages, or the top level (cells_only.lua writes tau_d
+// there), when `is_kind` accepts it (a number, a flag); else null.
+template <class Kind>
+Json entry_of(const Json& summary, const std::string& name, Kind is_kind) {
   if (summary.contains("averages") && summary["averages"].contains(name) &&
-      summary["averages"][name].is_number())
+      is_kind(summary["averages"][name]))
     return summary["averages"][name];
-  if (summary.contains(name) && summary[name].is_number()) return summary[name];
+  if (summary.contains(name) && is_kind(summary[name])) return summary[name];
   return Json();
 }
-
-// A true/false flag of the averages, or the top level (as time_of).
+Json time_of(const Json& summary, const std::string& name) {
+  return entry_of(summary, name, [](const Json& j) { return j.is_number(); });
+}
 Json flag_of(const Json& summary, const std::string& name) {
-  if (summary.contains("averages") && summary["averages"].contains(name) &&
-      summary["averages"][name].is_boolean())
-    return summary["averages"][name];
-  if (summary.contains(name) && summary[name].is_boolean()) return summary[name];
-  return Json();
+  return entry_of(summary, name, [](const Json& j) { return j.is_boolean(); });
 }
 
 std::string with_unit(const std::string& name, const std::map<std::string, std::string>& units,
