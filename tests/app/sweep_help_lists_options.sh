@@ -8,18 +8,21 @@ invasim=$1
 help=$("$invasim" sweep --help)
 checked=0
 for verb in init run status collect submit job; do
-  # The verb's block: from its usage line to the next "  invasim sweep" line.
-  block=$(printf '%s\n' "$help" | awk -v v="  invasim sweep $verb " '
+  # The verb's block: from its usage line to the next "  invasim sweep" line. Every reader
+  # below takes a here-string, not a pipe: a reader that stops early (awk's exit, grep -q's
+  # first match) would leave printf writing into a closed pipe, and under pipefail that
+  # SIGPIPE reads as a failed search, now and then, by timing alone.
+  block=$(awk -v v="  invasim sweep $verb " '
     index($0, v) == 1 { on = 1; print; next }
     on && /^  invasim sweep / { exit }
-    on { print }')
+    on { print }' <<< "$help")
   [ -n "$block" ] || { echo "no block for 'sweep $verb' in sweep --help"; exit 1; }
   message=$("$invasim" sweep "$verb" ws --no-such-option 2>&1 >/dev/null || true)
-  takes=$(printf '%s\n' "$message" | sed -n "s/.*unknown option '--no-such-option' (it takes \([^)]*\)).*/\1/p")
+  takes=$(sed -n "s/.*unknown option '--no-such-option' (it takes \([^)]*\)).*/\1/p" <<< "$message")
   [ -n "$takes" ] || { echo "sweep $verb: no option list in: $message"; exit 1; }
   [ "$takes" = none ] && continue
-  for option in $(printf '%s\n' "$takes" | tr ',' ' ' | sed 's/ and / /g'); do
-    if ! printf '%s\n' "$block" | grep -q -- "\[$option\b\|^ *invasim sweep $verb .*$option"; then
+  for option in $(tr ',' ' ' <<< "$takes" | sed 's/ and / /g'); do
+    if ! grep -q -- "\[$option\b\|^ *invasim sweep $verb .*$option" <<< "$block"; then
       echo "sweep $verb accepts $option, but its block of sweep --help does not list it:"
       printf '%s\n' "$block"
       exit 1
