@@ -463,12 +463,12 @@ def case_runs(script, scratch):
     out = os.path.join(scratch, "out")
     table = os.path.join(scratch, "results.csv")
 
-    def analyse(with_drifts):
+    def analyse(with_drifts, unjudged=None):
         text = [head + (",A_t_drift [sigma^2],A_t_drift_error [sigma^2]" if with_drifts else "")]
         for line in lines:
             s = steady.steadiness(jobs[line[0]])
-            text.append(",".join(line + ([repr(s["drift"]), repr(s["error"])] if with_drifts
-                                         else [])))
+            drift = ["0.0", "nan"] if line[0] == unjudged else [repr(s["drift"]), repr(s["error"])]
+            text.append(",".join(line + (drift if with_drifts else [])))
         with open(table, "w") as f:
             f.write("\n".join(text) + "\n")
         p = run(script, [table, "-o", out, "--no-figures"])
@@ -491,6 +491,12 @@ def case_runs(script, scratch):
         fits = json.load(f)
     check(sorted(j["job_id"] for j in fits["not_steady"]) == sorted(drifting),
           "fits.json names the jobs not steady")
+    # A run whose drift has no error (a window of fewer than 4 rows: collect writes nan) is not
+    # judged, however small its drift, as steady.steadiness does not judge such a window.
+    p, rows = analyse(True, unjudged=ids[0])
+    check(p.returncode == 0 and rows[ids[0]]["steady"] == "false"
+          and "run seed 1 not judged" in rows[ids[0]]["not_steady_because"],
+          "a drift without an error is not judged: %s" % rows[ids[0]]["not_steady_because"])
     p, rows = analyse(False)
     check(p.returncode == 0 and "the steadiness of A_t's runs not judged" in p.stdout
           and rows[ids[7]]["steady"] == "true",

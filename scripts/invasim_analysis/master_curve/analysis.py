@@ -129,7 +129,10 @@ def runs_steadiness(table, rows, point_of):
             drift, error, a_max = (table.number(r, name, "for the steadiness of A_t",
                                                 allow_missing=True)
                                    for name in ("A_t_drift", "A_t_drift_error", "A_t_max"))
-            ok = steady.judge(drift, error, a_max)[0] if math.isfinite(drift) else None
+            # A drift without an error (fewer than 2 rows per half) is not judged, as
+            # steady.steadiness does not judge such a window.
+            ok = (steady.judge(drift, error, a_max)[0]
+                  if math.isfinite(drift) and math.isfinite(error) else None)
             if ok is not True:
                 sp = {k: r[k] for k in ("start", "seed") if r.get(k, "") != ""}
                 why.append(steady.run_reason(steady.run_name(sp, r.get("job_id", "")), ok,
