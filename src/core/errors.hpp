@@ -2,6 +2,7 @@
 // Error types. InputError: the user asked for something invalid (bad parameter, malformed
 // mesh, site outside the walls); the message names the offending key or value.
 // SimulationError: a running simulation became invalid (NaN, escaped site).
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -33,11 +34,19 @@ template <typename... Parts>
   throw SimulationError(out.str());
 }
 
-// Checks a scalar parameter and names it in the error.
+// Checks a scalar parameter and names it in the error. Every caller's parameter is a finite
+// physical quantity: NaN (written "nan", whatever its sign bit) and infinity are refused too,
+// an infinite stiffness or time step only blowing the run up later.
+inline void require_finite(const char* name, double value, const char* bound) {
+  if (std::isnan(value)) fail_input(name, " = nan must be a number ", bound);
+  if (std::isinf(value)) fail_input(name, " = ", value, " must be finite");
+}
 inline void require_positive(const char* name, double value) {
+  require_finite(name, value, "> 0");
   if (!(value > 0.0)) fail_input(name, " = ", value, " must be > 0");
 }
 inline void require_non_negative(const char* name, double value) {
+  require_finite(name, value, ">= 0");
   if (!(value >= 0.0)) fail_input(name, " = ", value, " must be >= 0");
 }
 
