@@ -56,6 +56,7 @@ class Job:
         self.doc = document(path)
         self.summary = _json(os.path.join(path, "summary.json"), {})
         self._series = None
+        self._errors = {}  # _recomputed_error's, by column
 
     @property
     def status(self):
@@ -110,7 +111,7 @@ class Job:
     def _recomputed_error(self, name, samples, stored):
         """summary_error over the last `samples` rows of series.csv's column `name` (cached);
         `stored` when the run has no such column or rows."""
-        cache = self.__dict__.setdefault("_errors", {})
+        cache = self._errors
         if name not in cache:
             from .steady import summary_error
             try:

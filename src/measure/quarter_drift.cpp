@@ -20,16 +20,15 @@ QuarterDrift quarter_drift(std::span<const double> window) {
   for (std::size_t i = 0; i < 2 * q; ++i) m[i / q] += y[i];
   m[0] /= double(q);
   m[1] /= double(q);
+  auto x = [q](std::size_t i) { return double(i % q) - 0.5 * double(q - 1); };
   double xy = 0.0, xx = 0.0;
   for (std::size_t i = 0; i < 2 * q; ++i) {
-    const double x = double(i % q) - 0.5 * double(q - 1);
-    xy += x * (y[i] - m[i / q]);
-    xx += x * x;
+    xy += x(i) * (y[i] - m[i / q]);
+    xx += x(i) * x(i);
   }
   const double slope = xx > 0.0 ? xy / xx : 0.0;
   std::vector<double> r(2 * q);
-  for (std::size_t i = 0; i < 2 * q; ++i)
-    r[i] = y[i] - m[i / q] - slope * (double(i % q) - 0.5 * double(q - 1));
+  for (std::size_t i = 0; i < 2 * q; ++i) r[i] = y[i] - m[i / q] - slope * x(i);
   const IntegratedTime t = integrated_time(r, 3);
   const std::span<const double> rs(r);
   const double e3 = error_of_mean(rs.first(q), t), e4 = error_of_mean(rs.last(q), t);
