@@ -30,20 +30,23 @@ local M = {
 -- keywords are lib/production.lua's.
 function M.production(tissue, opts)
   opts = opts or {}
+  -- An integer, or a float with an integral value (1e3), as iv.keywords takes integers.
   local every = opts.snapshot_every or 0
+  every = type(every) == "number" and math.tointeger(every) or every
   if math.type(every) ~= "integer" or every < 0 then
     error("production: key 'snapshot_every' must be an integer >= 0, got " .. tostring(every), 2)
   end
+  local own = {}
+  for k, v in pairs(opts) do own[k] = v end
+  own.snapshot_every = every
   -- Without a run directory there is nowhere to write them: refused, not dropped.
   for _, key in ipairs({ "snapshot_every", "checkpoint_every" }) do
-    local n = opts[key]
+    local n = own[key]
     if type(n) == "number" and n > 0 and not opts.out then
       error(string.format("production: %s = %s needs out (a run directory) to write into",
                           key, tostring(n)), 2)
     end
   end
-  local own = {}
-  for k, v in pairs(opts) do own[k] = v end
   if every > 0 and opts.out then
     -- With proliferation, each cell's identity (deaths shift the cells' order).
     own.snapshots = iv.Snapshots{ dir = opts.out .. "/snapshots", ids = opts.proliferation ~= nil }

@@ -53,6 +53,11 @@ expect_error("^stages_errors.lua:%d+: production: key 'correlate_every' = %-5 is
 -- Files asked for without a place to write them: refused, not dropped.
 expect_error("^stages_errors.lua:%d+: production: snapshot_every = 5 needs out %(a run directory%)",
              require("lib.stages").production, tissue, { steps = 10, every = 5, snapshot_every = 5 })
+-- An integral float passes the integer check, as every other integer key does (1e3 for 1000).
+expect_error("^stages_errors.lua:%d+: production: snapshot_every = 1000 needs out %(a run directory%)",
+             require("lib.stages").production, tissue, { steps = 10, every = 5, snapshot_every = 1e3 })
+expect_error("^stages_errors.lua:%d+: production: key 'snapshot_every' must be an integer >= 0, got 2.5",
+             require("lib.stages").production, tissue, { snapshot_every = 2.5 })
 expect_error("^stages_errors.lua:%d+: production: checkpoint_every = 5 needs out %(a run directory%)",
              require("lib.production"), tissue, { steps = 10, every = 5, checkpoint_every = 5 })
 expect_error("^stages_errors.lua:%d+: production: snapshot_every = 5 needs snapshots",
@@ -89,6 +94,13 @@ expect_error("production: columns%[2%] = 'A_T' is not measured; available: step,
 local chosen = require("lib.production")(tissue, { steps = 10, every = 5, columns = { "step", "A_t", "T_c" },
                                                   progress = false, correlate_every = 0 })
 assert(#chosen.series.columns == 3 and chosen.series.rows[1].A_t and chosen.summary.A_t, "chosen columns")
+checks = checks + 1
+-- An out without checkpoint/ gets one before the run (the checkpoint at the end had failed).
+local bare = iv.out_dir .. "/bare_production"
+for _, f in ipairs({ "/checkpoint/state.ckpt", "/checkpoint", "/series.csv" }) do os.remove(bare .. f) end
+iv.make_dirs(bare)
+require("lib.production")(tissue, { steps = 10, every = 5, progress = false, correlate_every = 0, out = bare })
+assert(io.open(bare .. "/checkpoint/state.ckpt"), "the production's last checkpoint in a bare out")
 checks = checks + 1
 -- The Langevin vertex bath: vertices and piston at the background kT.
 local warm = init{ N_a = 1, N_c = 20, L0 = 30.0 }
