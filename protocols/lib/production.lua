@@ -147,6 +147,8 @@ local function production(tissue, opts)
   end
   local parts = { system = sys, dynamics = dyn, tethers = tissue.tethers, correlator = correlator }
   local checkpoint = o.out and resume.checkpoint_path(o.out) or nil
+  -- Its directory made (or refused) now, not when the first checkpoint is due.
+  if checkpoint then iv.make_dirs(o.out .. "/checkpoint") end
   if o.steps > math.maxinteger - sys:step() then  -- the step counter is a 64-bit integer
     error(string.format("%s: steps = %d from step %d overflows the step counter (at most %d)",
                         o.label, o.steps, sys:step(), math.maxinteger), 2)
