@@ -124,7 +124,9 @@ local function compress(tissue, o)
         if not r.converged then stalled(r, o) end
       end,
     })
-    if progress then progress:finish() end
+    if progress then
+      if report.stopped then progress:stop() else progress:finish() end
+    end
     if report.stopped then
       local inside = report.fire_state and string.format(", inside the FIRE of step %d at iteration %d",
                                                           report.steps + 1, report.fire_state.steps) or ""

@@ -217,7 +217,7 @@ local function production(tissue, opts)
     -- (its summary takes moments) instead of asking for a resume with nothing to run.
     log.say(o.label, "%s arrived as the last step completed: finishing the run", signal)
   elseif signal then
-    if progress then progress:finish() end
+    if progress then progress:stop() end
     if checkpoint then
       error(string.format("stopped by %s at step %d (t = %g); checkpoint saved to %s; continue with: %s",
                           signal, sys:step(), sys:time(), checkpoint,

@@ -92,8 +92,10 @@ return function(tissue, opts)
   end
   local progress = o.progress and iv.Progress{ total = o.steps, label = o.label } or nil
   dyn:run(sys, o.steps, { every = o.every, progress = progress })
-  if progress then progress:finish() end
   local signal = iv.interrupted()
+  if progress then
+    if signal then progress:stop() else progress:finish() end
+  end
   if signal then
     local resume = require("lib.resume")
     local dir = resume.run_dir()

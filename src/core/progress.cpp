@@ -69,15 +69,16 @@ std::string Progress::line(long long step, std::optional<double> time, double no
   if (time) text += "  t = " + printf_string("%.6g", *time);
   const double elapsed = now - start_time_;
   const long long steps_done = step - options_.start_step;
+  const char* const ended = stopped_ ? "  stopped after " : "  done in ";
   if (elapsed > 0 && steps_done > 0) {
     const double rate = double(steps_done) / elapsed;
     text += "  " + printf_string(rate >= 100 ? "%.0f" : "%.3g", rate) + " steps/s";
     if (done)
-      text += "  done in " + format_duration(elapsed);
+      text += ended + format_duration(elapsed);
     else if (total > 0)
       text += "  ETA " + format_duration(double(std::max(total - step, 0LL)) / rate);
   } else if (done) {
-    text += "  done in " + format_duration(std::max(elapsed, 0.0));
+    text += ended + format_duration(std::max(elapsed, 0.0));
   }
   return text;
 }
@@ -126,6 +127,12 @@ void Progress::update(long long step, std::optional<double> time) {
   if (last_print_ && now - *last_print_ < period) return;
   last_print_ = now;
   print(line(step_, time_, now, false));
+}
+
+void Progress::stop() {
+  if (finished_) return;
+  stopped_ = true;
+  finish();
 }
 
 void Progress::finish() {

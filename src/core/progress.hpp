@@ -2,7 +2,8 @@
 // Progress of a long run. On a terminal: one live line rewritten in place with '\r',
 //   step 1200/10000 (12.0%)  t = 60  1530 steps/s  ETA 0:05
 // elsewhere (CI, Slurm logs): the same text as plain lines, the first update, then at most one
-// every `every_seconds`, and a last line from finish() ("done in 0:06" instead of the ETA).
+// every `every_seconds`, and a last line from finish() ("done in 0:06" instead of the ETA) or
+// stop() ("stopped after 0:06").
 // An ETA beyond a year is also said once, on a line of its own, at the first update.
 // The clock and the stream are injectable for tests.
 #include <functional>
@@ -37,6 +38,8 @@ class Progress {
   void update(long long step, std::optional<double> time = std::nullopt);
   // Prints the final line (and ends the live line). Later calls do nothing.
   void finish();
+  // finish() for a run cut short by a signal: "stopped after 0:06" instead of "done in 0:06".
+  void stop();
 
   // The text of one report at wall-clock `now` (no '\r' or newline).
   std::string line(long long step, std::optional<double> time, double now, bool done) const;
@@ -65,6 +68,7 @@ class Progress {
   std::optional<double> time_;
   std::size_t last_width_ = 0;
   bool finished_ = false;
+  bool stopped_ = false;
   bool eta_warned_ = false;
 };
 

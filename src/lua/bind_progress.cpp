@@ -1,5 +1,6 @@
 // invasim.Progress{total = N, every_seconds = 10, label = "...", live = bool, start = 0}
-// with :update(step [, time]) and :finish(). Reports to stderr (live line on a terminal).
+// with :update(step [, time]), :finish() and :stop() (a run cut short). Reports to stderr (live
+// line on a terminal).
 #include <unistd.h>
 #include <lua.hpp>
 
@@ -55,7 +56,8 @@ void open_progress(lua_State* L) {
                                    [](Progress& p, std::uint64_t step, std::optional<double> time) {
                                      p.update(static_cast<long long>(step), time);
                                    }>(),
-                            method<"finish", [](Progress& p) { p.finish(); }>()});
+                            method<"finish", [](Progress& p) { p.finish(); }>(),
+                            method<"stop", [](Progress& p) { p.stop(); }>()});
   static const std::vector<Declaration> progress_keys = with_options(
       progress_fields().infos(),
       {option_key("live", "boolean",

@@ -35,6 +35,10 @@ first=$(grep -o "^production: checkpoint of step [0-9]*" "$work/killed/log.txt" 
 stop_with_sigterm "$pid" "$work/killed.log" "the killed run"
 grep -q "stopped by SIGTERM at step [0-9]*.*checkpoint saved to .*continue with: invasim run --resume" "$work/killed.log" ||
   { echo "FAILED: no stop message from production"; cat "$work/killed.log"; exit 1; }
+# Its last progress line says the production stopped, not that it is done.
+grep -q "^production: step [0-9]*/[0-9]* .*stopped after [0-9:]*$" "$work/killed.log" &&
+  ! grep -q "^production: .*done in" "$work/killed.log" ||
+  { echo "FAILED: the progress of the stopped production does not end with 'stopped after'"; cat "$work/killed.log"; exit 1; }
 # The run's own log ends with the same message (invasim.at_error, lib/log.lua).
 tail -1 "$work/killed/log.txt" | grep -q "^end: stopped by SIGTERM at step [0-9]*.*continue with: invasim run --resume" ||
   { echo "FAILED: log.txt does not end with the stop message"; tail -3 "$work/killed/log.txt"; exit 1; }

@@ -631,6 +631,23 @@ TEST_CASE("Progress prints plain lines every N seconds plus first and last", "[l
         "step 60/100 (60.0%)  t = 6  3 steps/s  done in 0:20\n");
 }
 
+TEST_CASE("Progress of a run stopped by a signal ends with 'stopped after'", "[lua][progress]") {
+  double now = 0.0;
+  std::ostringstream out;
+  ProgressOptions options;
+  options.total = 100;
+  Progress progress(options, out, false, [&] { return now; });
+  now = 2.0;
+  progress.update(40);
+  now = 4.0;
+  progress.stop();
+  progress.finish();  // after stop: ignored
+  CHECK(out.str() ==
+        "step 40/100 (40.0%)  20 steps/s  ETA 0:03\n"
+        "step 40/100 (40.0%)  10 steps/s  stopped after 0:04\n");
+  CHECK(progress.finished());
+}
+
 TEST_CASE("Progress live line rewrites itself with carriage returns", "[lua][progress]") {
   double now = 0.0;
   std::ostringstream out;
