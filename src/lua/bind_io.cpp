@@ -5,7 +5,7 @@
 //   invasim.resolve_path(path)       -- absolute, with symbolic links and . / .. resolved
 //   invasim.remove_path(path)        -- like rm -rf; returns the number of entries removed
 //   local snap = invasim.Snapshots{dir =, cells_xyz = true, spheres_vtp = true,
-//                                  adipocytes_vtp = true, ids = false}
+//                                  adipocytes_vtp = true, trajectory = false, ids = false}
 //   snap:write(sys)                  -- one frame: extended XYZ + VTK .vtp + .pvd indexes
 //   snap:forget_after(step)          -- drop .pvd entries of later steps (a resumed run)
 #include <lua.hpp>
@@ -43,6 +43,9 @@ const FieldTable<SnapshotKeys>& snapshot_fields() {
           boolean<P>("spheres_vtp", &P::spheres_vtp, "spheres_<step>.vtp and spheres.pvd"),
           boolean<P>("adipocytes_vtp", &P::adipocytes_vtp,
                      "adipocytes_<step>.vtp and adipocytes.pvd"),
+          boolean<P>("trajectory", &P::trajectory,
+                     "trajectory.xyz: every frame appended (from its first frame on, a new writer "
+                     "replaces the frames it will write again)"),
           boolean<P>("ids", &P::ids,
                      "an id column: each cell's identity, kept across divisions and deaths"),
       });

@@ -246,6 +246,26 @@ expect_error("Correlator: key 'fs_average' must be one of: isotropic, yz", iv.Co
              { group = cancer, interval = 1, fs_average = "xy" })
 expect_error("sample: group 'cancer' belongs to another System", corr.sample, corr, iv.System{ box = {10, 10, 10} })
 expect_error("Snapshots: missing required key 'dir'", iv.Snapshots, {})
+-- trajectory.xyz appends a frame per write; a new writer in the directory (a resumed run)
+-- first drops the frames at and after its own first step.
+local trajectory_dir = iv.out_dir .. "/trajectory"
+iv.remove_path(trajectory_dir)
+local function trajectory_writer()
+  return iv.Snapshots{ dir = trajectory_dir, trajectory = true, cells_xyz = false,
+                       spheres_vtp = false, adipocytes_vtp = false }
+end
+local function trajectory_frames()
+  local f = assert(io.open(trajectory_dir .. "/trajectory.xyz"))
+  local _, frames = f:read("a"):gsub("Step=", "")
+  f:close()
+  return frames
+end
+local writer = trajectory_writer()
+writer:write(sys)
+writer:write(sys)
+check(trajectory_frames() == 2, "two frames appended")
+trajectory_writer():write(sys)
+check(trajectory_frames() == 1, "a new writer replaces the frames from its first step on")
 expect_error("bad argument #2 to '.-' %(string expected, got no value%)", iv.write_file, "x")
 
 -- Fire, compress, rescale
