@@ -200,9 +200,9 @@ void open_dynamics(lua_State* L) {
               }>(),
        INVASIM_LUA_FN(methods), INVASIM_LUA_FN(run)});
   set_constructor(L, "Dynamics", &lua_wrap<&l_new>, dynamics_fields().infos());
-  static const std::vector<Declaration> pressure_wall_keys = with_options(
-      pressure_wall_fields().infos(),
-      {option_key("walls", "Walls", "the Walls force whose right wall is the piston")});
+  static const std::vector<Declaration> pressure_wall_keys =
+      with_options(pressure_wall_fields().infos(),
+                   {option_key("walls", "Walls", "the Walls force whose left wall is the piston")});
   set_method_keys(L, "Dynamics", "pressure_wall", pressure_wall_keys);
 }
 
