@@ -10,7 +10,8 @@ app_sweeps_doc_examples):
    the spec's tiny size (where analyze collects and then refuses to fit two temperatures per
    curve, as it must);
 4. every `sweep submit ... --slurm ...` line of the cluster walk-through is accepted as written
-   (with --dry-run, on a tiny workspace).
+   (with --dry-run, on a tiny workspace);
+5. the spec example runs at its tiny size, every point done.
 
 Usage: check_sweeps_doc.py INVASIM REPO WORK_DIR
 """
@@ -109,6 +110,32 @@ for line in lines:
         if r.returncode != 0:
             problems.append("%s: refused: %s" % (line, r.stderr.strip()))
 
+# 5. the spec example ("The sweep spec") runs at its tiny size: every point done.
+example = re.search(r"```lua\n(return \{.*?\n\})\n```", doc, re.S)
+example_done = 0
+if not example:
+    problems.append("no spec example (a lua block `return { ... }`) in %s" % doc_path)
+else:
+    spec_path = os.path.join(work, "example.lua")
+    with open(spec_path, "w") as f:
+        f.write(example.group(1).replace('"../invasion.lua"',
+                                         '"%s"' % os.path.join(repo, "protocols", "invasion.lua")))
+    ws = os.path.join(work, "example")
+    for args in (["init", spec_path, "--tiny", "--workspace", ws], ["run", ws, "--jobs", "1"],
+                 ["status", ws]):
+        r = run([invasim, "sweep"] + args)
+        if r.returncode != 0:
+            problems.append("the spec example: sweep %s: exit %d: %s" %
+                            (args[0], r.returncode, (r.stderr or r.stdout).strip()[-400:]))
+            break
+    else:
+        done = re.search(r"^  done: (\d+)$", r.stdout, re.M)
+        failed = re.search(r"^  failed: (\d+)$", r.stdout, re.M)
+        if done and failed and int(done.group(1)) > 0 and failed.group(1) == "0":
+            example_done = int(done.group(1))
+        else:
+            problems.append("the spec example at its tiny size: not every point done:\n" + r.stdout)
+
 if inits < 3 or len(claims) < 4 or submits < 2:
     problems.append("found only %d init lines, %d counts, %d submit lines in %s" %
                     (inits, len(claims), submits, doc_path))
@@ -116,5 +143,6 @@ for p in problems:
     print("FAIL:", p)
 if problems:
     sys.exit(1)
-print("check_sweeps_doc: %d init lines, %d counts, the first block and %d submit lines agree "
-      "with docs/sweeps.md" % (inits, len(claims), submits))
+print("check_sweeps_doc: %d init lines, %d counts, the first block, %d submit lines and the spec "
+      "example (%d points done) agree with docs/sweeps.md" % (inits, len(claims), submits,
+                                                               example_done))
