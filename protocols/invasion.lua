@@ -3,7 +3,7 @@
 -- series.csv, summary.json, correlations.csv, shapes.csv, snapshots/.
 --
 -- Defaults: the "reduced" system (8 adipocytes, 400 cancer cells), active cells with
--- tau_p = 25 and cohesion beta = 1e-2 at P = 1.3e-3; about a minute on 2 cores.
+-- tau_p = 25 and cohesion beta = 1e-2 at P = 1.3e-3; about 15 seconds on 2 cores.
 -- The paper's standard system is one --set away:
 --   invasim run protocols/invasion.lua --set system=paper
 -- (--set system=large for 128 adipocytes and 7000 cells; --set steps=... for longer runs.)

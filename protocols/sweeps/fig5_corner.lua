@@ -2,8 +2,8 @@
 -- beta in {1e-3, 1e-2} and tau_p in {25, 250}; along each curve the self-propulsion f0 sets
 -- the measured temperature k_B T_c/(P sigma^3) (the paper's knob for active runs,
 -- docs/model.md), all from one compressed tissue (the shared preparation). Nine f0 values
--- from 0.0005 to 0.0085 (2 k_B T_c/(P sigma^3) ~ 0.01 to 3), denser between 0.0012 and
--- 0.0035 where the cohesive (beta = 1e-2) cells melt, x 3 seeds = 108 points, about 60 minutes on 2 cores (docs/sweeps.md):
+-- from 0.00036 to 0.0062, denser between 0.0012 and 0.0026 where the cohesive (beta = 1e-2)
+-- cells melt, x 3 seeds = 108 points, about 60 minutes on 2 cores (docs/sweeps.md):
 --   invasim sweep init protocols/sweeps/fig5_corner.lua
 --   invasim sweep run out/fig5_corner
 --   invasim sweep collect out/fig5_corner -o out/fig5_corner/results.csv

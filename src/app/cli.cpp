@@ -21,7 +21,7 @@ Usage:
                                          default, allowed values, unit, meaning
   invasim render SNAPSHOT --slice z=VALUE -o FILE.svg [--size PIXELS]
                                          draw a cross-section of a snapshot frame as SVG
-  invasim sweep init|run|status|collect|submit ...
+  invasim sweep init|run|status|collect|analyze|submit|job ...
                                          parameter sweeps: a workspace of runs, run here or
                                          on Slurm, collected into one table (invasim sweep
                                          --help; docs/sweeps.md)
