@@ -80,6 +80,11 @@ invasim::Range read_x(Kwargs& kw) {
   return {x[0], x[1]};
 }
 
+// A refused number as messages show it: "nan" whatever the sign bit (printf gives "-nan").
+std::string number_text(double v) {
+  return std::isnan(v) ? "nan" : cat(v);
+}
+
 // Diameters (of cancer cells, or of adipocytes of many sizes): a non-empty list of positive
 // numbers, any length.
 std::vector<double> read_diameters(Kwargs& kw, std::vector<double> fallback) {
@@ -98,13 +103,47 @@ std::vector<double> read_diameters(Kwargs& kw, std::vector<double> fallback) {
     lua_rawgeti(L, -1, static_cast<lua_Integer>(i + 1));
     if (lua_type(L, -1) != LUA_TNUMBER || !(lua_tonumber(L, -1) > 0) ||
         !std::isfinite(lua_tonumber(L, -1)))
-      fail_input(kw.owner(), ": key 'diameters[", i + 1, "]' must be a number > 0, got ",
-                 lua_type(L, -1) == LUA_TNUMBER ? cat(lua_tonumber(L, -1)) : type_name_at(L, -1));
+      fail_input(
+          kw.owner(), ": key 'diameters[", i + 1, "]' must be a number > 0, got ",
+          lua_type(L, -1) == LUA_TNUMBER ? number_text(lua_tonumber(L, -1)) : type_name_at(L, -1));
     d[i] = lua_tonumber(L, -1);
     lua_pop(L, 1);
   }
   lua_pop(L, 1);
   return d;
+}
+
+// Given cell centres: a non-empty list of {x, y, z} lists of finite numbers.
+std::vector<Vec3> read_positions(Kwargs& kw) {
+  lua_State* L = kw.state();
+  const int type = kw.push("positions");
+  const std::size_t n = type == LUA_TTABLE ? lua_rawlen(L, -1) : 0;
+  if (n == 0)
+    fail_input(kw.owner(), ": key 'positions' must be a non-empty list of {x, y, z}, got ",
+               type == LUA_TTABLE ? "an empty table" : type_name_at(L, -1));
+  std::vector<Vec3> r(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    lua_rawgeti(L, -1, static_cast<lua_Integer>(i + 1));
+    const bool list = lua_type(L, -1) == LUA_TTABLE && lua_rawlen(L, -1) == 3;
+    for (int a = 0; list && a < 3; ++a) {
+      lua_rawgeti(L, -1, a + 1);
+      const bool finite = lua_type(L, -1) == LUA_TNUMBER && std::isfinite(lua_tonumber(L, -1));
+      if (!finite)
+        fail_input(kw.owner(), ": key 'positions[", i + 1, "][", a + 1,
+                   "]' must be a finite number, got ",
+                   lua_type(L, -1) == LUA_TNUMBER ? number_text(lua_tonumber(L, -1))
+                                                  : type_name_at(L, -1));
+      r[i][a] = lua_tonumber(L, -1);
+      lua_pop(L, 1);
+    }
+    if (!list)
+      fail_input(kw.owner(), ": key 'positions[", i + 1, "]' must be a list of 3 numbers, got ",
+                 lua_type(L, -1) == LUA_TTABLE ? cat("a table of length ", lua_rawlen(L, -1))
+                                               : type_name_at(L, -1));
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);
+  return r;
 }
 
 // Every site index of the System, 0 .. n - 1.
@@ -120,7 +159,8 @@ void push_group(lua_State* L, const std::shared_ptr<SystemHandle>& sim, std::str
   push(L, std::make_shared<Group>(Group{std::move(name), std::move(sites), sim, epoch}));
 }
 
-// sys:place{cells = {n =, diameters =, x = {lo, hi}}, adipocytes = {n =, diameter =,
+// sys:place{cells = {n =, diameters =, x = {lo, hi}} or {positions = {{x, y, z}, ...},
+// diameters =}, adipocytes = {n =, diameter =,
 // diameters =, spread =, vertex_diameter =, shape_param =, subdivisions =, random_rotation =,
 // x = {lo, hi}}}
 int l_place(lua_State* L) {
@@ -129,11 +169,20 @@ int l_place(lua_State* L) {
   SpherePlacement cells;
   MeshPlacement meshes;
   if (auto c = kw.maybe_table("cells")) {
-    cells.n = c->integer<int>("n", Range::non_negative());
     cells.diameters = read_diameters(*c, cells.diameters);
-    cells.x = read_x(*c);
-    cells.max_attempts_per_cell =
-        c->number("max_attempts", cells.max_attempts_per_cell, Range::at_least(1));
+    if (c->has("positions")) {  // where they are given: n follows, no x range
+      cells.positions = read_positions(*c);
+      cells.n = c->integer<int>("n", int(cells.positions.size()), Range::non_negative());
+      for (const char* random_only : {"x", "max_attempts"})
+        if (c->has(random_only))
+          fail_input("place: cells.", random_only,
+                     " goes with random placement; with positions the cells are placed as given");
+    } else {
+      cells.n = c->integer<int>("n", Range::non_negative());
+      cells.x = read_x(*c);
+      cells.max_attempts_per_cell =
+          c->number("max_attempts", cells.max_attempts_per_cell, Range::at_least(1));
+    }
     c->finish();
   }
   if (auto a = kw.maybe_table("adipocytes")) {

@@ -159,7 +159,23 @@ PlacementResult place_random(System& sys, const MeshPlacement& meshes,
     }
   }
 
-  if (spheres.n > 0) {
+  if (!spheres.positions.empty()) {
+    if (spheres.n != int(spheres.positions.size()))
+      fail_input("cancer-cell placement: n = ", spheres.n, " for ", spheres.positions.size(),
+                 " given positions");
+    // All checked before any is added: a refused list leaves the System as it was.
+    for (std::size_t k = 0; k < spheres.positions.size(); ++k) {
+      const Vec3& r = spheres.positions[k];
+      if (!r.allFinite()) fail_input("cancer-cell placement: position ", k + 1, " is not finite");
+      for (int a = 0; a < 3; ++a)
+        if (!sys.box().periodic(a) && (r[a] < sys.box().lo()[a] || r[a] > sys.box().hi()[a]))
+          fail_input("cancer-cell placement: position ", k + 1, " has ", "xyz"[a], " = ", r[a],
+                     ", outside the walls [", sys.box().lo()[a], ", ", sys.box().hi()[a], "]");
+    }
+    for (std::size_t k = 0; k < spheres.positions.size(); ++k)
+      out.cells.push_back(
+          sys.add_sphere(spheres.positions[k], spheres.diameters[k % spheres.diameters.size()]));
+  } else if (spheres.n > 0) {
     double d_max = 0.0;
     for (double d : spheres.diameters) d_max = std::max(d_max, d);
     check_range(sys.box(), spheres.x, 0.5 * d_max, "cancer-cell placement");

@@ -17,6 +17,10 @@ struct SpherePlacement {
   std::vector<double> diameters{0.9, 1.1};  // assigned in turn: i-th cell gets d[i % size]
   Range x{0.0, 0.0};                        // range of the centres' x
   double max_attempts_per_cell = 10000;
+  // Given centres instead of random ones (a start taken from another program, as LAMMPS's
+  // read_data): n = positions.size(), inside the walls, wrapped on periodic axes; overlaps
+  // are the caller's (they are not checked, and `x` is unused).
+  std::vector<Vec3> positions;
 };
 
 struct MeshPlacement {

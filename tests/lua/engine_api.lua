@@ -69,6 +69,27 @@ do
 end
 expect_error("place: cancer%-cell placement: only", sys.place, sys,
              { cells = { n = 5000, x = {1, 2}, max_attempts = 10 } })
+-- Cells at given positions (a start from another program): placed as given, n follows.
+do
+  local given = iv.System{ box = { 10, 10, 10 }, seed = 1 }
+  local at = given:place{ cells = { positions = { { 1, 2, 3 }, { 1.5, 2, 3 }, { 9, 12.5, -0.5 } },
+                                    diameters = { 0.9, 1.1, 1.0 } } }
+  local r = given:positions(at.cells)
+  check(at.cells:size() == 3 and r[2][1] == 1.5 and r[3][2] == 2.5 and r[3][3] == 9.5,
+        "cells placed where given, wrapped on the periodic axes")
+end
+expect_error("place.cells: key 'positions%[2%]' must be a list of 3 numbers, got a table of length 2",
+             sys.place, sys, { cells = { positions = { { 1, 2, 3 }, { 1, 2 } } } })
+expect_error("place.cells: key 'diameters%[1%]' must be a number > 0, got nan", sys.place, sys,
+             { cells = { positions = { { 1, 2, 3 } }, diameters = { 0 / 0 } } })
+expect_error("place.cells: key 'positions%[1%]%[3%]' must be a finite number, got nan", sys.place, sys,
+             { cells = { positions = { { 1, 2, 0 / 0 } } } })
+expect_error("place: cells.x goes with random placement; with positions the cells are placed as given",
+             sys.place, sys, { cells = { positions = { { 1, 2, 3 } }, x = { 1, 2 } } })
+expect_error("place: cancer%-cell placement: n = 2 for 1 given positions", sys.place, sys,
+             { cells = { n = 2, positions = { { 1, 2, 3 } } } })
+expect_error("place: cancer%-cell placement: position 1 has x = 25, outside the walls %[0, 20%]", sys.place, sys,
+             { cells = { positions = { { 25, 2, 3 } } } })
 
 -- Groups
 local cancer, vertices = sys:group("cancer"), sys:group("vertices")

@@ -187,6 +187,28 @@ TEST_CASE("placement refuses regions that cannot hold the bodies, naming the reg
                     Contains("does not fit between the walls"));
 }
 
+// A start from another program: cells where they are given, overlapping or not.
+TEST_CASE("placement at given positions: as given (wrapped, unwrapped kept), diameters in turn") {
+  System sys(Box(Vec3::Zero(), Vec3::Constant(10.0), {false, true, true}), 1);
+  SpherePlacement sp;
+  sp.positions = {Vec3(1.0, 2.0, 3.0), Vec3(1.2, 2.0, 3.0), Vec3(9.0, 12.5, -0.5)};
+  sp.n = 3;
+  const PlacementResult r = place_random(sys, MeshPlacement{}, sp);
+  REQUIRE(r.cells == std::vector<int>{0, 1, 2});
+  CHECK(sys.sites().pos[1] == Vec3(1.2, 2.0, 3.0));  // overlapping its neighbour: kept
+  CHECK(sys.sites().pos[2].isApprox(Vec3(9.0, 2.5, 9.5)));
+  CHECK(sys.unwrapped(2).isApprox(Vec3(9.0, 12.5, -0.5)));
+  CHECK(sys.sites().diameter == std::vector<double>{0.9, 1.1, 0.9});
+  sp.n = 2;
+  CHECK_THROWS_WITH(place_random(sys, MeshPlacement{}, sp),
+                    Contains("n = 2 for 3 given positions"));
+  sp.n = 2;
+  sp.positions = {Vec3(5.0, 1.0, 1.0), Vec3(10.5, 1.0, 1.0)};
+  CHECK_THROWS_WITH(place_random(sys, MeshPlacement{}, sp),
+                    Contains("position 2 has x = 10.5, outside the walls [0, 10]"));
+  CHECK(sys.n_sites() == 3);  // nothing added
+}
+
 // protocols/cells_only.lua: cells over the whole of a box periodic in x, no walls.
 TEST_CASE("placement in a box periodic in x spans the whole box without overlaps") {
   System sys(Box(Vec3::Zero(), Vec3::Constant(12.0), {true, true, true}), 2);
