@@ -145,7 +145,10 @@ local function production(tissue, opts)
     correlator = iv.Correlator{ group = tissue.cells, interval = o.correlate_every * dyn:dt(),
                                 lags = o.lags, origin_every = o.origin_every }
   end
-  local parts = { system = sys, dynamics = dyn, tethers = tissue.tethers, correlator = correlator }
+  -- The contacts too: a protocol may change them as it runs (on_sample), and a resumed run
+  -- continues with the checkpoint's.
+  local parts = { system = sys, dynamics = dyn, tethers = tissue.tethers, correlator = correlator,
+                  contacts = tissue.contacts }
   local checkpoint = o.out and resume.checkpoint_path(o.out) or nil
   -- Its directory made (or refused) now, not when the first checkpoint is due.
   if checkpoint then iv.make_dirs(o.out .. "/checkpoint") end
@@ -186,7 +189,7 @@ local function production(tissue, opts)
   if checkpoint then
     -- The checkpoint (stamped with the run's identity), noted in log.txt once written.
     sim:checkpoint(resume.stamp{
-      path = checkpoint, tethers = tissue.tethers, correlator = correlator,
+      path = checkpoint, tethers = tissue.tethers, correlator = correlator, contacts = tissue.contacts,
       extra = function()
         return resume.serialize{ rows = rows_text(), end_step = end_step, compression = tissue.compression }
       end,

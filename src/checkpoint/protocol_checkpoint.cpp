@@ -1,5 +1,7 @@
 #include "checkpoint/protocol_checkpoint.hpp"
 
+#include <utility>
+
 #include "checkpoint/correlator_sections.hpp"
 #include "checkpoint/dynamics_sections.hpp"
 #include "checkpoint/state_checkpoint.hpp"
@@ -7,12 +9,43 @@
 
 namespace invasim {
 
+namespace {
+
+// The contact parameters as the sections "contacts.<field>" hold them.
+constexpr std::pair<const char*, double ContactParams::*> kContactFields[] = {
+    {"eps_cc", &ContactParams::eps_cc},   {"eps_cv", &ContactParams::eps_cv},
+    {"eps_vv", &ContactParams::eps_vv},   {"alpha", &ContactParams::alpha},
+    {"beta", &ContactParams::beta},       {"alpha_cv", &ContactParams::alpha_cv},
+    {"beta_cv", &ContactParams::beta_cv}, {"skin", &ContactParams::skin}};
+
+void write_contacts(CheckpointWriter& out, const ContactForce& contacts) {
+  for (const auto& [name, field] : kContactFields)
+    out.put_f64(std::string("contacts.") + name, contacts.params().*field);
+}
+
+// The checkpoint's contact parameters replace the contacts' own where they differ; a
+// checkpoint written without them (or by an older invasim) leaves the contacts as they are.
+void read_contacts(const CheckpointReader& in, ContactForce& contacts) {
+  if (!in.has("contacts.beta")) return;
+  ContactParams stored = contacts.params();
+  bool differ = false;
+  for (const auto& [name, field] : kContactFields) {
+    const double value = in.get_f64(std::string("contacts.") + name);
+    differ = differ || value != stored.*field;
+    stored.*field = value;
+  }
+  if (differ) contacts.set_params(stored);
+}
+
+}  // namespace
+
 void write_protocol_checkpoint(CheckpointWriter& out, const ProtocolObjects& objects,
                                const ProtocolRecord& record) {
   write_system(out, *objects.system);
   if (objects.dynamics) write_dynamics(out, *objects.dynamics);
   if (objects.tethers) write_tethers(out, *objects.tethers);
   if (objects.correlator) write_correlator(out, *objects.correlator);
+  if (objects.contacts) write_contacts(out, *objects.contacts);
   out.put_string("extra", record.extra);
   if (record.run_id) out.put_string("run.id", *record.run_id);
   if (record.run_parameters) out.put_string("run.parameters", *record.run_parameters);
@@ -37,6 +70,7 @@ std::string read_protocol_checkpoint(const CheckpointReader& in, const std::stri
   }
   if (objects.correlator) read_correlator(in, *objects.correlator);
   if (objects.dynamics) read_dynamics(in, *objects.dynamics);
+  if (objects.contacts) read_contacts(in, *objects.contacts);
   return in.get_string("extra");
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "checkpoint/checkpoint_file.hpp"
+#include "forces/contact_force.hpp"
 #include "forces/tether_force.hpp"
 #include "integrate/dynamics.hpp"
 #include "measure/time_correlator.hpp"
@@ -16,12 +17,16 @@
 
 namespace invasim {
 
-// The objects of one checkpoint; every one but the System may be absent.
+// The objects of one checkpoint; every one but the System may be absent. The contacts are
+// the run's own where a protocol changes their parameters while it runs (a continued run
+// takes the checkpoint's); a start taken from another run (--from) leaves them out, so that
+// its own parameters hold.
 struct ProtocolObjects {
   System* system = nullptr;
   Dynamics* dynamics = nullptr;
   TetherForce* tethers = nullptr;
   TimeCorrelator* correlator = nullptr;
+  ContactForce* contacts = nullptr;
 };
 
 // The run that writes a checkpoint, and the protocol's own string.

@@ -1,16 +1,17 @@
 // Checkpoints of a protocol's state (checkpoint/protocol_checkpoint.hpp):
-//   invasim.save_checkpoint(path, {system =, dynamics =, tethers =, correlator =, extra = "",
-//                                  run_id = "", run_parameters = ""})
+//   invasim.save_checkpoint(path, {system =, dynamics =, tethers =, correlator =, contacts =,
+//                                  extra = "", run_id = "", run_parameters = ""})
 //   local extra = invasim.load_checkpoint(path, {system =, dynamics =, tethers =, correlator =,
-//                                                seed =})   -- seed: give the System a new one
+//                                                contacts =, seed =})  -- seed: a new one
 //   local id, parameters = invasim.checkpoint_run(path)  -- the run that wrote it (nil, nil if
 //                                                          -- it was written outside a run)
 //   invasim.interrupted()   -> "SIGINT" / "SIGTERM" once a stop was requested, else nil
 //   invasim.decode_state(text [, origin]) -> the plain Lua data of a checkpoint's `extra`
 //                                            (checkpoint/lua_data.hpp: parsed as data, never run)
 // save writes the System (every site array, bit for bit), the Dynamics (time step, method
-// parameters and ramp anchors, the pressure wall), the tethers, a correlator's accumulators
-// and a string of the protocol's own (`extra`), atomically. load restores them into objects
+// parameters and ramp anchors, the pressure wall), the tethers, a correlator's accumulators,
+// the contacts' parameters (which a protocol may change while it runs) and a string of the
+// protocol's own (`extra`), atomically. load restores them into objects
 // built the same way (same protocol, same parameters) and marks the Dynamics prepared, so the
 // run continues bit for bit as if it had never stopped. run_id / run_parameters identify the
 // run that writes the checkpoint (protocols/lib/run_identity.lua): they go into the sections
@@ -37,6 +38,7 @@ CheckpointParts read_checkpoint_parts(Kwargs& kw, bool need_system) {
     p.dyn = kw_object<DynamicsHandle>(kw, "dynamics");
   }
   p.tethers = kw_object<Tethers>(kw, "tethers");
+  p.contacts = kw_object<Contacts>(kw, "contacts");
   if (kw.push("correlator") != LUA_TNIL) {
     p.correlator = shared_correlator(L, -1);
     if (!p.correlator)
@@ -46,12 +48,19 @@ CheckpointParts read_checkpoint_parts(Kwargs& kw, bool need_system) {
   return p;
 }
 
+void check_checkpoint_parts(const CheckpointParts& p) {
+  if (p.contacts && p.contacts->owner.lock() != p.sim)
+    fail_input("checkpoint: key 'contacts' must be the Contacts force of its System");
+}
+
 namespace {
 
 // The engine objects of the parts (checkpoint/protocol_checkpoint.hpp).
 ProtocolObjects engine_objects(const CheckpointParts& p) {
+  check_checkpoint_parts(p);
   return {&p.sim->system, p.dyn ? &p.dyn->dynamics : nullptr,
-          p.tethers ? p.tethers->force.get() : nullptr, p.correlator.get()};
+          p.tethers ? p.tethers->force.get() : nullptr, p.correlator.get(),
+          p.contacts ? p.contacts->force.get() : nullptr};
 }
 
 }  // namespace

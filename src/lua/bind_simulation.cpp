@@ -167,8 +167,9 @@ int l_observe(lua_State* L) {
   return 0;
 }
 
-// sim:checkpoint{path =, tethers =, correlator =, extra = fn, run_id =, run_parameters =,
-// written = fn, <schedule>}: the System and the Dynamics are the Simulation's own.
+// sim:checkpoint{path =, tethers =, correlator =, contacts =, extra = fn, run_id =,
+// run_parameters =, written = fn, <schedule>}: the System and the Dynamics are the Simulation's
+// own.
 int l_checkpoint(lua_State* L) {
   const auto& s = check_shared<SimulationHandle>(L, 1);
   Kwargs kw(L, 2, "checkpoint");
@@ -176,6 +177,7 @@ int l_checkpoint(lua_State* L) {
   CheckpointParts parts = read_checkpoint_parts(kw, false);
   parts.sim = s->system;
   parts.dyn = s->dyn;
+  check_checkpoint_parts(parts);
   const auto run_id = kw.maybe_string("run_id");
   const auto run_parameters = kw.maybe_string("run_parameters");
   if (run_parameters && !run_id)

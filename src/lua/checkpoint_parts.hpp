@@ -1,8 +1,8 @@
 #pragma once
 // The objects a protocol checkpoint holds (bind_checkpoint.cpp): the System, the Dynamics,
-// the tethers, a correlator, read from a keyword table {system =, dynamics =, tethers =,
-// correlator =} and written into one checkpoint. Shared by invasim.save_checkpoint and the
-// checkpoint writer of a Simulation (bind_simulation.cpp).
+// the tethers, a correlator, the contacts, read from a keyword table {system =, dynamics =,
+// tethers =, correlator =, contacts =} and written into one checkpoint. Shared by
+// invasim.save_checkpoint and the checkpoint writer of a Simulation (bind_simulation.cpp).
 #include <memory>
 #include <optional>
 #include <string>
@@ -19,11 +19,15 @@ struct CheckpointParts {
   std::shared_ptr<DynamicsHandle> dyn;
   std::shared_ptr<Tethers> tethers;
   std::shared_ptr<TimeCorrelator> correlator;
+  std::shared_ptr<Contacts> contacts;
 };
 
 // Reads the keys system (required when need_system), dynamics (only with need_system),
-// tethers and correlator of kw.
+// tethers, correlator and contacts of kw.
 CheckpointParts read_checkpoint_parts(Kwargs& kw, bool need_system = true);
+
+// Refuses contacts that are not a force of the parts' System.
+void check_checkpoint_parts(const CheckpointParts& p);
 
 // Writes the parts' sections, the protocol's `extra` string and the run's identity.
 void write_checkpoint_parts(CheckpointWriter& w, const CheckpointParts& p, std::string_view extra,

@@ -332,5 +332,25 @@ expect_error("save_checkpoint: key 'tethers' must be a Tethers, got Contacts", i
              "unused.ckpt", { system = sys, tethers = iv.Contacts{} })
 expect_error("run: key 'progress' must be a Progress, got string", iv.Dynamics{}.run, iv.Dynamics{},
              sys, 1, { progress = "p" })
+-- The contacts' parameters in a checkpoint: restored where given, kept where not.
+do
+  local function tissue(beta)
+    local s = iv.System{ box = { 10, 10, 10 }, seed = 1 }
+    s:place{ cells = { positions = { { 1, 2, 3 }, { 5, 5, 5 } } } }
+    return s, s:add(iv.Contacts{ beta = beta })
+  end
+  local path = iv.out_dir .. "/contacts.ckpt"
+  iv.make_dirs(iv.out_dir)
+  local first, first_contacts = tissue(0.01)
+  first_contacts:set{ beta = 0.05 }
+  iv.save_checkpoint(path, { system = first, contacts = first_contacts })
+  local again, again_contacts = tissue(0.01)
+  iv.load_checkpoint(path, { system = again })
+  check(again_contacts:params().beta == 0.01, "contacts not given: their own parameters")
+  iv.load_checkpoint(path, { system = again, contacts = again_contacts })
+  check(again_contacts:params().beta == 0.05, "contacts given: the checkpoint's parameters")
+  expect_error("checkpoint: key 'contacts' must be the Contacts force of its System", iv.load_checkpoint,
+               path, { system = again, contacts = first_contacts })
+end
 
 print("engine_api: all " .. checks .. " checks passed")

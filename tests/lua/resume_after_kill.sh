@@ -6,6 +6,7 @@
 # event, not a time). Further arguments go to both runs (e.g. --set lipolysis_rate=1e-3:
 # the reference volumes change during the run and the checkpoints hold them; --set
 # division_rate=...: the number of cells changes).
+# PROTOCOL (default protocols/invasion.lua) names another protocol taking the same parameters.
 # Usage: resume_after_kill.sh INVASIM WORKDIR [ARGS...]
 set -euo pipefail
 invasim=$1
@@ -14,7 +15,7 @@ shift 2
 cd "$(dirname "$0")"
 rm -rf "$work" && mkdir -p "$work"
 # A background kT: the cells, the Langevin vertices and the piston all draw noise.
-args=(run ../../protocols/invasion.lua --set N_a=4 --set N_c=60 --set L0=32.0 --set quench_steps=500 --set background_factor=0 --set kT=1e-4
+args=(run "${PROTOCOL:-../../protocols/invasion.lua}" --set N_a=4 --set N_c=60 --set L0=32.0 --set quench_steps=500 --set background_factor=0 --set kT=1e-4
       --set steps=30000 --set every=200 --set snapshot_every=30000 --set checkpoint_every=1000
       --set correlate_every=10 "$@")
 
