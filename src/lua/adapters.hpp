@@ -148,6 +148,7 @@ int invoke_method(lua_State* L, std::index_sequence<I...>) {
   // Braced initialisation reads the arguments in order; bound objects stay references.
   std::tuple<decltype(Arg<std::remove_cvref_t<A>>::read(L, 1))...> args{
       Arg<std::remove_cvref_t<A>>::read(L, int(I) + 1)...};
+  no_arguments_after(L, int(sizeof...(A)));
   if constexpr (std::is_void_v<R>) {
     engine_call(N.text, [&] { std::apply(F, args); });
     return 0;

@@ -232,6 +232,7 @@ int l_place(lua_State* L) {
 int l_group(lua_State* L) {
   auto& sim = check_shared<SystemHandle>(L, 1);
   const std::string name = arg_string(L, 2);
+  no_arguments_after(L, 2);
   const std::vector<std::string> names{"all", "cancer", "vertices"};
   std::vector<int> sites;
   if (name == "cancer")
@@ -266,8 +267,12 @@ int l_packing(lua_State* L) {
 
 // The sites of the optional Group argument at `index` (all sites when absent).
 std::vector<int> group_arg(lua_State* L, int index, const SystemHandle& sim, const char* what) {
-  if (lua_isnoneornil(L, index)) return all_sites(sim);
+  if (lua_isnoneornil(L, index)) {
+    no_arguments_after(L, index);
+    return all_sites(sim);
+  }
   const Group& group = check<Group>(L, index);
+  no_arguments_after(L, index);
   require_same_system(group, sim, what);
   require_current(group, what);
   return group.sites;
@@ -392,6 +397,7 @@ int l_forces(lua_State* L) {
 // without disturbing the run.
 int l_compute(lua_State* L) {
   SystemHandle& sim = check<SystemHandle>(L, 1);
+  no_arguments_after(L, 1);
   EnergyTerms e;
   try {
     e = engine_call("compute", [&] { return observe_energies(sim.system, sim.forces); });

@@ -216,6 +216,11 @@ std::string bad_argument(lua_State* L, int arg, const std::string& expected,
          " expected, got " + got + ")";
 }
 
+void no_arguments_after(lua_State* L, int count) {
+  for (int arg = count + 1; arg <= lua_gettop(L); ++arg)
+    if (!lua_isnil(L, arg)) throw InputError(bad_argument(L, arg, "no value"));
+}
+
 namespace detail {
 
 std::string wrong_type_message(lua_State* L, int index, const char* expected) {

@@ -84,6 +84,10 @@ void push_where(lua_State* L);
 std::string bad_argument(lua_State* L, int arg, const std::string& expected,
                          const std::string& got = "");
 
+// Refuses a value given after the `count` arguments a function takes (trailing nils pass), as
+// an unknown keyword is refused: "bad argument #2 to 'compute' (no value expected, got table)".
+void no_arguments_after(lua_State* L, int count);
+
 // Calls the function below `nargs` arguments on the stack with lua_pcall; a Lua error comes
 // back as LuaRaised (a string message kept as is, any other error object described with the
 // place it was raised: lua/error_object.hpp), so it unwinds C++ frames cleanly.

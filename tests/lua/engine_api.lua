@@ -332,6 +332,15 @@ expect_error("save_checkpoint: key 'tethers' must be a Tethers, got Contacts", i
              "unused.ckpt", { system = sys, tethers = iv.Contacts{} })
 expect_error("run: key 'progress' must be a Progress, got string", iv.Dynamics{}.run, iv.Dynamics{},
              sys, 1, { progress = "p" })
+-- A value after the arguments a function takes is refused, as an unknown key is (trailing
+-- nils pass): hand-written bindings and the method<> adapters alike.
+expect_error("bad argument #1 to 'compute' %(no value expected, got table%)", sys.compute, sys, { per_site = true })
+expect_error("bad argument #2 to 'group' %(no value expected, got table%)", sys.group, sys, "cancer", {})
+expect_error("bad argument #2 to 'positions' %(no value expected, got table%)", sys.positions, sys,
+             sys:group("cancer"), { unwrapped = true })
+expect_error("bad argument #2 to 'set_dt' %(no value expected, got number%)", iv.Dynamics{}.set_dt,
+             iv.Dynamics{}, 0.01, 5)
+check(sys:compute(nil).total ~= nil and #sys:positions(nil, nil) == sys:n_sites(), "trailing nils pass")
 -- The contacts' parameters in a checkpoint: restored where given, kept where not.
 do
   local function tissue(beta)
