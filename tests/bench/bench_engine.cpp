@@ -4,7 +4,8 @@
 //   (b) the full system: 28 adipocytes + 1500 cells, 128 adipocytes + 7000 cells.
 // Each with 1 and 2 OpenMP threads. Usage: bench_engine [steps=2000]
 // `bench_engine lammps-data N FILE` writes workload (a)'s relaxed start as a LAMMPS data file
-// (types 1/2 = diameters 0.9/1.1) so compare_lammps.sh can time LAMMPS on the same state.
+// (types 1/2 = diameters 0.9/1.1) for LAMMPS on the same state (compare_lammps.sh, and
+// cross_check_lammps.sh, whose Lua side reads it too).
 // BENCH_CHUNK=n times the steps in runs of n steps (a production's operations cut it so).
 // For scripts (OMP_NUM_THREADS sets the threads), each printing "<wall rate> <CPU rate>"
 // (particle-steps per second of wall time and of the process's CPU time; on a loaded machine
