@@ -85,19 +85,24 @@ std::string number_text(double v) {
   return std::isnan(v) ? "nan" : cat(v);
 }
 
+// Pushes list key `key` of kw and returns its length; anything but a non-empty table is
+// refused ("must be a non-empty list of <form>").
+std::size_t push_nonempty_list(Kwargs& kw, const char* key, const char* form) {
+  lua_State* L = kw.state();
+  const int type = kw.push(key);
+  const std::size_t n = type == LUA_TTABLE ? lua_rawlen(L, -1) : 0;
+  if (n == 0)
+    fail_input(kw.owner(), ": key '", key, "' must be a non-empty list of ", form, ", got ",
+               type == LUA_TTABLE ? "an empty table" : type_name_at(L, -1));
+  return n;
+}
+
 // Diameters (of cancer cells, or of adipocytes of many sizes): a non-empty list of positive
 // numbers, any length.
 std::vector<double> read_diameters(Kwargs& kw, std::vector<double> fallback) {
+  if (!kw.has("diameters")) return fallback;
   lua_State* L = kw.state();
-  const int type = kw.push("diameters");
-  if (type == LUA_TNIL) {
-    lua_pop(L, 1);
-    return fallback;
-  }
-  const std::size_t n = type == LUA_TTABLE ? lua_rawlen(L, -1) : 0;
-  if (n == 0)
-    fail_input(kw.owner(), ": key 'diameters' must be a non-empty list of numbers, got ",
-               type == LUA_TTABLE ? "an empty table" : type_name_at(L, -1));
+  const std::size_t n = push_nonempty_list(kw, "diameters", "numbers");
   std::vector<double> d(n);
   for (std::size_t i = 0; i < n; ++i) {
     lua_rawgeti(L, -1, static_cast<lua_Integer>(i + 1));
@@ -116,11 +121,7 @@ std::vector<double> read_diameters(Kwargs& kw, std::vector<double> fallback) {
 // Given cell centres: a non-empty list of {x, y, z} lists of finite numbers.
 std::vector<Vec3> read_positions(Kwargs& kw) {
   lua_State* L = kw.state();
-  const int type = kw.push("positions");
-  const std::size_t n = type == LUA_TTABLE ? lua_rawlen(L, -1) : 0;
-  if (n == 0)
-    fail_input(kw.owner(), ": key 'positions' must be a non-empty list of {x, y, z}, got ",
-               type == LUA_TTABLE ? "an empty table" : type_name_at(L, -1));
+  const std::size_t n = push_nonempty_list(kw, "positions", "{x, y, z}");
   std::vector<Vec3> r(n);
   for (std::size_t i = 0; i < n; ++i) {
     lua_rawgeti(L, -1, static_cast<lua_Integer>(i + 1));
