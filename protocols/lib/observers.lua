@@ -1,9 +1,47 @@
 -- What the production stage measures while it runs (docs/measurements.md, docs/measurements_dynamics.md). Each
 -- observer has `columns` (names), `units`, and `sample(row)` that adds its values to the
 -- row of the current step; the production stage calls them every `every` steps.
+local iv = require("invasim")
 local thermo = require("lib.thermo")
 
 local M = {}
+
+-- A protocol's own observer (production's `observers` key): {columns = {"x_mean", ...},
+-- units = {x_mean = "sigma"}, sample = function(row, tissue) ... end}; its sample must set a
+-- number for each of its columns, which then join series.csv and the summary like the others.
+local custom_spec = {
+  columns = { type = "table", required = true, help = "names of the columns it adds" },
+  units = { type = "table", help = "unit of each column (default \"1\")" },
+  sample = { type = "function", required = true, help = "function(row, tissue) setting them" },
+}
+function M.custom(entry, owner, tissue, taken)
+  local o = iv.keywords(owner, entry, custom_spec)
+  if #o.columns == 0 then error(owner .. ": columns must name at least one column", 0) end
+  local units = {}
+  for i, c in ipairs(o.columns) do
+    if type(c) ~= "string" or not c:match("^[%a_][%w_]*$") then
+      error(string.format("%s: columns[%d] = %s is not a column name (letters, digits, _)", owner, i,
+                          tostring(c)), 0)
+    end
+    if taken[c] or c == "step" or c == "time" then
+      error(string.format("%s: column '%s' is already measured", owner, c), 0)
+    end
+    taken[c] = true
+    units[c] = o.units and o.units[c] or "1"
+  end
+  return {
+    columns = o.columns, units = units,
+    sample = function(row)
+      o.sample(row, tissue)
+      for _, c in ipairs(o.columns) do
+        if type(row[c]) ~= "number" then
+          error(string.format("%s: sample set column '%s' to %s, not a number", owner, c,
+                              tostring(row[c])), 0)
+        end
+      end
+    end,
+  }
+end
 
 -- Temperatures, wall pressures, box length, packing fractions (lib/thermo.lua).
 function M.thermo(tissue)

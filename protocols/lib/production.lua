@@ -48,6 +48,9 @@ local spec = {
   progress = true,
   label = "production",
   on_sample = { type = "function" },   -- function(row, tissue) called after each sample
+  -- The protocol's own columns (lib/observers.lua, custom); they join series.csv, the summary
+  -- and sweep collect.
+  observers = { type = "table", help = "own columns: {{columns = {...}, units = {...}, sample = function(row, tissue)}}" },
 }
 
 local function summarise(rows, columns, fraction)
@@ -123,6 +126,16 @@ local function production(tissue, opts)
   if o.interface and sys:n_adipocytes() > 0 then active[#active + 1] = observers.interface(tissue, o.radical) end
   if o.energy then active[#active + 1] = observers.energy(tissue) end
   if o.lipolysis then active[#active + 1] = observers.lipolysis(tissue, o.lipolysis) end
+  local taken = {}
+  for _, ob in ipairs(active) do
+    for _, c in ipairs(ob.columns) do taken[c] = true end
+  end
+  for i, entry in ipairs(o.observers or {}) do
+    local ok, custom = pcall(observers.custom, entry, string.format("%s: observers[%d]", o.label, i),
+                             tissue, taken)
+    if not ok then error(custom, 2) end
+    active[#active + 1] = custom
+  end
   local columns, units = {}, {}
   for _, ob in ipairs(active) do
     for _, c in ipairs(ob.columns) do columns[#columns + 1] = c; units[c] = ob.units[c] end

@@ -95,6 +95,27 @@ local chosen = require("lib.production")(tissue, { steps = 10, every = 5, column
                                                   progress = false, correlate_every = 0 })
 assert(#chosen.series.columns == 3 and chosen.series.rows[1].A_t and chosen.summary.A_t, "chosen columns")
 checks = checks + 1
+-- A protocol's own columns (observers): in the series and the summary, checked like keywords.
+local function mean_x(row, t)
+  local sum, xs = 0, t.sys:positions(t.cells)
+  for _, r in ipairs(xs) do sum = sum + r[1] end
+  row.x_mean = sum / #xs
+end
+local own = require("lib.production")(tissue, { steps = 10, every = 5, progress = false, correlate_every = 0,
+                                                observers = { { columns = { "x_mean" }, units = { x_mean = "sigma" },
+                                                                sample = mean_x } } })
+assert(own.series.rows[2].x_mean and own.summary.x_mean.mean and own.series.units.x_mean == "sigma",
+       "an observer's column in the series and the summary")
+checks = checks + 1
+expect_error("^stages_errors.lua:%d+: production: observers%[1%]: missing required key 'columns' %(a table%); unknown key 'colums' %(did you mean 'columns'%?%)",
+             require("lib.production"), tissue, { steps = 10, observers = { { colums = { "x" }, sample = mean_x } } })
+expect_error("^stages_errors.lua:%d+: production: observers%[1%]: column 'A_t' is already measured",
+             require("lib.production"), tissue, { steps = 10, observers = { { columns = { "A_t" }, sample = mean_x } } })
+expect_error("^stages_errors.lua:%d+: production: observers%[1%]: columns%[1%] = x mean is not a column name",
+             require("lib.production"), tissue, { steps = 10, observers = { { columns = { "x mean" }, sample = mean_x } } })
+expect_error("production: observers%[1%]: sample set column 'y' to nil, not a number",
+             require("lib.production"), tissue, { steps = 10, every = 5, progress = false, correlate_every = 0,
+                                                  observers = { { columns = { "y" }, sample = mean_x } } })
 -- An out without checkpoint/ gets one before the run (the checkpoint at the end had failed).
 local bare = iv.out_dir .. "/bare_production"
 for _, f in ipairs({ "/checkpoint/state.ckpt", "/checkpoint", "/series.csv" }) do os.remove(bare .. f) end
