@@ -90,6 +90,24 @@ void push_proxy(lua_State* L) noexcept {
 }
 
 // invasim.params{...}
+// A protocol's `seed` also seeds Lua's math.random (Lua 5.4 seeds it from the clock), so that
+// a protocol drawing its own random numbers repeats itself for the same seed.
+void seed_lua_random(lua_State* L, const std::vector<Param>& params) {
+  for (const Param& p : params) {
+    if (p.name != "seed" || !std::holds_alternative<long long>(p.value)) continue;
+    lua_getglobal(L, "math");
+    if (lua_type(L, -1) == LUA_TTABLE) {
+      if (lua_getfield(L, -1, "randomseed") == LUA_TFUNCTION) {
+        lua_pushinteger(L, std::get<long long>(p.value));
+        lua_call(L, 1, 0);
+      } else {
+        lua_pop(L, 1);  // a math.randomseed replaced by the script: left alone
+      }
+    }
+    lua_pop(L, 1);
+  }
+}
+
 int l_params(lua_State* L) {
   ScriptContext& context = script_context(L);
   if (context.params)
@@ -121,6 +139,7 @@ int l_params(lua_State* L) {
   if (context.options.seed) overrides.push_back({"seed", *context.options.seed, true});
   apply_overrides(params, overrides);
   context.params = params;
+  seed_lua_random(L, params);
   if (context.options.list_params) throw StopScript();
 
   Record values;
