@@ -14,6 +14,7 @@ local custom_spec = {
   units = { type = "table", help = "unit of each column (default \"1\")" },
   sample = { type = "function", required = true, help = "function(row, tissue) setting them" },
 }
+-- `taken`: the columns measured already, as keys.
 function M.custom(entry, owner, tissue, taken)
   local o = iv.keywords(owner, entry, custom_spec)
   if #o.columns == 0 then error(owner .. ": columns must name at least one column", 0) end
@@ -23,10 +24,9 @@ function M.custom(entry, owner, tissue, taken)
       error(string.format("%s: columns[%d] = %s is not a column name (letters, digits, _)", owner, i,
                           tostring(c)), 0)
     end
-    if taken[c] or c == "step" or c == "time" then
+    if taken[c] or units[c] or c == "step" or c == "time" then
       error(string.format("%s: column '%s' is already measured", owner, c), 0)
     end
-    taken[c] = true
     units[c] = o.units and o.units[c] or "1"
   end
   return {

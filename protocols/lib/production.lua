@@ -126,19 +126,18 @@ local function production(tissue, opts)
   if o.interface and sys:n_adipocytes() > 0 then active[#active + 1] = observers.interface(tissue, o.radical) end
   if o.energy then active[#active + 1] = observers.energy(tissue) end
   if o.lipolysis then active[#active + 1] = observers.lipolysis(tissue, o.lipolysis) end
-  local taken = {}
-  for _, ob in ipairs(active) do
-    for _, c in ipairs(ob.columns) do taken[c] = true end
+  local columns, units = {}, {}
+  local function add_columns(ob)
+    for _, c in ipairs(ob.columns) do columns[#columns + 1] = c; units[c] = ob.units[c] end
   end
+  for _, ob in ipairs(active) do add_columns(ob) end
+  -- The protocol's own, after the others (their names must be new: `units` holds those taken).
   for i, entry in ipairs(o.observers or {}) do
     local ok, custom = pcall(observers.custom, entry, string.format("%s: observers[%d]", o.label, i),
-                             tissue, taken)
+                             tissue, units)
     if not ok then error(custom, 2) end
     active[#active + 1] = custom
-  end
-  local columns, units = {}, {}
-  for _, ob in ipairs(active) do
-    for _, c in ipairs(ob.columns) do columns[#columns + 1] = c; units[c] = ob.units[c] end
+    add_columns(custom)
   end
   if o.columns then
     local chosen = {}

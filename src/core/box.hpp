@@ -81,6 +81,13 @@ class Box {
         }
       }
   }
+  // The first walled axis on which r lies outside [lo, hi] (a site must lie between the walls),
+  // or -1.
+  int axis_outside_walls(const Vec3& r) const {
+    for (int a = 0; a < 3; ++a)
+      if (!periodic_[a] && (r[a] < lo_[a] || r[a] > hi_[a])) return a;
+    return -1;
+  }
   // Position with the periodic images undone.
   Vec3 unwrap(const Vec3& r, const Vec3i& image) const {
     Vec3 u = r;

@@ -45,6 +45,7 @@ CheckpointParts read_checkpoint_parts(Kwargs& kw, bool need_system) {
       fail_input(kw.owner(), ": key 'correlator' must be a Correlator, got ", type_name_at(L, -1));
   }
   lua_pop(L, 1);
+  if (need_system) check_checkpoint_parts(p);
   return p;
 }
 
@@ -57,7 +58,6 @@ namespace {
 
 // The engine objects of the parts (checkpoint/protocol_checkpoint.hpp).
 ProtocolObjects engine_objects(const CheckpointParts& p) {
-  check_checkpoint_parts(p);
   return {&p.sim->system, p.dyn ? &p.dyn->dynamics : nullptr,
           p.tethers ? p.tethers->force.get() : nullptr, p.correlator.get(),
           p.contacts ? p.contacts->force.get() : nullptr};

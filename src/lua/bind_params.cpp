@@ -89,7 +89,6 @@ void push_proxy(lua_State* L) noexcept {
   lua_replace(L, values);
 }
 
-// invasim.params{...}
 // A protocol's `seed` also seeds Lua's math.random (Lua 5.4 seeds it from the clock), so that
 // a protocol drawing its own random numbers repeats itself for the same seed.
 void seed_lua_random(lua_State* L, const std::vector<Param>& params) {
@@ -108,6 +107,7 @@ void seed_lua_random(lua_State* L, const std::vector<Param>& params) {
   }
 }
 
+// invasim.params{...}
 int l_params(lua_State* L) {
   ScriptContext& context = script_context(L);
   if (context.params)

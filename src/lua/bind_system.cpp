@@ -268,15 +268,12 @@ int l_packing(lua_State* L) {
 
 // The sites of the optional Group argument at `index` (all sites when absent).
 std::vector<int> group_arg(lua_State* L, int index, const SystemHandle& sim, const char* what) {
-  if (lua_isnoneornil(L, index)) {
-    no_arguments_after(L, index);
-    return all_sites(sim);
-  }
-  const Group& group = check<Group>(L, index);
+  const Group* group = lua_isnoneornil(L, index) ? nullptr : &check<Group>(L, index);
   no_arguments_after(L, index);
-  require_same_system(group, sim, what);
-  require_current(group, what);
-  return group.sites;
+  if (!group) return all_sites(sim);
+  require_same_system(*group, sim, what);
+  require_current(*group, what);
+  return group->sites;
 }
 
 // sys:temperature([group]): kT = 1/(3N) sum m v^2 over the group (all sites by default).

@@ -23,10 +23,11 @@ struct CheckpointParts {
 };
 
 // Reads the keys system (required when need_system), dynamics (only with need_system),
-// tethers, correlator and contacts of kw.
+// tethers, correlator and contacts of kw; with the system, checks them (check_checkpoint_parts).
 CheckpointParts read_checkpoint_parts(Kwargs& kw, bool need_system = true);
 
-// Refuses contacts that are not a force of the parts' System.
+// Refuses contacts that are not a force of the parts' System (a caller that sets the System
+// itself, as sim:checkpoint does, calls it then).
 void check_checkpoint_parts(const CheckpointParts& p);
 
 // Writes the parts' sections, the protocol's `extra` string and the run's identity.

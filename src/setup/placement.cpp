@@ -167,10 +167,9 @@ PlacementResult place_random(System& sys, const MeshPlacement& meshes,
     for (std::size_t k = 0; k < spheres.positions.size(); ++k) {
       const Vec3& r = spheres.positions[k];
       if (!r.allFinite()) fail_input("cancer-cell placement: position ", k + 1, " is not finite");
-      for (int a = 0; a < 3; ++a)
-        if (!sys.box().periodic(a) && (r[a] < sys.box().lo()[a] || r[a] > sys.box().hi()[a]))
-          fail_input("cancer-cell placement: position ", k + 1, " has ", "xyz"[a], " = ", r[a],
-                     ", outside the walls [", sys.box().lo()[a], ", ", sys.box().hi()[a], "]");
+      if (const int a = sys.box().axis_outside_walls(r); a >= 0)
+        fail_input("cancer-cell placement: position ", k + 1, " has ", "xyz"[a], " = ", r[a],
+                   ", outside the walls [", sys.box().lo()[a], ", ", sys.box().hi()[a], "]");
     }
     for (std::size_t k = 0; k < spheres.positions.size(); ++k)
       out.cells.push_back(

@@ -96,10 +96,9 @@ int System::push_site(const Vec3& r, double diameter, double mass, int body, Sit
   if (!(mass > 0.0) || !std::isfinite(mass))
     fail_input("site ", id, ": mass = ", mass, " must be finite and > 0");
   if (!r.allFinite()) fail_input("site ", id, ": position is not finite");
-  for (int a = 0; a < 3; ++a)
-    if (!box_.periodic(a) && (r[a] < box_.lo()[a] || r[a] > box_.hi()[a]))
-      fail_input("site ", id, ": ", "xyz"[a], " = ", r[a], " is outside the walls [", box_.lo()[a],
-                 ", ", box_.hi()[a], "]");
+  if (const int a = box_.axis_outside_walls(r); a >= 0)
+    fail_input("site ", id, ": ", "xyz"[a], " = ", r[a], " is outside the walls [", box_.lo()[a],
+               ", ", box_.hi()[a], "]");
   Vec3 wrapped = r;
   Vec3i image = Vec3i::Zero();
   box_.wrap(wrapped, image);
@@ -183,10 +182,9 @@ int System::add_mesh(std::shared_ptr<const MeshTopology> topology,
                " is not positive; faces must be oriented outward");
   // Validate every vertex before adding any, so a failure leaves the system unchanged.
   for (std::size_t v = 0; v < vertices.size(); ++v)
-    for (int a = 0; a < 3; ++a)
-      if (!box_.periodic(a) && (vertices[v][a] < box_.lo()[a] || vertices[v][a] > box_.hi()[a]))
-        fail_input("adipocyte ", body, ": vertex ", v, " has ", "xyz"[a], " = ", vertices[v][a],
-                   " outside the walls [", box_.lo()[a], ", ", box_.hi()[a], "]");
+    if (const int a = box_.axis_outside_walls(vertices[v]); a >= 0)
+      fail_input("adipocyte ", body, ": vertex ", v, " has ", "xyz"[a], " = ", vertices[v][a],
+                 " outside the walls [", box_.lo()[a], ", ", box_.hi()[a], "]");
   if (!(vertex_diameter > 0.0))
     fail_input("adipocyte ", body, ": vertex diameter = ", vertex_diameter, " must be > 0");
   MeshBody mb{topology, int(sites_.size()), std::move(ref_area), ref_volume};
