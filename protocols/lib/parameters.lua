@@ -35,7 +35,7 @@ function M.declarations()
     alpha = declare.engine("Contacts", "alpha"),
     beta_cv = declare.engine("Contacts", "beta_cv", nil, "docs/model.md, Forces"),
     alpha_cv = declare.engine("Contacts", "alpha_cv"),
-    f0 = declare.engine("Active", "f0", 0.002, "0: passive cells; 0.002 with the default background: 2 k_B T_c/(P sigma^3) ~ 0.3, the paper's Fig. 4b point"),
+    f0 = declare.engine("Active", "f0", 0.002, "0: passive cells; 0.002 with the default background: 2 k_B T_c/(P sigma^3) = 0.26 measured (docs/model.md), near the paper's Fig. 4b point 0.3"),
     tau_p = declare.engine("Active", "tau_p", 25.0),
     kT = { 0.0, range = "[0, inf)", unit = "eps_c", help = "background temperature of the cells and the langevin vertices (passive cells: their bath; active cells: only with background_factor = 0)" },
     background_factor = { 6.0, range = "[0, inf)", help = "active cells (f0 > 0): background temperature = this x the activity's free-particle temperature (f0/gamma)^2 tau/(3 (tau + m/gamma)), tau the persistence as the time step holds it (docs/model.md, Vertex bath); 0: the background is kT" },
