@@ -7,6 +7,7 @@
 // reduces in a fixed order).
 #include <omp.h>
 
+#include <algorithm>
 #include <cstddef>
 
 namespace invasim {
@@ -32,6 +33,14 @@ inline bool parallel_heavy(std::size_t n) {
 }
 inline bool parallel_team(std::size_t n) {
   return n >= kParallelTeamItems;
+}
+
+// The most threads a team can have that is started now, or the caller's own team inside a
+// region: per-thread scratch is sized from it, and only ever grows (a team may still be using
+// it). Inside a region omp_get_max_threads() is the next nesting level's count (1 under
+// OMP_NUM_THREADS=4,1), not the current team's size.
+inline std::size_t team_capacity() {
+  return std::size_t(std::max({omp_get_max_threads(), omp_get_num_threads(), 1}));
 }
 
 // True on the thread of a team (or a serial caller) that writes the team's shared results.

@@ -34,7 +34,7 @@ void VerletList::prepare_update(const System& sys) {
     valid_ = false;  // (stays forced if the region does not run, e.g. another term throws)
     setup_grid(sys);
   }
-  slots_.resize(std::size_t(std::max(omp_get_max_threads(), 1)));
+  if (slots_.size() < team_capacity()) slots_.resize(team_capacity());
 }
 
 bool VerletList::update(const System& sys) {
