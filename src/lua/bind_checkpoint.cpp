@@ -113,13 +113,15 @@ int l_checkpoint_run(lua_State* L) {
   const std::string path = arg_string(L, 1);
   ProtocolRecord record;
   engine_call("checkpoint_run", [&] { record = checkpoint_run(CheckpointReader::read(path)); });
-  for (const auto& value : {record.run_id, record.run_parameters}) {
-    if (value)
-      lua_pushlstring(L, value->data(), value->size());
-    else
-      lua_pushnil(L);
-  }
-  return 2;
+  return push_results(L, 2, [&record](lua_State* S) noexcept {
+    for (const std::optional<std::string>* value : {&record.run_id, &record.run_parameters}) {
+      if (*value)
+        lua_pushlstring(S, (*value)->data(), (*value)->size());
+      else
+        lua_pushnil(S);
+    }
+    return 2;
+  });
 }
 
 // Pushes a parsed datum (depth <= kMaxLuaDataDepth); runs inside push_results' protected

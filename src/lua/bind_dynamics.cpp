@@ -163,9 +163,11 @@ int l_run(lua_State* L) {
   }
   invasim::Simulation run = make_simulation(sim, d);
   if (every) run.set_max_chunk(static_cast<std::uint64_t>(*every));
-  if (callback)
-    run.add(std::make_shared<LuaFunctionOperation>(L, callback, sim, d, "callback"),
-            Trigger::every(static_cast<std::uint64_t>(*every)));
+  if (callback) {
+    auto op = std::make_shared<LuaFunctionOperation>(L, callback, sim, d, "callback");
+    op->set_thread(L);  // the caller's thread (a coroutine's, when run inside one)
+    run.add(op, Trigger::every(static_cast<std::uint64_t>(*every)));
+  }
   const RunResult result = engine_call("run", [&] { return run_steps(run, sim, *d, n, progress); });
   lua_pushinteger(L, static_cast<lua_Integer>(result.steps));  // the caller checks
   return 1;                                                    // invasim.interrupted()

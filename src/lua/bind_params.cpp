@@ -90,20 +90,21 @@ void push_proxy(lua_State* L) noexcept {
 }
 
 // A protocol's `seed` also seeds Lua's math.random (Lua 5.4 seeds it from the clock), so that
-// a protocol drawing its own random numbers repeats itself for the same seed.
+// a protocol drawing its own random numbers repeats itself for the same seed. Protected: the
+// script may have replaced math or math.randomseed (a non-function is left alone; a function
+// that fails fails invasim.params with its message).
 void seed_lua_random(lua_State* L, const std::vector<Param>& params) {
   for (const Param& p : params) {
     if (p.name != "seed" || !std::holds_alternative<long long>(p.value)) continue;
-    lua_getglobal(L, "math");
-    if (lua_type(L, -1) == LUA_TTABLE) {
-      if (lua_getfield(L, -1, "randomseed") == LUA_TFUNCTION) {
-        lua_pushinteger(L, std::get<long long>(p.value));
-        lua_call(L, 1, 0);
-      } else {
-        lua_pop(L, 1);  // a math.randomseed replaced by the script: left alone
+    const long long seed = std::get<long long>(p.value);
+    protected_call(L, 0, 0, [seed](lua_State* S) noexcept {
+      lua_getglobal(S, "math");
+      if (lua_type(S, -1) == LUA_TTABLE && lua_getfield(S, -1, "randomseed") == LUA_TFUNCTION) {
+        lua_pushinteger(S, seed);
+        lua_call(S, 1, 0);
       }
-    }
-    lua_pop(L, 1);
+      return 0;
+    });
   }
 }
 

@@ -209,7 +209,9 @@ int l_checkpoint(lua_State* L) {
 
 // sim:run(n [, {progress = p}]) -> steps done, the stop signal's name or nil.
 int l_run(lua_State* L) {
-  const auto& s = check_shared<SimulationHandle>(L, 1);
+  // An owning copy: the observers run Lua, which may collect the Simulation's userdata
+  // (its __gc through the debug library) while the run is on the stack.
+  const std::shared_ptr<SimulationHandle> s = check_shared<SimulationHandle>(L, 1);
   const long long n = arg_integer(L, 2, 0, std::numeric_limits<long long>::max());
   std::shared_ptr<Progress> progress;
   if (!lua_isnoneornil(L, 3)) {
@@ -226,12 +228,15 @@ int l_run(lua_State* L) {
     throw;
   }
   for (const auto& op : s->lua_ops) op->set_thread(nullptr);
-  lua_pushinteger(L, static_cast<lua_Integer>(result.steps));
-  if (result.stop_signal)
-    lua_pushstring(L, stop_signal_name(result.stop_signal));
-  else
-    lua_pushnil(L);
-  return 2;
+  const char* signal = result.stop_signal ? stop_signal_name(result.stop_signal) : nullptr;
+  return push_results(L, 2, [&result, signal](lua_State* S) noexcept {
+    lua_pushinteger(S, static_cast<lua_Integer>(result.steps));
+    if (signal)
+      lua_pushstring(S, signal);
+    else
+      lua_pushnil(S);
+    return 2;
+  });
 }
 
 // sim:operations() -> {"<name>: <schedule>", ...} in the order they run.

@@ -60,6 +60,12 @@ assert(e.total == e.total and math.abs(e.total - (e.contact + e.wall + e.shape))
 -- A callback returning false stops the run.
 assert(dyn:run(sys, 100, { every = 10, callback = function() return false end }) == 10)
 assert(sys:step() == 210)
+-- Run from inside a coroutine, the callback runs on that coroutine (as sim:run's observers do).
+local co_seen
+local co = coroutine.create(function()
+  return dyn:run(sys, 10, { every = 10, callback = function() co_seen = coroutine.running() end })
+end)
+assert(select(2, coroutine.resume(co)) == 10 and co_seen == co, "the callback ran on another thread")
 -- FIRE at the wall's pressure.
 local min = iv.Fire{ ftol = 1e-4, max_steps = 200 }:minimize(sys, dyn)
 assert(min.steps > 0 and min.energy == min.energy and sys:temperature() == 0)

@@ -148,6 +148,31 @@ assert(not ok and err:find("must be a Group .* got Ramp"), tostring(err))
 ok, err = pcall(all.Dynamics.pressure_wall, all.Dynamics, { P = 1, walls = all.Contacts })
 assert(not ok and err:find("must be a Walls force, got Contacts"), tostring(err))
 
+-- A Simulation finalised (its __gc called through the debug library) by its own observer while
+-- it runs: the run holds its own reference, ends its steps, and the object then reads as gone.
+do
+  local gsys = iv.System{ box = { 6, 6, 6 }, periodic = { true, true, true }, seed = 3 }
+  gsys:place{ cells = { n = 8, x = { 0.5, 5.5 } } }
+  gsys:add(iv.Contacts{})
+  local gdyn = iv.Dynamics{ dt = 0.01 }
+  gdyn:add(iv.Langevin{ group = gsys:group("cancer"), gamma = 0.2, kT = 1e-3 })
+  local sim = iv.Simulation{ system = gsys, dynamics = gdyn }
+  local calls = 0
+  sim:observe(function()
+    calls = calls + 1
+    if calls == 1 then
+      debug.getmetatable(sim).__gc(sim)
+      gsys, gdyn = nil, nil
+      collectgarbage()
+      collectgarbage()
+    end
+  end, { every = 10 })
+  local steps = sim:run(100)
+  assert(steps == 100 and calls == 10, "a run whose Simulation was finalised: " .. tostring(steps) .. " steps, " .. calls .. " calls")
+  ok, err = pcall(function() return sim:run(1) end)
+  assert(not ok and err:find("Simulation object is no longer valid"), tostring(err))
+end
+
 print(string.format("type_tags: %d types, %d calls on a swapped metatable or a wrong argument, %d errors, no crash",
                     #type_names, calls, errors))
 assert(os.execute("rm -rf '" .. snapshot_dir .. "'"))
