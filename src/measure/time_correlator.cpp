@@ -86,6 +86,12 @@ TimeCorrelator::TimeCorrelator(std::vector<int> group, const TimeCorrelatorParam
                              double(std::max(params_.origin_every, 1)) +
                          8.0 * (1 + kTerms);
   check_memory("time correlator", "lags", double(params_.lags), per_lag);
+  // And with the samples kept between two origins (origin_every of them, add_sample), the
+  // whole: named by origin_every, which sizes the kept samples.
+  const double per_kept = double(arrays) * double(group_.size()) * 3.0 * 8.0;
+  const double every = double(params_.origin_every);
+  check_memory("time correlator", "origin_every", every,
+               per_kept + double(params_.lags) * per_lag / every);
   const std::size_t snap = slots() * group_.size() * 3;
   if (params_.velocity) {
     origin_v_.assign(snap, 0.0);
@@ -98,7 +104,9 @@ TimeCorrelator::TimeCorrelator(std::vector<int> group, const TimeCorrelatorParam
 }
 
 std::size_t TimeCorrelator::slots() const {
-  return std::size_t((params_.lags + params_.origin_every - 1) / params_.origin_every);
+  // (In 64 bits: lags + origin_every may exceed an int.)
+  const std::int64_t lags = params_.lags, every = params_.origin_every;
+  return std::size_t((lags + every - 1) / every);
 }
 
 void TimeCorrelator::sample(const System& sys) {
@@ -516,6 +524,7 @@ void TimeCorrelator::restore(CorrelatorState state) {
   state_.orientation.clear();
   state_.position.clear();
   kept_ = 0;
+  site_epoch_.reset();  // the restored System's epoch is taken at the next sample
   for (std::size_t slot = 0; slot < (params_.velocity ? slots() : 0); ++slot)
     for (std::size_t i = 0; i < N; ++i) {
       const double* c = origin_v_.data() + 3 * slot * N + i;

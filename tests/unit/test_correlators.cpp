@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <deque>
+#include <limits>
 #include <thread>
 #include <vector>
 
@@ -483,6 +484,12 @@ TEST_CASE("correlator input checks", "[correlator]") {
   q = p;
   q.velocity = q.orientation = q.position = false;
   CHECK_THROWS_AS(TimeCorrelator({0}, q), InputError);
+  // origin_every sizes the samples kept between origins (3 N doubles each): the largest int
+  // needs terabytes and is refused by name (lags + origin_every also exceeds an int).
+  q = p;
+  q.origin_every = std::numeric_limits<int>::max();
+  CHECK_THROWS_WITH(TimeCorrelator({0, 1, 2, 3, 4}, q),
+                    Catch::Matchers::Contains("origin_every = 2147483647 needs about"));
 
   // sample(System) checks the spacing of the samples in time and the site indices.
   System sys = free_particles(4, 3);
@@ -499,6 +506,22 @@ TEST_CASE("correlator input checks", "[correlator]") {
   CHECK(c.samples() == 2);
   TimeCorrelator outside({0, 4}, p);
   CHECK_THROWS_AS(outside.sample(sys), InputError);
+
+  // A correlator that has sampled one System, then restored from the state of another whose
+  // cells had divided (another site epoch, as load_checkpoint restores it): its next sample of
+  // that System is accepted (the epoch is taken anew after a restore).
+  System later = free_particles(4, 5);
+  later.set_site_epoch(7);
+  Dynamics later_dyn(kDt);
+  later_dyn.add(Method::langevin(all_sites(later), kGamma, 1e-3));
+  TimeCorrelator source(all_sites(later), p);
+  source.sample(later);
+  TimeCorrelator restored(all_sites(sys), p);
+  restored.sample(sys);
+  restored.restore(source.state());
+  later_dyn.run(later, ff, 2);
+  CHECK_NOTHROW(restored.sample(later));
+  CHECK(restored.samples() == 2);
 }
 
 // =======================================================================================
