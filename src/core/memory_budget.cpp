@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -43,7 +44,12 @@ std::string number_text(double x) {
 std::uint64_t limit_and_source(const char*& source) {
   if (const char* env = std::getenv("INVASIM_MEMORY_LIMIT"); env && *env) {
     source = "INVASIM_MEMORY_LIMIT";
-    return std::strtoull(env, nullptr, 10);
+    char* end = nullptr;
+    errno = 0;
+    const unsigned long long bytes = std::strtoull(env, &end, 10);
+    if (*env == '-' || end == env || *end != '\0' || errno == ERANGE)
+      fail_input("INVASIM_MEMORY_LIMIT = '", env, "' is not a number of bytes");
+    return bytes;
   }
   std::uint64_t limit = mem_available();
   source = "the memory available now, MemAvailable in /proc/meminfo";

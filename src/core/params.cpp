@@ -41,7 +41,7 @@ std::string trim(const std::string& text) {
 std::optional<double> parse_double(const std::string& text) {
   const char* begin = text.data();
   const char* end = begin + text.size();
-  if (begin != end && *begin == '+') ++begin;
+  if (begin != end && *begin == '+' && (begin + 1 == end || begin[1] != '-')) ++begin;  // not "+-5"
   double value = 0.0;
   const auto result = std::from_chars(begin, end, value);
   if (result.ec != std::errc() || result.ptr != end || begin == end) return std::nullopt;
@@ -51,7 +51,7 @@ std::optional<double> parse_double(const std::string& text) {
 std::optional<long long> parse_integer(const std::string& text) {
   const char* begin = text.data();
   const char* end = begin + text.size();
-  if (begin != end && *begin == '+') ++begin;
+  if (begin != end && *begin == '+' && (begin + 1 == end || begin[1] != '-')) ++begin;
   long long value = 0;
   const auto result = std::from_chars(begin, end, value);
   if (result.ec == std::errc() && result.ptr == end && begin != end) return value;

@@ -75,6 +75,10 @@ Columns parse_properties(const std::string& value, const std::string& origin) {
   for (std::size_t k = 0; k < fields.size(); k += 3) {
     const auto n = text::parse<int>(fields[k + 2]);
     if (!n || *n < 1) fail_io(origin, ": Properties=", value, ": bad column count for ", fields[k]);
+    // A row's numbers are allocated from the count before any row is read: bounded.
+    constexpr int kMaxColumns = 1024;
+    if (*n > kMaxColumns - c.count)
+      fail_io(origin, ": Properties=", value, ": more than ", kMaxColumns, " columns in all");
     const std::string& name = fields[k];
     auto expect = [&](int want, int& slot) {
       if (*n != want)

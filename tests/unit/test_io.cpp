@@ -174,6 +174,14 @@ TEST_CASE("XYZ reader: frames of a trajectory and clear errors") {
                     Contains("f.xyz: line 3: 3 columns, expected 4"));
   CHECK_THROWS_WITH(parse_xyz("1\nLattice=\"1 1 0 0 1 0 0 0 1\"\nC 0 0 0\n", "f.xyz"),
                     Contains("not orthorhombic"));
+  // Column counts are bounded before a row's numbers are allocated (the sum would overflow an
+  // int; 2e9 columns alone would take 16 GB).
+  for (const char* junk : {"junk:R:2147483647", "junk:R:2000000000", "a:R:1000:b:R:1000"})
+    CHECK_THROWS_WITH(parse_xyz(std::string("1\nLattice=\"1 0 0 0 1 0 0 0 1\" "
+                                            "Properties=species:S:1:pos:R:3:") +
+                                    junk + "\nC 0 0 0\n",
+                                "f.xyz"),
+                      Contains("more than 1024 columns in all"));
   CHECK_THROWS_WITH(parse_xyz("2\nLattice=\"1 0 0 0 1 0 0 0 1\"\nC 0 0 0\n", "f.xyz"),
                     Contains("f.xyz: line 1 says 2 particles, but the frame has 1 row (the "
                              "file ends after line 3)"));
