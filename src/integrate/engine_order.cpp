@@ -49,7 +49,7 @@ std::vector<int> spatial_order(const System& sys) {
     std::uint64_t cell = std::uint64_t(c);
     for (int q = 0; q < 3; ++q) {
       const double x = std::floor((r[axes[q]] - lo[q]) * per_length[c][q]);
-      cell = cell * 1025 + std::uint64_t(std::clamp(x, 0.0, 1024.0));
+      cell = cell * 1025 + std::uint64_t(x >= 0.0 ? std::min(x, 1024.0) : 0.0);  // NaN: 0
     }
     key[k] = {cell, sys.site_of_slot(int(k))};
   }

@@ -48,15 +48,21 @@ std::vector<int> Proliferation::contacts(const System& sys) const {
   const std::size_t n = s.size();
   double reach = 0.0;  // the largest contact distance
   for (std::size_t i = 0; i < n; ++i) reach = std::max(reach, s.diameter[i]);
-  // Cells of the grid at least `reach` wide, so that contacts are in neighbouring cells.
+  // Cells of the grid at least `reach` wide, so that contacts are in neighbouring cells, and
+  // not many more than the sites (the counts do not depend on the grid; tiny diameters or no
+  // sites would otherwise ask for an int-overflowing number of cells).
+  const double max_cells = 2.0 * std::cbrt(double(n)) + 2.0;
   Vec3i dims;
-  for (int a = 0; a < 3; ++a)
-    dims[a] = std::max(1, int(std::floor(box.lengths()[a] / std::max(reach, 1e-12))));
+  for (int a = 0; a < 3; ++a) {
+    const double cells = std::floor(box.lengths()[a] / reach);  // +inf or NaN when reach is 0
+    dims[a] = cells >= 1.0 ? int(std::min(cells, max_cells)) : 1;
+  }
   auto cell_of = [&](const Vec3& r) {
     Vec3i c;
     for (int a = 0; a < 3; ++a) {
       const double f = (r[a] - box.lo()[a]) / box.lengths()[a];
-      c[a] = std::clamp(int(std::floor(f * dims[a])), 0, dims[a] - 1);
+      const double x = std::floor(f * dims[a]);  // clamped before the conversion (NaN: 0)
+      c[a] = x >= 0.0 ? int(std::min(x, double(dims[a] - 1))) : 0;
     }
     return c;
   };

@@ -46,9 +46,11 @@ void sync_directory(const std::filesystem::path& dir, const std::filesystem::pat
   const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (fd < 0) return;
   FileDescriptor guard(fd);
-  if (::fsync(fd) != 0 && errno != EINVAL && errno != EROFS)
+  if (::fsync(fd) != 0 && errno != EINVAL && errno != EROFS) {
+    const int error = errno;  // (read before the message's strings allocate)
     fail_io("cannot write ", quoted(target),
-            ": fsync of its directory failed: ", std::strerror(errno));
+            ": fsync of its directory failed: ", std::strerror(error));
+  }
 }
 
 }  // namespace

@@ -76,8 +76,10 @@ void CellStencils::setup(const Box& box, double width, const std::vector<double>
 
 int CellStencils::cell_of(const Vec3& r) const {
   int c[3];
-  for (int a = 0; a < 3; ++a)
-    c[a] = std::clamp(int(std::floor((r[a] - lo_[a]) / cell_len_[a])), 0, nc_[a] - 1);
+  for (int a = 0; a < 3; ++a) {  // clamped before the conversion (a far or NaN position: 0)
+    const double x = std::floor((r[a] - lo_[a]) / cell_len_[a]);
+    c[a] = x >= 0.0 ? int(std::min(x, double(nc_[a] - 1))) : 0;
+  }
   return (c[0] * nc_[1] + c[1]) * nc_[2] + c[2];
 }
 

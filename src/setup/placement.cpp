@@ -81,10 +81,9 @@ Range body_range(const Box& box, const MeshPlacement& m, double outer, int k) {
   return x;
 }
 
-}  // namespace
-
-PlacementResult place_random(System& sys, const MeshPlacement& meshes,
-                             const SpherePlacement& spheres) {
+// place_random on `sys` itself (a failure may leave some of the bodies placed).
+PlacementResult place_into(System& sys, const MeshPlacement& meshes,
+                           const SpherePlacement& spheres) {
   if (meshes.n < 0 || spheres.n < 0) fail_input("placement: negative number of bodies");
   if (spheres.n > 0 && spheres.diameters.empty())
     fail_input("placement: no cancer-cell diameters given");
@@ -196,6 +195,16 @@ PlacementResult place_random(System& sys, const MeshPlacement& meshes,
                    "] without overlaps; widen the range or enlarge the box");
     }
   }
+  return out;
+}
+
+}  // namespace
+
+PlacementResult place_random(System& sys, const MeshPlacement& meshes,
+                             const SpherePlacement& spheres) {
+  System trial = sys;  // a refused placement leaves the System as it was
+  PlacementResult out = place_into(trial, meshes, spheres);
+  sys = std::move(trial);
   return out;
 }
 

@@ -48,7 +48,8 @@ inline constexpr double kBytesPerSite = 1024;
 
 // Places meshes first, then spheres, avoiding every existing site. Returns the new site
 // indices of the spheres (the cancer-cell group). Throws InputError when a region cannot
-// hold the requested bodies (names the region and how many were placed).
+// hold the requested bodies (names the region and how many fitted); the System is then left
+// as it was.
 struct PlacementResult {
   std::vector<int> cells;
   std::vector<int> bodies;

@@ -182,6 +182,14 @@ TEST_CASE("placement refuses regions that cannot hold the bodies, naming the reg
   sp.max_attempts_per_cell = 200;
   CHECK_THROWS_WITH(place_random(sys, MeshPlacement{}, sp),
                     Contains("cells fit in x range [1, 2]"));
+  CHECK(sys.n_sites() == 0);  // the cells that fitted before the failure are not kept
+  MeshPlacement mp;
+  mp.n = 30;
+  mp.x = {3.0, 7.0};
+  mp.max_attempts_per_body = 50;
+  CHECK_THROWS_WITH(place_random(sys, mp, SpherePlacement{}), Contains("adipocytes fit"));
+  CHECK(sys.n_sites() == 0);
+  CHECK(sys.bodies().empty());
   sp.x = {-5.0, 2.0};
   CHECK_THROWS_WITH(place_random(sys, MeshPlacement{}, sp),
                     Contains("does not fit between the walls"));
