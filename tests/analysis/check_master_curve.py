@@ -142,6 +142,20 @@ def case_synthetic(script, scratch):
     check(abs(exact["a"] / 0.1 - 1) < 1e-6 and abs(exact["b"] / 2.5 - 1) < 1e-6,
           "exact A_n = (tanh(b log10(x/a)) + 1)/2: a = %.8g (0.1), b = %.8g (2.5)"
           % (exact["a"], exact["b"]))
+    # a's error: the fit is made in log10 a, and its error is carried to a by
+    # d a / d log10 a = a ln 10. Fitting a itself (curve_fit's linearised covariance in a)
+    # must give the same error, times the same error scale.
+    from scipy.optimize import curve_fit
+    rng = np.random.default_rng(20261207)
+    sig = np.full(9, 0.03)
+    y = 0.5 * (np.tanh(2.5 * np.log10(x / 0.1)) + 1.0) + sig * rng.standard_normal(9)
+    noisy = fits.fit_sigmoid(x, y, sig, "noisy")
+    p, cov = curve_fit(lambda x, a, b: 0.5 * (np.tanh(b * np.log10(x / a)) + 1.0), x, y,
+                       p0=[noisy["a"], noisy["b"]], sigma=sig, absolute_sigma=True)
+    direct = math.sqrt(cov[0, 0]) * noisy["error_scale"]
+    check(abs(p[0] / noisy["a"] - 1) < 1e-6 and abs(noisy["a_error"] / direct - 1) < 1e-3,
+          "a = %.6g +- %.4g from the fit in log10 a, %.6g +- %.4g from the fit in a"
+          % (noisy["a"], noisy["a_error"], p[0], direct))
     rows = read_csv(os.path.join(out, "fits.csv"))
     check(len(rows) == 6 and abs(float(rows[0]["a"]) - curves[0]["a"]) < 1e-12 * curves[0]["a"]
           and "beta" in rows[0] and "tau_p" in rows[0], "fits.csv has the same fits")

@@ -13,6 +13,7 @@ import json
 import math
 import os
 import shutil
+import statistics
 import subprocess
 import sys
 
@@ -170,6 +171,9 @@ check(ext["min_A_t_max"] == 1000.0)
 for p, want in zip(pts, [(x - 0.2) / 0.6 for x in r]):
     check(abs(p["A_n"] - want) < 1e-12, (p, want))
     check(abs(p["A_n_error"] - 10.0 / 1000 / 0.6) < 1e-12)
+# The run's own error adds the independent errors of A_t and A_t^max in quadrature (3 and 4
+# make 5), over min A_t^max and the span of rA_t.
+check(abs(normalise.run_error(3.0, 4.0, 1000.0, 0.2, 0.8) - 5.0 / 1000 / 0.6) < 1e-12)
 other = normalise.scale_like({"A_t": 650.0, "A_t_max": 1000.0, "A_t_error": 0.0}, ext)
 check(abs(other["A_n"] - (0.65 - 0.2) / 0.6) < 1e-12)
 check(abs(points.crossing([0.01, 0.1, 1.0], [0.0, 0.25, 0.75]) - 10 ** -0.5) < 1e-12)
@@ -582,6 +586,19 @@ check(rows["fig4b_inset_starts"]["verdict"] == v.DISAGREES
       and "not steady" not in rows["fig4b_inset_starts"]["why"], rows["fig4b_inset_starts"])
 agreement = steady.start_agreement(workspace.load(os.path.join(work, "root", "paper_fig4b_starts")))
 check(agreement["agree"] is False and abs(agreement["difference"] - 200.0) < 1.0, agreement)
+# Each start's error is the standard error of its runs' window means, the sample variance
+# with n - 1 (two runs per start, 10 apart), recomputed here from the runs' series.
+pts = starts(level(400.0), level(600.0))
+pts[1] = (pts[1][0], "done", level(410.0), 1000.0, 0.3)
+pts[3] = (pts[3][0], "done", level(590.0), 1000.0, 0.3)
+synthetic.write_workspace(os.path.join(work, "starts_error"), pts)
+jobs = workspace.load(os.path.join(work, "starts_error"))
+agreement = steady.start_agreement(jobs)
+for (start,), reps in workspace.group(jobs, ["start"]).items():
+    ms = [float(np.mean(j.series["A_t"][slice(*steady.window(j))])) for j in reps]
+    want = statistics.stdev(ms) / math.sqrt(len(ms))
+    got = agreement["means"][str(start)][1]
+    check(len(ms) == 2 and want > 0 and abs(got - want) <= 1e-9 * want, (start, got, want))
 # ... and with one of its runs drifting, the inset's row is not steady, naming that run.
 drift = starts(level(400.0), level(600.0))
 drift[0] = (drift[0][0], "done", level(340.0, slope=1.5), 1000.0, 0.3)

@@ -788,3 +788,38 @@ TEST_CASE("piston noise: set by kT, zero at kT = 0, the same with 1 and 2 thread
   bad.kT = -1.0;
   CHECK_THROWS_WITH(bad.validate(), Catch::Contains("wall kT"));
 }
+
+TEST_CASE("piston noise is independent of the sites' thermal noise", "[barostat]") {
+  // A free piston and a free Langevin site with the same mass, damping and kT obey the same
+  // equation of motion. With independent random forces their velocities are uncorrelated;
+  // had the piston drawn the site's numbers (same stream and key), they would be equal.
+  // 100000 steps sampled every 10 (velocity correlation time m / gamma = 100 steps): ~1000
+  // independent samples, so the correlation coefficient is 0 +- ~0.03.
+  constexpr double kT = 1e-4;
+  System sys(test::cube(40.0, true), 0x9157'0001ull);
+  sys.add_sphere(Vec3(20.0, 20.0, 20.0), 1.0);  // far from both walls: no force on them
+  auto walls = std::make_shared<WallForce>();
+  ForceField ff;
+  ff.add(walls);
+  auto wall = std::make_shared<PressureWall>();
+  wall->pressure = 0.0;
+  wall->mass = 1.0;
+  wall->gamma = kGamma;
+  wall->kT = kT;
+  wall->walls = walls;
+  Dynamics dyn(kDt);
+  dyn.add(Method::langevin(all_sites(sys), kGamma, kT));
+  dyn.set_pressure_wall(wall);
+  double sww = 0.0, sss = 0.0, sws = 0.0;
+  for (int k = 0; k < 10000; ++k) {
+    dyn.run(sys, ff, 10);
+    const double w = wall->velocity, v = sys.sites().vel[0][0];
+    sww += w * w;
+    sss += v * v;
+    sws += w * v;
+  }
+  REQUIRE(walls->left_wall_force() == 0.0);
+  const double corr = sws / std::sqrt(sww * sss);
+  std::printf("[dynamics] piston and site velocities: correlation %.4f\n", corr);
+  CHECK(std::abs(corr) < 0.15);
+}

@@ -231,6 +231,22 @@ TEST_CASE("Kinetic temperature and Maxwell-Boltzmann velocities", "[run]") {
                     Catch::Contains("site 4000 is outside [0, 4000)"));
 }
 
+TEST_CASE("Maxwell-Boltzmann velocities of sites heavier than 1: each component has variance kT/m",
+          "[run]") {
+  // The draw must scale with the site's own mass (vertices may be heavier than the cells):
+  // <v_a^2> = kT / m, checked from the velocities directly and through m <v^2> / 3.
+  // 4000 sites, 12000 components: relative error of the variance ~1.3 %, 5 % is ~4 sigma.
+  System sys = test::random_spheres(4000, 0.2, false, 11);
+  const auto all = test::all_sites(sys);
+  const double mass = 4.0, kT = 0.25;
+  set_masses(sys, all, mass);
+  set_maxwell_boltzmann(sys, all, kT);
+  double v2 = 0.0;
+  for (int i : all) v2 += sys.sites().vel[i].squaredNorm();
+  CHECK(v2 / (3.0 * double(all.size())) == Approx(kT / mass).epsilon(0.05));
+  CHECK(temperature(sys, all) == Approx(kT).epsilon(0.05));
+}
+
 TEST_CASE("set_masses: the group's masses change, velocities and other sites are kept", "[run]") {
   System sys = test::random_spheres(200, 0.2, false, 5);
   const auto all = test::all_sites(sys);
