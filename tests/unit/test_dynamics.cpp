@@ -823,3 +823,43 @@ TEST_CASE("piston noise is independent of the sites' thermal noise", "[barostat]
   std::printf("[dynamics] piston and site velocities: correlation %.4f\n", corr);
   CHECK(std::abs(corr) < 0.15);
 }
+
+TEST_CASE("ramps: value(step) exactly, and the parameters after a run are those of its last step",
+          "[ramp]") {
+  // value(step) = from + (to - from) min(1, (step - start) / steps), anchored at first use.
+  Ramp r{2.0, 5.0, 3, std::nullopt};
+  CHECK(r.value(10) == 2.0);
+  CHECK(*r.start == 10);
+  CHECK(r.value(11) == 3.0);
+  CHECK(r.value(12) == 4.0);
+  CHECK(r.value(13) == 5.0);
+  CHECK(r.value(40) == 5.0);
+  Ramp given{1.0, 0.0, 4, 6};
+  CHECK(given.value(2) == 1.0);  // before its start
+  CHECK(given.value(7) == 0.75);
+  CHECK(given.value(10) == 0.0);
+
+  // A run of n steps from step 0 leaves kT, f0 and P at their ramps' values of step n (the
+  // value the step that reached it was given), serial and in the parallel team alike.
+  for (const int threads : {1, 2}) {
+    INFO(threads << " threads");
+    System sys = free_particles(1500, 1.0, 3);
+    ForceField ff;
+    Dynamics dyn(kDt);
+    dyn.step_threads().set_mode(StepThreads::Mode::kAll);  // every step in the team at 2
+    auto m = Method::active(all_sites(sys), kGamma, 0.0, 10.0, 0.0);
+    m->set_kT_ramp(Ramp{0.0, 1e-3, 10, std::nullopt});
+    m->set_f0_ramp(Ramp{0.0, 1e-2, 20, std::nullopt});
+    dyn.add(m);
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    for (const std::uint64_t n : {1, 2, 4}) {
+      dyn.run(sys, ff, n);
+      const double s = double(sys.step);
+      CHECK(m->params().kT == Approx(1e-3 * std::min(1.0, s / 10.0)).margin(1e-15));
+      CHECK(m->params().f0 == Approx(1e-2 * s / 20.0).margin(1e-15));
+    }
+    CHECK(dyn.parallel_steps() == (threads > 1 ? sys.step : 0));
+    omp_set_num_threads(saved);
+  }
+}
