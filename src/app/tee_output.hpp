@@ -2,7 +2,9 @@
 // Standard output and error of this process copied to a log file and to where they went
 // before: a Slurm task's point writes its run.log (the point's record, appended over its
 // attempts) and its slurm-%A_%a.out (where a cluster user looks first) alike. A thread copies
-// a pipe to both; the destructor flushes, closes the pipe and restores the old descriptors.
+// a pipe to both; the destructor flushes, closes the pipe and restores the old descriptors,
+// then waits for the copy of what is in the pipe (not for children that inherited it).
+#include <atomic>
 #include <string>
 #include <thread>
 
@@ -18,6 +20,7 @@ class TeeOutput {
 
  private:
   int log_ = -1, saved_out_ = -1, saved_err_ = -1, pipe_read_ = -1;
+  std::atomic<bool> restored_{false};  // the destructor has put the old descriptors back
   std::thread copier_;
 };
 
