@@ -709,24 +709,33 @@ TEST_CASE(
 
 namespace {
 
-// <v_w^2> M / kT of a free piston (P = 0, no site near it) with FDT noise at kT, and its
-// standard error from 20 consecutive blocks of the run (each many times the velocity
-// relaxation time M / gamma_w long).
-Estimate free_piston_temperature(double mass, double gamma, double kT, int steps) {
-  System sys(test::cube(40.0, true), 0x9157'0000ull);
-  sys.add_sphere(Vec3(20.0, 20.0, 20.0), 1.0);  // far from both walls: no force on them
-  auto walls = std::make_shared<WallForce>();
+// A free piston (P = 0) of mass M, damping gamma_w and noise at kT, and one site far from both
+// walls (no force on them), whose motion the caller adds to the Dynamics.
+struct FreePiston {
+  System sys;
+  std::shared_ptr<WallForce> walls = std::make_shared<WallForce>();
   ForceField ff;
-  ff.add(walls);
-  auto wall = std::make_shared<PressureWall>();
-  wall->pressure = 0.0;
-  wall->mass = mass;
-  wall->gamma = gamma;
-  wall->kT = kT;
-  wall->walls = walls;
-  Dynamics dyn(kDt);
+  std::shared_ptr<PressureWall> wall = std::make_shared<PressureWall>();
+  Dynamics dyn{kDt};
+  FreePiston(double mass, double gamma, double kT, std::uint64_t seed)
+      : sys(test::cube(40.0, true), seed) {
+    sys.add_sphere(Vec3(20.0, 20.0, 20.0), 1.0);
+    ff.add(walls);
+    wall->pressure = 0.0;
+    wall->mass = mass;
+    wall->gamma = gamma;
+    wall->kT = kT;
+    wall->walls = walls;
+    dyn.set_pressure_wall(wall);
+  }
+};
+
+// <v_w^2> M / kT of a free piston with FDT noise at kT, and its standard error from 20
+// consecutive blocks of the run (each many times the velocity relaxation time M / gamma_w long).
+Estimate free_piston_temperature(double mass, double gamma, double kT, int steps) {
+  FreePiston piston(mass, gamma, kT, 0x9157'0000ull);
+  auto& [sys, walls, ff, wall, dyn] = piston;
   dyn.add(Method::damped(all_sites(sys), kGamma));
-  dyn.set_pressure_wall(wall);
   dyn.run(sys, ff, std::uint64_t(20.0 * mass / gamma / kDt));  // forget v_w = 0
   const int blocks = 20, every = 10, per_block = steps / blocks / every;
   std::vector<double> v2(blocks, 0.0);
@@ -796,20 +805,9 @@ TEST_CASE("piston noise is independent of the sites' thermal noise", "[barostat]
   // 100000 steps sampled every 10 (velocity correlation time m / gamma = 100 steps): ~1000
   // independent samples, so the correlation coefficient is 0 +- ~0.03.
   constexpr double kT = 1e-4;
-  System sys(test::cube(40.0, true), 0x9157'0001ull);
-  sys.add_sphere(Vec3(20.0, 20.0, 20.0), 1.0);  // far from both walls: no force on them
-  auto walls = std::make_shared<WallForce>();
-  ForceField ff;
-  ff.add(walls);
-  auto wall = std::make_shared<PressureWall>();
-  wall->pressure = 0.0;
-  wall->mass = 1.0;
-  wall->gamma = kGamma;
-  wall->kT = kT;
-  wall->walls = walls;
-  Dynamics dyn(kDt);
+  FreePiston piston(1.0, kGamma, kT, 0x9157'0001ull);
+  auto& [sys, walls, ff, wall, dyn] = piston;
   dyn.add(Method::langevin(all_sites(sys), kGamma, kT));
-  dyn.set_pressure_wall(wall);
   double sww = 0.0, sss = 0.0, sws = 0.0;
   for (int k = 0; k < 10000; ++k) {
     dyn.run(sys, ff, 10);
