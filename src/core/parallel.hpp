@@ -42,6 +42,11 @@ inline bool parallel_team(std::size_t n) {
 inline std::size_t team_capacity() {
   return std::size_t(std::max({omp_get_max_threads(), omp_get_num_threads(), 1}));
 }
+// Grows a per-thread vector to team_capacity() entries (never shrinks it).
+template <typename Vector>
+void grow_to_team(Vector& per_thread) {
+  if (const std::size_t n = team_capacity(); per_thread.size() < n) per_thread.resize(n);
+}
 
 // True on the thread of a team (or a serial caller) that writes the team's shared results.
 inline bool team_leader() {

@@ -37,11 +37,16 @@ std::string trim(const std::string& text) {
   return text.substr(first, last - first + 1);
 }
 
+// Skips a leading '+' (from_chars takes none), but not in "+-5", which stays refused.
+void skip_plus_sign(const char*& begin, const char* end) {
+  if (begin != end && *begin == '+' && (begin + 1 == end || begin[1] != '-')) ++begin;
+}
+
 // Whole-string double parse (accepts a leading '+'); nullopt if anything is left over.
 std::optional<double> parse_double(const std::string& text) {
   const char* begin = text.data();
   const char* end = begin + text.size();
-  if (begin != end && *begin == '+' && (begin + 1 == end || begin[1] != '-')) ++begin;  // not "+-5"
+  skip_plus_sign(begin, end);
   double value = 0.0;
   const auto result = std::from_chars(begin, end, value);
   if (result.ec != std::errc() || result.ptr != end || begin == end) return std::nullopt;
@@ -51,7 +56,7 @@ std::optional<double> parse_double(const std::string& text) {
 std::optional<long long> parse_integer(const std::string& text) {
   const char* begin = text.data();
   const char* end = begin + text.size();
-  if (begin != end && *begin == '+' && (begin + 1 == end || begin[1] != '-')) ++begin;
+  skip_plus_sign(begin, end);
   long long value = 0;
   const auto result = std::from_chars(begin, end, value);
   if (result.ec == std::errc() && result.ptr == end && begin != end) return value;

@@ -169,7 +169,7 @@ void ContactForce::prepare_team(System& sys, const ForceFlags& flags) {
   if (list_.rebuild_forced() || table_.n_sites() != n) table_.build(sys.sites(), params_);
   if (flags.energy) site_energy_.resize(n);
   if (flags.virial) site_virial_.resize(n);
-  if (scratch_.size() < team_capacity()) scratch_.resize(team_capacity());
+  grow_to_team(scratch_);
   planned_builds_ = plan_builds_;
   planned_threads_ = plan_threads_;
 }

@@ -423,7 +423,7 @@ void Dynamics::begin_step_serial(System& sys) {
   // A new engine order at every multiple of sort_every (a function of the step and the state).
   if (sys.engine_layout() && sys.step % sort_every_ == 0) sys.set_engine_order(spatial_order(sys));
   sync_slots(sys);
-  if (thread_slots_.size() < team_capacity()) thread_slots_.resize(team_capacity());
+  grow_to_team(thread_slots_);
   next_step_ = sys.step + 1;
   next_params_.clear();
   for (const auto& m : methods_) next_params_.push_back(m->params_at(next_step_));

@@ -34,7 +34,7 @@ void VerletList::prepare_update(const System& sys) {
     valid_ = false;  // (stays forced if the region does not run, e.g. another term throws)
     setup_grid(sys);
   }
-  if (slots_.size() < team_capacity()) slots_.resize(team_capacity());
+  grow_to_team(slots_);
 }
 
 bool VerletList::update(const System& sys) {

@@ -162,7 +162,7 @@ PlacementResult place_into(System& sys, const MeshPlacement& meshes,
     if (spheres.n != int(spheres.positions.size()))
       fail_input("cancer-cell placement: n = ", spheres.n, " for ", spheres.positions.size(),
                  " given positions");
-    // All checked before any is added: a refused list leaves the System as it was.
+    // All checked first, so that the message names the given position (not the site added).
     for (std::size_t k = 0; k < spheres.positions.size(); ++k) {
       const Vec3& r = spheres.positions[k];
       if (!r.allFinite()) fail_input("cancer-cell placement: position ", k + 1, " is not finite");
