@@ -8,10 +8,13 @@ namespace invasim::lua {
 
 namespace {
 
-// Whether the value at `index` is a table whose raw __gc is invasim's finaliser.
+// Whether the value at `index` is a table whose raw __gc is invasim's finaliser. Raw, as Lua
+// reads __gc when it collects: a __gc reached only through the table's own __index is never
+// called.
 bool has_invasim_finalizer(lua_State* L, int index) {
   if (lua_type(L, index) != LUA_TTABLE) return false;
-  lua_getfield(L, index, "__gc");
+  lua_pushliteral(L, "__gc");
+  lua_rawget(L, index);
   const bool ours = lua_tocfunction(L, -1) == &detail::gc;
   lua_pop(L, 1);
   return ours;

@@ -113,7 +113,11 @@ assert(not ok and err:find("bad self for 'update' %(Progress expected, got userd
 -- C++ object would never be freed (LeakSanitizer found that leak). The refusal names the type.
 local ramp = iv.ramp{ from = 0, to = 1, steps = 10 }
 local ramp_meta = debug.getmetatable(ramp)
-for _, foreign in ipairs({ file_meta, {}, { __gc = function() end } }) do
+-- Lua reads __gc raw when it collects, so a metatable that finds invasim's __gc only through
+-- its own __index is refused too.
+local inherits_gc = setmetatable({}, { __index = { __gc = ramp_meta.__gc } })
+assert(inherits_gc.__gc == ramp_meta.__gc and rawget(inherits_gc, "__gc") == nil)
+for _, foreign in ipairs({ file_meta, {}, { __gc = function() end }, inherits_gc }) do
   ok, err = pcall(function() debug.setmetatable(ramp, foreign) end)
   assert(not ok and err:find("^type_tags%.lua:%d+: debug%.setmetatable: a bound Ramp must keep an invasim metatable"),
          tostring(err))
