@@ -321,6 +321,50 @@ TEST_CASE("the kick's vectorised orientation pass is rotate_orientation, site by
   }
 }
 
+TEST_CASE("an active site's thermal force draws its own stream, not the orientation's",
+          "[orientation][thermostat]") {
+  // 300 free active cells at rest, kT > 0 and f0 > 0, one step. Whatever the scheme's
+  // coefficients, the velocity is a linear combination, shared by all cells, of the thermal
+  // draws of keys (seed, k, site, kThermal) for the two steps k the step uses and of the
+  // orientations before and after it. The orientations are pinned to their own stream by the
+  // test above, so had the thermal force drawn the orientation's numbers (or another site's),
+  // the fit would leave a residual of the size of the velocities.
+  for (double tau_p : {0.0, 25.0}) {
+    System sys = free_particles(300, 1.0, 31);
+    ForceField ff;
+    Dynamics dyn(kDt);
+    auto method = Method::active(all_sites(sys), kGamma, 0.01, tau_p, 1e-3);
+    method->randomize_orientations(sys);
+    dyn.add(method);
+    const std::vector<Vec3> before = sys.sites().orient;
+    const std::uint64_t step = sys.step;
+    dyn.step(sys, ff);
+    // Least squares by the normal equations, (B^T B) c = B^T v, B's rows (g0, g1, n0, n1)_a.
+    Eigen::Matrix4d btb = Eigen::Matrix4d::Zero();
+    Eigen::Vector4d btv = Eigen::Vector4d::Zero();
+    std::vector<std::pair<Eigen::Vector4d, double>> rows;
+    for (std::uint32_t i = 0; i < 300; ++i) {
+      const Vec3 g0 = RandomKey(sys.seed(), step, i, RngStream::kThermal).normal3();
+      const Vec3 g1 = RandomKey(sys.seed(), step + 1, i, RngStream::kThermal).normal3();
+      for (int a = 0; a < 3; ++a) {
+        const Eigen::Vector4d b(g0[a], g1[a], before[i][a], sys.sites().orient[i][a]);
+        const double v = sys.sites().vel[i][a];
+        btb += b * b.transpose();
+        btv += v * b;
+        rows.emplace_back(b, v);
+      }
+    }
+    const Eigen::Vector4d c = btb.ldlt().solve(btv);
+    double miss = 0.0, size = 0.0;
+    for (const auto& [b, v] : rows) miss += std::pow(b.dot(c) - v, 2), size += v * v;
+    const double residual = std::sqrt(miss / size);
+    INFO("tau_p = " << tau_p << ": coefficients " << c.transpose() << ", relative residual "
+                    << residual);
+    CHECK(residual < 1e-12);
+    CHECK(std::abs(c[0]) + std::abs(c[1]) > 0.0);  // the thermal draws are in the step
+  }
+}
+
 TEST_CASE("active sites without an orientation keep none and stay finite", "[orientation]") {
   // Sites added without an orientation (n = 0) have no self-propulsion; the orientation
   // update must leave them at 0 (a zero vector has no perpendicular frame), never NaN.
