@@ -485,6 +485,22 @@ check(not curves5["beta = 0.001, tau_p = 2500"]["in_collapse"]
       and "not steady" in curves5["beta = 0.001, tau_p = 2500"]["excluded_from_scale_fit"], curves5)
 check(os.path.getsize(os.path.join(work, "fig5_An.png")) > 1000)
 
+# fig5_long's curves replace those of the same beta and tau_p only when they ran longer: a
+# sweep file made longer since (fig5_active.lua: 4e6 steps, fig5_long.lua: 1e6) keeps its own.
+for long_steps, want_replaced in ((10, False), (80, True)):
+    shutil.rmtree(work, ignore_errors=True)
+    main5 = [tissue_job(os.path.join(work, "m%d" % k), 0.001 * (k + 1), x, a, False,
+                        {"beta": 1e-3, "tau_p": 2500.0})
+             for k, (x, a) in enumerate([(0.03, 150.0), (0.1, 300.0), (0.3, 600.0), (1.0, 760.0)])]
+    long5 = [tissue_job(os.path.join(work, "l%d" % k), 0.001 * (k + 1), x, a, False,
+                        {"beta": 1e-3, "tau_p": 2500.0, "steps": long_steps})
+             for k, (x, a) in enumerate([(0.03, 100.0), (0.1, 200.0), (0.3, 500.0), (1.0, 700.0)])]
+    curves, replaced = figures_master._curves(main5, None, long5, None)
+    kept = sorted(p["A_t"] for p in curves[(1e-3, 2500.0)])
+    # the top point's A_t: 760 from main5's runs (40 steps), 700 from long5's
+    check(bool(replaced) == want_replaced and (kept[-1] < 730.0) == want_replaced,
+          (long_steps, kept, list(replaced)))
+
 # The command line: a wrong number of workspaces and a non-workspace are named.
 cmd = [sys.executable, os.path.join(scripts, "validation.py"), "figure"]
 out = subprocess.run(cmd + ["fig6", work, work, "-o", work + "/o"], capture_output=True, text=True)

@@ -79,8 +79,15 @@ def _curves(jobs, passive_jobs, long_jobs, extra_jobs):
     for key, pts in (_curve_points(extra_jobs, ["beta", "tau_p"]).items() if extra_jobs else []):
         curves.setdefault(key, []).extend(pts)
     replaced = {}
+    # A "long" curve replaces the curve of the same beta and tau_p only if its runs are
+    # longer: the sweep files' lengths change (fig5_active.lua went from 2.5e5 to 4e6 steps,
+    # longer than fig5_long.lua's 1e6), and a shorter curve must not replace a longer one.
+    short_by_key = workspace.group(jobs + (extra_jobs or []), ["beta", "tau_p"])
+    long_by_key = workspace.group(long_jobs, ["beta", "tau_p"]) if long_jobs else {}
     for key, pts in (_curve_points(long_jobs, ["beta", "tau_p"]).items() if long_jobs else []):
         if key in curves:
+            if _run_time(long_by_key[key]) <= _run_time(short_by_key[key]):
+                continue  # not longer: the curve of jobs stays
             replaced[key] = curves[key]
         curves[key] = pts
     for key, pts in (_curve_points(passive_jobs, ["beta"]).items() if passive_jobs else []):
@@ -346,9 +353,14 @@ def fig5(jobs, out, invasim, passive_jobs=None, long_jobs=None, extra_jobs=None)
     if passive_jobs:
         numbers["passive_Tc_over_kT"] = [j.mean("T_c")[0] / float(j.sp["kT"])
                                          for j in passive_jobs if float(j.sp.get("kT", 0)) > 0]
-    kept = [j for j in jobs if (float(j.sp["beta"]), float(j.sp["tau_p"])) not in replaced]
+    def key(j):
+        return (float(j.sp["beta"]), float(j.sp["tau_p"]))
+    kept = [j for j in jobs if key(j) not in replaced]
+    # The long runs drawn: those that replaced a curve or added one (not the shorter ones).
+    short_keys = {key(j) for j in jobs + (extra_jobs or [])}
+    long_used = [j for j in (long_jobs or []) if key(j) in replaced or key(j) not in short_keys]
     return {"images": images, "rows": rows, "numbers": numbers,
-            "steadiness": steady.steadiness_summary(kept + (passive_jobs or []) + (long_jobs or [])
+            "steadiness": steady.steadiness_summary(kept + (passive_jobs or []) + long_used
                                                   + (extra_jobs or []))}
 
 
