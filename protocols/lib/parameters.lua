@@ -59,6 +59,8 @@ function M.declarations()
     snapshot_every = { 10000, range = "[0, inf)", help = "steps between snapshots (0: none)" },
     checkpoint_every = declare.keyword(production.keys, "checkpoint_every", 10000),
     correlate_every = declare.keyword(production.keys, "correlate_every"),
+    lags = declare.keyword(production.keys, "lags"),
+    origin_every = declare.keyword(production.keys, "origin_every"),
     lipolysis_rate = declare.engine("Lipolysis", "rate", 0.0, "0: no lipolysis, the paper; docs/model.md, Bodies"),
     lipolysis_floor = declare.engine("Lipolysis", "floor"),
     lipolysis_every = declare.keyword(production.keys, "lipolysis_every"),
@@ -87,6 +89,7 @@ end
 -- keys added or replacing them (a protocol's own choices, e.g. correlate_every = 0).
 function M.production_options(p, out, extra)
   local o = { steps = p.steps, every = p.every, correlate_every = p.correlate_every,
+              lags = p.lags, origin_every = p.origin_every,
               snapshot_every = p.snapshot_every, checkpoint_every = p.checkpoint_every, out = out,
               lipolysis_every = p.lipolysis_every }
   if p.lipolysis_rate > 0 then
@@ -156,11 +159,13 @@ end
 -- The parameters whose effect is in the compressed tissue itself (the adipocytes' shapes and
 -- sizes, the placement, the packing and how it was reached), besides the size.
 local tissue_keys = { "A_0", "adipocyte_spread", "start", "phi", "cohesive_compression",
-                      "compress_ftol", "final_ftol" }
+                      "compress_ftol", "final_ftol", "eps_v", "eps_a" }
+-- The contact parameters the compression used when it kept the cells' cohesion on.
+local cohesion_keys = { "beta", "alpha", "beta_cv", "alpha_cv" }
 
 -- A run started --from DIR takes DIR's compressed tissue in place of its own: refuses, before
--- any work, a run whose own tissue would differ (a parameter of tissue_keys, or the initial
--- box), naming the parameter, instead of running the source's tissue under this run's value.
+-- any work, a run whose own tissue would differ (a parameter of tissue_keys, of cohesion_keys
+-- when DIR compressed with cohesion, or the initial box), naming the parameter, instead of running the source's tissue under this run's value.
 -- The seed may differ (it drives the dynamics from there on); DIR without params.json (a
 -- script's own run directory) is not checked.
 function M.check_from(p, from)
@@ -173,7 +178,9 @@ function M.check_from(p, from)
                         "the compressed tissue is the source's: --set %s=%s, or run without --from",
                         from, key, show(theirs), key, show(ours), key, show(theirs)), 0)
   end
-  for _, key in ipairs(tissue_keys) do
+  local keys = { table.unpack(tissue_keys) }
+  if source.cohesive_compression then table.move(cohesion_keys, 1, #cohesion_keys, #keys + 1, keys) end
+  for _, key in ipairs(keys) do
     if source[key] ~= nil and p[key] ~= nil and source[key] ~= p[key] then
       refuse(key, source[key], p[key])
     end

@@ -33,8 +33,8 @@ local spec = {
   -- (tau_d ~ 0.9 tau in the invasion runs; samples 1 tau apart put it 3 % low), a window of
   -- 500 lags (250 tau) and an origin every 10 tau (the cost of 25 live origins per sample).
   correlate_every = { 10, range = "[0, inf)", help = "steps between correlator samples (0: none)" },
-  lags = { 500, range = "[1, inf)" },         -- correlator window: lags * correlate_every steps
-  origin_every = { 20, range = "[1, inf)" },  -- a new time origin every this many correlator samples
+  lags = { 500, range = "[1, inf)", help = "correlator lags: C_vv, F_s, ... at 0 .. lags - 1 samples (window lags x correlate_every steps)" },
+  origin_every = { 20, range = "[1, inf)", help = "correlator samples between two time origins" },
   slices_per_body = { 20, type = "number", range = "[0, inf)" },  -- random slices per adipocyte at the end (0: none)
   average_fraction = { 0.5, range = "(0, 1]" },  -- the summary averages the last half of the samples
   out = { type = "string" },        -- directory for series.csv, correlations.csv, shapes.csv

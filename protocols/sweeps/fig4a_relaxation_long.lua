@@ -10,7 +10,7 @@
 return {
   protocol = "../invasion.lua",
   set = { system = "reduced", f0 = 0.0, beta = 0.0, P = 1.3e-3,
-          quench_steps = 20000, steps = 10000000, every = 10000, correlate_every = 4000,
+          quench_steps = 20000, steps = 10000000, every = 10000, correlate_every = 4000, lags = 250, origin_every = 5,
           snapshot_every = 0, checkpoint_every = 100000 },
   -- 2 kT/(P sigma^3) = 0.02, 0.03, 0.05, 0.07, 0.1, 0.14, 0.2
   product = { kT = { 1.3e-5, 1.95e-5, 3.25e-5, 4.55e-5, 6.5e-5, 9.1e-5, 1.3e-4 } },
