@@ -31,6 +31,11 @@ function M.final(tissue, p, result, seconds, out, extra)
                                       "L_x", "phi", "phi_c", "phi_a", "phi_a_local_mean", "phi_a_local_std" },
                       result.series.units)
   local derived = {}
+  -- The bath temperatures the engine applied (params.json's kT is 0 for active cells, whose
+  -- background is background_factor x their free-particle temperature: docs/model.md).
+  if tissue.cell_method then derived.cells_kT = tissue.cell_method:params().kT end
+  if tissue.vertex_method then derived.vertices_kT = tissue.vertex_method:params().kT end
+  if tissue.dyn and tissue.dyn:wall_state() then derived.piston_kT = tissue.dyn:wall_state().kT end
   if s.T_c and s.T_a and p.P > 0 then
     derived.kT_over_P = s.T_c.mean / p.P
     derived.kT_c_paper_over_P = 2 * derived.kT_over_P
