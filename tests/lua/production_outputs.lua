@@ -94,6 +94,11 @@ assert(math.abs(d.kT_over_P - T_c / p.P) <= 1e-12 * d.kT_over_P, "derived.kT_ove
 assert(math.abs(d.kT_c_paper_over_P - 2 * T_c / p.P) <= 1e-12 * d.kT_c_paper_over_P,
        "derived.kT_c_paper_over_P = 2 T_c/P")
 assert(math.abs(d.T_c_over_T_a - T_c / T_a) <= 1e-12 * d.T_c_over_T_a, "derived.T_c_over_T_a")
+-- The bath temperatures applied: the quench above gave the cells, the vertices and the piston
+-- the same kT.
+assert(d.cells_kT == p.kT and d.vertices_kT == p.kT and d.piston_kT == p.kT,
+       string.format("derived bath temperatures %s, %s, %s; kT = %g", tostring(d.cells_kT),
+                     tostring(d.vertices_kT), tostring(d.piston_kT), p.kT))
 -- The averages are over the last half of the rows (floor(n/2): the window of
 -- scripts/invasim_analysis/steady.py too), as series.csv holds them (%.10g).
 local rows = {}
