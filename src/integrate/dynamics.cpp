@@ -333,6 +333,10 @@ void Dynamics::sites_changed(const SiteChange& change) {
 
 void Dynamics::set_dt(double dt) {
   require_time_step(dt);
+  // The same step keeps the prepared forces: preparing them again would evaluate the next
+  // step's damping with the full-step velocity, not the half-step one, and a script that sets
+  // the step it already has (a second quench) would leave the trajectory it continues.
+  if (dt == dt_) return;
   dt_ = dt;
   prepared_ = false;
 }

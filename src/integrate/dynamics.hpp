@@ -107,6 +107,7 @@ class Dynamics {
  public:
   explicit Dynamics(double dt);
   double dt() const { return dt_; }
+  // A new time step; the forces are prepared again before the next step (the same step: no-op).
   void set_dt(double dt);
   void add(std::shared_ptr<Method> method) {
     methods_.push_back(std::move(method));

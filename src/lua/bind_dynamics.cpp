@@ -183,11 +183,7 @@ void open_dynamics(lua_State* L) {
        // steps run in the parallel team by more than one thread (Dynamics::parallel_steps)
        getter<DynamicsHandle, [](const DynamicsHandle& d) { return d.dynamics.parallel_steps(); }>(
            "parallel_steps"),
-       method<"set_dt",
-              [](DynamicsHandle& d, double dt) {
-                d.dynamics.set_dt(dt);
-                d.dynamics.invalidate();
-              }>(),
+       method<"set_dt", [](DynamicsHandle& d, double dt) { d.dynamics.set_dt(dt); }>(),
        // steps between two choices of the engine order (Dynamics::sort_every)
        method<"set_sort_every",
               [](DynamicsHandle& d, std::uint64_t n) { d.dynamics.set_sort_every(n); }>(),
@@ -197,6 +193,7 @@ void open_dynamics(lua_State* L) {
               [](DynamicsHandle& d, double kT) {
                 const auto wall = require_pressure_wall(d, "set_wall_kT");
                 if (!(kT >= 0.0)) fail_input("kT = ", kT, " must be >= 0");
+                if (kT == wall->kT) return;  // unchanged: the prepared forces stay (set_dt)
                 wall->kT = kT;
                 d.dynamics.invalidate();
               }>(),
