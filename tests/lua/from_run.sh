@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Test: `invasim run --from RUN_DIR` starts from the compressed tissue that RUN_DIR
 # saved (no compression of its own), with its own seed and the parameters that act after the
-# compression; a run whose own tissue would differ (A_0, start, L0) is refused before any work.
+# compression; a run whose own tissue would differ (A_0, start, L0, eps_a; beta after a cohesive
+# compression) is refused before any work.
 set -euo pipefail
 invasim=$1
 work=$2
@@ -11,7 +12,7 @@ args=(run ../../protocols/invasion.lua --set N_a=4 --set N_c=60 --set L0=32.0 --
       --set steps=400 --set every=200 --set snapshot_every=0)
 "$invasim" "${args[@]}" --out "$work/first" > "$work/first.log" 2>&1
 [ -f "$work/first/checkpoint/compressed.ckpt" ] || { echo "FAILED: no compressed.ckpt"; exit 1; }
-"$invasim" "${args[@]}" --seed 7 --set P=2e-3 --from "$work/first" --out "$work/second" > "$work/second.log" 2>&1 ||
+"$invasim" "${args[@]}" --seed 7 --set P=2e-3 --set beta=1e-3 --from "$work/first" --out "$work/second" > "$work/second.log" 2>&1 ||
   { echo "FAILED: second run"; cat "$work/second.log"; exit 1; }
 grep -q "compress: skipped: the compressed tissue of $work/first" "$work/second.log" ||
   { echo "FAILED: did not start from the first run"; cat "$work/second.log"; exit 1; }
@@ -41,4 +42,17 @@ grep -q "start = demixed, this run's is start = mixed" "$work/sixth.log" ||
   { echo "FAILED: another L0 was accepted"; exit 1; }
 grep -q "started from L0 = 32 (system reduced), this run's would start from L0 = 30" "$work/seventh.log" ||
   { echo "FAILED: L0 message"; cat "$work/seventh.log"; exit 1; }
+# The shape energies shape the compressed tissue too; the contact parameters only when the
+# source compressed with its cells' cohesion on (the first run did not: the second run's beta
+# below may differ).
+! "$invasim" "${args[@]}" --set eps_a=2 --from "$work/first" --out "$work/eighth" > "$work/eighth.log" 2>&1 ||
+  { echo "FAILED: another eps_a was accepted"; exit 1; }
+grep -q "its tissue was made with eps_a = 1, this run's is eps_a = 2" "$work/eighth.log" ||
+  { echo "FAILED: eps_a message"; cat "$work/eighth.log"; exit 1; }
+"$invasim" "${args[@]}" --set cohesive_compression=true --out "$work/cohesive" > "$work/cohesive.log" 2>&1 ||
+  { echo "FAILED: cohesive compression"; cat "$work/cohesive.log"; exit 1; }
+! "$invasim" "${args[@]}" --set cohesive_compression=true --set beta=1e-3 --from "$work/cohesive" --out "$work/ninth" > "$work/ninth.log" 2>&1 ||
+  { echo "FAILED: another beta was accepted for a tissue compressed with cohesion"; exit 1; }
+grep -q "its tissue was made with beta = 0.01, this run's is beta = 0.001" "$work/ninth.log" ||
+  { echo "FAILED: beta message"; cat "$work/ninth.log"; exit 1; }
 echo "from_run: the second run started from the first run's compressed tissue (L_f = $first_box)"
