@@ -77,7 +77,13 @@ class Box {
           }
           r[a] -= shift * len;
           image[a] += static_cast<int>(shift);
-          if (r[a] >= hi_[a]) r[a] = lo_[a];  // guards round-off at the upper edge
+          // Round-off at the upper edge (r just below lo, r + len rounding to hi; or a floor one
+          // short): the site is one more period up, at lo. The image count must follow, or the
+          // unwrapped position would lose a whole period (and again at every step it stays there).
+          if (r[a] >= hi_[a]) {
+            r[a] = lo_[a];
+            ++image[a];
+          }
         }
       }
   }

@@ -165,6 +165,23 @@ TEST_CASE("a site flying out through a wall stops the run") {
   CHECK(s.sys.sites().pos[3][0] > s.sys.box().hi()[0] + 50.0);
 }
 
+TEST_CASE("Box::wrap keeps the unwrapped position of a site just below the lower edge") {
+  // r = -1e-17: r + L rounds to hi, which the round-off guard maps to lo; the image count must
+  // not lose the period (it did: unwrapped -10, and again at every step the site stayed there).
+  const Box box(Vec3(0.0, 0.0, 0.0), Vec3(10.0, 10.0, 10.0), {false, true, true});
+  for (double y : {-1e-17, -4e-16, -1e-300, 10.0 - 1e-15, 20.0}) {
+    Vec3 r(5.0, y, 5.0);
+    Vec3i image(0, 2, 0);
+    box.wrap(r, image);
+    CHECK(r[1] >= 0.0);
+    CHECK(r[1] < 10.0);
+    CHECK(box.unwrap(r, image)[1] == Approx(y + 20.0).margin(1e-12));
+  }
+  System sys(box, 1);
+  const int i = sys.add_sphere(Vec3(5.0, -1e-17, 5.0), 1.0);
+  CHECK(sys.unwrapped(std::size_t(i))[1] == Approx(0.0).margin(1e-12));
+}
+
 TEST_CASE("a site flung beyond an int's image count along a periodic axis stops the run") {
   // Box::wrap cannot count 1e12 box lengths in an int image (the conversion was undefined
   // behaviour, caught by UBSan): the coordinate becomes infinite and the guard reports it.
