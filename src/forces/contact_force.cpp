@@ -163,8 +163,41 @@ void ContactForce::add_forces_impl(System& sys, RowScratch& scratch) {
   team_barrier();
 }
 
+namespace {
+
+// Contacts between the vertices of one body are excluded, and with them those between a body
+// and its own periodic images: a body whose vertex spheres reach across a periodic axis would
+// overlap its image with no force at all (one adipocyte of outer diameter 6 compressed into
+// L = 5.1). Checked at every forced rebuild of the list (first evaluation, box change, new
+// layout, i.e. at least at the start of every run of steps).
+void require_bodies_clear_of_their_images(const System& sys) {
+  const Box& box = sys.box();
+  const Sites& s = sys.sites();
+  for (std::size_t b = 0; b < sys.bodies().size(); ++b) {
+    const int nv = sys.bodies()[b].n_vertices();
+    Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
+    double d_max = 0.0;
+    for (int v = 0; v < nv; ++v) {
+      const int slot = sys.body_slot(int(b), v);
+      const Vec3 u = sys.unwrapped(std::size_t(slot));
+      lo = lo.cwiseMin(u);
+      hi = hi.cwiseMax(u);
+      d_max = std::max(d_max, s.diameter[std::size_t(slot)]);
+    }
+    for (int a = 0; a < 3; ++a)
+      if (box.periodic(a) && hi[a] - lo[a] + d_max > box.length(a))
+        fail_input("adipocyte ", b, " spans ", hi[a] - lo[a], " + its vertex diameter ", d_max,
+                   " along ", "xyz"[a], ", more than the periodic box length ", box.length(a),
+                   ": it would overlap its own periodic image, and the vertices of one body do "
+                   "not interact; enlarge the box");
+  }
+}
+
+}  // namespace
+
 void ContactForce::prepare_team(System& sys, const ForceFlags& flags) {
   list_.prepare_update(sys);  // throws for a periodic box too short for the cutoffs
+  if (list_.rebuild_forced()) require_bodies_clear_of_their_images(sys);
   const std::size_t n = sys.n_sites();
   if (list_.rebuild_forced() || table_.n_sites() != n) table_.build(sys.sites(), params_);
   if (flags.energy) site_energy_.resize(n);

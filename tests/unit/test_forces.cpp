@@ -671,6 +671,22 @@ TEST_CASE(
   CHECK(wf->right_wall_force() == Approx(right).epsilon(1e-13));
 }
 
+TEST_CASE("contacts refuse a body that would overlap its own periodic image") {
+  // Vertices of one body do not interact, images included: an adipocyte of outer diameter 6
+  // (vertices at radius 2, diameter 2) in L_y = 5.5 would overlap its image by 0.5 with no
+  // force (the list's own box check, reach 2.3, passes). L_y = 6.5 leaves a gap.
+  for (const double L : {5.5, 6.5}) {
+    System sys(Box(Vec3::Zero(), Vec3(12.0, L, 12.0), {false, true, true}), 1);
+    sys.add_mesh_scaled(icosphere(1), Vec3(6.0, 0.1, 6.0), 2.0, 2.0, 1.1);  // across y = 0
+    ContactForce contact(ContactParams{});
+    if (L < 6.0)
+      CHECK_THROWS_WITH(contact.add_forces(sys, {true, false}),
+                        Catch::Matchers::Contains("overlap its own periodic image"));
+    else
+      CHECK_NOTHROW(contact.add_forces(sys, {true, false}));
+  }
+}
+
 TEST_CASE("wall forces are minus the gradient of the wall energy (finite differences)") {
   SECTION("sites near both walls, some slightly beyond") {
     System sys = near_walls(120, 31);
