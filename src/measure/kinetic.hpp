@@ -7,7 +7,8 @@
 
 namespace invasim {
 
-// kT of the sites (0 for an empty list). Indices must be valid sites of sys.
+// kT of the sites; NaN for an empty list (no cells left, a tissue without adipocytes: the
+// temperature is undefined, and a 0 would read as a frozen group). Indices must be valid sites.
 double temperature(const System& sys, const std::vector<int>& sites);
 
 }  // namespace invasim

@@ -31,6 +31,10 @@ CompressionReport compress_to_phi(System& sys, ForceField& ff, const Compression
   if (!control.resume && phi > params.target_phi)
     fail_input("compress: the packing fraction is already ", phi, ", above the target ",
                params.target_phi, "; use rescale to expand");
+  if (!control.resume && !(phi > 0.0))
+    fail_input("compress: the packing fraction is ", phi,
+               " (no cancer cells and no adipocytes "
+               "with a volume V_i): there is nothing to compress");
   while (control.resume || phi < params.target_phi * (1.0 - 1e-12)) {
     if (!control.resume) {
       if (report.steps >= params.max_steps)
@@ -70,6 +74,9 @@ FireResult rescale_to_phi_a(System& sys, ForceField& ff, double phi_a, const Fir
                             const FireControl* control) {
   if (!(phi_a > 0.0 && phi_a < 1.0)) fail_input("rescale: phi_a = ", phi_a, " must be in (0, 1)");
   const double now = packing_fractions(sys).adipocyte;
+  if (!(now > 0.0))
+    fail_input("rescale: the adipocyte packing fraction is ", now,
+               " (no adipocytes): no box reaches phi_a = ", phi_a);
   sys.scale(Vec3::Constant(std::cbrt(now / phi_a)), true);
   return Fire(fire).minimize(sys, ff, nullptr, control);
 }

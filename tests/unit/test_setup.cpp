@@ -523,4 +523,11 @@ TEST_CASE("rescale reaches the requested adipocyte packing fraction, bodies rigi
   CHECK((relaxed.box().hi() - sys.box().hi()).norm() == 0.0);
   CHECK(measured_phi_a(relaxed) == Approx(0.05).epsilon(0.05));
   CHECK_THROWS_WITH(rescale_to_phi_a(sys, ff, 1.5, fp), Contains("phi_a = 1.5 must be in (0, 1)"));
+  // Nothing to scale: no adipocytes (phi_a = 0; the box would shrink to 0), an empty System
+  // (phi = 0; the compression's box would be NaN). Both named, not a box error.
+  System cells_only = dilute_start(0, 200, 9);
+  System empty(Box(Vec3::Zero(), Vec3::Constant(10.0), {false, true, true}), 9);
+  CHECK_THROWS_WITH(rescale_to_phi_a(cells_only, ff, 0.5, fp), Contains("(no adipocytes)"));
+  CompressionParams cp;
+  CHECK_THROWS_WITH(compress_to_phi(empty, ff, cp), Contains("there is nothing to compress"));
 }
