@@ -22,9 +22,9 @@ invasim=$1 specs=$2 work=$3 python=$4
 source "$(dirname "$0")/../lua/wait_for.sh"
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 
-# The points run 100000 steps (seconds, not tiny.lua's milliseconds): the point whose
+# The points run 40000 steps (seconds, not tiny.lua's milliseconds): the point whose
 # checkpoint was seen is still running when SIGINT arrives.
-long=(--set steps=100000 --set checkpoint_every=2000)
+long=(--set steps=40000 --set checkpoint_every=2000)
 "$invasim" sweep init "$specs/tiny.lua" --workspace ws "${long[@]}" > init.log || fail "init" init.log
 grep -q "4 new points, 0 kept" init.log || fail "init did not report 4 new points" init.log
 [ "$(cat ws/.signac/config)" = "schema_version = 2" ] || fail ".signac/config is not schema 2"
@@ -36,7 +36,7 @@ assert len(ids) == 4, ids
 for i in ids:
     sp = json.load(open(os.path.join(ws, "workspace", i, "signac_statepoint.json")))
     assert hashlib.md5(json.dumps(sp, sort_keys=True).encode()).hexdigest() == i, (i, sp)
-    assert sp["N_c"] == 40 and isinstance(sp["kT"], float) and isinstance(sp["seed"], int), sp
+    assert sp["N_c"] == 200 and isinstance(sp["kT"], float) and isinstance(sp["seed"], int), sp
 PY
 
 # 2. Stop the sweep once some point has written a checkpoint.

@@ -14,10 +14,11 @@ local function check(ok, fmt, ...)
   print("ok: " .. msg)
 end
 
--- Compresses a fresh small tissue (2 adipocytes, 40 cells) with the stage; returns the FIRE
+-- Compresses a fresh small tissue (2 adipocytes, 200 cells: with fewer, each adipocyte would
+-- reach across the box to its own periodic image) with the stage; returns the FIRE
 -- iterations of the compression steps and the final FIRE, and the final phi and max force.
 local function compress(eps_v, dt_max)
-  local tissue = require("lib.init"){ N_a = 2, N_c = 40, L0 = 26.0, seed = 1, eps_v = eps_v }
+  local tissue = require("lib.init"){ N_a = 2, N_c = 200, L0 = 26.0, seed = 1, eps_v = eps_v }
   local r = require("lib.compress")(tissue, { to_phi = 0.72, progress = false, dt_max = dt_max })
   return r.fire_steps + r.final.steps, tissue.sys:packing().total, r
 end

@@ -3,7 +3,7 @@
 -- (tests/app/sweep_slurm.sh), not left waiting for a dependency that can never be satisfied.
 return {
   protocol = "../../../protocols/invasion.lua",
-  set = { N_a = 2, N_c = 40, quench_steps = 50, steps = 100, every = 50, snapshot_every = 0,
+  set = { N_a = 2, N_c = 200, quench_steps = 50, steps = 100, every = 50, snapshot_every = 0,
           checkpoint_every = 0, correlate_every = 0 },
   product = { kT = { 1e-4, 1e-3 } },
   seeds = { 1 },

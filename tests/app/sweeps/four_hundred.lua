@@ -4,6 +4,6 @@ local seeds = {}
 for i = 1, 400 do seeds[i] = i end
 return {
   protocol = "../../../protocols/invasion.lua",
-  set = { N_a = 2, N_c = 40, steps = 1000 },
+  set = { N_a = 2, N_c = 200, steps = 1000 },
   seeds = seeds,
 }

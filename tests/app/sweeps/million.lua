@@ -8,6 +8,6 @@ for i = 1, 100 do
 end
 return {
   protocol = "../../../protocols/invasion.lua",
-  set = { N_a = 2, N_c = 40, quench_steps = 100, steps = 1000, every = 50 },
+  set = { N_a = 2, N_c = 200, quench_steps = 100, steps = 1000, every = 50 },
   product = { kT = kT, f0 = f0, tau_p = tau_p },
 }

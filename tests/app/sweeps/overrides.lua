@@ -2,7 +2,7 @@
 -- a zip of 3 (tau_p, beta) pairs x 2 seeds, with a shared preparation that sets its own steps.
 return {
   protocol = "../../../protocols/invasion.lua",
-  set = { N_a = 2, N_c = 40, background_factor = 0, quench_steps = 100, steps = 1000, every = 50 },
+  set = { N_a = 2, N_c = 200, background_factor = 0, quench_steps = 100, steps = 1000, every = 50 },
   product = { kT = { 1e-4, 1e-3, 1e-2 }, f0 = { 0.0, 0.01 } },
   zip = { { tau_p = { 25.0, 250.0, 2500.0 }, beta = { 0.0, 1e-3, 1e-2 } } },
   seeds = { 1, 2 },
