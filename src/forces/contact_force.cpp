@@ -168,8 +168,9 @@ namespace {
 // Contacts between the vertices of one body are excluded, and with them those between a body
 // and its own periodic images: a body whose vertex spheres reach across a periodic axis would
 // overlap its image with no force at all (one adipocyte of outer diameter 6 compressed into
-// L = 5.1). Checked at every forced rebuild of the list (first evaluation, box change, new
-// layout, i.e. at least at the start of every run of steps).
+// L = 5.1). Checked at every rebuild of the list from scratch: the first evaluation, a new box
+// (compression, rescale) and a new storage layout (the engine order, chosen again every
+// Dynamics::sort_every steps).
 void require_bodies_clear_of_their_images(const System& sys) {
   const Box& box = sys.box();
   const Sites& s = sys.sites();
