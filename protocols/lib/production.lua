@@ -2,8 +2,9 @@
 -- `steps` steps with observers attached and returns the series and a summary: time averages
 -- over the last `average_fraction` of the run with error bars (src/measure/mean_error.hpp), the
 -- correlation times and shape statistics. The run is an invasim.Simulation (src/run/) whose
--- operations each have their own schedule, called in this order at a step where several
--- are due:
+-- operations each have their own schedule, at the System's steps that are multiples of their
+-- interval (so with quench_steps = 1500 and every = 1000 the first row is at step 2000, 500
+-- steps in), called in this order at a step where several are due:
 --   every `correlate_every` steps: the cancer cells' correlators (C_vv, <n.n>, MSD, F_s)
 --   every `every` steps:           thermo columns, A_t (Voronoi) if `interface`, energies if
 --                                  `energy`; one row of the series (series.csv in `out`)
