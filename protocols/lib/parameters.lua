@@ -165,7 +165,8 @@ local cohesion_keys = { "beta", "alpha", "beta_cv", "alpha_cv" }
 
 -- A run started --from DIR takes DIR's compressed tissue in place of its own: refuses, before
 -- any work, a run whose own tissue would differ (a parameter of tissue_keys, of cohesion_keys
--- when DIR compressed with cohesion, or the initial box), naming the parameter, instead of running the source's tissue under this run's value.
+-- when DIR compressed with cohesion, or the initial box), naming the parameter, instead of
+-- running the source's tissue under this run's value.
 -- The seed may differ (it drives the dynamics from there on); DIR without params.json (a
 -- script's own run directory) is not checked.
 function M.check_from(p, from)
@@ -178,13 +179,15 @@ function M.check_from(p, from)
                         "the compressed tissue is the source's: --set %s=%s, or run without --from",
                         from, key, show(theirs), key, show(ours), key, show(theirs)), 0)
   end
-  local keys = { table.unpack(tissue_keys) }
-  if source.cohesive_compression then table.move(cohesion_keys, 1, #cohesion_keys, #keys + 1, keys) end
-  for _, key in ipairs(keys) do
-    if source[key] ~= nil and p[key] ~= nil and source[key] ~= p[key] then
-      refuse(key, source[key], p[key])
+  local function compare(keys)
+    for _, key in ipairs(keys) do
+      if source[key] ~= nil and p[key] ~= nil and source[key] ~= p[key] then
+        refuse(key, source[key], p[key])
+      end
     end
   end
+  compare(tissue_keys)
+  if source.cohesive_compression then compare(cohesion_keys) end
   -- The numbers of adipocytes and cells are compared by the checkpoint's loading (sites and
   -- bodies); the initial box, which compression scales, only here.
   if source.system and presets[source.system] and source.L0 then

@@ -33,8 +33,8 @@ CompressionReport compress_to_phi(System& sys, ForceField& ff, const Compression
                params.target_phi, "; use rescale to expand");
   if (!control.resume && !(phi > 0.0))
     fail_input("compress: the packing fraction is ", phi,
-               " (no cancer cells and no adipocytes "
-               "with a volume V_i): there is nothing to compress");
+               " (no cancer cells and no adipocytes with a volume V_i): there is nothing to "
+               "compress");
   while (control.resume || phi < params.target_phi * (1.0 - 1e-12)) {
     if (!control.resume) {
       if (report.steps >= params.max_steps)

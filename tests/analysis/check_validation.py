@@ -486,7 +486,7 @@ check(not curves5["beta = 0.001, tau_p = 2500"]["in_collapse"]
 check(os.path.getsize(os.path.join(work, "fig5_An.png")) > 1000)
 
 # fig5_long's curves replace those of the same beta and tau_p only when they ran longer: a
-# sweep file made longer since (fig5_active.lua: 4e6 steps, fig5_long.lua: 1e6) keeps its own.
+# main sweep file with longer runs (fig5_active.lua: 4e6 steps, fig5_long.lua: 1e6) keeps its own.
 for long_steps, want_replaced in ((10, False), (80, True)):
     shutil.rmtree(work, ignore_errors=True)
     main5 = [tissue_job(os.path.join(work, "m%d" % k), 0.001 * (k + 1), x, a, False,

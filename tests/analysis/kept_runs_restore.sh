@@ -4,7 +4,7 @@
 # state points change (a parameter added to its `set`, an axis changed) strands its kept
 # points: they can no longer be recomputed under changed criteria or continued.
 # Stale: sweeps whose kept points were run under an earlier version of their sweep file (the
-# Fig. 5 sweeps, whose files now ask for 16 times longer runs than the kept ones). They must
+# Fig. 5 sweeps, whose files ask for 16 times longer runs than the kept ones). They must
 # fail to restore, so that the list is emptied when their runs are replaced.
 # Usage: kept_runs_restore.sh INVASIM REPO WORKDIR
 set -euo pipefail

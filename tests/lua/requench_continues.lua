@@ -1,8 +1,8 @@
 -- Test: a second quench with unchanged options (tethered.lua's "equilibrate") continues the
 -- trajectory exactly: quench(n) + quench(m) gives the state of quench(n + m), for active,
--- passive and damped-vertex motion. (It called set_dt and set_wall_kT unconditionally, which
--- made the engine prepare its forces again, re-evaluating the next step's damping with the
--- full-step velocity: the trajectories parted at ~1e-5 sigma after 300 steps.)
+-- passive and damped-vertex motion. The second quench sets the time step and the piston's kT
+-- it already has; preparing the forces again for that would re-evaluate the next step's
+-- damping with the full-step velocity, and the trajectories would part (~1e-5 sigma).
 package.path = "../../protocols/?.lua;" .. package.path
 local stage = require("lib.stages")
 local function run(split, opts)

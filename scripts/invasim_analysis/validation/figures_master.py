@@ -80,8 +80,8 @@ def _curves(jobs, passive_jobs, long_jobs, extra_jobs):
         curves.setdefault(key, []).extend(pts)
     replaced = {}
     # A "long" curve replaces the curve of the same beta and tau_p only if its runs are
-    # longer: the sweep files' lengths change (fig5_active.lua went from 2.5e5 to 4e6 steps,
-    # longer than fig5_long.lua's 1e6), and a shorter curve must not replace a longer one.
+    # longer: the sweep files set their own lengths (fig5_active.lua 4e6 steps, fig5_long.lua
+    # 1e6), and a shorter curve must not replace a longer one.
     short_by_key = workspace.group(jobs + (extra_jobs or []), ["beta", "tau_p"])
     long_by_key = workspace.group(long_jobs, ["beta", "tau_p"]) if long_jobs else {}
     for key, pts in (_curve_points(long_jobs, ["beta", "tau_p"]).items() if long_jobs else []):
