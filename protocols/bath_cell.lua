@@ -11,8 +11,22 @@ local stage = require("lib.stages")
 local motion = require("lib.motion")
 local log = require("lib.log")
 
-local p = iv.params(parameters.declarations())
+local declared = parameters.declarations()
+local p = iv.params(declared)
 parameters.validate(p)
+-- The production below fixes these keys and reports k_B T_c / (P sigma^3): a value given for
+-- one of them would be ignored, and P = 0 leaves the ratio undefined.
+for _, key in ipairs{ "correlate_every", "lags", "origin_every", "snapshot_every" } do
+  local off = key:match("_every$") and p[key] == 0  -- "none", as here
+  if p[key] ~= declared[key][1] and not off then
+    error(string.format("--set %s=%s: bath_cell measures the thermo columns only (no " ..
+                        "correlators or snapshots), so %s would be ignored", key, tostring(p[key]),
+                        key))
+  end
+end
+if not (p.P > 0) then
+  error("--set P=0: bath_cell reports k_B T_c / (P sigma^3), undefined at P = 0; set P > 0")
+end
 local N_a, N_c, L0 = parameters.size(p)
 local out = require("lib.run_dir").open(p)
 

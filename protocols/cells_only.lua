@@ -99,13 +99,15 @@ local result = production(tissue, {
 local s = result.summary
 
 -- Side by side: measured tau_d (both normalisations) and the free particle's.
-local function opt(x) return x and string.format("%.4g", x) or "not reached" end
+local function opt(x, name)
+  return x and (string.format("%.4g", x) .. (s[name .. "_unresolved"] and " (unresolved)" or "")) or "not reached"
+end
 log.say("summary", "%d cells, phi_c = %.4f, box %s; t = %g (%d steps); wall-clock %.1f s", tissue.cells:size(),
         sys:packing().cancer, log.box(sys:box().lengths), sys:time(), sys:step(), iv.clock() - clock)
 log.say("summary", "T_c = %.4g (paper's convention %.4g); tau_g = %g, tau_p = %g, window %g",
         s.T_c.mean, 2 * s.T_c.mean, tau_g, p.tau_p, s.correlation_window)
 log.say("summary", "tau_d = %s (paper's per-particle C_vv), tau_d_standard = %s, tau_d_free = %.4g (free-particle formula%s)",
-        opt(s.tau_d), opt(s.tau_d_standard), tau_d_free, p.kT > 0 and ", exact only for kT = 0" or "")
+        opt(s.tau_d, "tau_d"), opt(s.tau_d_standard, "tau_d_standard"), tau_d_free, p.kT > 0 and ", exact only for kT = 0" or "")
 if s.tau_d_standard then
   log.say("summary", "tau_d_standard / tau_d_free = %.4f", s.tau_d_standard / tau_d_free)
 end
@@ -114,6 +116,7 @@ if out then
     N_c = tissue.cells:size(), phi_c = sys:packing().cancer, box = sys:box().lengths,
     tau_g = tau_g, tau_p = p.tau_p, f0 = p.f0, kT = p.kT,
     tau_d = s.tau_d, tau_d_standard = s.tau_d_standard, tau_d_free = tau_d_free,
+    tau_d_unresolved = s.tau_d_unresolved, tau_d_standard_unresolved = s.tau_d_standard_unresolved,
     correlation_window = s.correlation_window, correlate_every = correlate_every,
     equilibrate_steps = equilibrate, steps = sys:step(), time = sys:time(),
     averages = { T_c = s.T_c, phi_c = s.phi_c, L_x = s.L_x }, samples = s.samples,

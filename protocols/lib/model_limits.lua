@@ -16,8 +16,9 @@
 --                      sqrt(vertex_mass) (M.max_dt); and dt >= 1e-9: a smaller step moves a
 --                      body at the model's speeds (~1e-2 sigma/tau) by less than 1e3 rounding
 --                      units of its position, and the temperatures come out as 0/0;
---   gamma, vertex_gamma  gamma dt / (2 m) <= 0.5 (m = 1): the integrator's half-step
---                      velocities are hotter by 1 / (1 - gamma dt / (2 m)), which diverges at 1;
+--   gamma, vertex_gamma  gamma dt / (2 m) <= 0.5 (m = 1 for the cells, vertex_mass for the
+--                      vertices): the integrator's half-step velocities are hotter by
+--                      1 / (1 - gamma dt / (2 m)), which diverges at 1;
 --   tau_p              0 (a fresh orientation every step) or exp(-dt / tau_p) >= 1e-20: a
 --                      smaller tau_p is tau_p = 0 in all but its rounding;
 --   A_0 <= 3           the paper's 1.0-1.3; a cube has 1.38; the reference area grows as
@@ -27,7 +28,11 @@
 --   every <= steps     (when steps > 0) a longer interval leaves series.csv without a row;
 --                      snapshot_every, checkpoint_every and correlate_every larger than steps
 --                      mean "none in this run" (a sweep may fix them while its points vary
---                      steps), as 0 does;
+--                      steps; the start's frame is still written);
+--   lipolysis_every, proliferation_every <= steps  (when their rates are > 0) they apply at
+--                      the multiples of the interval within the production: a longer one
+--                      applies once, for part of the run, or never;
+--   mean_degree <= N_a - 1  (tethered protocols) all pairs tethered;
 --   compress_ftol, final_ftol  at least 10 rounding units of the forces: the residual force
 --                      of a minimised tissue cannot go below eps (2.2e-16) x the box side x
 --                      the stiffest spring (64 eps_v / 1e3 for the volume mode, 1/0.81 for a
@@ -128,13 +133,14 @@ local function check_time_step(p)
     fail("dt = %g: velocity Verlet is unstable in the stiffest mode (%s) above dt = %.3g; the " ..
          "first steps would blow up", dt, mode, limit)
   end
+  -- The cells have unit mass, the vertices vertex_mass.
   for _, key in ipairs{ "gamma", "vertex_gamma" } do
-    local g = p[key]
-    if g and g * dt / 2 > M.max_damping then
-      fail("%s = %g with dt = %g: gamma dt / (2 m) = %.3g must be at most %g (the integrator's " ..
-           "half-step velocities are hotter by 1 / (1 - gamma dt / (2 m)), which diverges at 1); " ..
-           "%s must be at most %.3g", key, g, dt, g * dt / 2, M.max_damping, key,
-           2 * M.max_damping / dt)
+    local g, m = p[key], key == "vertex_gamma" and p.vertex_mass or 1
+    if g and g * dt / (2 * m) > M.max_damping then
+      fail("%s = %g with dt = %g and m = %g: gamma dt / (2 m) = %.3g must be at most %g (the " ..
+           "integrator's half-step velocities are hotter by 1 / (1 - gamma dt / (2 m)), which " ..
+           "diverges at 1); %s must be at most %.3g", key, g, dt, m, g * dt / (2 * m),
+           M.max_damping, key, 2 * M.max_damping * m / dt)
     end
   end
   local tau_p = p.tau_p
@@ -161,9 +167,29 @@ local function check_box(p, N_a, N_c, L0)
 end
 
 local function check_intervals(p)
-  if p.every and p.steps and p.steps > 0 and p.every > p.steps then
+  if not (p.steps and p.steps > 0) then return end
+  if p.every and p.every > p.steps then
     fail("every = %d is larger than steps = %d: series.csv would have no row; set every to at " ..
          "most %d", p.every, p.steps, p.steps)
+  end
+  local applied = { lipolysis = (p.lipolysis_rate or 0) > 0,
+                    proliferation = (p.division_rate or 0) > 0 or (p.death_rate or 0) > 0 }
+  for _, what in ipairs{ "lipolysis", "proliferation" } do
+    local every = p[what .. "_every"]
+    if applied[what] and every and every > p.steps then
+      fail("%s_every = %d is larger than steps = %d: %s applies at the multiples of %d within " ..
+           "the production, once for part of it or never; set %s_every to at most %d", what,
+           every, p.steps, what, every, what, p.steps)
+    end
+  end
+end
+
+-- The tethered protocols' network: the closest pairs of adipocytes, mean_degree per adipocyte.
+local function check_tethers(p, N_a)
+  if p.mean_degree and p.mean_degree > N_a - 1 then
+    fail("mean_degree = %g is more than %d, the degree of every adipocyte when all %d are " ..
+         "tethered to each other; set mean_degree to at most %d", p.mean_degree, N_a - 1, N_a,
+         N_a - 1)
   end
 end
 
@@ -208,6 +234,7 @@ function M.check(params, N_a, N_c, L0)
   end
   check_box(p, N_a, N_c, L0)
   check_intervals(p)
+  check_tethers(p, N_a)
   check_tolerances(p, L0)
 end
 

@@ -42,6 +42,9 @@ function M.vertex_method(group, o)
 end
 
 function M.describe_vertices(o, mass)
+  if o.vertex_gamma == 0 then  -- Langevin or damped: no friction, no noise
+    return string.format("undamped vertices (vertex_gamma = 0: no bath, mass = %g)", mass)
+  end
   if o.vertex_bath == "langevin" then
     return string.format("Langevin vertices (gamma = %g, kT = %g, mass = %g)", o.vertex_gamma,
                          M.vertex_kT(o), mass)

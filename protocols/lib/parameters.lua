@@ -144,6 +144,23 @@ local function check_combinations(p)
   end
   local bad_kT = require("lib.motion").check_vertex_kT(p.vertex_bath, p.vertex_kT)
   if bad_kT then error(bad_kT .. ": --set vertex_bath=langevin, or leave vertex_kT at 0", 0) end
+  -- Without friction a temperature has no bath (the Langevin noise sqrt(2 gamma kT m / dt) is 0)
+  -- and a self-propulsion force no terminal speed (f0/gamma).
+  if p.gamma == 0 and p.f0 > 0 then
+    error(string.format("f0 = %g with gamma = 0: self-propelled cells without friction " ..
+                        "accelerate without bound (their speed f0/gamma is infinite): --set gamma " ..
+                        "> 0", p.f0), 0)
+  end
+  if p.gamma == 0 and p.kT > 0 then
+    error(string.format("kT = %g with gamma = 0: the cells' Langevin noise sqrt(2 gamma kT m / dt) " ..
+                        "is 0, so kT would do nothing: --set gamma > 0, or kT=0 for Newtonian " ..
+                        "cells", p.kT), 0)
+  end
+  if p.vertex_bath == "langevin" and p.vertex_gamma == 0 and (p.vertex_kT or 0) > 0 then
+    error(string.format("vertex_kT = %g with vertex_gamma = 0: the vertices' Langevin noise " ..
+                        "sqrt(2 gamma kT m / dt) is 0, so vertex_kT would do nothing: --set " ..
+                        "vertex_gamma > 0, or leave vertex_kT at 0", p.vertex_kT), 0)
+  end
   if iv.from then M.check_from(p, iv.from) end
 end
 

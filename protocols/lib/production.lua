@@ -108,6 +108,9 @@ local function shapes(sys, per_body, label)
   return result
 end
 
+-- A decay time read at a lag averaged over fewer time origins than this is logged as such.
+local min_origins = 10
+
 -- The stage: production(tissue, opts); production.keys is its keyword spec (lib/declare.lua
 -- declares protocol parameters from it).
 local function production(tissue, opts)
@@ -186,9 +189,12 @@ local function production(tissue, opts)
   local rows_text = resume.growing_list(rows)  -- each row serialized once, at its first checkpoint
   local sim = iv.Simulation{ system = sys, dynamics = dyn }
   -- Proliferation and lipolysis first: at a step where they are due, the samples and the
-  -- checkpoint see their result.
-  if o.proliferation then sim:proliferation(o.proliferation, { every = o.proliferation_every }) end
-  if o.lipolysis then sim:lipolysis(o.lipolysis, { every = o.lipolysis_every }) end
+  -- checkpoint see their result. Their time starts with the production's (a resumed run's too).
+  local start = end_step - o.steps
+  if o.proliferation then
+    sim:proliferation(o.proliferation, { every = o.proliferation_every, since = start })
+  end
+  if o.lipolysis then sim:lipolysis(o.lipolysis, { every = o.lipolysis_every, since = start }) end
   if correlator then sim:sample(correlator, { every = o.correlate_every }) end
   sim:observe(function()
     if o.proliferation then observers.follow_cells(tissue) end  -- before any observer reads them
@@ -251,15 +257,30 @@ local function production(tissue, opts)
     summary.tau_d = correlator:tau_d()
     summary.tau_d_standard = correlator:tau_d_standard()
     summary.tau_r = correlator:tau_r()
-    local interval, unresolved = o.correlate_every * dyn:dt(), {}
-    summary.correlation_window = o.lags * interval
+    local interval, unresolved, few = o.correlate_every * dyn:dt(), {}, {}
+    local result = correlator:result()
+    local lag_t, origins = result.columns.t, result.columns.origins
+    -- The longest lag the run reached (a run shorter than lags x interval stops before it).
+    summary.correlation_window = lag_t[#lag_t] or 0
     -- A decay time below the first lag is a straight line from C(0) = 1 to C(interval): not
     -- resolved (its bias depends on C's shape between the samples; a few % at tau_d ~ 0.9
-    -- interval). Flagged in summary.json and the log.
+    -- interval). Flagged in summary.json and the log. Each time also records the time origins
+    -- averaged at the lag where the function crossed 1/e: one near the end of a short run
+    -- rests on a few.
     for _, name in ipairs{ "tau_d", "tau_d_standard", "tau_r" } do
-      if summary[name] and summary[name] <= interval then
+      local tau = summary[name]
+      if tau and tau <= interval then
         summary[name .. "_unresolved"] = true
-        unresolved[#unresolved + 1] = string.format("%s = %.4g", name, summary[name])
+        unresolved[#unresolved + 1] = string.format("%s = %.4g", name, tau)
+      end
+      for k = 1, tau and #lag_t or 0 do
+        if lag_t[k] >= tau then
+          summary[name .. "_origins"] = origins[k]
+          if origins[k] < min_origins then
+            few[#few + 1] = string.format("%s = %.4g (%d)", name, tau, origins[k])
+          end
+          break
+        end
       end
     end
     if #unresolved > 0 then
@@ -267,8 +288,12 @@ local function production(tissue, opts)
               "not resolved by its samples; set a smaller correlate_every",
               table.concat(unresolved, ", "), interval, o.correlate_every)
     end
+    if #few > 0 then
+      log.say(o.label, "warning: %s from fewer than %d time origins at their lag: a longer run, " ..
+              "or a smaller origin_every", table.concat(few, ", "), min_origins)
+    end
     if o.out then
-      require("lib.files").write(o.out .. "/correlations.csv", series_file.columns_text(correlator:result()))
+      require("lib.files").write(o.out .. "/correlations.csv", series_file.columns_text(result))
     end
   end
   local shape = shapes(sys, o.slices_per_body, o.label)

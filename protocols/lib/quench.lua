@@ -106,7 +106,9 @@ return function(tissue, opts)
   end
   local box = sys:box()
   local T_c, T_a = sys:temperature(tissue.cells), sys:temperature(tissue.vertices)
-  log.say(o.label, "t = %g, L_x = %.4f, phi = %.4f, T_c = %.3e, T_a = %.3e, T_c/T_a = %.3g",
-          sys:time(), box.lengths[1], sys:packing().total, T_c, T_a, T_c / T_a)
+  -- Both 0 after a quench of no steps (the minimised tissue is at rest): no ratio.
+  local ratio = T_a > 0 and string.format("%.3g", T_c / T_a) or ("undefined (T_a = " .. T_a .. ")")
+  log.say(o.label, "t = %g, L_x = %.4f, phi = %.4f, T_c = %.3e, T_a = %.3e, T_c/T_a = %s",
+          sys:time(), box.lengths[1], sys:packing().total, T_c, T_a, ratio)
   return tissue
 end

@@ -32,11 +32,18 @@ function M.final(tissue, p, result, seconds, out, extra)
                       result.series.units)
   local derived = {}
   -- The bath temperatures the engine applied (params.json's kT is 0 for active cells, whose
-  -- background is background_factor x their free-particle temperature: docs/model.md).
-  if tissue.cell_method then derived.cells_kT = tissue.cell_method:params().kT end
-  if tissue.vertex_method then derived.vertices_kT = tissue.vertex_method:params().kT end
+  -- background is background_factor x their free-particle temperature: docs/model.md); none
+  -- for a method without friction, whose noise is 0 whatever its kT.
+  local function bath_kT(method)
+    local params = method and method:params()
+    if params and params.gamma > 0 then return params.kT end
+  end
+  derived.cells_kT = bath_kT(tissue.cell_method)
+  derived.vertices_kT = bath_kT(tissue.vertex_method)
   if tissue.dyn and tissue.dyn:wall_state() then derived.piston_kT = tissue.dyn:wall_state().kT end
-  if s.T_c and s.T_a and p.P > 0 then
+  -- Means over no sample (or NaN samples: every cell dead) are NaN: no ratios of them.
+  local function finite(x) return x and x.mean == x.mean end
+  if finite(s.T_c) and finite(s.T_a) and p.P > 0 then
     derived.kT_over_P = s.T_c.mean / p.P
     derived.kT_c_paper_over_P = 2 * derived.kT_over_P
     derived.T_c_over_T_a = s.T_c.mean / s.T_a.mean

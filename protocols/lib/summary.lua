@@ -13,7 +13,11 @@ function M.print(label, summary, names, units)
     local s = summary[name]
     if s then
       local unit = units and units[name] or ""
-      if s.error == s.error then
+      if s.mean ~= s.mean then  -- nothing averaged: no sample in the window, or NaN samples
+        log.say(label, "%-8s = undefined (%s)", name,
+                (s.samples or 0) == 0 and "no sample in the averaging window: a smaller every" or
+                string.format("some of its %d samples are not numbers", s.samples))
+      elseif s.error == s.error then
         local lower_bound = s.error_converged == false
         marked = marked or lower_bound
         log.say(label, "%-8s = %.5g +- %.2g %s%s", name, s.mean, s.error, unit, lower_bound and " (*)" or "")

@@ -16,7 +16,7 @@ void write_correlator(CheckpointWriter& out, const TimeCorrelator& c, const std:
   if (!s.site_pairs.empty()) out.put_f64s(prefix + ".site_pairs", s.site_pairs);
 }
 
-void read_correlator(const CheckpointReader& in, TimeCorrelator& c, const std::string& prefix) {
+CorrelatorState read_correlator_state(const CheckpointReader& in, const std::string& prefix) {
   CorrelatorState s;
   s.samples = in.get_u64(prefix + ".samples");
   s.last_time = in.get_f64(prefix + ".last_time");
@@ -27,7 +27,11 @@ void read_correlator(const CheckpointReader& in, TimeCorrelator& c, const std::s
   s.sums = in.get_f64s(prefix + ".sums");
   if (in.has(prefix + ".group")) s.group = in.get_i32s(prefix + ".group");
   if (in.has(prefix + ".site_pairs")) s.site_pairs = in.get_f64s(prefix + ".site_pairs");
-  c.restore(std::move(s));
+  return s;
+}
+
+void read_correlator(const CheckpointReader& in, TimeCorrelator& c, const std::string& prefix) {
+  c.restore(read_correlator_state(in, prefix));
 }
 
 }  // namespace invasim

@@ -35,17 +35,34 @@ void write_method(CheckpointWriter& out, const Method& m, const std::string& pre
   write_ramp(out, m.f0_ramp(), prefix + ".f0_ramp");
 }
 
-void read_method(const CheckpointReader& in, Method& m, const std::string& prefix) {
+namespace {
+
+// The stored group of a method whose cells changed (Proliferation), or none; refuses a
+// stored size that does not fit method m.
+std::optional<std::vector<int>> stored_group(const CheckpointReader& in, const Method& m,
+                                             const std::string& prefix) {
   const std::uint64_t sites = in.get_u64(prefix + ".sites");
-  // A group that cells joined or left (Proliferation) is stored: the restored run takes it.
   if (in.has(prefix + ".group")) {
     std::vector<int> group = in.get_i32s(prefix + ".group");
     if (group.size() != sites)
       in.fail("section ", prefix, ".group holds ", group.size(), " sites, not ", sites);
-    m.set_group(std::move(group));
-  } else if (sites != m.group().size())
+    return group;
+  }
+  if (sites != m.group().size())
     in.fail(prefix, " moves ", sites, " sites in the checkpoint but ", m.group().size(),
             " here (not the same protocol?)");
+  return std::nullopt;
+}
+
+std::string method_prefix(const std::string& prefix, std::size_t k) {
+  return prefix + ".method" + std::to_string(k + 1);
+}
+
+}  // namespace
+
+void read_method(const CheckpointReader& in, Method& m, const std::string& prefix) {
+  // A group that cells joined or left (Proliferation) is stored: the restored run takes it.
+  if (auto group = stored_group(in, m, prefix)) m.set_group(std::move(*group));
   MethodParams p{in.get_f64(prefix + ".gamma"), in.get_f64(prefix + ".kT"),
                  in.get_f64(prefix + ".f0"), in.get_f64(prefix + ".tau_p")};
   p.validate();
@@ -65,7 +82,7 @@ void write_dynamics(CheckpointWriter& out, const Dynamics& d, const std::string&
   }
 }
 
-void read_dynamics(const CheckpointReader& in, Dynamics& d, const std::string& prefix) {
+void check_dynamics(const CheckpointReader& in, const Dynamics& d, const std::string& prefix) {
   const std::uint64_t n = in.get_u64(prefix + ".methods");
   if (n != d.methods().size())
     in.fail("its Dynamics has ", n, " methods, this one ", d.methods().size(),
@@ -74,9 +91,14 @@ void read_dynamics(const CheckpointReader& in, Dynamics& d, const std::string& p
   if (has_wall != bool(d.pressure_wall()))
     in.fail("its Dynamics ", has_wall ? "has a pressure wall, this one has none"
                                       : "has no pressure wall, this one has one");
+  for (std::size_t k = 0; k < n; ++k) stored_group(in, *d.methods()[k], method_prefix(prefix, k));
+}
+
+void read_dynamics(const CheckpointReader& in, Dynamics& d, const std::string& prefix) {
+  check_dynamics(in, d, prefix);  // before the first method changes
   d.set_dt(in.get_f64(prefix + ".dt"));
-  for (std::size_t k = 0; k < n; ++k)
-    read_method(in, *d.methods()[k], prefix + ".method" + std::to_string(k + 1));
+  for (std::size_t k = 0; k < d.methods().size(); ++k)
+    read_method(in, *d.methods()[k], method_prefix(prefix, k));
   if (const auto wall = d.pressure_wall()) {
     read_pressure_wall(in, *wall, prefix + ".pressure_wall");
     wall->pressure_ramp = read_ramp(in, prefix + ".pressure_wall.ramp");

@@ -24,7 +24,12 @@ void read_method(const CheckpointReader& in, Method& method, const std::string& 
 
 void write_dynamics(CheckpointWriter& out, const Dynamics& dynamics,
                     const std::string& prefix = "dynamics");
-// Restores dt, every method and the pressure wall (its WallForce link is left as it is).
+// Checks that the sections fit `dynamics` (as many methods, on groups of the same size, and a
+// pressure wall if and only if the checkpoint has one), naming the mismatch; changes nothing.
+void check_dynamics(const CheckpointReader& in, const Dynamics& dynamics,
+                    const std::string& prefix = "dynamics");
+// Restores dt, every method and the pressure wall (its WallForce link is left as it is),
+// after check_dynamics.
 void read_dynamics(const CheckpointReader& in, Dynamics& dynamics,
                    const std::string& prefix = "dynamics");
 

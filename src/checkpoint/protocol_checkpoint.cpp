@@ -23,10 +23,12 @@ void write_contacts(CheckpointWriter& out, const ContactForce& contacts) {
     out.put_f64(std::string("contacts.") + name, contacts.params().*field);
 }
 
-// The checkpoint's contact parameters replace the contacts' own where they differ; a
-// checkpoint written without them (or by an older invasim) leaves the contacts as they are.
-void read_contacts(const CheckpointReader& in, ContactForce& contacts) {
-  if (!in.has("contacts.beta")) return;
+// The checkpoint's contact parameters (checked), or none where they equal the contacts' own
+// or the checkpoint was written without them (by an older invasim): the contacts stay as
+// they are.
+std::optional<ContactParams> stored_contacts(const CheckpointReader& in,
+                                             const ContactForce& contacts) {
+  if (!in.has("contacts.beta")) return std::nullopt;
   ContactParams stored = contacts.params();
   bool differ = false;
   for (const auto& [name, field] : kContactFields) {
@@ -34,7 +36,9 @@ void read_contacts(const CheckpointReader& in, ContactForce& contacts) {
     differ = differ || value != stored.*field;
     stored.*field = value;
   }
-  if (differ) contacts.set_params(stored);
+  if (!differ) return std::nullopt;
+  stored.validate();
+  return stored;
 }
 
 }  // namespace
@@ -62,16 +66,28 @@ std::string read_protocol_checkpoint(const CheckpointReader& in, const std::stri
     fail_input("the checkpoint '", path, "' holds ", restored.n_sites(), " sites and ",
                restored.bodies().size(), " adipocytes, this System ", sys.n_sites(), " sites and ",
                sys.bodies().size(), " adipocytes (load into a System built with the same sizes)");
+  // Every part is read and checked before any object changes, so that a refused checkpoint
+  // leaves them all as they were. The correlator's restore checks its sizes before it changes
+  // anything: the one step that can still refuse, it goes first.
+  std::optional<TetherForce> tethers;
+  if (objects.tethers) {
+    tethers.emplace(*objects.tethers);
+    tethers->clear();
+    read_tethers(in, restored, *tethers);
+  }
+  std::optional<CorrelatorState> correlator;
+  if (objects.correlator) correlator = read_correlator_state(in);
+  if (objects.dynamics) check_dynamics(in, *objects.dynamics);
+  std::optional<ContactParams> contacts;
+  if (objects.contacts) contacts = stored_contacts(in, *objects.contacts);
+  std::string extra = in.get_string("extra");
+  if (correlator) objects.correlator->restore(std::move(*correlator));
   sys = std::move(restored);
   if (seed) sys.set_seed(*seed);
-  if (objects.tethers) {
-    objects.tethers->clear();
-    read_tethers(in, sys, *objects.tethers);
-  }
-  if (objects.correlator) read_correlator(in, *objects.correlator);
+  if (tethers) *objects.tethers = std::move(*tethers);
   if (objects.dynamics) read_dynamics(in, *objects.dynamics);
-  if (objects.contacts) read_contacts(in, *objects.contacts);
-  return in.get_string("extra");
+  if (contacts) objects.contacts->set_params(*contacts);
+  return extra;
 }
 
 ProtocolRecord checkpoint_run(const CheckpointReader& in) {

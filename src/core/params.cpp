@@ -53,6 +53,16 @@ std::optional<double> parse_double(const std::string& text) {
   return value;
 }
 
+// True if text is a number whose magnitude a double cannot hold (1e-400, 1e400).
+bool beyond_double(const std::string& text) {
+  const char* begin = text.data();
+  const char* end = begin + text.size();
+  skip_plus_sign(begin, end);
+  double value = 0.0;
+  const auto result = std::from_chars(begin, end, value);
+  return result.ec == std::errc::result_out_of_range && result.ptr == end;
+}
+
 std::optional<long long> parse_integer(const std::string& text) {
   const char* begin = text.data();
   const char* end = begin + text.size();
@@ -85,6 +95,10 @@ ParamValue parse_value(ParamType type, const std::string& key, const std::string
   switch (type) {
     case ParamType::kNumber: {
       const auto d = parse_double(text);
+      if (!d && beyond_double(text))
+        fail_input("parameter '", key, "' is a number; '", raw,
+                   "' is beyond the range of a "
+                   "double (magnitudes from about 5e-324 to 1.8e308, or 0)");
       if (!d || !std::isfinite(*d)) return fail("a number");
       return *d == 0.0 ? 0.0 : *d;  // -0 is 0: the same parameters, run id and params.json
     }
@@ -205,12 +219,18 @@ void apply_overrides(std::vector<Param>& params, const std::vector<Override>& ov
     try {
       it->value = parse_value(it->type, it->name, o.text);
     } catch (const InputError& e) {
-      const bool integral_default = it->type == ParamType::kInteger && parse_double(o.text);
-      fail_input(describe(o), ": ", e.what(),
-                 integral_default ? cat(" (to accept fractions, write its default with a decimal "
-                                        "point in the protocol: ",
-                                        format_value(it->default_value), ".0)")
-                                  : "");
+      // A number an integer parameter cannot take: a fraction, or beyond 64 bits.
+      const auto number =
+          it->type == ParamType::kInteger ? parse_double(trim(o.text)) : std::nullopt;
+      std::string hint;
+      if (number && std::isfinite(*number) && std::floor(*number) != *number)
+        hint =
+            cat(" (to accept fractions, write its default with a decimal point in the "
+                "protocol: ",
+                format_value(it->default_value), ".0)");
+      else if (number && !std::isnan(*number))
+        hint = " (beyond the 64-bit integers, whose magnitude is at most 9223372036854775807)";
+      fail_input(describe(o), ": ", e.what(), hint);
     }
     if (const std::string why = value_violation(*it, it->value); !why.empty())
       fail_input(describe(o), ": parameter '", it->name, "' ", why);

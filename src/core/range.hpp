@@ -19,6 +19,7 @@ struct Range {
   static Range at_least(double lo) { return {lo, inf(), false, false}; }
   static Range greater_than(double lo) { return {lo, inf(), true, false}; }
   static Range between(double lo, double hi) { return {lo, hi, false, false}; }  // [lo, hi]
+  static Range inside(double lo, double hi) { return {lo, hi, true, true}; }     // (lo, hi)
 
   bool contains(double x) const;
   std::string describe() const;  // in words: "> 0", ">= 1", "in [0, 1]", "finite"

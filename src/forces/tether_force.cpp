@@ -63,8 +63,16 @@ void TetherForce::add(const System& sys, int a, int b, double rest_length, const
 
 double TetherForce::connect_by_mean_degree(const System& sys, double mean_degree) {
   require_positive("tether mean degree", mean_degree);
+  if (!tethers_.empty())
+    fail_input("tethers: already connected (", tethers_.size(),
+               " tethers): a second connect would tether the same pairs twice, doubling their "
+               "stiffness; clear() them first");
   const std::vector<Vec3> c = body_centres(sys);
   const int nb = int(c.size());
+  if (nb < 2) fail_input("tethers: need at least two adipocytes to tether, the System has ", nb);
+  if (mean_degree > nb - 1)
+    fail_input("tethers: mean degree ", mean_degree, " is more than ", nb - 1,
+               ", the degree of every adipocyte when all ", nb, " are tethered to each other");
   struct Pair {
     double r;
     int a, b;
@@ -80,7 +88,9 @@ double TetherForce::connect_by_mean_degree(const System& sys, double mean_degree
     return p.r < q.r || (p.r == q.r && (p.a < q.a || (p.a == q.a && p.b < q.b)));
   });
   const std::size_t m = std::min(pairs.size(), std::size_t(std::llround(0.5 * mean_degree * nb)));
-  if (m == 0) fail_input("tethers: need at least two adipocytes to tether");
+  if (m == 0)
+    fail_input("tethers: mean degree ", mean_degree, " gives no tether among ", nb,
+               " adipocytes (mean degree x adipocytes / 2 rounds to 0); at least ", 1.0 / nb);
   for (std::size_t k = 0; k < m; ++k)
     add(sys, pairs[k].a, pairs[k].b, pairs[k].r, pairs[k].periods);
   return m < pairs.size() ? 0.5 * (pairs[m - 1].r + pairs[m].r) : pairs[m - 1].r;

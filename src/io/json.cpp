@@ -1,5 +1,6 @@
 #include "io/json.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -19,7 +20,54 @@ std::string json_float(double v) {
   return text;
 }
 
+namespace {
+
+// The length of the well-formed UTF-8 sequence at s[i] (RFC 3629: no overlong forms, no
+// surrogates, at most U+10FFFF), or 0 if there is none.
+std::size_t utf8_sequence(std::string_view s, std::size_t i) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
+  const unsigned lead = byte(i);
+  if (lead < 0x80) return 1;
+  std::size_t n = 0;
+  unsigned lo = 0x80, hi = 0xbf;  // the range of the byte after the lead
+  if (lead >= 0xc2 && lead <= 0xdf)
+    n = 2;
+  else if (lead >= 0xe0 && lead <= 0xef) {
+    n = 3;
+    if (lead == 0xe0) lo = 0xa0;
+    if (lead == 0xed) hi = 0x9f;
+  } else if (lead >= 0xf0 && lead <= 0xf4) {
+    n = 4;
+    if (lead == 0xf0) lo = 0x90;
+    if (lead == 0xf4) hi = 0x8f;
+  } else
+    return 0;
+  if (i + n > s.size() || byte(i + 1) < lo || byte(i + 1) > hi) return 0;
+  for (std::size_t k = 2; k < n; ++k)
+    if (byte(i + k) < 0x80 || byte(i + k) > 0xbf) return 0;
+  return n;
+}
+
+}  // namespace
+
+void require_utf8(std::string_view s) {
+  for (std::size_t i = 0; i < s.size();) {
+    const std::size_t n = utf8_sequence(s, i);
+    if (n == 0) {
+      char code[8];
+      std::snprintf(code, sizeof code, "0x%02x", unsigned(static_cast<unsigned char>(s[i])));
+      std::string shown(s.substr(0, std::min<std::size_t>(s.size(), 60)));
+      for (char& c : shown)
+        if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7f) c = '?';
+      fail_input("JSON: the string '", shown, "' is not UTF-8 (byte ", code, " at position ", i + 1,
+                 "): JSON text holds UTF-8 only, and a reader would refuse the file");
+    }
+    i += n;
+  }
+}
+
 void append_json_string(std::string& out, std::string_view s) {
+  require_utf8(s);
   out += '"';
   for (char c : s) {
     const auto u = static_cast<unsigned char>(c);
@@ -117,8 +165,9 @@ std::string json_dump(const Json& value, int indent) {
 Json parse_json(std::string_view text, const std::string& origin) {
   try {
     return Json::parse(text.begin(), text.end());
-  } catch (const Json::parse_error& e) {
-    // e.what() is "[json.exception.parse_error.101] parse error at line 2, column 5: ...".
+  } catch (const Json::exception& e) {
+    // e.what() is "[json.exception.parse_error.101] parse error at line 2, column 5: ..."
+    // (or out_of_range.406 "number overflow parsing '1e999'").
     std::string_view what = e.what();
     if (const auto k = what.find("] "); k != std::string_view::npos) what.remove_prefix(k + 2);
     fail_io(origin, ": malformed JSON: ", what);

@@ -35,7 +35,9 @@ std::string json_float(double v);
 // `value` as JSON text in the layout above, ending in a newline.
 std::string json_dump(const Json& value, int indent = 2);
 
-// Appends s as a JSON string with the escaping above.
+// Refuses (InputError naming the string and the byte) a string that is not well-formed UTF-8.
+void require_utf8(std::string_view s);
+// Appends s as a JSON string with the escaping above; refuses s if it is not UTF-8.
 void append_json_string(std::string& out, std::string_view s);
 
 // How append_json writes floats and strings: invasim's rules above by default; the sweeps'

@@ -70,12 +70,16 @@ void push_value(lua_State* L, const std::optional<V>& v) {
 namespace detail {
 template <typename T, auto Get>
 int get_value(lua_State* L) {
-  push_value(L, Get(check<T>(L, 1)));
+  const T& object = check<T>(L, 1);
+  no_arguments_after(L, 1);
+  push_value(L, Get(object));
   return 1;
 }
 template <typename T, auto Table, auto Params>
 int get_params(lua_State* L) {
-  Table().push_params(L, Params(check<T>(L, 1)));
+  const T& object = check<T>(L, 1);
+  no_arguments_after(L, 1);
+  Table().push_params(L, Params(object));
   return 1;
 }
 }  // namespace detail
@@ -130,6 +134,14 @@ struct Arg<double> {
 template <>
 struct Arg<std::string> {
   static std::string read(lua_State* L, int index) { return arg_string(L, index); }
+};
+// A file or directory argument of a bound function (arg_path).
+struct Path {
+  std::string value;
+};
+template <>
+struct Arg<Path> {
+  static Path read(lua_State* L, int index) { return {arg_path(L, index)}; }
 };
 template <>
 struct Arg<std::optional<double>> {  // a number or nil

@@ -74,7 +74,7 @@ void write_checkpoint_parts(CheckpointWriter& w, const CheckpointParts& p, std::
 namespace {
 
 int l_save(lua_State* L) {
-  const std::string path = arg_string(L, 1);
+  const std::string path = arg_path(L, 1);
   Kwargs kw(L, 2, "save_checkpoint");
   const CheckpointParts p = read_checkpoint_parts(kw);
   const std::string extra = kw.string("extra", "");
@@ -92,7 +92,7 @@ int l_save(lua_State* L) {
 }
 
 int l_load(lua_State* L) {
-  const std::string path = arg_string(L, 1);
+  const std::string path = arg_path(L, 1);
   Kwargs kw(L, 2, "load_checkpoint");
   const CheckpointParts p = read_checkpoint_parts(kw);
   const auto seed = kw.maybe_integer<std::uint64_t>("seed", Range::at_least(0));
@@ -110,7 +110,7 @@ int l_load(lua_State* L) {
 
 // invasim.checkpoint_run(path) -> run id, run parameters (strings; nil where not stored).
 int l_checkpoint_run(lua_State* L) {
-  const std::string path = arg_string(L, 1);
+  const std::string path = arg_path(L, 1);
   ProtocolRecord record;
   engine_call("checkpoint_run", [&] { record = checkpoint_run(CheckpointReader::read(path)); });
   return push_results(L, 2, [&record](lua_State* S) noexcept {

@@ -32,9 +32,9 @@ const FieldTable<CompressionParams>& compress_fields() {
   using P = CompressionParams;
   static const FieldTable<P> table("compress", [] {
     std::vector<Field<P>> f = {
-        required(number<P>("to_phi", &P::target_phi, Range::between(0, 1), "1",
+        required(number<P>("to_phi", &P::target_phi, Range::inside(0, 1), "1",
                            "total packing fraction to reach")),
-        number<P>("step", &P::step, Range::between(0, 1), "1",
+        number<P>("step", &P::step, Range::inside(0, 1), "1",
                   "relative change of phi per compression step"),
     };
     for (auto& fire : fire_fields<P>(&P::fire)) f.push_back(std::move(fire));
@@ -55,7 +55,7 @@ struct RescaleKeys {
 const FieldTable<RescaleKeys>& rescale_fields() {
   using P = RescaleKeys;
   static const FieldTable<P> table("rescale", [] {
-    std::vector<Field<P>> f = {required(number<P>("phi_a", &P::phi_a, Range::between(0, 1), "1",
+    std::vector<Field<P>> f = {required(number<P>("phi_a", &P::phi_a, Range::inside(0, 1), "1",
                                                   "adipocyte packing fraction to reach"))};
     for (auto& fire : fire_fields<P>(&P::fire)) f.push_back(std::move(fire));
     f.push_back(boolean<P>("stop_on_signal", &P::stop_on_signal,

@@ -55,6 +55,8 @@ const FieldTable<SnapshotKeys>& snapshot_fields() {
 int l_snapshots(lua_State* L) {
   Kwargs kw(L, 1, "Snapshots");
   const SnapshotKeys k = snapshot_fields().make(kw);
+  if (k.dir.find('\0') != std::string::npos)
+    fail_input("Snapshots: key 'dir' holds a NUL byte (the system call would stop there)");
   const SnapshotOptions& o = k;
   push(L, engine_call("Snapshots", [&] { return std::make_shared<SnapshotWriter>(k.dir, o); }));
   return 1;
@@ -65,27 +67,27 @@ int l_snapshots(lua_State* L) {
 void open_io(lua_State* L) {
   add_functions(
       L, {method<"write_file",
-                 [](std::string path, std::string text) { write_file_atomically(path, text); }>(),
-          method<"make_dirs", [](std::string path) { ensure_directory(path); }>(),
+                 [](Path path, std::string text) { write_file_atomically(path.value, text); }>(),
+          method<"make_dirs", [](Path path) { ensure_directory(path.value); }>(),
           method<"exists",
-                 [](std::string path) {
+                 [](Path path) {
                    std::error_code error;
-                   return std::filesystem::exists(path, error);
+                   return std::filesystem::exists(path.value, error);
                  }>(),
           // absolute, with symbolic links and . / .. resolved
           method<"resolve_path",
-                 [](std::string path) {
+                 [](Path path) {
                    std::error_code error;
-                   const auto p =
-                       std::filesystem::weakly_canonical(std::filesystem::absolute(path), error);
-                   if (error) fail_input("cannot resolve '", path, "': ", error.message());
+                   const auto p = std::filesystem::weakly_canonical(
+                       std::filesystem::absolute(path.value), error);
+                   if (error) fail_input("cannot resolve '", path.value, "': ", error.message());
                    return p.string();
                  }>(),
           // like rm -rf; returns the number of entries removed
-          method<"remove_path", [](std::string path) {
+          method<"remove_path", [](Path path) {
             std::error_code error;
-            const auto n = std::filesystem::remove_all(path, error);
-            if (error) fail_input("cannot remove '", path, "': ", error.message());
+            const auto n = std::filesystem::remove_all(path.value, error);
+            if (error) fail_input("cannot remove '", path.value, "': ", error.message());
             return n;
           }>()});
   define_type<SnapshotWriter>(

@@ -213,7 +213,7 @@ bool push_json(lua_State* L, const Json& value, int depth) noexcept {
 }
 
 int l_read_json(lua_State* L) {
-  const std::string path = arg_string(L, 1);
+  const std::string path = arg_path(L, 1);
   const Json value = engine_call("read_json", [&] { return read_json(path); });
   bool ok = true;
   push_results(L, 1, [&value, &ok](lua_State* S) noexcept {

@@ -6,14 +6,17 @@
 //                                      local_phi_a = {..}, seconds}
 //   sys:shape_parameters()         -> {A_1, A_2, ...} 3D shape parameter per adipocyte
 //   sys:slices{per_body = 10, offset_fraction = 0.5, seed = 1} -> {a, ...} 2D shape parameters
-//   invasim.histogram(values, {lo =, hi =, bins = 20}) -> {edges, counts, density, below, above}
+//   invasim.histogram(values, {lo =, hi =, bins = 20}) -> {edges, counts, density, below, above,
+//                                                          invalid}
 //   invasim.mean_error(values, {fraction = 1}) -> {mean, error, n, tau_int, window, resolved}
 #include <lua.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <vector>
 
 #include "core/memory_budget.hpp"
+#include "core/names.hpp"
 #include "lua/engine_types.hpp"
 #include "lua/module.hpp"
 #include "measure/mean_error.hpp"
@@ -74,7 +77,7 @@ int l_slices(lua_State* L) {
   options.seed = sim.system.seed();
   if (!lua_isnoneornil(L, 2)) {
     Kwargs kw(L, 2, "slices");
-    options.per_body = kw.integer<int>("per_body", options.per_body, Range::at_least(1));
+    options.per_body = kw.integer<int>("per_body", options.per_body, Range::between(1, 8192));
     options.offset_fraction =
         kw.number("offset_fraction", options.offset_fraction, Range::between(0, 1));
     options.seed = kw.integer<std::uint64_t>("seed", options.seed, Range::at_least(0));
@@ -95,7 +98,9 @@ int l_histogram(lua_State* L) {
   const double hi = kw.number("hi");
   const int bins = kw.integer<int>("bins", 20, Range::at_least(1));
   kw.finish();
-  if (!(hi > lo)) fail_input("histogram: hi = ", hi, " must be greater than lo = ", lo);
+  if (!(hi > lo) || !std::isfinite(hi - lo))
+    fail_input("histogram: hi = ", hi, " must be greater than lo = ", lo,
+               ", by a finite width (the bins' edges are lo + k (hi - lo) / bins)");
   // Per bin: edges, counts, density and the counts' copy (4 x 8 bytes) and three Lua table
   // slots (3 x 16 bytes).
   check_memory("histogram", "bins", double(bins), 80.0);
@@ -104,7 +109,8 @@ int l_histogram(lua_State* L) {
                          {"counts", std::vector<double>(h.counts.begin(), h.counts.end())},
                          {"density", h.density},
                          {"below", h.below},
-                         {"above", h.above}});
+                         {"above", h.above},
+                         {"invalid", h.invalid}});
 }
 
 int l_mean_error(lua_State* L) {
@@ -112,9 +118,14 @@ int l_mean_error(lua_State* L) {
   double fraction = 1.0;
   if (!lua_isnoneornil(L, 2)) {
     Kwargs kw(L, 2, "mean_error");
-    fraction = kw.number("fraction", fraction, Range::between(0, 1));
+    fraction = kw.number("fraction", fraction, Range{0.0, 1.0, true, false});  // (0, 1]
     kw.finish();
   }
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values[i]))
+      fail_input("mean_error: values[", i + 1,
+                 "] = ", std::isnan(values[i]) ? "nan" : cat(values[i]),
+                 " is not a finite number (a mean and its error need finite samples)");
   const MeanError m = engine_call("mean_error", [&] { return mean_error_tail(values, fraction); });
   return push_record(L, {{"mean", m.mean},
                          {"error", m.error},

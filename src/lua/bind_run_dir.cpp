@@ -22,7 +22,7 @@ namespace invasim::lua {
 namespace {
 
 int l_lock_run_dir(lua_State* L) {
-  const std::string dir = arg_string(L, 1);
+  const std::string dir = arg_path(L, 1);
   const std::optional<std::string> holder =
       engine_call("lock_run_dir", [&] { return lock_run_directory(dir); });
   if (!holder) {
@@ -41,11 +41,11 @@ int l_lock_run_dir(lua_State* L) {
 void open_run_dir(lua_State* L) {
   add_functions(
       L, {INVASIM_LUA_FN(lock_run_dir),
-          method<"record_run_lock", [](std::string dir) { record_run_lock_holder(dir); }>(),
-          method<"hash_file", [](std::string path) { return fnv1a64_hex(read_file(path)); }>(),
-          method<"remove_temporaries", [](std::string dir) {
+          method<"record_run_lock", [](Path dir) { record_run_lock_holder(dir.value); }>(),
+          method<"hash_file", [](Path path) { return fnv1a64_hex(read_file(path.value)); }>(),
+          method<"remove_temporaries", [](Path dir) {
             std::vector<std::string> removed;
-            for (const auto& path : remove_atomic_temporaries(dir))
+            for (const auto& path : remove_atomic_temporaries(dir.value))
               removed.push_back(path.string());
             return removed;
           }>()});

@@ -6,11 +6,13 @@
 //   sim:checkpoint{path =, tethers =, correlator =, extra = function() return "" end,
 //                  run_id =, run_parameters =, written = function(step) end, <schedule>}
 //   sim:observe(function(step, time) end, schedule)   -- an observer written in Lua
-//   sim:lipolysis(lipolysis, {every = N})     -- adipocytes shrinking where cells touch them
+//   sim:lipolysis(lipolysis, {every = N, since = S})  -- adipocytes shrinking where cells
+//                                                        touch them
 //   sim:run(n [, {progress = p}]) -> steps done, stop signal name or nil
 //   sim:operations() -> {"correlator sampler: every 20 steps", ...}
 #include <lua.hpp>
 
+#include <cmath>
 #include <limits>
 
 #include "core/stop_request.hpp"
@@ -113,16 +115,38 @@ int add_scheduled(lua_State* L, SimulationHandle& s, std::shared_ptr<Operation> 
   return 0;
 }
 
-// sim:sample(correlator, schedule)
+// sim:sample(correlator, {every = N [, phase = P]}): a correlator samples at equal intervals,
+// its own (N x dt), once per step; a schedule that cannot give them is refused here, not at
+// the first sample that comes at the wrong time.
 int l_sample(lua_State* L) {
   SimulationHandle& s = check<SimulationHandle>(L, 1);
   auto correlator = shared_correlator(L, 2);
   if (!correlator) throw InputError(bad_argument(L, 2, "Correlator"));
-  return add_scheduled(L, s, std::make_shared<CorrelatorSampler>(correlator), "sample");
+  const Trigger t = schedule_arg(L, 3, "sample");
+  if (!t.only_periodic())
+    fail_input(
+        "sample: a correlator samples at equal intervals: its schedule is {every = N} "
+        "(and a phase) alone, not ",
+        t.describe());
+  const double interval = correlator->params().sample_interval;
+  const double dt = s.dyn->dynamics.dt();
+  if (std::abs(double(t.period()) * dt - interval) > 1e-3 * interval)
+    fail_input("sample: every = ", t.period(), " steps of dt = ", dt, " is ",
+               double(t.period()) * dt, ", not the correlator's interval ", interval,
+               ": make them equal (every = ", interval / dt, ")");
+  for (const auto& op : s.run.operations()) {
+    const auto* sampler = dynamic_cast<const CorrelatorSampler*>(op.operation.get());
+    if (sampler && &sampler->correlator() == correlator.get())
+      fail_input("sample: this correlator is sampled by this Simulation already (",
+                 op.trigger.describe(), "): twice would sample it twice per interval");
+  }
+  engine_call("sample", [&] { s.run.add(std::make_shared<CorrelatorSampler>(correlator), t); });
+  return 0;
 }
 
-// sim:<what>(object, {every = N}): the operation Op(object, N) every N steps, before the
-// operations added after it at the same step.
+// sim:<what>(object, {every = N, since = S}): the operation Op(object, N, S) at the steps
+// that are multiples of N, before the operations added after it at the same step. S (default:
+// the System's step now) is where its time starts: a resumed run gives its first run's S.
 template <typename T, typename Op>
 int add_every(lua_State* L, const char* what) {
   SimulationHandle& s = check<SimulationHandle>(L, 1);
@@ -130,21 +154,24 @@ int add_every(lua_State* L, const char* what) {
   std::shared_ptr<const T> object = check_shared<T>(L, 2);
   Kwargs kw(L, 3, what);
   const auto every = kw.integer<std::uint64_t>("every", Range::at_least(1));
+  const auto since = kw.maybe_integer<std::uint64_t>("since", Range::non_negative());
   kw.finish();
+  const std::uint64_t start = since.value_or(s.run.system().step);
   engine_call(what, [&] {
-    s.run.add(std::make_shared<Op>(std::move(object), every), Trigger::every(every, 0));
+    s.run.add(std::make_shared<Op>(std::move(object), every, start), Trigger::every(every, 0));
   });
   return 0;
 }
 
-// sim:lipolysis(lipolysis, {every = N}): an invasim.Lipolysis, N dt of lipolysis each time.
+// sim:lipolysis(lipolysis, {every = N, since = S}): an invasim.Lipolysis, N dt of lipolysis
+// each time (less the first time if S is not a multiple of N).
 int l_lipolysis(lua_State* L) {
   return add_every<Lipolysis, LipolysisOperation>(L, "lipolysis");
 }
 
-// sim:proliferation(proliferation, {every = N}): an invasim.Proliferation, N dt of divisions
-// and deaths each time; the Dynamics' methods follow the cells (a daughter joins its parent's
-// method) and groups made before a change are refused afterwards.
+// sim:proliferation(proliferation, {every = N, since = S}): an invasim.Proliferation, N dt of
+// divisions and deaths each time (as lipolysis); the Dynamics' methods follow the cells (a
+// daughter joins its parent's method) and groups made before a change are refused afterwards.
 int l_proliferation(lua_State* L) {
   return add_every<Proliferation, ProliferationOperation>(L, "proliferation");
 }
@@ -174,6 +201,8 @@ int l_checkpoint(lua_State* L) {
   const auto& s = check_shared<SimulationHandle>(L, 1);
   Kwargs kw(L, 2, "checkpoint");
   const std::string path = kw.string("path");
+  if (path.find('\0') != std::string::npos)
+    fail_input("checkpoint: key 'path' holds a NUL byte (the system call would stop there)");
   CheckpointParts parts = read_checkpoint_parts(kw, false);
   parts.sim = s->system;
   parts.dyn = s->dyn;

@@ -252,6 +252,7 @@ int l_group(lua_State* L) {
 // sys:box() -> {lengths = {..}, lo = {..}, hi = {..}, periodic = {..}, volume = V}
 int l_box(lua_State* L) {
   const Box& box = check<SystemHandle>(L, 1).system.box();
+  no_arguments_after(L, 1);
   return push_record(
       L, {{"lengths", box.lengths()},
           {"lo", box.lo()},
@@ -262,6 +263,7 @@ int l_box(lua_State* L) {
 
 int l_packing(lua_State* L) {
   const PackingFractions phi = packing_fractions(check<SystemHandle>(L, 1).system);
+  no_arguments_after(L, 1);
   return push_record(L,
                      {{"total", phi.total}, {"cancer", phi.cancer}, {"adipocyte", phi.adipocyte}});
 }
@@ -314,6 +316,7 @@ int l_orientations(lua_State* L) {
 // reference face areas and v_i0), and the vertex centroid (unwrapped).
 int l_adipocytes(lua_State* L) {
   const SystemHandle& sim = check<SystemHandle>(L, 1);
+  no_arguments_after(L, 1);
   const auto& bodies = sim.system.bodies();
   std::vector<Record> rows;
   std::vector<Vec3> x;
@@ -385,6 +388,7 @@ int l_add(lua_State* L) {
 // sys:forces() -> {force, ...} in the order added.
 int l_forces(lua_State* L) {
   const SystemHandle& sim = check<SystemHandle>(L, 1);
+  no_arguments_after(L, 1);
   push_list(L, sim.handles.size(), [&](std::size_t k) { push_force(L, sim.handles[k]); });
   return 1;
 }

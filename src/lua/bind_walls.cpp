@@ -48,6 +48,7 @@ namespace {
 // w:reaction() -> left, right: x force the sites exert on each wall at the last evaluation.
 int l_reaction(lua_State* L) {
   const WallForce& w = *check<Walls>(L, 1).force;
+  no_arguments_after(L, 1);
   lua_pushnumber(L, w.left_wall_force());
   lua_pushnumber(L, w.right_wall_force());
   return 2;

@@ -285,6 +285,15 @@ std::string arg_string(lua_State* L, int index) {
   return std::string(data, size);
 }
 
+std::string arg_path(lua_State* L, int index) {
+  std::string path = arg_string(L, index);
+  const std::size_t nul = path.find('\0');
+  if (nul != std::string::npos)
+    throw InputError(
+        bad_argument(L, index, "path", cat("a string with a NUL byte at position ", nul + 1)));
+  return path;
+}
+
 std::optional<double> opt_number(lua_State* L, int index) {
   if (lua_isnoneornil(L, index)) return std::nullopt;
   return arg_number(L, index);
@@ -313,6 +322,10 @@ void call_lua(lua_State* L, int nargs, int nresults) {
   const int status = lua_pcall(L, nargs, nresults, handler);
   lua_remove(L, handler);
   if (status == LUA_OK) return;
+  if (is_stop_sentinel(L, -1)) {  // invasim.stop() in the callback: the script stops quietly
+    lua_pop(L, 1);
+    throw StopScript();
+  }
   std::string message = lua_type(L, -1) == LUA_TSTRING
                             ? lua_tostring(L, -1)
                             : std::string("(error object is a ") + luaL_typename(L, -1) + " value)";

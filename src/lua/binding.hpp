@@ -151,6 +151,9 @@ double arg_number(lua_State* L, int index);
 // (integer >= 0 expected, got -1)".
 long long arg_integer(lua_State* L, int index, long long lo, long long hi);
 std::string arg_string(lua_State* L, int index);
+// A string argument naming a file or directory: a NUL byte in it is refused (the system call
+// would stop there, at another path).
+std::string arg_path(lua_State* L, int index);
 std::optional<double> opt_number(lua_State* L, int index);  // nil or absent -> nullopt
 
 // Wraps an l_ function: C++ exceptions become Lua errors with the caller's file:line. The

@@ -48,6 +48,7 @@ using ForceHandle = std::variant<std::shared_ptr<Contacts>, std::shared_ptr<Wall
 struct SystemHandle : Model {
   SystemHandle(const Box& box, std::uint64_t seed) : Model(box, seed) {}
   std::vector<ForceHandle> handles;  // in the order added (same as forces.terms())
+  bool running = false;  // inside run_steps: a callback of the run may not start another
 };
 
 // A set of sites of one System (a snapshot of indices, taken when the group is made).

@@ -1,5 +1,7 @@
 #include "run/operations.hpp"
 
+#include <algorithm>
+
 #include "core/errors.hpp"
 #include "core/stop_request.hpp"
 #include "run/simulation.hpp"
@@ -21,7 +23,9 @@ void CorrelatorSampler::sites_changed(Simulation& sim, const std::vector<int>& n
 
 template <typename T>
 double EveryOperation<T>::elapsed(Simulation& sim) const {
-  return double(every_) * sim.dynamics().dt();
+  const std::uint64_t step = sim.system().step;
+  const std::uint64_t steps = step > since_ ? std::min(every_, step - since_) : 0;
+  return double(steps) * sim.dynamics().dt();
 }
 template class EveryOperation<Lipolysis>;
 template class EveryOperation<Proliferation>;

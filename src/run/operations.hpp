@@ -21,6 +21,7 @@ class CorrelatorSampler : public Operation {
  public:
   explicit CorrelatorSampler(std::shared_ptr<TimeCorrelator> correlator);
   std::string name() const override { return "correlator sampler"; }
+  const TimeCorrelator& correlator() const { return *correlator_; }
   void apply(Simulation& sim) override;
   // The correlator's group follows its cells; dead ones leave it (TimeCorrelator::sites_changed).
   void sites_changed(Simulation& sim, const std::vector<int>& new_index) override;
@@ -56,47 +57,54 @@ class CheckpointOperation : public Operation {
   WrittenFn written_;
 };
 
-// An operation that applies a T (Lipolysis, Proliferation) every `every` steps, for `every`
-// x dt of elapsed time (schedule it with Trigger::every(every)); refuses a missing T and
-// every = 0, naming `what`.
+// An operation that applies a T (Lipolysis, Proliferation) at the System steps that are
+// multiples of `every` (schedule it with Trigger::every(every)), each time for the time
+// elapsed since the previous multiple or since step `since`, whichever is later: a run whose
+// part with T starts between two multiples (a production after a quench of another length)
+// credits the first application with its own steps only, and a run resumed from a checkpoint
+// continues bit for bit when given the same `since`. Refuses a missing T and every = 0,
+// naming `what`.
 template <typename T>
 class EveryOperation : public Operation {
  public:
-  EveryOperation(std::shared_ptr<const T> object, std::uint64_t every, const char* what)
-      : object_(std::move(object)), every_(every), what_(what) {
+  EveryOperation(std::shared_ptr<const T> object, std::uint64_t every, std::uint64_t since,
+                 const char* what)
+      : object_(std::move(object)), every_(every), since_(since), what_(what) {
     if (!object_) throw InputError(std::string(what) + ": no " + what + " given");
     if (every_ < 1) throw InputError(std::string(what) + ": every = 0 steps (must be >= 1)");
   }
   std::string name() const override { return what_; }
 
  protected:
-  double elapsed(Simulation& sim) const;  // every x dt
+  double elapsed(Simulation& sim) const;  // min(every, step - since) x dt
   std::shared_ptr<const T> object_;
-  std::uint64_t every_;
+  std::uint64_t every_, since_;
   const char* what_;
 };
 
-// Applies lipolysis to the System every `every` steps (elapsed time every x dt: schedule it
-// with Trigger::every(every)). Like a parameter change between two steps, the new reference
-// volumes act from the next force evaluation: the step's first half-kick uses the forces
-// already computed, as a run restored from a checkpoint written at this step (which stores
-// them) does, so both continue bit for bit.
+// Applies lipolysis to the System every `every` steps (EveryOperation's elapsed time). Like a
+// parameter change between two steps, the new reference volumes act from the next force
+// evaluation: the step's first half-kick uses the forces already computed, as a run restored
+// from a checkpoint written at this step (which stores them) does, so both continue bit for
+// bit.
 class LipolysisOperation : public EveryOperation<Lipolysis> {
  public:
-  LipolysisOperation(std::shared_ptr<const Lipolysis> lipolysis, std::uint64_t every)
-      : EveryOperation(std::move(lipolysis), every, "lipolysis") {}
+  LipolysisOperation(std::shared_ptr<const Lipolysis> lipolysis, std::uint64_t every,
+                     std::uint64_t since)
+      : EveryOperation(std::move(lipolysis), every, since, "lipolysis") {}
   void apply(Simulation& sim) override;
 };
 
-// Applies a Proliferation every `every` steps (every x dt of divisions and deaths), then makes
-// the run follow the new set of sites: the methods' groups (Dynamics::sites_changed), the
-// other operations (Operation::sites_changed: a correlator's group), the force terms' caches,
-// and the forces of the new state (Dynamics::prepare), so that a checkpoint written at this
-// step holds them and a run restored from it continues bit for bit.
+// Applies a Proliferation every `every` steps (EveryOperation's elapsed time of divisions and
+// deaths), then makes the run follow the new set of sites: the methods' groups
+// (Dynamics::sites_changed), the other operations (Operation::sites_changed: a correlator's group),
+// the force terms' caches, and the forces of the new state (Dynamics::prepare), so that a
+// checkpoint written at this step holds them and a run restored from it continues bit for bit.
 class ProliferationOperation : public EveryOperation<Proliferation> {
  public:
-  ProliferationOperation(std::shared_ptr<const Proliferation> proliferation, std::uint64_t every)
-      : EveryOperation(std::move(proliferation), every, "proliferation") {}
+  ProliferationOperation(std::shared_ptr<const Proliferation> proliferation, std::uint64_t every,
+                         std::uint64_t since)
+      : EveryOperation(std::move(proliferation), every, since, "proliferation") {}
   void apply(Simulation& sim) override;
   // Cells born and dead since the operation was made.
   std::uint64_t births() const { return births_; }

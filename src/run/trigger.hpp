@@ -30,6 +30,9 @@ class Trigger {
   bool due(std::uint64_t step) const;
   // The first step after `step` at which due() holds (nullopt if none).
   std::optional<std::uint64_t> next_after(std::uint64_t step) const;
+  // The period of the periodic condition (0: none), and whether it is the only condition.
+  std::uint64_t period() const { return period_; }
+  bool only_periodic() const { return period_ > 0 && steps_.empty() && !at_end_ && !on_stop_; }
   bool fires_at_end() const { return at_end_; }
   bool fires_on_stop() const { return on_stop_; }
   // "every 300 steps", "at steps 5, 9", "at the end", "on stop", joined with " or ".

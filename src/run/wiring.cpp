@@ -43,14 +43,16 @@ void require_current(const Group& group, const std::string& what) {
   if (sim->system.site_epoch() != group.epoch)
     fail_input(what, ": group '", group.name,
                "' was made before cells divided or died, and its site indices name other cells "
-               "now; make it again (sys:group{...})");
+               "now; make it again (sys:group('",
+               group.name, "'))");
   // The same epoch with fewer sites: a checkpoint of another System was loaded since.
   const std::size_t n = sim->system.n_sites();
   for (int i : group.sites)
     if (i < 0 || std::size_t(i) >= n)
-      fail_input(what, ": group '", group.name, "' names site ", i + 1, " but the System has ", n,
-                 " sites now (a checkpoint of other sites was loaded since it was made); make it "
-                 "again (sys:group{...})");
+      fail_input(what, ": group '", group.name, "' names site index ", i, " but the System has ", n,
+                 " sites now (a checkpoint of other sites was loaded since it was made); make "
+                 "it again (sys:group('",
+                 group.name, "'))");
 }
 
 PressureWall* prepare_dynamics(DynamicsHandle& d, const std::shared_ptr<SystemHandle>& sim,
@@ -93,18 +95,27 @@ RunResult run_steps(Simulation& run, const std::shared_ptr<SystemHandle>& system
     fail_input(
         "run: the Dynamics has no methods, so nothing would move: add one first, e.g. "
         "dyn:add(iv.Langevin{group = sys:group(\"cancer\"), gamma =, kT =})");
+  // A run started from a callback of a run of the same System would advance it behind the
+  // outer run, whose step count and schedule would no longer be the System's.
+  if (system->running)
+    fail_input(
+        "run: the System is running already (this call comes from a callback of its "
+        "run); return from the callback, and run after the run returns");
   if (progress)
     run.set_progress([progress](std::uint64_t done, double time) {
       progress->update(static_cast<long long>(done), time);
     });
   RunResult result;
+  system->running = true;
   try {
     prepare_dynamics(d, system, "run");
     result = run.run(static_cast<std::uint64_t>(n));
   } catch (...) {
+    system->running = false;
     run.set_progress({});
     throw;
   }
+  system->running = false;
   run.set_progress({});
   system->changed();
   d.record.ran_on(system);

@@ -28,7 +28,7 @@ expect_error("histogram: key 'bins' = 4294967297 is out of range %(must be in %[
              iv.histogram, { 1, 2 }, { lo = 0, hi = 4, bins = 2^32 + 1 })
 expect_error("histogram: key 'bins' = 1e%+300 is out of range", iv.histogram, { 1, 2 },
              { lo = 0, hi = 4, bins = 1e300 })
-expect_error("slices: key 'per_body' = 4294967298 is out of range %(must be in %[1, 2147483647%]%)",
+expect_error("slices: key 'per_body' = 4294967298 is out of range %(must be in %[1, 8192%]%)",
              sys.slices, sys, { per_body = 2^32 + 2 })
 local cells = sys:place{ cells = { n = 4, x = {1, 4} } }.cells
 expect_error("Correlator: key 'lags' = 4294967306 is out of range %(must be in %[1, 2147483647%]%)",

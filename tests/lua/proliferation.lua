@@ -136,8 +136,8 @@ do
   local path = iv.out_dir .. "/small.ckpt"
   iv.save_checkpoint(path, { system = small })
   iv.load_checkpoint(path, { system = big })
-  fails("positions: group 'cancer' names site 5 but the System has 4 sites now", big.positions, big, g)
-  fails("temperature: group 'cancer' names site 5 but the System has 4 sites now", big.temperature, big, g)
+  fails("positions: group 'cancer' names site index 4 but the System has 4 sites now", big.positions, big, g)
+  fails("temperature: group 'cancer' names site index 4 but the System has 4 sites now", big.temperature, big, g)
 end
 
 -- Contact inhibition: with a division certain at the next application (division_rate x dt

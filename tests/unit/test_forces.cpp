@@ -775,6 +775,24 @@ TEST_CASE("tethers: zero energy at insertion, model energy with minimum image af
   }
 }
 
+TEST_CASE("tethers: a mean degree that cannot be met, or a second connect, is refused") {
+  System sys = tether_system(52);
+  const std::size_t n = sys.bodies().size();
+  TetherForce tf(2.5);
+  CHECK_THROWS_WITH(tf.connect_by_mean_degree(sys, double(n)),
+                    Catch::Contains("is more than " + std::to_string(n - 1)));
+  CHECK_THROWS_WITH(tf.connect_by_mean_degree(sys, 0.4 / double(n)),
+                    Catch::Contains("gives no tether among " + std::to_string(n)));
+  CHECK(tf.tethers().empty());
+  tf.connect_by_mean_degree(sys, double(n - 1));  // all pairs
+  CHECK(tf.tethers().size() == n * (n - 1) / 2);
+  CHECK_THROWS_WITH(tf.connect_by_mean_degree(sys, 2.0), Catch::Contains("already connected"));
+  CHECK(tf.tethers().size() == n * (n - 1) / 2);
+  tf.clear();
+  tf.connect_by_mean_degree(sys, 2.0);
+  CHECK(tf.tethers().size() == n);
+}
+
 // The paper's heterogeneity (docs/model.md, protocol step 5): tethers whose midpoint (minimum
 // image, wrapped into the box) lies in the lower half in z are shortened to (1 - lambda) R,
 // the others lengthened to (1 + lambda) R. Which half gets which is checked, not only |l/R - 1|.

@@ -98,4 +98,28 @@ TEST_CASE("parse_json reads back what json_dump wrote, malformed JSON names the 
   CHECK_THROWS_WITH(parse_json("{\"a\": 1,\n  \"b\": }", "'x.json'"),
                     Contains("'x.json': malformed JSON: parse error at line 2, column 8"));
   CHECK_THROWS_WITH(read_json("/nonexistent/x.json"), Contains("'/nonexistent/x.json'"));
+  CHECK_THROWS_WITH(parse_json("[1e999]", "'big.json'"),
+                    Contains("'big.json': malformed JSON: number overflow parsing '1e999'"));
+}
+
+TEST_CASE("json_dump writes UTF-8 strings as they are and refuses the others, naming the byte") {
+  const std::string text = "\xc3\xa9t\xc3\xa9 \xe2\x82\xac \xf0\x9f\x98\x80";  // été € and U+1F600
+  const std::string dumped = json_dump(Json{{"s", text}}, 0);
+  CHECK(dumped == "{\"s\": \"" + text + "\"}\n");
+  CHECK(parse_json(dumped, "utf8")["s"].get<std::string>() == text);
+  const struct {
+    const char* bytes;
+    const char* what;
+  } bad[] = {{"a\xff", "byte 0xff at position 2"},             // never in UTF-8
+             {"\xc0\xaf", "byte 0xc0 at position 1"},          // overlong '/'
+             {"\xed\xa0\x80", "byte 0xed at position 1"},      // a surrogate
+             {"\xf4\x90\x80\x80", "byte 0xf4 at position 1"},  // above U+10FFFF
+             {"ab\xe2\x82", "byte 0xe2 at position 3"},        // cut short
+             {"\x80", "byte 0x80 at position 1"}};             // a lone continuation
+  for (const auto& b : bad) {
+    CAPTURE(b.what);
+    CHECK_THROWS_WITH(json_dump(Json{{"s", b.bytes}}), Contains(b.what) && Contains("not UTF-8"));
+    // nlohmann's parser refuses what it would have written: the refusal is the writer's.
+    CHECK_THROWS(Json::parse(std::string("\"") + b.bytes + "\""));
+  }
 }

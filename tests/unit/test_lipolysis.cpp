@@ -124,10 +124,20 @@ TEST_CASE("lipolysis operation: every N steps, N dt of lipolysis") {
   auto dyn = std::make_shared<Dynamics>(0.01);
   Simulation sim(sys, forces, dyn);
   auto lip = std::make_shared<const Lipolysis>(LipolysisParams{0.01, 0.5});
-  sim.add(std::make_shared<LipolysisOperation>(lip, 10), Trigger::every(10));
+  sim.add(std::make_shared<LipolysisOperation>(lip, 10, 0), Trigger::every(10));
   sim.run(30);  // no forces or methods: nothing moves; applied at steps 10, 20, 30
   CHECK(sys->bodies()[0].ref_volume == Approx(v0 * (1.0 - 3 * 0.01 * 10 * 0.01)).epsilon(1e-13));
   CHECK(sys->bodies()[1].ref_volume == sys->bodies()[1].ref_volume_initial);
+
+  SECTION("a run starting between two multiples credits only its own steps") {
+    auto late = std::make_shared<System>(*sys);
+    const double start_v0 = late->bodies()[0].ref_volume;
+    late->step = 35;  // a production after a quench of 35 steps
+    Simulation run(late, forces, std::make_shared<Dynamics>(0.01));
+    run.add(std::make_shared<LipolysisOperation>(lip, 10, 35), Trigger::every(10));
+    run.run(25);  // to step 60: applied at 40 (5 steps since 35), 50 and 60: 25 steps in all
+    CHECK(late->bodies()[0].ref_volume == Approx(start_v0 - 25 * 0.01 * 0.01 * v0).epsilon(1e-13));
+  }
 }
 
 TEST_CASE("lipolysis: V_i follows the union volume of the shrunk body") {

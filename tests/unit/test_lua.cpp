@@ -317,6 +317,15 @@ TEST_CASE("apply_overrides: undeclared keys, duplicates and --seed", "[lua][para
     CHECK_THROWS_WITH(apply_overrides(params, {parse_override("phi=x")}),
                       "--set phi=x: parameter 'phi' is a number; cannot parse 'x'");
   }
+  SECTION("numbers the parameter's type cannot hold, each with its own hint") {
+    CHECK_THROWS_WITH(apply_overrides(params, {parse_override("n=2.5")}),
+                      Catch::Contains("cannot parse '2.5' (to accept fractions, write its default "
+                                      "with a decimal point in the protocol: 5.0)"));
+    CHECK_THROWS_WITH(apply_overrides(params, {parse_override("n=9223372036854775808")}),
+                      Catch::Contains("(beyond the 64-bit integers"));
+    CHECK_THROWS_WITH(apply_overrides(params, {parse_override("phi=1e-400")}),
+                      Catch::Contains("'1e-400' is beyond the range of a double"));
+  }
   SECTION("twice") {
     CHECK_THROWS_WITH(apply_overrides(params, {parse_override("n=1"), parse_override("n=2")}),
                       "parameter 'n' is set twice on the command line (--set n=1 and --set n=2)");

@@ -172,7 +172,7 @@ TEST_CASE("proliferation: the operation keeps a Dynamics' methods on their cells
   ProliferationParams p;
   p.division_rate = 0.05;
   p.death_rate = 0.02;
-  auto op = std::make_shared<ProliferationOperation>(std::make_shared<Proliferation>(p), 10);
+  auto op = std::make_shared<ProliferationOperation>(std::make_shared<Proliferation>(p), 10, 0);
   sim.add(op, Trigger::every(10, 0));
   sim.run(2000);
   CHECK(op->births() > 20);
