@@ -4,13 +4,13 @@
 -- pcall first, and a later plain error shows its own traceback, without the callback's.
 local iv = require("invasim")
 local p = iv.params{ stale = { false, help = "catch the callback's error, then fail elsewhere" } }
-local sys = iv.System{ box = { 10, 10, 10 } }
-sys:place{ cells = { n = 10, x = { 1, 9 } } }
-local dyn = iv.Dynamics{ dt = 0.01 }
-dyn:add(iv.Langevin{ group = sys:group("cancer"), kT = 1e-3, gamma = 1 })
+local function tissue() local s = iv.System{ box = { 10, 10, 10 } }; s:place{ cells = { n = 10, x = { 1, 9 } } }
+  local d = iv.Dynamics{ dt = 0.01 }; d:add(iv.Langevin{ group = s:group("cancer"), kT = 1e-3, gamma = 1 }); return s, d end
+local sys, dyn = tissue()
+local sys2, dyn2 = tissue()  -- the inner run's: a run inside a run of the same System is refused
 local function deepest_frame() error("raised in the inner callback") end
 local function inner_callback() deepest_frame() end
-local function outer_callback() dyn:run(sys, 10, { every = 5, callback = inner_callback }) end
+local function outer_callback() dyn2:run(sys2, 10, { every = 5, callback = inner_callback }) end
 local function run_with_callbacks() dyn:run(sys, 10, { every = 5, callback = outer_callback }) end
 if p.stale then
   assert(not pcall(run_with_callbacks))
