@@ -342,6 +342,14 @@ expect_error("run: key 'progress' must be a Progress, got string", iv.Dynamics{}
 -- A value after the arguments a function takes is refused, as an unknown key is (trailing
 -- nils pass): hand-written bindings and the method<> adapters alike.
 expect_error("bad argument #1 to 'compute' %(no value expected, got table%)", sys.compute, sys, { per_site = true })
+-- Getters, params() and the other queries without arguments refuse one too.
+expect_error("bad argument #1 to 'n_sites' %(no value expected, got string%)", sys.n_sites, sys, "junk")
+expect_error("bad argument #1 to 'box' %(no value expected, got table%)", sys.box, sys, {})
+expect_error("bad argument #1 to 'packing' %(no value expected, got number%)", sys.packing, sys, 1)
+expect_error("bad argument #1 to 'forces' %(no value expected, got number%)", sys.forces, sys, 1)
+expect_error("bad argument #1 to 'adipocytes' %(no value expected, got number%)", sys.adipocytes, sys, 1)
+local loose_contacts = iv.Contacts{}
+expect_error("bad argument #1 to 'params' %(no value expected, got number%)", loose_contacts.params, loose_contacts, 1)
 expect_error("bad argument #2 to 'group' %(no value expected, got table%)", sys.group, sys, "cancer", {})
 expect_error("bad argument #2 to 'positions' %(no value expected, got table%)", sys.positions, sys,
              sys:group("cancer"), { unwrapped = true })
