@@ -55,8 +55,7 @@ const FieldTable<SnapshotKeys>& snapshot_fields() {
 int l_snapshots(lua_State* L) {
   Kwargs kw(L, 1, "Snapshots");
   const SnapshotKeys k = snapshot_fields().make(kw);
-  if (k.dir.find('\0') != std::string::npos)
-    fail_input("Snapshots: key 'dir' holds a NUL byte (the system call would stop there)");
+  require_no_nul(k.dir, "Snapshots: key 'dir'");
   const SnapshotOptions& o = k;
   push(L, engine_call("Snapshots", [&] { return std::make_shared<SnapshotWriter>(k.dir, o); }));
   return 1;

@@ -201,8 +201,7 @@ int l_checkpoint(lua_State* L) {
   const auto& s = check_shared<SimulationHandle>(L, 1);
   Kwargs kw(L, 2, "checkpoint");
   const std::string path = kw.string("path");
-  if (path.find('\0') != std::string::npos)
-    fail_input("checkpoint: key 'path' holds a NUL byte (the system call would stop there)");
+  require_no_nul(path, "checkpoint: key 'path'");
   CheckpointParts parts = read_checkpoint_parts(kw, false);
   parts.sim = s->system;
   parts.dyn = s->dyn;

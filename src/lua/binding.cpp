@@ -294,6 +294,11 @@ std::string arg_path(lua_State* L, int index) {
   return path;
 }
 
+void require_no_nul(const std::string& path, const std::string& what) {
+  if (path.find('\0') != std::string::npos)
+    fail_input(what, " holds a NUL byte (the system call would stop there)");
+}
+
 std::optional<double> opt_number(lua_State* L, int index) {
   if (lua_isnoneornil(L, index)) return std::nullopt;
   return arg_number(L, index);

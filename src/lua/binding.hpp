@@ -154,6 +154,8 @@ std::string arg_string(lua_State* L, int index);
 // A string argument naming a file or directory: a NUL byte in it is refused (the system call
 // would stop there, at another path).
 std::string arg_path(lua_State* L, int index);
+// The same refusal for a path given as a key ("Snapshots: key 'dir'"), naming it.
+void require_no_nul(const std::string& path, const std::string& what);
 std::optional<double> opt_number(lua_State* L, int index);  // nil or absent -> nullopt
 
 // Wraps an l_ function: C++ exceptions become Lua errors with the caller's file:line. The
