@@ -21,8 +21,10 @@
 --
 -- The stage knows when not to compress: with `from` (a run directory, e.g. invasim.from), the
 -- compressed tissue that run saved replaces the compression (same system size, this run's
--- seed); while a --resume from a production checkpoint is pending it only logs that it is
--- skipped (the checkpoint replaces the tissue).
+-- seed); a --resume of a run stopped after its compression loads the run's own compressed
+-- tissue, report included, and continues exactly like the run that was not stopped; while a
+-- --resume from a production checkpoint is pending it only logs that it is skipped (the
+-- checkpoint replaces the tissue).
 --
 -- Decisions (docs/model.md): the minimisations between steps stop at ftol = 1e-3 and only the
 -- final state is minimised tightly (final_ftol = 1e-6): the intermediate states are not
@@ -75,13 +77,26 @@ local function stalled(r, o)
                       r.steps, o.max_steps, r.max_force, o.ftol, r.phi), 0)
 end
 
--- The compressed tissue that the run in directory `from` saved, loaded into tissue.sys.
+-- The compressed tissue that the run in directory `from` saved, loaded into tissue.sys, and
+-- that compression's report (box, phi, steps; the whole report since the report is saved
+-- whole).
 local function load_compressed(tissue, from)
   local path = resume.compressed_path(from)
   local saved = resume.deserialize(iv.load_checkpoint(path, { system = tissue.sys, seed = tissue.params.seed }), path)
   saved.from = path
   log.say("compress", "skipped: the compressed tissue of %s (box %.4g, phi = %.4f)", from, saved.box[1], saved.phi)
   return saved
+end
+
+-- This run's own compressed tissue and report, when a --resume continues a run that was
+-- stopped after its compression (lib.resume.compressed_pending).
+local function load_own_compressed(tissue, out)
+  local path = resume.compressed_path(out)
+  local report = resume.deserialize(iv.load_checkpoint(path, { system = tissue.sys }), path)
+  resume.compressed_done()
+  log.say("compress", "skipped: resumed from this run's compressed tissue %s (box %.4g, phi = %.4f)",
+          path, report.box[1], report.phi)
+  return report
 end
 
 -- Compresses (or continues a compression stopped by a signal); returns the report.
@@ -162,9 +177,8 @@ local function compress(tissue, o)
   -- (No wall-clock time in the report: it goes into the production checkpoint, which must be
   -- the same bytes for the same run; the log line says how long this took.)
   local seconds = iv.clock() - clock
-  if save then  -- the compressed tissue, for runs started with --from this run's directory
-    iv.save_checkpoint(save, resume.stamp{ system = sys, extra = resume.serialize{
-      box = report.box, phi = report.phi, steps = report.steps } })
+  if save then  -- the compressed tissue and its report, for --from and --resume
+    iv.save_checkpoint(save, resume.stamp{ system = sys, extra = resume.serialize(report) })
   end
   if o.checkpoint and iv.exists(o.checkpoint) then iv.remove_path(o.checkpoint) end
   local box = sys:box().lengths
@@ -180,6 +194,8 @@ return function(tissue, opts)
   if resume.pending() then
     log.say("compress", "skipped: resuming from a checkpoint")
     tissue.compression = { skipped = true }
+  elseif o.out and resume.compressed_pending() then
+    tissue.compression = load_own_compressed(tissue, o.out)
   elseif o.from then
     tissue.compression = load_compressed(tissue, o.from)
   else

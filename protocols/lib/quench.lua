@@ -101,7 +101,7 @@ return function(tissue, opts)
     local dir = resume.run_dir()
     error(string.format("stopped by %s during %s at step %d; no checkpoint is written during a quench " ..
                         "(only during compression and production): %s", signal, o.label, sys:step(),
-                        dir and resume.continue_command(dir) .. " starts the run again from the beginning"
+                        dir and resume.continue_command(dir) .. " starts the run again " .. resume.restart_point()
                         or "run the protocol again from the start"), 0)
   end
   local box = sys:box()

@@ -4,10 +4,12 @@
 -- their work (compression, minimisation, steps), then the production stage loads
 -- DIR/checkpoint/state.ckpt into those objects and continues from the saved step, bit for
 -- bit. A run stopped by a signal during its compression saved the partly compressed tissue
--- (compressing_path); lib.compress then continues the compression from it. A run killed in
--- its quench starts again from the beginning (from the same --from tissue, which resume.txt
--- records). The checkpoint must be this run's: its
--- identity (lib.run_identity) is compared with the run's before anything runs.
+-- (compressing_path); lib.compress then continues the compression from it. A run stopped
+-- after its compression and before its first production checkpoint (in its quench, its
+-- rescale) starts again from its compressed tissue (compressed_path: lib.compress loads it
+-- instead of compressing), or from the same --from tissue, which resume.txt records. Every
+-- checkpoint must be this run's: its identity (lib.run_identity) is compared with the run's
+-- before anything runs.
 local iv = require("invasim")
 local run_identity = require("lib.run_identity")
 
@@ -22,6 +24,7 @@ function M.compressed_path(out) return out .. "/checkpoint/compressed.ckpt" end
 -- once the compression is complete).
 function M.compressing_path(out) return out .. "/checkpoint/compressing.ckpt" end
 local compression_pending = false
+local compressed_pending = false
 
 local run_dir = nil   -- this run's directory, set with the identity
 
@@ -34,6 +37,15 @@ function M.run_dir() return run_dir end
 -- `invasim run --resume DIR`.
 function M.continue_command(dir)
   return iv.continue_command or ("invasim run --resume " .. (dir or run_dir or "DIR"))
+end
+
+-- Where a --resume of this run starts when the run has no production checkpoint yet: from
+-- its compressed tissue (its own, or that of --from), else from the beginning.
+function M.restart_point()
+  local own = run_dir and M.compressed_path(run_dir)
+  if own and iv.exists(own) then return "from its compressed tissue (" .. own .. ")" end
+  if iv.from then return "from the compressed tissue of " .. iv.from end
+  return "from the beginning"
 end
 
 -- Adds this run's identity to a save_checkpoint keyword table (nothing outside a run
@@ -64,15 +76,22 @@ function M.check(out, path)
 end
 
 -- Called by lib.run_dir: a resume is pending if --resume was given and a checkpoint of this
--- run exists (a checkpoint of another run is an error): the production checkpoint, or else
--- the checkpoint of a compression stopped by a signal (lib.compress continues it). Returns
--- whether either is pending.
+-- run exists (a checkpoint of another run is an error): the production checkpoint; else the
+-- compressed tissue (lib.compress loads it; a run killed between saving it and deleting
+-- compressing_path has both, and the complete one wins); else the checkpoint of a compression
+-- stopped by a signal (lib.compress continues it). Returns whether any is pending.
 function M.start(out)
   if not iv.resume then return false end
   local path = M.checkpoint_path(out)
   if iv.exists(path) then
     M.check(out, path)
     pending = true
+    return true
+  end
+  local compressed = M.compressed_path(out)
+  if iv.exists(compressed) then
+    M.check(out, compressed)
+    compressed_pending = true
     return true
   end
   local partial = M.compressing_path(out)
@@ -87,6 +106,11 @@ end
 -- compression_done once it has loaded it).
 function M.compression_pending() return compression_pending end
 function M.compression_done() compression_pending = false end
+
+-- Whether the compression stage should load this run's compressed tissue (compressed_path)
+-- instead of compressing (then it calls compressed_done once it has loaded it).
+function M.compressed_pending() return compressed_pending end
+function M.compressed_done() compressed_pending = false end
 
 -- Whether stages should skip their work (the checkpoint will replace their result).
 function M.pending() return pending end

@@ -69,7 +69,7 @@ local function params_json_differences(recorded, identity, p, records)
   for k in pairs(parameters) do if not seen[k] then seen[k] = true; names[#names + 1] = k end end
   for k in pairs(p) do if not seen[k] then seen[k] = true; names[#names + 1] = k end end
   table.sort(names)
-  for _, k in ipairs(names) do compare(k, parameters[k], p[k]) end
+  for _, k in ipairs(names) do compare(k, parameters[k], run_identity.json_value(p[k])) end
   return out
 end
 

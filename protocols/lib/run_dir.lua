@@ -4,7 +4,8 @@
 -- observers' series.csv, summary.json, correlations.csv, shapes.csv, snapshots/ and
 -- checkpoint/. A new run refuses a directory that holds another run unless --overwrite is
 -- given, which deletes that run's files first: no stale file of an earlier run can
--- be picked up. The directory is locked (DIR/.lock, invasim.lock_run_dir) before any of its
+-- be picked up. A run that stopped before saving anything (refused by a stage's checks,
+-- killed before its first checkpoint) is taken over without --overwrite, saying so. The directory is locked (DIR/.lock, invasim.lock_run_dir) before any of its
 -- files is written or deleted, for the whole life of the run: a second run into it, new or
 -- --resume, is refused while the first runs. A --resume first checks the directory's files
 -- against resume.txt (lib.resume_checks). Temporary files of atomic writes that a killed run
@@ -25,18 +26,36 @@ M.RUN_FILES = { "params.json", "resume.txt", "log.txt", "series.csv", "summary.j
 local MARKS = { "params.json", "resume.txt", "checkpoint/state.ckpt", "checkpoint/compressed.ckpt",
                 "checkpoint/compressing.ckpt" }
 
+-- What open() writes before the stages run: all that a run which stopped before saving
+-- anything leaves (no checkpoint, no results).
+local WRITTEN_AT_START = { ["params.json"] = true, ["resume.txt"] = true, ["log.txt"] = true,
+                           checkpoint = true }
+
 -- The run id recorded in dir/resume.txt, or nil.
 local function recorded_id(dir) return resume_checks.records(dir).run_id end
 
--- A new run in dir: refused if dir holds a run, unless --overwrite (then its files go).
--- Returns the list of files removed.
+-- Whether the run in dir saved nothing: no checkpoint and no file beyond WRITTEN_AT_START.
+local function saved_nothing(dir)
+  for _, f in ipairs(M.RUN_FILES) do
+    if not WRITTEN_AT_START[f] and iv.exists(dir .. "/" .. f) then return false end
+  end
+  for _, f in ipairs(MARKS) do
+    if f:find("^checkpoint/") and iv.exists(dir .. "/" .. f) then return false end
+  end
+  return true
+end
+
+-- A new run in dir: refused if dir holds a run that saved something, unless --overwrite
+-- (then its files go). Returns the list of files removed and, for a run that saved nothing,
+-- its id ("unknown" if resume.txt records none).
 local function claim(dir, identity)
   local found = {}
   for _, f in ipairs(MARKS) do
     if iv.exists(dir .. "/" .. f) then found[#found + 1] = f end
   end
   if #found == 0 then return {} end
-  if not iv.overwrite then
+  local unsaved = not iv.overwrite and saved_nothing(dir) and (recorded_id(dir) or "unknown")
+  if not iv.overwrite and not unsaved then
     local old = recorded_id(dir)
     error(string.format("--out %s already holds a run%s (%s): refusing to start another run " ..
                         "(run %s) there, whose files would mix with that run's. Continue that " ..
@@ -56,7 +75,7 @@ local function claim(dir, identity)
       removed[#removed + 1] = f
     end
   end
-  return removed
+  return removed, unsaved
 end
 
 -- Takes the lock of dir for the rest of the run, or refuses the run naming its holder.
@@ -116,12 +135,12 @@ function M.open(p, dir)
   if not iv.resume then check_source(identity) end
   files.mkdir(dir .. "/checkpoint")  -- an unwritable --out is refused here, naming it
   lock(dir)
-  local removed, warnings, records = {}, {}, nil
+  local removed, warnings, records, unsaved = {}, {}, nil, nil
   if iv.resume then
     records = resume_checks.records(dir)
     resume_checks.verify_sources(dir, identity, records)
   else
-    removed = claim(dir, identity)
+    removed, unsaved = claim(dir, identity)
   end
   iv.record_run_lock(dir)
   local temporaries = iv.remove_temporaries(dir)
@@ -145,7 +164,7 @@ function M.open(p, dir)
   -- two writes has no resume.txt and cannot be resumed (it has not started its work).
   local protocol_hash = iv.hash_file(iv.script)
   local params = {}
-  for k, v in pairs(p) do params[k] = v end
+  for k, v in pairs(p) do params[k] = run_identity.json_value(v) end
   files.write(dir .. "/params.json", iv.json_encode{
     protocol = identity.protocol, protocol_hash = protocol_hash, parameters = params,
     run_id = identity.id, from = identity.from, from_checkpoint = identity.from_checkpoint,
@@ -162,7 +181,10 @@ function M.open(p, dir)
   for _, line in ipairs(identity.lines) do lines[#lines + 1] = line end
   files.write(dir .. "/resume.txt", table.concat(lines, "\n") .. "\n")
   log.tee(dir .. "/log.txt")
-  if #removed > 0 then
+  if unsaved then
+    log.say("run", "replaced run %s in %s, which stopped before saving anything (no checkpoint, " ..
+            "no results): deleted its %s", unsaved, dir, table.concat(removed, ", "))
+  elseif #removed > 0 then
     log.say("run", "--overwrite: deleted the previous run's %s in %s", table.concat(removed, ", "), dir)
   end
   log.say("run", "invasim %s (%s), %d threads; run %s; output in %s", iv.version,

@@ -24,6 +24,13 @@ function M.format_value(v)
   return tostring(v)
 end
 
+-- A parameter value as params.json records it: infinities as the text "inf" or "-inf" (JSON
+-- has no number for them; null would read as a parameter not set), everything else as is.
+function M.json_value(v)
+  if v == math.huge or v == -math.huge then return tostring(v) end
+  return v
+end
+
 -- The parameters as sorted key=value lines (the --set syntax of resume.txt).
 function M.parameter_lines(p)
   local names = {}

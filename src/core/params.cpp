@@ -99,7 +99,9 @@ ParamValue parse_value(ParamType type, const std::string& key, const std::string
         fail_input("parameter '", key, "' is a number; '", raw,
                    "' is beyond the range of a "
                    "double (magnitudes from about 5e-324 to 1.8e308, or 0)");
-      if (!d || !std::isfinite(*d)) return fail("a number");
+      // inf and -inf are numbers (a range with a closed infinite end takes them: tau_p's
+      // [0, inf]); NaN is none.
+      if (!d || std::isnan(*d)) return fail("a number");
       return *d == 0.0 ? 0.0 : *d;  // -0 is 0: the same parameters, run id and params.json
     }
     case ParamType::kInteger: {

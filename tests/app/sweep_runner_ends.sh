@@ -70,7 +70,8 @@ grep -q "interrupted: 0" killed_status.log && grep -q "running: 0" killed_status
 
 # 3. A stop by SIGINT names the sweep's command.
 #    A point in production continues from its checkpoint; one still in its quench (the other
-#    job may be) starts again; either way the line names the sweep's command.
+#    job may be) starts again from its compressed tissue; either way the line names the
+#    sweep's command.
 signal_once_running stopped INT
 logs=$(grep -l "stopped by SIGINT" stopped/workspace/*/run.log || true)
 [ -n "$logs" ] || fail "no point logged its stop" stopped.log
@@ -79,7 +80,7 @@ for log in $logs; do
   if grep -q "^invasim: stopped by SIGINT at step .*continue with: invasim sweep run $PWD/stopped$" "$log"; then
     continued=$((continued + 1))
   else
-    grep -q "^invasim: stopped by SIGINT during quench at step .*: invasim sweep run $PWD/stopped starts the run again from the beginning$" "$log" ||
+    grep -q "^invasim: stopped by SIGINT during quench at step .*: invasim sweep run $PWD/stopped starts the run again from its compressed tissue (.*/checkpoint/compressed.ckpt)$" "$log" ||
       fail "the stop does not name the sweep's command" "$log"
   fi
   if grep -q "invasim: error:\|invasim run --resume" "$log"; then

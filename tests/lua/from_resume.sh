@@ -26,7 +26,7 @@ wait_for "$pid" "the start of the quench (its 'quench: P =' line in log.txt)" \
 stop_with_sigterm "$pid" "$work/killed.log" "the killed run"
 grep -q "stopped by SIGTERM during quench at step" "$work/killed.log" ||
   fail "the signal did not land in the quench" "$work/killed.log"
-grep -qF "invasim run --resume $work/killed starts the run again from the beginning" "$work/killed.log" ||
+grep -qF "invasim run --resume $work/killed starts the run again from the compressed tissue of $work/first" "$work/killed.log" ||
   fail "the stop message does not name the way to continue" "$work/killed.log"
 [ ! -e "$work/killed/checkpoint/state.ckpt" ] || fail "a checkpoint was written before production"
 

@@ -9,7 +9,9 @@
 #  5. params.json with another invasim_version continues with a warning on stderr and in log.txt
 #     (a run without its summary.json, as one killed during its end-of-run analysis);
 #  6. a run started with a relative protocol path resumes from another working directory
-#     (resume.txt records the resolved path).
+#     (resume.txt records the resolved path);
+#  7. a run with an infinite parameter (--set tau_p=inf) resumes: params.json records it as
+#     "inf" (JSON has no infinity), which the check reads back as the number.
 # Usage: resume_trusts.sh INVASIM WORKDIR
 set -euo pipefail
 invasim=$1 work=$2
@@ -35,13 +37,15 @@ grep -q '"P": 5,' "$dir/params.json" || fail "the test could not edit params.jso
 refused params "$dir/params.json does not agree with $dir/resume.txt, which this resume follows: P = 5 in params.json, 0.0013 in resume.txt"
 cp "$work/params.json" "$dir/params.json"
 
-# 2. resume.txt edited (the run's final checkpoint set aside: its own refusal, naming P too,
+# 2. resume.txt edited (the run's checkpoints set aside: their own refusal, naming P too,
 #    would come first; stale_checkpoint.sh tests that one).
 mv "$dir/checkpoint/state.ckpt" "$work/state.ckpt"
+mv "$dir/checkpoint/compressed.ckpt" "$work/compressed.ckpt"
 sed -i 's/^P=0.0013$/P=0.002/' "$dir/resume.txt"
 refused resume_txt "P = 0.0013 in params.json, 0.002 in resume.txt"
 cp "$work/resume.txt" "$dir/resume.txt"
 mv "$work/state.ckpt" "$dir/checkpoint/state.ckpt"
+mv "$work/compressed.ckpt" "$dir/checkpoint/compressed.ckpt"
 
 # 3. The protocol changed.
 recorded=$(sed -n 's/^# protocol_hash=//p' "$dir/resume.txt")
@@ -79,4 +83,14 @@ grep -q "^run: warning: this run was started by invasim 9.9.9 " "$dir/log.txt" |
 (cd / && "$invasim" run --resume "$work/relative") > "$work/elsewhere.log" 2>&1 ||
   fail "--resume from another working directory" "$work/elsewhere.log"
 grep -qF "nothing to resume" "$work/elsewhere.log" || fail "elsewhere: no message" "$work/elsewhere.log"
-echo "resume_trusts passed: edited params.json, resume.txt, protocol and module refused; a finished run kept; another version warned; resumed from another directory"
+
+# 7. An infinite parameter.
+"$invasim" run "$here/../../protocols/invasion.lua" --set N_a=4 --set N_c=60 --set L0=32.0 --set quench_steps=200 \
+  --set steps=400 --set every=200 --set snapshot_every=0 --set tau_p=inf --out "$work/inf" > "$work/inf.log" 2>&1 ||
+  fail "run with tau_p=inf" "$work/inf.log"
+grep -q "tau_p = inf" "$work/inf.log" || fail "tau_p=inf did not reach the quench" "$work/inf.log"
+grep -qF '"tau_p": "inf"' "$work/inf/params.json" || fail "params.json does not record tau_p as \"inf\"" "$work/inf/params.json"
+rm "$work/inf/summary.json"
+"$invasim" run --resume "$work/inf" > "$work/inf_resumed.log" 2>&1 || fail "--resume of the tau_p=inf run" "$work/inf_resumed.log"
+grep -qF "resumed at step" "$work/inf_resumed.log" || fail "the tau_p=inf run did not resume" "$work/inf_resumed.log"
+echo "resume_trusts passed: edited params.json, resume.txt, protocol and module refused; a finished run kept; another version warned; resumed from another directory; an infinite parameter resumed"

@@ -5,8 +5,11 @@
 #  b) --resume refuses a checkpoint written by another run (a run with another P), naming
 #     both run ids and the parameter that differs;
 #  c) --overwrite deletes the old run's files before the new run starts, so a new run killed
-#     before its first checkpoint resumes from the beginning with its own parameters, not from
-#     the old run's checkpoint (a stale-checkpoint scenario).
+#     before its first production checkpoint resumes with its own parameters (from the
+#     beginning, its partial compression or its compressed tissue), not from the old run's
+#     checkpoint (a stale-checkpoint scenario);
+#  d) a run that stopped before saving anything (refused by the compression's check) leaves a
+#     directory that a new run takes over without --overwrite, saying so.
 # Usage: stale_checkpoint.sh INVASIM WORKDIR
 set -euo pipefail
 invasim=$1
@@ -78,7 +81,20 @@ done
 killed_id=$(run_id "$work/run")
 "$invasim" run --resume "$work/run" > "$work/resumed.log" 2>&1 || fail "c) --resume" "$work/resumed.log"
 ! grep -q "resumed at step" "$work/resumed.log" || fail "c) resumed from a checkpoint" "$work/resumed.log"
-grep -q "^compress: to phi" "$work/resumed.log" || fail "c) did not start from the beginning" "$work/resumed.log"
+grep -qE "^compress: (to phi|skipped: resumed from this run's compressed tissue $work/run/)" "$work/resumed.log" ||
+  fail "c) did not start from its own compression" "$work/resumed.log"
 grep -q "^quench: P = 0.002," "$work/resumed.log" || fail "c) not the new run's P" "$work/resumed.log"
 grep -qE "run $killed_id(;|\) from its checkpoint)" "$work/resumed.log" || fail "c) not the same run id" "$work/resumed.log"
-echo "stale_checkpoint: a run directory belongs to one run (refused new run, refused stale checkpoint $first_id for run $other_id, --overwrite)"
+# d) A target below the dilute start is refused by the compression, after the run directory
+# was made: nothing saved, so the corrected run needs no --overwrite.
+status=0
+"$invasim" "${small[@]}" --set phi=0.01 --out "$work/unsaved" > "$work/unsaved.log" 2>&1 || status=$?
+[ "$status" -eq 1 ] || fail "d) the refused run exited with $status" "$work/unsaved.log"
+grep -q "above the target 0.01; use rescale to expand" "$work/unsaved.log" || fail "d) not refused by the compression" "$work/unsaved.log"
+[ -f "$work/unsaved/resume.txt" ] || fail "d) the refused run made no run directory (the case is gone?)"
+unsaved_id=$(run_id "$work/unsaved")
+"$invasim" "${small[@]}" --set quench_steps=200 --out "$work/unsaved" > "$work/taken.log" 2>&1 || fail "d) the corrected run" "$work/taken.log"
+grep -qF "run: replaced run $unsaved_id in $work/unsaved, which stopped before saving anything (no checkpoint, no results): deleted its params.json, resume.txt, log.txt, checkpoint" "$work/taken.log" ||
+  fail "d) the take-over is not reported" "$work/taken.log"
+[ "$(grep -c "^run: invasim" "$work/unsaved/log.txt")" -eq 1 ] || fail "d) log.txt still holds the refused run's lines" "$work/unsaved/log.txt"
+echo "stale_checkpoint: a run directory belongs to one run (refused new run, refused stale checkpoint $first_id for run $other_id, --overwrite, a run that saved nothing taken over)"

@@ -3,6 +3,7 @@
 #include <lua.hpp>
 
 #include <catch2/catch.hpp>
+#include <limits>
 #include <memory>
 #include <regex>
 #include <sstream>
@@ -292,6 +293,13 @@ TEST_CASE("parse_value converts override text to the declared type", "[lua][para
                     "parameter 'phi' is a number; cannot parse 'abc'");
   CHECK_THROWS_WITH(parse_value(ParamType::kNumber, "phi", "nan"),
                     "parameter 'phi' is a number; cannot parse 'nan'");
+  // Infinities are numbers (the declared range decides whether they are allowed).
+  CHECK(std::get<double>(parse_value(ParamType::kNumber, "tau_p", "inf")) ==
+        std::numeric_limits<double>::infinity());
+  CHECK(std::get<double>(parse_value(ParamType::kNumber, "x", "-inf")) ==
+        -std::numeric_limits<double>::infinity());
+  CHECK(std::get<double>(parse_value(ParamType::kNumber, "x", "+inf")) ==
+        std::numeric_limits<double>::infinity());
   CHECK_THROWS_AS(parse_value(ParamType::kInteger, "n", "1.5"), InputError);
   CHECK_THROWS_AS(parse_value(ParamType::kBoolean, "b", "maybe"), InputError);
   CHECK_THROWS_AS(parse_value(ParamType::kNumber, "x", ""), InputError);
