@@ -18,5 +18,7 @@ return function(tissue, opts)
     return
   end
   tissue.tethers:heterogeneity{ lambda = o.lambda }
-  log.say("heterogeneity", "lambda = %g on %d tethers", o.lambda, tissue.tethers:count())
+  -- With K = 0 the rest lengths change but no tether pulls: say so rather than imply an effect.
+  log.say("heterogeneity", "lambda = %g on %d tethers%s", o.lambda, tissue.tethers:count(),
+          tissue.tethers:K() == 0 and " (K = 0: the tethers exert no force, so lambda has no effect)" or "")
 end

@@ -50,7 +50,9 @@ function M.final(tissue, p, result, seconds, out, extra)
     log.say("summary", "k_B T_c / (P sigma^3) = %.4g (paper's convention: %.4g), T_c / T_a = %.3g",
             derived.kT_over_P, derived.kT_c_paper_over_P, derived.T_c_over_T_a)
   end
-  if s.correlation_window then
+  if s.correlation_window == 0 then  -- no production steps: no lag to decay over
+    log.say("summary", "tau_d, tau_r = not measured (the correlators reached no lag)")
+  elseif s.correlation_window then
     -- A time shorter than the correlator's interval (lib/production.lua) is marked.
     local function time(name)
       return optional(s[name], "%.4g") .. (s[name .. "_unresolved"] and " (unresolved)" or "")

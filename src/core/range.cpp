@@ -6,6 +6,7 @@
 namespace invasim {
 
 std::string format_number(double x) {
+  if (std::isnan(x)) return "nan";  // whatever its sign bit (to_chars writes "-nan")
   char buffer[64];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, x);  // shortest round trip
   return std::string(buffer, result.ptr);

@@ -54,6 +54,11 @@ int l_new(lua_State* L) {
 void open_progress(lua_State* L) {
   define_type<Progress>(L, {method<"update",
                                    [](Progress& p, std::uint64_t step, std::optional<double> time) {
+                                     // A step before the last one would make the rate and ETA
+                                     // negative.
+                                     if (static_cast<long long>(step) < p.step())
+                                       fail_input("update: step ", step,
+                                                  " is before the last one, ", p.step());
                                      p.update(static_cast<long long>(step), time);
                                    }>(),
                             method<"finish", [](Progress& p) { p.finish(); }>(),

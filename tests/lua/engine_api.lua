@@ -339,6 +339,12 @@ expect_error("save_checkpoint: key 'tethers' must be a Tethers, got Contacts", i
              "unused.ckpt", { system = sys, tethers = iv.Contacts{} })
 expect_error("run: key 'progress' must be a Progress, got string", iv.Dynamics{}.run, iv.Dynamics{},
              sys, 1, { progress = "p" })
+-- A Progress goes forwards: a step before the last one would give a negative rate and ETA.
+local progress = iv.Progress{ total = 10, start = 2, live = false, every_seconds = 1e9 }
+expect_error("update: step 1 is before the last one, 2", progress.update, progress, 1)
+progress:update(5)
+expect_error("update: step 4 is before the last one, 5", progress.update, progress, 4)
+progress:update(5)
 -- A value after the arguments a function takes is refused, as an unknown key is (trailing
 -- nils pass): hand-written bindings and the method<> adapters alike.
 expect_error("bad argument #1 to 'compute' %(no value expected, got table%)", sys.compute, sys, { per_site = true })

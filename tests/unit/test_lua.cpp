@@ -305,6 +305,15 @@ TEST_CASE("parse_value converts override text to the declared type", "[lua][para
   CHECK_THROWS_AS(parse_value(ParamType::kNumber, "x", ""), InputError);
 }
 
+TEST_CASE("error messages show a value's control characters escaped", "[lua][params]") {
+  // A NUL byte does not end the message; an escape sequence does not reach the terminal.
+  CHECK_THROWS_WITH(parse_value(ParamType::kNumber, "phi", std::string("1\0 2", 4)),
+                    "parameter 'phi' is a number; cannot parse '1\\x00 2'");
+  CHECK_THROWS_WITH(parse_value(ParamType::kNumber, "phi", "\x1b[31m\x7f"),
+                    "parameter 'phi' is a number; cannot parse '\\x1b[31m\\x7f'");
+  CHECK(printable_message("two\nlines\tand a tab") == "two\nlines\tand a tab");
+}
+
 TEST_CASE("apply_overrides: undeclared keys, duplicates and --seed", "[lua][params]") {
   std::vector<Param> params = {
       declared("n", ParamType::kInteger, 5LL, "cells", "number"),

@@ -3,6 +3,7 @@
 // placement (setup/placement).
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <type_traits>
 #include <utility>
@@ -43,4 +44,7 @@ TEST_CASE("Range: one interval type for kwargs, params and placement x ranges") 
   CHECK(p.describe() == "<= 0.0025");
   CHECK(p.contains(-1e300));
   CHECK(format_number(0.1) == "0.1");
+  // NaN is "nan" whatever its sign bit (0.0 / 0.0 has it set on x86).
+  CHECK(format_number(std::numeric_limits<double>::quiet_NaN()) == "nan");
+  CHECK(format_number(-std::numeric_limits<double>::quiet_NaN()) == "nan");
 }
