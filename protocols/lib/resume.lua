@@ -14,7 +14,9 @@ local iv = require("invasim")
 local run_identity = require("lib.run_identity")
 
 local M = {}
-local pending = false
+-- The checkpoint a --resume continues from, until the stage that loads it says it is done:
+-- "state" (production), "compressed" or "compressing" (lib.compress); nil: none.
+local waiting = nil
 local identity = nil  -- this run's identity, set by lib.run_dir
 
 function M.checkpoint_path(out) return out .. "/checkpoint/state.ckpt" end
@@ -23,8 +25,6 @@ function M.compressed_path(out) return out .. "/checkpoint/compressed.ckpt" end
 -- The partly compressed tissue a run stopped by a signal during compression saves (deleted
 -- once the compression is complete).
 function M.compressing_path(out) return out .. "/checkpoint/compressing.ckpt" end
-local compression_pending = false
-local compressed_pending = false
 
 local run_dir = nil   -- this run's directory, set with the identity
 
@@ -82,41 +82,33 @@ end
 -- stopped by a signal (lib.compress continues it). Returns whether any is pending.
 function M.start(out)
   if not iv.resume then return false end
-  local path = M.checkpoint_path(out)
-  if iv.exists(path) then
-    M.check(out, path)
-    pending = true
-    return true
+  for _, kind in ipairs({ { "state", M.checkpoint_path }, { "compressed", M.compressed_path },
+                          { "compressing", M.compressing_path } }) do
+    local path = kind[2](out)
+    if iv.exists(path) then
+      M.check(out, path)
+      waiting = kind[1]
+      return true
+    end
   end
-  local compressed = M.compressed_path(out)
-  if iv.exists(compressed) then
-    M.check(out, compressed)
-    compressed_pending = true
-    return true
-  end
-  local partial = M.compressing_path(out)
-  if iv.exists(partial) then
-    M.check(out, partial)
-    compression_pending = true
-  end
-  return compression_pending
+  return false
 end
 
 -- Whether the compression stage should continue from compressing_path (then it calls
 -- compression_done once it has loaded it).
-function M.compression_pending() return compression_pending end
-function M.compression_done() compression_pending = false end
+function M.compression_pending() return waiting == "compressing" end
+function M.compression_done() waiting = nil end
 
 -- Whether the compression stage should load this run's compressed tissue (compressed_path)
 -- instead of compressing (then it calls compressed_done once it has loaded it).
-function M.compressed_pending() return compressed_pending end
-function M.compressed_done() compressed_pending = false end
+function M.compressed_pending() return waiting == "compressed" end
+function M.compressed_done() waiting = nil end
 
 -- Whether stages should skip their work (the checkpoint will replace their result).
-function M.pending() return pending end
+function M.pending() return waiting == "state" end
 
 -- Called by the production stage once the checkpoint is loaded.
-function M.done() pending = false end
+function M.done() waiting = nil end
 
 -- The order of a table's keys in a checkpoint: numbers (ascending) before strings
 -- (byte order) before booleans (false first), so that equal data always gives the same bytes

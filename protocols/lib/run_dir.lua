@@ -190,7 +190,7 @@ function M.open(p, dir)
   log.say("run", "invasim %s (%s), %d threads; run %s; output in %s", iv.version,
           iv.git_revision, iv.threads(), identity.id, dir)
   if iv.resume then  -- stopped before its first checkpoint (or killed): nothing to continue from
-    log.say("run", "no checkpoint of this run in %s: --resume starts it again from the beginning", dir)
+    log.say("run", "no checkpoint of this run in %s: --resume starts it again %s", dir, resume.restart_point())
   end
   report(dir, temporaries, warnings)
   return dir
