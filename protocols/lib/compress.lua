@@ -78,8 +78,7 @@ local function stalled(r, o)
 end
 
 -- The compressed tissue that the run in directory `from` saved, loaded into tissue.sys, and
--- that compression's report (box, phi, steps; the whole report since the report is saved
--- whole).
+-- that compression's report (the whole report, of which --from needs box, phi and steps).
 local function load_compressed(tissue, from)
   local path = resume.compressed_path(from)
   local saved = resume.deserialize(iv.load_checkpoint(path, { system = tissue.sys, seed = tissue.params.seed }), path)

@@ -5,7 +5,8 @@
 -- checkpoint/. A new run refuses a directory that holds another run unless --overwrite is
 -- given, which deletes that run's files first: no stale file of an earlier run can
 -- be picked up. A run that stopped before saving anything (refused by a stage's checks,
--- killed before its first checkpoint) is taken over without --overwrite, saying so. The directory is locked (DIR/.lock, invasim.lock_run_dir) before any of its
+-- killed before its first checkpoint) is taken over without --overwrite, saying so. The
+-- directory is locked (DIR/.lock, invasim.lock_run_dir) before any of its
 -- files is written or deleted, for the whole life of the run: a second run into it, new or
 -- --resume, is refused while the first runs. A --resume first checks the directory's files
 -- against resume.txt (lib.resume_checks). Temporary files of atomic writes that a killed run

@@ -63,8 +63,8 @@ const FieldTable<K>& active_fields() {
           required(number_or_ramp<K>("f0", &K::f0, &K::f0_ramp, Range::non_negative(),
                                      "eps_c/sigma", "self-propulsion force")),
           required(number<K>("tau_p", &K::tau_p, Range::non_negative(), "tau",
-                             "persistence time of the orientation (0: white noise; math.huge: "
-                             "frozen orientations)",
+                             "persistence time of the orientation (0: white noise; inf, math.huge "
+                             "in Lua: frozen orientations)",
                              /*allow_infinity=*/true)),
           option(boolean<K>("randomize", &K::randomize,
                             "give the group random orientations at creation")),
