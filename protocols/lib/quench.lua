@@ -98,11 +98,9 @@ return function(tissue, opts)
   end
   if signal then
     local resume = require("lib.resume")
-    local dir = resume.run_dir()
     error(string.format("stopped by %s during %s at step %d; no checkpoint is written during a quench " ..
                         "(only during compression and production): %s", signal, o.label, sys:step(),
-                        dir and resume.continue_command(dir) .. " starts the run again " .. resume.restart_point()
-                        or "run the protocol again from the start"), 0)
+                        resume.restart_advice()), 0)
   end
   local box = sys:box()
   local T_c, T_a = sys:temperature(tissue.cells), sys:temperature(tissue.vertices)

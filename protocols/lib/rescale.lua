@@ -31,13 +31,9 @@ return function(tissue, opts)
   if r.stopped then
     -- No checkpoint inside the rescale: the compressed tissue (compressed.ckpt) is the last
     -- state saved, and --resume starts the run again from it (like a quench).
-    local resume = require("lib.resume")
-    local dir = resume.run_dir()
     error(string.format("stopped by %s during the rescale's FIRE at iteration %d (phi_a %.4f); " ..
                         "no checkpoint is written during the rescale: %s", iv.interrupted() or "a signal",
-                        r.steps, after.adipocyte,
-                        dir and resume.continue_command(dir) .. " starts the run again " .. resume.restart_point()
-                        or "run the protocol again from the start"), 0)
+                        r.steps, after.adipocyte, require("lib.resume").restart_advice()), 0)
   end
   log.say("rescale", "phi_a %.4f -> %.4f (phi %.4f), box %s, FIRE %d steps (dt_max %g), max force %.2e%s",
           before.adipocyte, after.adipocyte, after.total, log.box(sys:box().lengths), r.steps,

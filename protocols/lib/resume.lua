@@ -48,6 +48,13 @@ function M.restart_point()
   return "from the beginning"
 end
 
+-- What a stop before production's first checkpoint tells the user to do: the command that
+-- continues the run and where it starts again, or (no run directory) to run it again.
+function M.restart_advice()
+  if not run_dir then return "run the protocol again from the start" end
+  return M.continue_command(run_dir) .. " starts the run again " .. M.restart_point()
+end
+
 -- Adds this run's identity to a save_checkpoint keyword table (nothing outside a run
 -- directory); returns the table.
 function M.stamp(t)
