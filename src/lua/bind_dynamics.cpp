@@ -27,6 +27,15 @@ std::string LuaType<DynamicsHandle>::describe(const DynamicsHandle& d) {
 
 namespace {
 
+// Refuses a change of d's methods or pressure wall during its run: run_steps checked them (the
+// methods' System, the piston's Walls) when the run began.
+void require_not_running(const DynamicsHandle& d, const char* what) {
+  if (d.running)
+    fail_input(what,
+               ": the Dynamics is running (this call comes from a callback of its run); change "
+               "its methods and pressure wall before the run, or after the run returns");
+}
+
 // The keys of invasim.Dynamics{} (the engine's Dynamics takes dt without a default: this is
 // its one default).
 struct DynamicsKeys {
@@ -68,6 +77,7 @@ int l_new(lua_State* L) {
 int l_add(lua_State* L) {
   DynamicsHandle& d = check<DynamicsHandle>(L, 1);
   const auto& method = check_shared<MethodHandle>(L, 2);
+  require_not_running(d, "add");
   for (const auto& m : d.methods)
     if (m == method) fail_input("add: this ", method->kind, " method is already in the Dynamics");
   d.methods.push_back(method);
@@ -82,6 +92,7 @@ int l_add(lua_State* L) {
 // defaults to the System's only Walls force (found at run time).
 int l_pressure_wall(lua_State* L) {
   DynamicsHandle& d = check<DynamicsHandle>(L, 1);
+  require_not_running(d, "pressure_wall");
   Kwargs kw(L, 2, "pressure_wall");
   auto wall = std::make_shared<PressureWall>(pressure_wall_fields().read(kw));
   std::shared_ptr<Walls> walls = kw_object<Walls>(kw, "walls", false, "a Walls force");

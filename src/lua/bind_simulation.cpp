@@ -95,6 +95,9 @@ int l_new(lua_State* L) {
   auto system = kw_object<SystemHandle>(kw, "system", true);
   auto dyn = kw_object<DynamicsHandle>(kw, "dynamics", true);
   kw.finish();
+  // The methods added so far move this System's sites (run_steps checks those added later).
+  for (const auto& m : dyn->methods)
+    require_same_system(*m->group, *system, "Simulation: " + m->kind);
   push(L, std::make_shared<SimulationHandle>(std::move(system), std::move(dyn)));
   return 1;
 }

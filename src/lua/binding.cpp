@@ -11,8 +11,33 @@
 
 namespace invasim::lua {
 
+namespace {
+// Registry keys of the tables {[C function] = its name}: every bound type's methods, and the
+// module's functions (see running_function).
+char method_names_key;
+char function_names_key;
+
+// Records names[f] = "name" for each function of the list (in the registry table at `key`).
+void record_names(lua_State* L, char* key, const luaL_Reg* functions) {
+  if (lua_rawgetp(L, LUA_REGISTRYINDEX, key) != LUA_TTABLE) {
+    lua_pop(L, 1);
+    lua_newtable(L);
+    lua_pushvalue(L, -1);
+    lua_rawsetp(L, LUA_REGISTRYINDEX, key);
+  }
+  for (const luaL_Reg* f = functions; f->name != nullptr; ++f) {
+    lua_pushcfunction(L, f->func);
+    lua_pushstring(L, f->name);
+    lua_rawset(L, -3);
+  }
+  lua_pop(L, 1);
+}
+}  // namespace
+
 void add_functions(lua_State* L, std::initializer_list<luaL_Reg> functions) {
-  luaL_setfuncs(L, RegList(functions).data(), 0);
+  const RegList list(functions);
+  luaL_setfuncs(L, list.data(), 0);
+  record_names(L, &function_names_key, list.data());
 }
 
 void push_string_list(lua_State* L, const std::vector<std::string>& items) {
@@ -172,12 +197,23 @@ std::string type_name_at(lua_State* L, int index) {
 
 namespace {
 
-// Registry key of the table {[method's C function] = its name} of every bound type.
-char method_names_key;
+// The name recorded for the function on top of the stack in the registry table at `key`
+// (record_names), or "". Never raises.
+std::string recorded_name(lua_State* L, char* key) {
+  std::string name;
+  if (lua_rawgetp(L, LUA_REGISTRYINDEX, key) == LUA_TTABLE) {
+    lua_pushvalue(L, -2);
+    if (lua_rawget(L, -2) == LUA_TSTRING) name = lua_tostring(L, -1);
+    lua_pop(L, 1);  // the name (or nil)
+  }
+  lua_pop(L, 1);  // the table (or what stood in its place)
+  return name;
+}
 
 // The name of the running C function and whether it was called as a method (obj:f()). When
 // Lua cannot name it (called through pcall or as t[k](...)), a bound method is named from the
-// method table, and taken as called with its object as argument 1. Never raises.
+// method table, and taken as called with its object as argument 1, and a module function
+// ("save_checkpoint") from the module's. Never raises.
 std::string running_function(lua_State* L, bool& method) {
   std::string function = "?";
   method = false;
@@ -187,15 +223,11 @@ std::string running_function(lua_State* L, bool& method) {
     if (ar.name && std::strcmp(ar.name, "?") != 0) {  // "?": called as t[k](...)
       function = ar.name;
       method = ar.namewhat && std::strcmp(ar.namewhat, "method") == 0;
-    } else if (lua_rawgetp(L, LUA_REGISTRYINDEX, &method_names_key) == LUA_TTABLE) {
-      lua_pushvalue(L, -2);
-      if (lua_rawget(L, -2) == LUA_TSTRING) {
-        function = lua_tostring(L, -1);
-        method = true;
-      }
-      lua_pop(L, 2);  // the name (or nil) and the table
-    } else {
-      lua_pop(L, 1);  // not a table
+    } else if (std::string name = recorded_name(L, &method_names_key); !name.empty()) {
+      function = name;
+      method = true;
+    } else if (std::string name = recorded_name(L, &function_names_key); !name.empty()) {
+      function = name;
     }
     lua_pop(L, 1);  // the function
   }
@@ -307,8 +339,10 @@ std::optional<double> opt_number(lua_State* L, int index) {
 namespace detail {
 
 void throw_protected_error(lua_State* L, int status) {
-  std::string message = lua_type(L, -1) == LUA_TSTRING
-                            ? lua_tostring(L, -1)
+  std::size_t length = 0;
+  const char* text = lua_type(L, -1) == LUA_TSTRING ? lua_tolstring(L, -1, &length) : nullptr;
+  std::string message = text
+                            ? std::string(text, length)  // whole: NULs included
                             : std::string("(error object is a ") + luaL_typename(L, -1) + " value)";
   lua_pop(L, 1);
   if (status == LUA_ERRRUN) throw LuaRaised(message);
@@ -373,19 +407,7 @@ void define_metatable(lua_State* L, const char* name, const char* type_name,
   lua_setfield(L, -2, "__tostring");
   lua_newtable(L);
   luaL_setfuncs(L, methods, 0);
-  // method_names[f] = "name" for each method (see running_function).
-  if (lua_rawgetp(L, LUA_REGISTRYINDEX, &method_names_key) != LUA_TTABLE) {
-    lua_pop(L, 1);
-    lua_newtable(L);
-    lua_pushvalue(L, -1);
-    lua_rawsetp(L, LUA_REGISTRYINDEX, &method_names_key);
-  }
-  for (const luaL_Reg* m = methods; m->name != nullptr; ++m) {
-    lua_pushcfunction(L, m->func);
-    lua_pushstring(L, m->name);
-    lua_rawset(L, -3);
-  }
-  lua_pop(L, 1);
+  record_names(L, &method_names_key, methods);  // see running_function
   lua_pushstring(L, type_name);
   lua_pushcclosure(L, &lua_wrap<&l_index>, 2);
   lua_setfield(L, -2, "__index");

@@ -25,6 +25,7 @@
 //   exception.
 #include <lua.hpp>
 
+#include <algorithm>
 #include <cstring>
 #include <initializer_list>
 #include <memory>
@@ -59,10 +60,15 @@ struct LuaType;
   }
 
 // A C++ exception that already carries a complete Lua error message (with its location),
-// e.g. from a failed Lua callback: lua_wrap re-raises it as is.
+// e.g. from a failed Lua callback: lua_wrap re-raises it as is, whole (message() keeps a NUL
+// that would end what()).
 class LuaRaised : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  explicit LuaRaised(const std::string& message) : std::runtime_error(message), message_(message) {}
+  const std::string& message() const { return message_; }
+
+ private:
+  std::string message_;
 };
 
 // Thrown by a binding to stop the script quietly (`invasim params` stops at invasim.params):
@@ -165,6 +171,7 @@ template <int (*F)(lua_State*)>
 int lua_wrap(lua_State* L) {
   constexpr std::size_t kMax = 4096;
   char message[kMax];
+  std::size_t length = 0;  // of a LuaRaised message (NULs included); else up to the first NUL
   bool has_location = false;
   bool stop = false;
   try {
@@ -172,7 +179,8 @@ int lua_wrap(lua_State* L) {
   } catch (const StopScript&) {
     stop = true;
   } catch (const LuaRaised& e) {
-    std::strncpy(message, e.what(), kMax - 1);
+    length = std::min(e.message().size(), kMax - 1);
+    std::memcpy(message, e.message().data(), length);
     has_location = true;
   } catch (const std::exception& e) {
     std::strncpy(message, e.what(), kMax - 1);
@@ -185,7 +193,7 @@ int lua_wrap(lua_State* L) {
   }
   message[kMax - 1] = '\0';
   if (has_location)
-    lua_pushstring(L, message);
+    lua_pushlstring(L, message, length);
   else {
     push_where(L);
     lua_pushstring(L, message);

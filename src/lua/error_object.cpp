@@ -2,8 +2,6 @@
 
 #include <lua.hpp>
 
-#include <cstring>
-
 #include "lua/binding.hpp"
 
 namespace invasim::lua {
@@ -40,12 +38,12 @@ int describe_error_object(lua_State* L) {
 namespace {
 constexpr const char* kCallbackTracebackKey = "invasim.callback_traceback";  // {message, traceback}
 
-// Whether the table at `index` records `message` (its entry 1). Leaves the stack as it was.
-bool records_message(lua_State* L, int index, const char* message) {
+// Whether the table at `index` records the message at stack index `message` (its entry 1),
+// compared as Lua strings (a NUL inside does not end them). Leaves the stack as it was.
+bool records_message(lua_State* L, int index, int message) {
   if (lua_type(L, index) != LUA_TTABLE) return false;
   lua_rawgeti(L, index, 1);
-  const bool same =
-      lua_type(L, -1) == LUA_TSTRING && std::strcmp(lua_tostring(L, -1), message) == 0;
+  const bool same = lua_type(L, -1) == LUA_TSTRING && lua_rawequal(L, -1, message);
   lua_pop(L, 1);
   return same;
 }
@@ -56,9 +54,8 @@ int callback_message_handler(lua_State* L) {
   lua_copy(L, -1, 1);
   lua_settop(L, 1);
   if (lua_type(L, 1) != LUA_TSTRING) return 1;
-  const char* message = lua_tostring(L, 1);
   lua_getfield(L, LUA_REGISTRYINDEX, kCallbackTracebackKey);
-  if (!records_message(L, -1, message)) {
+  if (!records_message(L, -1, 1)) {
     lua_createtable(L, 2, 0);
     lua_pushvalue(L, 1);
     lua_rawseti(L, -2, 1);
@@ -70,7 +67,8 @@ int callback_message_handler(lua_State* L) {
   return 1;
 }
 
-bool take_callback_traceback(lua_State* L, const char* message) {
+bool take_callback_traceback(lua_State* L, int message) {
+  message = lua_absindex(L, message);
   lua_getfield(L, LUA_REGISTRYINDEX, kCallbackTracebackKey);
   const bool recorded = records_message(L, -1, message);
   if (recorded) lua_rawgeti(L, -1, 2);

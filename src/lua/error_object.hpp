@@ -26,6 +26,6 @@ int callback_message_handler(lua_State* L);
 // Pushes the traceback recorded for `message` by callback_message_handler and forgets it;
 // returns false (nothing pushed) when none is recorded for this message. Allocates: for
 // message handlers and protected code only.
-bool take_callback_traceback(lua_State* L, const char* message);
+bool take_callback_traceback(lua_State* L, int message);
 
 }  // namespace invasim::lua

@@ -33,14 +33,20 @@ int message_handler(lua_State* L) {
   lua_pushcfunction(L, &describe_error_object);
   lua_insert(L, 1);
   lua_call(L, 1, 1);
-  const char* message = lua_tostring(L, 1);
   lua_createtable(L, 2, 0);
-  lua_pushstring(L, message);
+  lua_pushvalue(L, 1);  // the message as a Lua string: a NUL inside does not end it
   lua_rawseti(L, -2, 1);
   // An error raised in a callback and re-raised by its binding: the stack where it began.
-  if (!take_callback_traceback(L, message)) luaL_traceback(L, L, nullptr, 1);
+  if (!take_callback_traceback(L, 1)) luaL_traceback(L, L, nullptr, 1);
   lua_rawseti(L, -2, 2);
   return 1;
+}
+
+// The string (or number) at `index` whole, NULs included (a C string would end at the first).
+std::string string_at(lua_State* L, int index) {
+  std::size_t length = 0;
+  const char* text = lua_tolstring(L, index, &length);
+  return std::string(text, length);
 }
 
 // os.exit in a protocol: an error, not an end of the process that would leave the run's files
@@ -143,10 +149,10 @@ LuaState::Outcome LuaState::call_loaded(int load_status) {
   if (lua_type(L_, -1) == LUA_TTABLE) {
     lua_rawgeti(L_, -1, 1);
     lua_rawgeti(L_, -2, 2);
-    if (lua_isstring(L_, -2)) message = lua_tostring(L_, -2);
-    if (lua_isstring(L_, -1)) traceback = lua_tostring(L_, -1);
+    if (lua_isstring(L_, -2)) message = string_at(L_, -2);
+    if (lua_isstring(L_, -1)) traceback = string_at(L_, -1);
   } else if (lua_isstring(L_, -1)) {
-    message = lua_tostring(L_, -1);  // e.g. out of memory before the handler ran
+    message = string_at(L_, -1);  // e.g. out of memory before the handler ran
   }
   lua_settop(L_, 0);  // run_error_functions starts from an empty stack
   run_error_functions(message);
@@ -168,8 +174,15 @@ void LuaState::run_error_functions(const std::string& message) {
   for (lua_Integer i = 1; i <= n; ++i) {
     lua_rawgeti(L_, 1, i);
     lua_pushvalue(L_, 2);
-    // Its own error (a full disk, a stop) is dropped: the script's error is the one reported.
-    lua_pcall(L_, 1, 0, 0);
+    // Its own error (a full disk) is reported as a warning, and the script's error stays the
+    // one the run ends with; a stop (Ctrl-C while it ran) is not an error of the function.
+    if (lua_pcall(L_, 1, 0, 0) != LUA_OK && !is_stop_sentinel(L_, -1)) {
+      const std::string failure =
+          lua_type(L_, -1) == LUA_TSTRING ? string_at(L_, -1) : "an error object that is no string";
+      std::fprintf(stderr, "invasim: warning: an invasim.at_error function failed: %s\n",
+                   printable_message(failure).c_str());
+      std::fflush(stderr);
+    }
     lua_settop(L_, 2);
   }
   lua_settop(L_, 0);

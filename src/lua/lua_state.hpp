@@ -10,18 +10,21 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/errors.hpp"
+
 #include "lua/context.hpp"
 
 struct lua_State;
 
 namespace invasim::lua {
 
-// A Lua error from a running script: what() is the message ("proto.lua:12: ..."), traceback()
-// the Lua stack at the error (empty for syntax errors).
+// A Lua error from a running script: what() is the message ("proto.lua:12: ..."), with its
+// control characters escaped as fail_input's are (core/errors.hpp: a NUL would end it);
+// traceback() the Lua stack at the error (empty for syntax errors).
 class ScriptError : public std::runtime_error {
  public:
   ScriptError(const std::string& message, std::string traceback)
-      : std::runtime_error(message), traceback_(std::move(traceback)) {}
+      : std::runtime_error(printable_message(message)), traceback_(std::move(traceback)) {}
   const std::string& traceback() const { return traceback_; }
 
  private:
@@ -58,7 +61,7 @@ class LuaState {
  private:
   Outcome call_loaded(int load_status);
   // Calls the functions invasim.at_error registered, in order, with the message of the error
-  // that ends the script (protected; their own errors are dropped).
+  // that ends the script (protected; their own errors are warnings on stderr).
   void run_error_functions(const std::string& message);
 
   // The allocator's bookkeeping (lua_Alloc user data).

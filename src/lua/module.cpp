@@ -23,8 +23,8 @@ namespace {
 
 // invasim.at_error(f): f(message) is called when the script ends with an error (a stop by a
 // signal included), after the stack has unwound and before invasim reports it: lib.log writes
-// the message to the run's log.txt. Functions run in the order registered; their own errors
-// are dropped.
+// the message to the run's log.txt. Functions run in the order registered; an error of one is
+// a warning on stderr (LuaState::run_error_functions).
 int l_at_error(lua_State* L) {
   if (lua_type(L, 1) != LUA_TFUNCTION) throw InputError(bad_argument(L, 1, "function"));
   lua_pushvalue(L, 1);

@@ -73,6 +73,7 @@ struct DynamicsHandle {
   std::vector<std::shared_ptr<MethodHandle>> methods;
   std::shared_ptr<Walls> walls;  // walls = given to pressure_wall{}, else resolved at run
   RunRecord record;              // the System of the last run and its revision after it
+  bool running = false;          // inside run_steps: its methods and pressure wall stay fixed
 };
 
 }  // namespace invasim

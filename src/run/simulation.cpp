@@ -19,6 +19,10 @@ Simulation::Simulation(std::shared_ptr<System> system, std::shared_ptr<ForceFiel
 
 void Simulation::add(std::shared_ptr<Operation> operation, Trigger trigger) {
   if (!operation) throw InputError("Simulation: no operation given");
+  if (running_)
+    throw InputError("Simulation: the " + operation->name() +
+                     " cannot be added while the Simulation runs (from one of its operations); "
+                     "add it before the run, or after the run returns");
   for (const auto& s : operations_)
     if (s.operation == operation)
       throw InputError("Simulation: the " + operation->name() + " is already scheduled");
@@ -34,8 +38,12 @@ RunResult Simulation::run(std::uint64_t n) {
   RunResult result;
   stop_requested_ = false;
   const std::uint64_t end = system_->step + n;
-  // A copy: an operation may add or remove operations; the change applies to the next run.
-  const std::vector<Scheduled> ops = operations_;
+  const std::vector<Scheduled>& ops = operations_;  // fixed during the run (add() refuses)
+  running_ = true;
+  struct NotRunning {
+    bool& flag;
+    ~NotRunning() { flag = false; }
+  } not_running{running_};
   std::vector<char> ran(ops.size());
   while (system_->step < end) {
     const std::uint64_t now = system_->step;

@@ -48,7 +48,8 @@ class Simulation {
     std::shared_ptr<Operation> operation;
     Trigger trigger;
   };
-  // Appends an operation; operations due at the same step run in the order added.
+  // Appends an operation; operations due at the same step run in the order added. Refused
+  // during run() (from an operation): its schedule would start in the middle of the run.
   void add(std::shared_ptr<Operation> operation, Trigger trigger);
   const std::vector<Scheduled>& operations() const { return operations_; }
 
@@ -77,6 +78,7 @@ class Simulation {
   StopCheckFn stop_check_;
   std::uint64_t max_chunk_ = 100;
   bool stop_requested_ = false;
+  bool running_ = false;  // inside run()
 };
 
 }  // namespace invasim

@@ -107,15 +107,18 @@ RunResult run_steps(Simulation& run, const std::shared_ptr<SystemHandle>& system
     });
   RunResult result;
   system->running = true;
+  d.running = true;
   try {
     prepare_dynamics(d, system, "run");
     result = run.run(static_cast<std::uint64_t>(n));
   } catch (...) {
     system->running = false;
+    d.running = false;
     run.set_progress({});
     throw;
   }
   system->running = false;
+  d.running = false;
   run.set_progress({});
   system->changed();
   d.record.ran_on(system);

@@ -1,6 +1,6 @@
--- Errors whose object is not a string, and os.exit, at the top level and in a callback of the
--- engine (tests/lua/CMakeLists.txt: one case per --set case=...). Each ends the script with
--- exit status 1 and a message naming this file and the line that raised it.
+-- Errors whose object is not a string or whose message holds a NUL, failing at_error functions,
+-- os.exit, at the top level and in engine callbacks (tests/lua/CMakeLists.txt: one case per --set
+-- case=...). Each ends the script with status 1 and a message naming this file and line.
 local iv = require("invasim")
 local p = iv.params{ case = { "table", help = "which error to raise" } }
 
@@ -26,6 +26,13 @@ local cases = {
   callback_table = function() in_callback(function() error({ code = 3 }) end) end,
   exit = function() os.exit(0) end,
   exit_in_callback = function() in_callback(function() os.exit(0) end) end,
+  nul = function() error("before\0after") end,
+  nul_in_callback = function() in_callback(function() error("in\0callback") end) end,
+  failing_at_error = function()
+    iv.at_error(function() error("the handler failed") end)
+    iv.at_error(function(message) print("second handler saw: " .. message) end)
+    error("the script failed")
+  end,
 }
 local raise = cases[p.case] or error("unknown case " .. tostring(p.case))
 raise()

@@ -39,6 +39,8 @@ expect_error("bad self for 'update' %(Progress expected, got table; call methods
 expect_error("bad argument #1 to 'update' %(integer expected, got no value%)", function() progress:update() end)
 expect_error("bad argument #1 to 'update' %(integer expected, got string%)", function() progress:update("x") end)
 expect_error("bad argument #2 to 'update' %(number expected, got table%)", function() progress:update(1, {}) end)
+-- called through pcall, where Lua cannot name the function: named from the module's table
+expect_error("bad argument #1 to 'save_checkpoint' %(", iv.save_checkpoint, 5, {})
 expect_error("Progress expected, got table", progress.finish, {})
 expect_error("has no method or field 'updte' %(did you mean 'update'%?%)", function() progress:updte(1) end)
 expect_error("has no field of type number", function() return progress[1] end)

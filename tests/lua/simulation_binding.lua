@@ -1,7 +1,8 @@
 -- Test: iv.Simulation (src/run/ through lua/bind_simulation.cpp): operations on their own
 -- schedules (every with phase, at, at_end), in the order added, listed by sim:operations();
 -- an observer returning false ends the run; a Simulation run equals a plain dyn:run bit for
--- bit; bad schedules are refused with a message naming the key.
+-- bit; bad schedules are refused with a message naming the key; operations, methods and the
+-- pressure wall cannot change during a run; a Simulation of another System's methods is refused.
 local iv = require("invasim")
 
 local function tissue()
@@ -63,6 +64,28 @@ mistaken:observe(function() return "stop" end, { every = 5 })
 refused(function() mistaken:run(100) end,
         "observer: the function returned a string; return false to stop the run")
 refused(function() sim:observe(function() end, { evry = 3 }) end, "unknown key 'evry'")
+-- the operations, the methods and the pressure wall of a run are fixed while it runs: a change
+-- from one of its operations is refused, and the run ends with that error
+local growing = iv.Simulation{ system = sys, dynamics = dyn }
+growing:observe(function() growing:observe(function() end, { every = 1 }) end, { every = 4 })
+refused(function() growing:run(10) end,
+        "observe: Simulation: the observer cannot be added while the Simulation runs")
+local adding = iv.Simulation{ system = sys, dynamics = dyn }
+adding:observe(function() dyn:add(iv.Damped{ group = sys:group("cancer"), gamma = 1 }) end, { every = 4 })
+refused(function() adding:run(10) end, "add: the Dynamics is running %(this call comes from a callback of its run%)")
+refused(function() dyn:run(sys, 10, { every = 2, callback = function() dyn:pressure_wall{ P = 0.01 } end }) end,
+        "pressure_wall: the Dynamics is running")
+assert(#dyn:methods() == 1, "the refused add added nothing")
+-- after the run returns, the same changes are taken
+local after = iv.Simulation{ system = sys, dynamics = dyn }
+after:run(1)
+after:observe(function() end, { every = 1 })
+assert(#after:operations() == 1)
+-- a Dynamics whose methods move another System's sites: refused when the Simulation is made
+local other_sys, other_dyn = tissue()
+refused(function() iv.Simulation{ system = sys, dynamics = other_dyn } end,
+        "Simulation: Langevin: group 'cancer' belongs to another System")
+assert(other_sys)
 refused(function() iv.Simulation{ system = sys } end,
         "Simulation: missing required key 'dynamics' %(a Dynamics%)")
 refused(function() iv.Simulation{ system = sys, dynamics = 1 } end,
