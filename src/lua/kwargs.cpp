@@ -37,7 +37,7 @@ Kwargs::Kwargs(lua_State* L, int index, std::string owner)
                type_name_at(L, index_));
 }
 
-int Kwargs::fetch(std::string_view key) {
+int Kwargs::push(std::string_view key) {
   if (std::find(known_.begin(), known_.end(), key) == known_.end()) known_.emplace_back(key);
   // Creating the key string allocates (a Lua error when memory runs out): protected, since
   // this Kwargs owns C++ strings.
@@ -52,7 +52,7 @@ int Kwargs::fetch(std::string_view key) {
 }
 
 int Kwargs::fetch_present(std::string_view key) {
-  const int type = fetch(key);
+  const int type = push(key);
   if (type == LUA_TNIL) lua_pop(L_, 1);
   return type;
 }
@@ -230,7 +230,8 @@ double Kwargs::number(std::string_view key, double fallback, Range range) {
 }
 
 bool Kwargs::boolean(std::string_view key, bool fallback) {
-  return maybe_boolean(key).value_or(fallback);
+  const auto value = declared(plain_declaration(key, "boolean"), false);
+  return value ? std::get<bool>(*value) : fallback;
 }
 
 std::string Kwargs::string(std::string_view key, const std::string& fallback) {
@@ -248,12 +249,6 @@ std::optional<long long> Kwargs::integer_value(std::string_view key, Range range
   const auto value = declared(plain_declaration(key, "integer", range), required, bounds);
   if (!value) return std::nullopt;
   return std::get<long long>(*value);
-}
-
-std::optional<bool> Kwargs::maybe_boolean(std::string_view key) {
-  const auto value = declared(plain_declaration(key, "boolean"), false);
-  if (!value) return std::nullopt;
-  return std::get<bool>(*value);
 }
 
 std::optional<std::string> Kwargs::maybe_string(std::string_view key) {
@@ -313,10 +308,6 @@ std::optional<Kwargs> Kwargs::maybe_table(std::string_view key) {
   return Kwargs(L_, -1, owner_ + "." + std::string(key));
 }
 
-int Kwargs::push(std::string_view key) {
-  return fetch(key);
-}
-
 int Kwargs::push_index(int i) {
   positional_allowed_ = std::max(positional_allowed_, i);
   lua_checkstack(L_, 1);
@@ -324,7 +315,7 @@ int Kwargs::push_index(int i) {
 }
 
 bool Kwargs::has(std::string_view key) {
-  const bool present = fetch(key) != LUA_TNIL;
+  const bool present = push(key) != LUA_TNIL;
   lua_pop(L_, 1);
   return present;
 }

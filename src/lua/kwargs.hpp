@@ -105,7 +105,6 @@ class Kwargs {
     if (!value) return std::nullopt;
     return static_cast<T>(*value);
   }
-  std::optional<bool> maybe_boolean(std::string_view key);
   std::optional<std::string> maybe_string(std::string_view key);
 
   // A list of exactly `size` numbers ({70, 70, 70}); nullopt when absent and not required.
@@ -141,9 +140,7 @@ class Kwargs {
   [[noreturn]] void missing(std::string_view key, const char* expected) const;
 
  private:
-  // Pushes the value of key (raw get) and records the key; returns its Lua type.
-  int fetch(std::string_view key);
-  // The same, but an absent key (nil) leaves nothing on the stack.
+  // push(key), but an absent key (nil) leaves nothing on the stack.
   int fetch_present(std::string_view key);
   [[noreturn]] void type_error(std::string_view key, const char* expected) const;
   // The value on top of the stack as the type named; pops it.
