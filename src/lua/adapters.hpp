@@ -31,8 +31,8 @@
 
 namespace invasim::lua {
 
-// Pushes one C++ value as its Lua counterpart: numbers, integers, booleans, strings, a bound
-// object (binding.hpp's push), a vector of numbers as a list, and an empty optional as nil.
+// Pushes one C++ value as its Lua counterpart: numbers, integers, booleans, strings (binding.hpp),
+// a bound object (binding.hpp's push), a vector of numbers as a list, and an empty optional as nil.
 inline void push_value(lua_State* L, double v) {
   lua_pushnumber(L, v);
 }
@@ -43,7 +43,6 @@ requires(!std::same_as<I, bool>) void push_value(lua_State* L, I v) {
 inline void push_value(lua_State* L, bool v) {
   lua_pushboolean(L, v);
 }
-void push_value(lua_State* L, const std::string& v);
 template <typename U>
 void push_value(lua_State* L, const std::shared_ptr<U>& object) {  // a bound object
   push(L, object);

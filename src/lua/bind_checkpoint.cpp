@@ -102,10 +102,8 @@ int l_load(lua_State* L) {
     extra = read_protocol_checkpoint(CheckpointReader::read(path), path, engine_objects(p), seed);
     restored_from_checkpoint(p.sim, p.dyn.get());
   });
-  return push_results(L, 1, [&extra](lua_State* S) noexcept {
-    lua_pushlstring(S, extra.data(), extra.size());
-    return 1;
-  });
+  push_value(L, extra);
+  return 1;
 }
 
 // invasim.checkpoint_run(path) -> run id, run parameters (strings; nil where not stored).

@@ -157,10 +157,8 @@ int l_json_encode(lua_State* L) {
     kw.finish();
   }
   const std::string text = json_dump(to_json(L, 1, 0), indent);
-  return push_results(L, 1, [&text](lua_State* S) noexcept {
-    lua_pushlstring(S, text.data(), text.size());
-    return 1;
-  });
+  push_value(L, text);
+  return 1;
 }
 
 // Pushes a JSON value as Lua data (inside protected_call: Lua API calls only; references into

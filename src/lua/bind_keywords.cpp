@@ -105,10 +105,7 @@ int checked(lua_State* L, const std::string& stage, int level) {
   std::vector<Declaration> specs;
   for (const auto& name : names) {
     lua_checkstack(L, 4);
-    protected_call(L, 0, 1, [&name](lua_State* S) noexcept {  // a long name allocates
-      lua_pushlstring(S, name.data(), name.size());
-      return 1;
-    });
+    push_value(L, name);
     lua_rawget(L, 3);
     specs.push_back(read_declaration(L, -1, cat("keywords: ", stage, ": key '", name, "'"), name,
                                      DeclarationUse::kKeyword));

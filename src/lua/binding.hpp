@@ -45,6 +45,9 @@ namespace invasim::lua {
 // ("Progress" for invasim.Progress userdata), or "no value".
 std::string type_name_at(lua_State* L, int index);
 
+// Pushes a string (protected: may be called anywhere); adapters.hpp's push_value overloads.
+void push_value(lua_State* L, const std::string& v);
+
 // Per-type names and description; specialised next to each binding.
 template <typename T>
 struct LuaType;
@@ -319,10 +322,8 @@ int tostring(lua_State* L) {
     text = *slot ? LuaType<T>::describe(**slot) : std::string(tag->name) + " (no longer valid)";
   else if (tag)
     text = std::string(tag->name) + " (with the metatable of a " + LuaType<T>::name + ")";
-  return push_results(L, 1, [&text](lua_State* S) noexcept {
-    lua_pushlstring(S, text.data(), text.size());
-    return 1;
-  });
+  push_value(L, text);
+  return 1;
 }
 
 // Builds the metatable `name` with the methods table (upvalue of __index); `type_name` is used
