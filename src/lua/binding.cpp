@@ -365,11 +365,7 @@ void call_lua(lua_State* L, int nargs, int nresults) {
     lua_pop(L, 1);
     throw StopScript();
   }
-  std::string message = lua_type(L, -1) == LUA_TSTRING
-                            ? lua_tostring(L, -1)
-                            : std::string("(error object is a ") + luaL_typename(L, -1) + " value)";
-  lua_pop(L, 1);
-  throw LuaRaised(message);
+  detail::throw_protected_error(L, LUA_ERRRUN);  // as a LuaRaised, whatever the status
 }
 
 namespace {
