@@ -238,13 +238,6 @@ std::string slice_svg(const Slice& s, double size_px) {
   return out;
 }
 
-RenderCounts render_frame(const Frame& frame, const SlicePlane& plane,
-                          const std::filesystem::path& out) {
-  const Slice s = cut_frame(frame, plane);
-  write_file_atomically(out, slice_svg(s));
-  return count_shapes(s);
-}
-
 namespace {
 
 // Box and step of two frame files of one snapshot must agree (the box up to the round-off of
@@ -338,7 +331,9 @@ Frame load_snapshot_frame(const std::filesystem::path& snapshot) {
 
 RenderCounts render_snapshot(const std::filesystem::path& snapshot, const SlicePlane& plane,
                              const std::filesystem::path& out) {
-  return render_frame(load_snapshot_frame(snapshot), plane, out);
+  const Slice s = cut_frame(load_snapshot_frame(snapshot), plane);
+  write_file_atomically(out, slice_svg(s));
+  return count_shapes(s);
 }
 
 }  // namespace invasim

@@ -28,10 +28,6 @@ RenderCounts count_shapes(const Slice& slice);
 // legend around it).
 std::string slice_svg(const Slice& slice, double size_px = 800.0);
 
-// Cuts a frame and writes the SVG atomically to `out`.
-RenderCounts render_frame(const Frame& frame, const SlicePlane& plane,
-                          const std::filesystem::path& out);
-
 // The frame a snapshot file belongs to. Given any of cells_<step>.xyz, spheres_<step>.vtp or
 // adipocytes_<step>.vtp, it loads the cells (from the file given if it holds cells, else from
 // cells_<step>.xyz, else from spheres_<step>.vtp) and the meshes (adipocytes_<step>.vtp)
@@ -40,7 +36,7 @@ RenderCounts render_frame(const Frame& frame, const SlicePlane& plane,
 // non-finite coordinate or radius is refused (io/frame_check.hpp).
 Frame load_snapshot_frame(const std::filesystem::path& snapshot);
 
-// `invasim render SNAPSHOT --slice z=VALUE -o FILE.svg`: load_snapshot_frame + render_frame.
+// load_snapshot_frame, cut_frame, and the SVG (slice_svg) written atomically to `out`.
 RenderCounts render_snapshot(const std::filesystem::path& snapshot, const SlicePlane& plane,
                              const std::filesystem::path& out);
 
