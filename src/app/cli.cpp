@@ -1,11 +1,11 @@
 #include "app/cli.hpp"
 
-#include <charconv>
 #include <filesystem>
 
 #include "app/options.hpp"
 #include "app/resume_options.hpp"
 #include "core/errors.hpp"
+#include "io/text_format.hpp"
 
 namespace invasim::app {
 
@@ -92,12 +92,10 @@ std::string command_word(const std::vector<std::string>& args) {
 }
 
 double parse_size(const std::string& text) {
-  double value = 0.0;
-  const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (result.ec != std::errc() || result.ptr != text.data() + text.size() || !(value > 0.0) ||
-      !(value <= 1e5))
+  const auto value = text::parse<double>(text);
+  if (!value || !(*value > 0.0) || !(*value <= 1e5))
     throw UsageError("--size expects a number of pixels in (0, 100000], got '" + text + "'");
-  return value;
+  return *value;
 }
 
 // out/<protocol stem>, then _key=value for each --set (and --seed) in command-line order, so
@@ -152,14 +150,13 @@ Command parse_render(const std::vector<std::string>& args) {
 
 // --threads N with N in [1, kMaxThreads]: more threads than any node has cores is a typo.
 int parse_threads(const std::string& text) {
-  int value = 0;
-  const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (result.ec != std::errc() || result.ptr != text.data() + text.size() || value < 1)
+  const auto value = text::parse<int>(text);
+  if (!value || *value < 1)
     throw UsageError("--threads expects a positive integer, got '" + text + "'");
-  if (value > kMaxThreads)
+  if (*value > kMaxThreads)
     throw UsageError("--threads must be in [1, " + std::to_string(kMaxThreads) + "], got '" + text +
                      "'");
-  return value;
+  return *value;
 }
 
 }  // namespace

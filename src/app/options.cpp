@@ -1,8 +1,7 @@
 #include "app/options.hpp"
 
-#include <charconv>
-
 #include "core/names.hpp"
+#include "io/text_format.hpp"
 
 namespace invasim::app {
 
@@ -76,12 +75,11 @@ ParsedOptions parse_options(const std::vector<std::string>& args, const OptionSp
 }
 
 int positive_option(const std::string& name, const std::string& text, int max) {
-  int value = 0;
-  const auto r = std::from_chars(text.data(), text.data() + text.size(), value);
-  if (r.ec != std::errc() || r.ptr != text.data() + text.size() || value < 1 || value > max)
+  const auto value = text::parse<int>(text);
+  if (!value || *value < 1 || *value > max)
     throw UsageError(name + " expects an integer in [1, " + std::to_string(max) + "], got '" +
                      text + "'");
-  return value;
+  return *value;
 }
 
 }  // namespace invasim::app
