@@ -4,6 +4,7 @@
 // the first step it is applied to (anchored then, so a run split into chunks or restarted
 // from a checkpoint that saved `start` follows the same schedule) unless `start` is given.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 
@@ -19,6 +20,9 @@ struct Ramp {
 
   void validate(const char* what) const {
     if (steps == 0) fail_input(what, ": a ramp needs steps >= 1");
+    if (!std::isfinite(to - from))  // value() would give inf or nan on the way
+      fail_input(what, ": a ramp from ", from, " to ", to,
+                 " spans more than the largest number (to - from overflows)");
   }
   // Value at `step`, anchoring the start at this step on first use.
   double value(std::uint64_t step) {

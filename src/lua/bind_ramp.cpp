@@ -58,6 +58,7 @@ const FieldTable<Ramp>& ramp_fields() {
 int l_ramp(lua_State* L) {
   Kwargs kw(L, 1, "ramp");
   const Ramp r = ramp_fields().make(kw);
+  r.validate("ramp");
   push(L, std::make_shared<Ramp>(r));
   return 1;
 }

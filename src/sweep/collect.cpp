@@ -118,10 +118,14 @@ int collect(const Workspace& ws, std::ostream& out) {
   }
   out << "job_id,status,wall_seconds [s]";
   for (const auto& k : keys) out << ',' << k;
-  for (const auto& a : averages)
-    out << ',' << with_unit(a, units, a) << ',' << with_unit(a + "_error", units, a) << ',' << a
-        << "_error_converged," << with_unit(a + "_drift", units, a) << ','
-        << with_unit(a + "_drift_error", units, a);
+  for (const auto& a : averages) {
+    // A measured average named as a sweep key (the compression's target phi and the measured
+    // phi): its columns are measured_<name>, so that no two columns share a name.
+    const std::string c = keys.count(a) ? "measured_" + a : a;
+    out << ',' << with_unit(c, units, a) << ',' << with_unit(c + "_error", units, a) << ',' << c
+        << "_error_converged," << with_unit(c + "_drift", units, a) << ','
+        << with_unit(c + "_drift_error", units, a);
+  }
   out << ",tau_d [tau],tau_r [tau],tau_d_unresolved\n";
   for (const auto& row : rows) {
     const bool done = row.status == "done";

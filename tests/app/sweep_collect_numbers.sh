@@ -7,7 +7,9 @@
 #     differ), and kT reads 0.0013, not 0.0012999999999999999;
 #  2. the done point's means, errors, drift, tau_d and tau_r are the repr of their values
 #     (0.1 + 0.2 = 0.30000000000000004 keeps its 17 digits: the text reads back exactly), its
-#     flags (error_converged, tau_d_unresolved) 1 or 0.
+#     flags (error_converged, tau_d_unresolved) 1 or 0;
+#  3. a measured average named as a state-point key (kT) is written as measured_kT, and no two
+#     columns share a name.
 # Usage: sweep_collect_numbers.sh INVASIM SPEC_DIR WORK_DIR PYTHON3
 set -euo pipefail
 invasim=$1 specs=$2 work=$3 python=$4
@@ -30,10 +32,13 @@ summary = {"averages": {"A_t": {"mean": 0.1 + 0.2, "error": 1e-05, "samples": 4,
                                 "tau_int": 0.5, "error_converged": True},
                         "T_c": {"mean": 25.0, "error": 0.0013, "samples": 4,
                                 "tau_int": 0.5, "error_converged": False},
+                        "kT": {"mean": 0.5, "error": 0.01, "samples": 4,
+                               "tau_int": 0.5, "error_converged": True},
                         "tau_d": 3.0, "tau_r": 1e20}}
 json.dump(summary, open(os.path.join(d, "summary.json"), "w"))
 with open(os.path.join(d, "series.csv"), "w") as f:
-    f.write("step,A_t [sigma^2],T_c [eps_c]\n0,0,25\n1,0,25\n2,0,25\n3,0.0026,25\n")
+    f.write("step,A_t [sigma^2],T_c [eps_c],kT [eps_c]\n0,0,25,0.5\n1,0,25,0.5\n2,0,25,0.5\n"
+            "3,0.0026,25,0.5\n")
 PY
 
 "$invasim" sweep collect ws -o results.csv
@@ -48,6 +53,8 @@ def expect(row, column, value):
     if text != repr(value):
         problems.append("%s: %s = %r, expected %r" % (row[0][:8], column, text, repr(value)))
 taus = set()
+if len(set(header)) != len(header):
+    problems.append("columns named twice: %s" % sorted({h for h in header if header.count(h) > 1}))
 if [r[0] for r in rows[1:]].count(done_id) != 1:
     problems.append("the done point %s is not one row of %s" % (done_id, table))
 for row in rows[1:]:
@@ -60,7 +67,9 @@ for row in rows[1:]:
     if row[0] == done_id:
         for column, value in (("wall_seconds", 12.5), ("A_t", 0.1 + 0.2), ("A_t_error", 1e-05),
                               ("A_t_drift", 0.0013), ("T_c", 25.0), ("T_c_error", 0.0013),
-                              ("T_c_drift", 0.0), ("tau_d", 3.0), ("tau_r", 1e20)):
+                              ("T_c_drift", 0.0), ("tau_d", 3.0), ("tau_r", 1e20),
+                              ("measured_kT", 0.5), ("measured_kT_error", 0.01),
+                              ("measured_kT_drift", 0.0)):
             expect(row, column, value)
         for column, text in (("A_t_error_converged", "1"), ("T_c_error_converged", "0"),
                              ("tau_d_unresolved", "0")):

@@ -200,6 +200,9 @@ check(ramp:value(0) == 0 and ramp:value(50) == 5e-3 and ramp:value(500) == 1e-2)
 expect_error("ramp: missing required key 'steps'", iv.ramp, { from = 0, to = 1 })
 expect_error("ramp: key 'steps' = 0 is out of range %(must be >= 1%)", iv.ramp, { from = 0, to = 1, steps = 0 })
 expect_error("ramp: missing required key 'from' %(a number%); unknown key 'form' %(did you mean 'from'%?%)", iv.ramp, { form = 0, to = 1, steps = 1 })
+expect_error("ramp: a ramp from 1e%+308 to %-1e%+308 spans more than the largest number", iv.ramp,
+             { from = 1e308, to = -1e308, steps = 10 })
+check(iv.ramp{ from = 1e308, to = 0, steps = 10 }:value(5) == 5e307)
 expect_error("Langevin: key 'kT': ramp end %-1 is out of range %(must be >= 0%)", iv.Langevin,
              { group = cancer, kT = iv.ramp{ from = -1, to = 1, steps = 10 } })
 expect_error("Langevin: key 'kT' must be a number or an invasim.ramp{}, got Group", iv.Langevin,
