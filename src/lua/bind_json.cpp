@@ -92,6 +92,12 @@ std::vector<Entry> entries_of(lua_State* L, int index, int depth) {
   }
   lua_pushvalue(L, index);  // __pairs(t) -> iterator, state, control
   call_lua(L, 1, 3);
+  // Calling a number would fail inside the pcall with no place to name: refused here, at the
+  // script's line (a table or userdata may be callable through __call).
+  if (const int type = lua_type(L, -3);
+      type != LUA_TFUNCTION && type != LUA_TTABLE && type != LUA_TUSERDATA)
+    fail_input("json_encode: a table's __pairs returned a ", lua_typename(L, type),
+               " where pairs needs an iterator function");
   while (true) {
     for (int k = 0; k < 3; ++k) lua_pushvalue(L, -3);
     call_lua(L, 2, 2);  // iterator(state, control) -> key, value

@@ -1,6 +1,6 @@
--- invasim.json_encode: the layout of params.json and summary.json, byte for byte as the Lua
--- encoder that preceded it (protocols/lib/json.lua) wrote the same table; __pairs, userdata,
--- the indent option and the errors (unknown option, a table that contains itself).
+-- invasim.json_encode: the layout of params.json and summary.json, byte for byte; __pairs,
+-- userdata, the indent option and the errors (unknown option, a table that contains itself, a
+-- __pairs that fails or returns no iterator: each at the script's line).
 local iv = require("invasim")
 local checks = 0
 local function check(condition, message)
@@ -62,4 +62,6 @@ loop.self = loop
 expect_error("json_encode: tables nested deeper than 256 levels %(does a table contain itself%?%)",
              iv.json_encode, loop)
 expect_error("__pairs failed", iv.json_encode, setmetatable({}, { __pairs = function() error("__pairs failed") end }))
+expect_error("^json_encode%.lua:%d+: json_encode: a table's __pairs returned a number where pairs needs an iterator function",
+             iv.json_encode, setmetatable({}, { __pairs = function() return 5 end }))
 print(string.format("json_encode: all %d checks passed", checks))
